@@ -1,0 +1,41 @@
+"""throwmap — throw maps, limit sets and design for parts handling by repeated throwing.
+
+Implements the method of Murphey & Lynch, "Parts handling and self-assembly using
+stable limit sets" (draft in ``shared/paper``), corrected where the draft is wrong.
+SI units throughout; see :mod:`throwmap.conventions`.
+
+``import throwmap`` loads neither matplotlib nor mujoco.
+"""
+
+from .arm import Arm, regime_problems
+from .conventions import G, cm
+from .errors import (
+    ConfigError,
+    InvalidArmError,
+    InvalidPartError,
+    InvalidStateError,
+    RegimeWarning,
+    ThrowmapError,
+    ThrowmapWarning,
+)
+from .orbit import Orbit, iterate
+from .outcome import BatchOutcome, Status, ThrowOutcome
+from .part import Part, Side
+from .parts import rectangle, regular_polygon, triangle_30_60_90
+from .throw import MODELS, throw, throw_batch
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Arm", "BatchOutcome", "ConfigError", "G", "InvalidArmError", "InvalidPartError", "InvalidStateError",
+    "MODELS", "Orbit", "Part", "RegimeWarning", "Side", "Status", "ThrowOutcome", "ThrowmapError",
+    "ThrowmapWarning", "cm", "iterate", "plot_throw_map", "rectangle", "regime_problems", "regular_polygon",
+    "throw", "throw_batch", "triangle_30_60_90", "__version__",
+]
+
+
+def plot_throw_map(*args, **kwargs):
+    """T(x) against x per side (paper Fig. 2); see :func:`throwmap.plotting.plot_throw_map`."""
+    from .plotting import plot_throw_map as _plot
+
+    return _plot(*args, **kwargs)

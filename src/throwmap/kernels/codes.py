@@ -1,0 +1,38 @@
+"""Status codes and the layout of the per-throw record the kernels fill.
+
+Integers so that batch kernels can return plain arrays; :class:`throwmap.outcome.Status`
+gives them names.
+"""
+
+OK = 0  # came to rest on a stable side, on the arm
+BEHIND_JOINT = 1  # a contact or a resting support vertex at x <= 0
+OFF_END = 2  # a contact beyond the arm's end, or the resting CM beyond it
+NO_REST = 3  # the impact cap was reached before the part came to rest
+INVALID_START = 4  # the start was not admissible (batch with on_invalid="status")
+NO_CONTACT = 5  # the contact search hit its iteration cap (should not happen)
+
+# record layout: one float64 row per throw (energies per unit mass, J/kg; impulses per unit mass, m/s)
+T_FLIGHT = 0  # s
+CONTACT_VERTEX = 1  # clockwise vertex index w_j of first contact
+CONTACT_X = 2  # world x of the first contact point, m
+VX_PRE = 3  # CM velocity and spin just before first impact (m/s, m/s, rad/s)
+VY_PRE = 4
+W_PRE = 5
+VX_POST = 6  # just after first impact (paper Eq. 4)
+VY_POST = 7
+W_POST = 8
+JX = 9  # first-impact impulse per unit mass, m/s
+JY = 10
+MU_IMPACT = 11  # |J_x| / J_y at first impact (friction ratio the no-slip impact needs)
+E_RELEASE = 12  # total energy at release (kinetic + g (y_cm - h)), J/kg
+K_PRE = 13  # kinetic energy just before the first impact, J/kg
+K_POST = 14  # kinetic energy just after it, J/kg
+U_IMPACT = 15  # potential energy at first impact, J/kg
+E_FINAL = 16  # potential energy at rest, J/kg
+N_IMPACTS = 17  # plastic impacts resolved (first contact, side landings, rocking)
+N_FLIPS = 18  # potential peaks crossed (a flip over a vertex)
+MU_MAX = 19  # largest friction ratio needed at any impact or while pivoting
+N_MIN = 20  # smallest normal force while pivoting, in units of m g (< 0: lift-off)
+N_PULL = 21  # impacts whose normal impulse would have to pull (J_y < 0)
+K_MAX_IMPACT_GAIN = 22  # largest (K_after - K_before) at any impact, J/kg (must be <= 0)
+NREC = 23

@@ -1,0 +1,173 @@
+"""Result types of a throw: :class:`Status`, :class:`ThrowOutcome`, :class:`BatchOutcome`."""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .kernels import codes as C
+
+__all__ = ["Status", "ThrowOutcome", "BatchOutcome"]
+
+
+class Status(enum.IntEnum):
+    """How a throw ended (integer codes shared with the kernels).
+
+    ``OK``: at rest on a stable side on the arm. ``BEHIND_JOINT``: a contact, or a
+    resting support vertex, at x ≤ 0. ``OFF_END``: a contact beyond the arm's
+    length, or the resting CM beyond it. ``NO_REST``: the impact cap was reached.
+    ``INVALID_START``: not thrown (batch with ``on_invalid="status"``).
+    ``NO_CONTACT``: the contact search hit its cap (a bug if ever seen).
+    """
+
+    OK = C.OK
+    BEHIND_JOINT = C.BEHIND_JOINT
+    OFF_END = C.OFF_END
+    NO_REST = C.NO_REST
+    INVALID_START = C.INVALID_START
+    NO_CONTACT = C.NO_CONTACT
+
+    @property
+    def label(self) -> str:
+        return self.name.lower()
+
+
+@dataclass(frozen=True, slots=True)
+class ThrowOutcome:
+    """One throw: where the part came to rest and the record of how (SI units).
+
+    ``x``/``side`` are the new resting configuration when ``status`` is OK; for an
+    escape they are the CM x and side at the moment the part left the arm.
+
+    Record (first impact unless stated): ``t_flight`` (s); ``contact_vertex``, the
+    user's index of the vertex that touched first; ``contact_x`` (m); ``v_pre`` and
+    ``v_post``, (ẋ, ẏ, φ̇) of the CM in m/s, m/s, rad/s around the impact (Eq. 4);
+    ``impulse`` (N·s); ``friction_ratio_impact`` = |J_x|/J_y that no-slip needs;
+    ``friction_ratio_max`` over every impact and pivot swing; energies in J
+    (potential from the arm line): ``energy_release``, ``kinetic_pre``,
+    ``kinetic_post``, ``potential_impact``, ``energy_final``; ``max_impact_energy_gain``
+    (J, ≤ 0 for a physical impact law); ``n_impacts``, ``n_flips`` (peaks crossed);
+    ``min_normal_force`` while pivoting, in units of m g; validity flags
+    ``lift_off`` (the pivot would need a pulling normal force: the part hops) and
+    ``pull_impulse`` (an impact's normal impulse would have to pull).
+    """
+
+    x: float
+    side: int
+    status: Status
+    x0: float
+    side0: int
+    omega: float
+    model: str
+    t_flight: float
+    contact_vertex: int
+    contact_x: float
+    v_pre: tuple
+    v_post: tuple
+    impulse: tuple
+    friction_ratio_impact: float
+    friction_ratio_max: float
+    energy_release: float
+    kinetic_pre: float
+    kinetic_post: float
+    potential_impact: float
+    energy_final: float
+    max_impact_energy_gain: float
+    n_impacts: int
+    n_flips: int
+    min_normal_force: float
+    lift_off: bool
+    pull_impulse: bool
+
+    @property
+    def ok(self) -> bool:
+        return self.status == Status.OK
+
+    @property
+    def kind(self) -> str:
+        """``"jog"`` (same side), ``"flip"`` (another side) or the escape status."""
+        if self.status != Status.OK:
+            return self.status.label
+        return "jog" if self.side == self.side0 else "flip"
+
+    @property
+    def assumptions_hold(self) -> bool:
+        """Whether the paper's contact assumptions are self-consistent for this throw."""
+        return not (self.lift_off or self.pull_impulse)
+
+    @classmethod
+    def from_record(cls, part, x0, side0, omega, model, x, side, status, rec) -> "ThrowOutcome":
+        m = part.mass
+        cv = rec[C.CONTACT_VERTEX]
+        n_min = float(rec[C.N_MIN])
+        return cls(
+            x=float(x),
+            side=int(side),
+            status=Status(int(status)),
+            x0=float(x0),
+            side0=int(side0),
+            omega=float(omega),
+            model=model,
+            t_flight=float(rec[C.T_FLIGHT]),
+            contact_vertex=part.user_vertex(int(cv)) if cv >= 0 else -1,
+            contact_x=float(rec[C.CONTACT_X]),
+            v_pre=(float(rec[C.VX_PRE]), float(rec[C.VY_PRE]), float(rec[C.W_PRE])),
+            v_post=(float(rec[C.VX_POST]), float(rec[C.VY_POST]), float(rec[C.W_POST])),
+            impulse=(m * float(rec[C.JX]), m * float(rec[C.JY])),
+            friction_ratio_impact=float(rec[C.MU_IMPACT]),
+            friction_ratio_max=float(rec[C.MU_MAX]),
+            energy_release=m * float(rec[C.E_RELEASE]),
+            kinetic_pre=m * float(rec[C.K_PRE]),
+            kinetic_post=m * float(rec[C.K_POST]),
+            potential_impact=m * float(rec[C.U_IMPACT]),
+            energy_final=m * float(rec[C.E_FINAL]),
+            max_impact_energy_gain=m * float(rec[C.K_MAX_IMPACT_GAIN]),
+            n_impacts=int(rec[C.N_IMPACTS]) if math.isfinite(rec[C.N_IMPACTS]) else 0,
+            n_flips=int(rec[C.N_FLIPS]) if math.isfinite(rec[C.N_FLIPS]) else 0,
+            min_normal_force=n_min,
+            lift_off=bool(n_min < 0.0),
+            pull_impulse=bool(rec[C.N_PULL] > 0),
+        )
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict (SI units; non-finite numbers become ``None``)."""
+
+        def clean(v):
+            if isinstance(v, tuple):
+                return [clean(a) for a in v]
+            if isinstance(v, float) and not math.isfinite(v):
+                return None
+            return v
+
+        out = {}
+        for name in self.__dataclass_fields__:
+            v = getattr(self, name)
+            out[name] = v.label if isinstance(v, Status) else clean(v)
+        out["kind"] = self.kind
+        return out
+
+
+@dataclass(frozen=True, slots=True)
+class BatchOutcome:
+    """Results of :func:`throwmap.throw_batch`: arrays in the broadcast shape of the inputs.
+
+    ``x`` (m), ``side`` (int), ``status`` (int codes of :class:`Status`) and
+    ``records`` (shape + (NREC,), per-unit-mass record, see :mod:`throwmap.kernels.codes`).
+    """
+
+    x: np.ndarray
+    side: np.ndarray
+    status: np.ndarray
+    records: np.ndarray
+    model: str
+
+    @property
+    def ok(self) -> np.ndarray:
+        return self.status == Status.OK
+
+    def record(self, name: str) -> np.ndarray:
+        """A record column by its name in :mod:`throwmap.kernels.codes` (e.g. ``"T_FLIGHT"``)."""
+        return self.records[..., getattr(C, name.upper())]
