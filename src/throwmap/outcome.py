@@ -49,7 +49,7 @@ class ThrowOutcome:
     ``friction_ratio_max`` over every impact and pivot swing; energies in J
     (potential from the arm line): ``energy_release``, ``kinetic_pre``,
     ``kinetic_post``, ``potential_impact``, ``energy_final``; ``max_impact_energy_gain``
-    (J, ≤ 0 for a physical impact law); ``n_impacts``, ``n_flips`` (peaks crossed);
+    (J, ≤ 0 for a physical impact law); ``n_impacts``, ``n_flips`` (landings on a side other than the previous one);
     ``min_normal_force`` while pivoting, in units of m g; validity flags
     ``lift_off`` (the pivot would need a pulling normal force: the part hops) and
     ``pull_impulse`` (an impact's normal impulse would have to pull).

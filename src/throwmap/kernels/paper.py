@@ -94,7 +94,7 @@ def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stab
     if px > length:
         return xc, side, C.OFF_END
     theta = math.atan2(-ry, -rx)
-    x, k, status = roll_to_rest(jc, theta, wp, px, rho2, d, uL, uR, ell, stable, g, length, max_impacts,
+    x, k, status = roll_to_rest(jc, theta, wp, px, side, rho2, d, uL, uR, ell, stable, g, length, max_impacts,
                                 n_samples, rec)
     rec[C.E_FINAL] = g * d[k]
     if status == C.OK:

@@ -99,14 +99,17 @@ def _record_impulse(jx, jy, rec):
 
 
 @njit(cache=True)
-def roll_to_rest(j, theta, thdot, px, rho2, d, uL, uR, ell, stable, g, length, max_impacts, n_samples, rec):
+def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, length, max_impacts, n_samples, rec):
     """Pivot on vertex ``w_j`` from angle ``theta`` at rate ``thdot`` (rad/s, CCW +) until rest.
 
-    ``px`` is the pivot's world x (m), ``length`` the arm length (inf: unbounded).
+    ``px`` is the pivot's world x (m), ``side0`` the side thrown from (flips are
+    counted as landings on a side other than the last one landed on), ``length``
+    the arm length (inf: unbounded).
     Per-side/vertex arrays as in :func:`throwmap.geometry.side_table`.
     Returns ``(x, side, status)``; ``rec`` counters are updated in place.
     """
     n = d.shape[0]
+    last_side = side0
     while True:
         # ---------------------------------------------------------- pivot phase on w_j
         lj = ell[j]
@@ -137,9 +140,7 @@ def roll_to_rest(j, theta, thdot, px, rho2, d, uL, uR, ell, stable, g, length, m
         else:
             barrier = -math.inf
         if E > barrier:
-            # guard reach_end: over the peak (a flip) or downhill to the end
-            if peak_ahead:
-                rec[C.N_FLIPS] += 1.0
+            # guard reach_end: over the peak or downhill to the end
             _check_arc(theta, end, E, lj, I, g, n_samples, rec)
             land_dir = dirn
         else:
@@ -168,6 +169,9 @@ def roll_to_rest(j, theta, thdot, px, rho2, d, uL, uR, ell, stable, g, length, m
             uB = uR[k]
             jB = k
         dk = d[k]
+        if k != last_side:
+            rec[C.N_FLIPS] += 1.0
+            last_side = k
         rec[C.N_IMPACTS] += 1.0
         if rec[C.N_IMPACTS] > max_impacts:
             return px - uA, k, C.NO_REST

@@ -1,0 +1,40 @@
+"""Shared fixtures: the canonical parts and arms, in one place."""
+
+import os
+
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+import pytest  # noqa: E402
+
+import throwmap as tm  # noqa: E402
+
+
+@pytest.fixture(scope="session")
+def triangle():
+    """The paper's part: uniform 30-60-90 triangle, hypotenuse 0.17 m."""
+    return tm.triangle_30_60_90(0.17)
+
+
+@pytest.fixture(scope="session")
+def offset_triangle():
+    """The same triangle with a lead weight near its 30° corner (offset CM, Sec. V-C)."""
+    return tm.triangle_30_60_90(0.17, point_masses=[(0.03, (0.10, 0.01))])
+
+
+@pytest.fixture(scope="session")
+def arm():
+    """The paper's arm geometry, h = −1 cm, unbounded."""
+    return tm.Arm(h=-0.01)
+
+
+CANONICAL = {
+    "triangle": lambda: tm.triangle_30_60_90(0.17),
+    "offset_triangle": lambda: tm.triangle_30_60_90(0.17, point_masses=[(0.03, (0.10, 0.01))]),
+    "pentagon": lambda: tm.regular_polygon(5, 0.05),
+    "rectangle": lambda: tm.rectangle(0.08, 0.04),
+}
+
+
+@pytest.fixture(scope="session", params=sorted(CANONICAL))
+def canonical_part(request):
+    return CANONICAL[request.param]()
