@@ -30,8 +30,22 @@ class ModelComparison:
     reference: str
     models: tuple
     rows: tuple
+    switches: tuple = ()
+
+    def switch_table(self) -> str:
+        """r_i, the first x on each side at which a throw stops being a jog, per model (cm)."""
+        models = (self.reference, *self.models)
+        head = f"{'ω rad/s':>8}{'side':>6}" + "".join(f"{m + ' cm':>16}" for m in models)
+        lines = ["jog→flip switch r_i (first non-jog x on the grid)", head, "-" * len(head)]
+        for r in self.switches:
+            vals = "".join(f"{100 * r[m]:>16.2f}" if r[m] == r[m] else f"{'none':>16}" for m in models)
+            lines.append(f"{r['omega']:>8.2f}{r['side']:>6d}{vals}")
+        return "\n".join(lines)
 
     def table(self) -> str:
+        return self.error_table() + "\n\n" + self.switch_table()
+
+    def error_table(self) -> str:
         head = (f"{'model':<13}{'ω rad/s':>8}{'n':>7}{'same side':>11}{'|Δx| med mm':>13}{'p90 mm':>9}"
                 f"{'max mm':>9}{'jog err med':>13}{'jog err max':>13}{'max ωt':>8}")
         lines = [f"{self.part_name}, h = {self.h:g} m, against model {self.reference!r}", head, "-" * len(head)]
@@ -45,7 +59,7 @@ class ModelComparison:
 
     def to_dict(self) -> dict:
         return {"part": self.part_name, "h": self.h, "reference": self.reference, "models": list(self.models),
-                "rows": [dict(r) for r in self.rows]}
+                "rows": [dict(r) for r in self.rows], "switches": [dict(r) for r in self.switches]}
 
     def plot(self, ax=None):
         from .plotting import plot_model_comparison
@@ -58,7 +72,9 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
                    reference: str = "paper") -> ModelComparison:
     """Compare ``models`` with ``reference`` over x ∈ (x_min, x_max] on every stable side, for each ω.
 
-    ``x_max`` defaults to the arm length or 0.4 m.
+    ``x_max`` defaults to the arm length or 0.4 m. Also records, per ω and side, the
+    first grid x at which each model's throw is not a jog (the switch r_i, Sec. III-D),
+    with the grid's resolution (x_max − x_min)/n_x.
     """
     for m in (*models, reference):
         _check_model(m)
@@ -72,11 +88,23 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
     xs = np.concatenate(xs)
     ss = np.concatenate(ss)
     rows = []
+    switches = []
+
+    def first_non_jog(res):
+        out = {}
+        for s in part.stable_sides:
+            m = ss == s
+            bad = np.flatnonzero(res.side[m] != s)
+            out[s] = float(xs[m][bad[0]]) if bad.size else float("nan")
+        return out
+
     for om in omegas:
         ref = throw_batch(part, arm, xs, ss, om, model=reference, on_invalid="status")
+        sw = {reference: first_non_jog(ref)}
         phi = om * ref.record("T_FLIGHT")
         for model in models:
             res = throw_batch(part, arm, xs, ss, om, model=model, on_invalid="status")
+            sw[model] = first_non_jog(res)
             both = (ref.status == Status.OK) & (res.status == Status.OK)
             same = both & (ref.side == res.side)
             dx = np.abs(res.x - ref.x)[same]
@@ -95,4 +123,6 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
                 "jog_rel_err_max": float(rel.max()) if rel.size else float("nan"),
                 "max_phi": float(np.nanmax(phi[both])) if both.any() else float("nan"),
             })
-    return ModelComparison(part.name, arm.h, reference, tuple(models), tuple(rows))
+        for s in part.stable_sides:
+            switches.append({"omega": float(om), "side": int(s), **{m: sw[m][s] for m in (reference, *models)}})
+    return ModelComparison(part.name, arm.h, reference, tuple(models), tuple(rows), tuple(switches))

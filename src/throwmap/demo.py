@@ -81,7 +81,7 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
             bands[str(s)] = {"x_min": float(xs.min()), "x_max": float(xs.max()), "visits": int(xs.size)}
 
     say("model comparison")
-    comp = compare_models(part, arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0), n_x=150)
+    comp = compare_models(part, arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0), n_x=2000, x_max=0.6)
     fig = comp.plot()
     files.append(save_figure(fig, out / "model_comparison.png"))
     plt.close(fig)

@@ -35,6 +35,9 @@ class Status(enum.IntEnum):
         return self.name.lower()
 
 
+_STATUS = tuple(Status(c) for c in range(len(Status)))
+
+
 @dataclass(frozen=True, slots=True)
 class ThrowOutcome:
     """One throw: where the part came to rest and the record of how (SI units).
@@ -100,36 +103,34 @@ class ThrowOutcome:
 
     @classmethod
     def from_record(cls, part, x0, side0, omega, model, x, side, status, rec) -> "ThrowOutcome":
+        """Build from a kernel record (per unit mass) — the hot path of :func:`throwmap.throw`."""
         m = part.mass
-        cv = rec[C.CONTACT_VERTEX]
-        n_min = float(rec[C.N_MIN])
+        r = rec.tolist()
+        cv = int(r[C.CONTACT_VERTEX]) if r[C.CONTACT_VERTEX] == r[C.CONTACT_VERTEX] else -1
+        n_min = r[C.N_MIN]
+        n_imp = r[C.N_IMPACTS]
+        n_flip = r[C.N_FLIPS]
         return cls(
-            x=float(x),
-            side=int(side),
-            status=Status(int(status)),
-            x0=float(x0),
-            side0=int(side0),
-            omega=float(omega),
-            model=model,
-            t_flight=float(rec[C.T_FLIGHT]),
-            contact_vertex=part.user_vertex(int(cv)) if cv >= 0 else -1,
-            contact_x=float(rec[C.CONTACT_X]),
-            v_pre=(float(rec[C.VX_PRE]), float(rec[C.VY_PRE]), float(rec[C.W_PRE])),
-            v_post=(float(rec[C.VX_POST]), float(rec[C.VY_POST]), float(rec[C.W_POST])),
-            impulse=(m * float(rec[C.JX]), m * float(rec[C.JY])),
-            friction_ratio_impact=float(rec[C.MU_IMPACT]),
-            friction_ratio_max=float(rec[C.MU_MAX]),
-            energy_release=m * float(rec[C.E_RELEASE]),
-            kinetic_pre=m * float(rec[C.K_PRE]),
-            kinetic_post=m * float(rec[C.K_POST]),
-            potential_impact=m * float(rec[C.U_IMPACT]),
-            energy_final=m * float(rec[C.E_FINAL]),
-            max_impact_energy_gain=m * float(rec[C.K_MAX_IMPACT_GAIN]),
-            n_impacts=int(rec[C.N_IMPACTS]) if math.isfinite(rec[C.N_IMPACTS]) else 0,
-            n_flips=int(rec[C.N_FLIPS]) if math.isfinite(rec[C.N_FLIPS]) else 0,
-            min_normal_force=n_min,
-            lift_off=bool(n_min < 0.0),
-            pull_impulse=bool(rec[C.N_PULL] > 0),
+            float(x), int(side), _STATUS[int(status)], float(x0), int(side0), float(omega), model,
+            r[C.T_FLIGHT],
+            part.user_index[cv] if cv >= 0 else -1,
+            r[C.CONTACT_X],
+            (r[C.VX_PRE], r[C.VY_PRE], r[C.W_PRE]),
+            (r[C.VX_POST], r[C.VY_POST], r[C.W_POST]),
+            (m * r[C.JX], m * r[C.JY]),
+            r[C.MU_IMPACT],
+            r[C.MU_MAX],
+            m * r[C.E_RELEASE],
+            m * r[C.K_PRE],
+            m * r[C.K_POST],
+            m * r[C.U_IMPACT],
+            m * r[C.E_FINAL],
+            m * r[C.K_MAX_IMPACT_GAIN],
+            int(n_imp) if n_imp == n_imp else 0,
+            int(n_flip) if n_flip == n_flip else 0,
+            n_min,
+            n_min < 0.0,
+            r[C.N_PULL] > 0,
         )
 
     def to_dict(self) -> dict:

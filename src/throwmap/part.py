@@ -93,6 +93,10 @@ class Part:
     length: np.ndarray = field(init=False, repr=False, compare=False)
     ell: np.ndarray = field(init=False, repr=False, compare=False)
     stable: np.ndarray = field(init=False, repr=False, compare=False)
+    min_d: float = field(init=False, repr=False, compare=False)
+    """min_i d_i over the stable sides, m (bounds the paper's regime of h)."""
+    user_index: tuple = field(init=False, repr=False, compare=False)
+    """``user_index[j]``: the user's index of clockwise vertex w_j."""
 
     def __post_init__(self):
         v = as_finite_array(self.vertices, "part.vertices", (None, 2))
@@ -120,6 +124,8 @@ class Part:
         st = np.array(tab["stable"], dtype=np.bool_)
         st.setflags(write=False)
         set_(self, "stable", st)
+        set_(self, "min_d", float(np.min(tab["d"][tab["stable"]])))
+        set_(self, "user_index", tuple(int(i) for i in idx))
 
     # ------------------------------------------------------------------ build
     @classmethod
@@ -213,11 +219,6 @@ class Part:
         return tuple(int(k) for k in np.flatnonzero(self.stable))
 
     @property
-    def min_d(self) -> float:
-        """min_i d_i over the stable sides, m (bounds the paper's regime of h)."""
-        return float(np.min(self.d[self.stable]))
-
-    @property
     def moment_of_inertia(self) -> float:
         """About the CM, kg·m²."""
         return self.mass * self.radius_of_gyration**2
@@ -255,4 +256,4 @@ class Part:
 
     def user_vertex(self, j: int) -> int:
         """Index in the user's vertex list of clockwise vertex ``w_j``."""
-        return int(self.order[j % self.n_sides])
+        return self.user_index[j % self.n_sides]

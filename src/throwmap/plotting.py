@@ -71,6 +71,7 @@ def plot_orbit(orbit, ax=None, part=None, unit: str = "cm"):
     om = f"ω = {omegas[0]:g} rad/s" if len(omegas) == 1 else f"{len(omegas)} release rates"
     ax.set_title(f"orbit, model {orbit.model!r}, {om}")
     ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
     return fig
 
 
