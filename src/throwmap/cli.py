@@ -20,7 +20,6 @@ import os
 import sys
 import warnings
 from contextlib import contextmanager
-from dataclasses import replace
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -39,8 +38,6 @@ __all__ = ["app", "main"]
 
 PROGRESS_THRESHOLD = 200
 """``iterate`` shows a progress bar (on stderr) for more throws than this."""
-PROGRESS_CHUNK = 50
-"""Throws per library call while a progress bar is shown."""
 
 app = typer.Typer(
     name="throwmap",
@@ -241,8 +238,8 @@ def throw_cmd(
 ) -> None:
     """One throw from rest at (x, side): where the part lands and how."""
     with _guard():
-        the_part, arm = _part_and_arm(part, h, g, length)
         _check_model(model)
+        the_part, arm = _part_and_arm(part, h, g, length)
         _finite(x, "x")
         _finite(omega, "omega")
         out = throw(the_part, arm, x, side, omega, model=model)
@@ -279,32 +276,15 @@ def throw_cmd(
 
 # ------------------------------------------------------------------ iterate
 def _iterate_with_progress(part, arm, state, omegas: list[float], model: str) -> Orbit:
-    """:func:`throwmap.iterate` in chunks, advancing a Rich progress bar on stderr."""
+    """:func:`throwmap.iterate` with a Rich progress bar on stderr."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-    pieces: list[Orbit] = []
     with Progress(TextColumn("throwing"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
                   console=Console(stderr=True), transient=True) as bar:
         task = bar.add_task("throwing", total=len(omegas))
-        for start in range(0, len(omegas), PROGRESS_CHUNK):
-            piece = iterate(part, arm, state, omegas[start:start + PROGRESS_CHUNK], model=model)
-            pieces.append(piece)
-            bar.advance(task, piece.n_throws)
-            if piece.escaped:
-                break
-            state = (float(piece.x[-1]), int(piece.side[-1]))
-    import numpy as np
-
-    first = pieces[0]
-    return replace(
-        first,
-        x=np.concatenate([first.x] + [p.x[1:] for p in pieces[1:]]),
-        side=np.concatenate([first.side] + [p.side[1:] for p in pieces[1:]]),
-        omegas=np.concatenate([p.omegas for p in pieces]),
-        outcomes=tuple(o for p in pieces for o in p.outcomes),
-        status=pieces[-1].status,
-    )
+        return iterate(part, arm, state, omegas, model=model,
+                       progress=lambda done: bar.update(task, completed=done))
 
 
 def _orbit_summary(orbit: Orbit, requested: int) -> dict:
@@ -344,8 +324,8 @@ def iterate_cmd(
 ) -> None:
     """Repeated throws from (x, side): an orbit of the throw map."""
     with _guard():
-        the_part, arm = _part_and_arm(part, h, g, length)
         _check_model(model)
+        the_part, arm = _part_and_arm(part, h, g, length)
         _finite(x, "x")
         omegas = _floats(omega, "omega")
         if len(omegas) == 1:

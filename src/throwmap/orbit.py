@@ -61,12 +61,14 @@ class Orbit:
         return plot_orbit(self, ax=ax, **kwargs)
 
 
-def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: str = "paper", **throw_kwargs) -> Orbit:
+def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: str = "paper", *, progress=None,
+            **throw_kwargs) -> Orbit:
     """Throw repeatedly from ``state = (x, side)``.
 
     ``omegas`` is one release rate (then ``n`` throws) or a sequence, one per throw
     (then ``n`` may be omitted, or must equal its length). Stops early, with the
     escape's status, if a throw leaves the arm or does not come to rest.
+    ``progress``, if given, is called with the number of throws done after each throw.
     """
     try:
         x0, s0 = state
@@ -90,6 +92,8 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     for w in om:
         o: ThrowOutcome = throw(part, arm, xs[-1], ss[-1], float(w), model=model, **throw_kwargs)
         outs.append(o)
+        if progress is not None:
+            progress(len(outs))
         if o.status != Status.OK:
             status = o.status
             break

@@ -44,12 +44,13 @@ a landing vertex or a pivot — or the resting left support vertex at x ≤ 0);
 
 Conditioning
 ------------
-Every discrete decision is recorded with a relative margin: energy against a
-potential peak ahead (flip or not), the lift ratio at a landing, the time gap to
-the second-earliest vertex crossing, the depth of a near-grazing vertex. The
-returned ``margin`` is the smallest; ``ill_conditioned`` is ``margin <
-ill_conditioned_below`` (1e-6), where a comparison with any other method is
-not meaningful.
+Every discrete decision is recorded with its margin (``margins`` in the result):
+the energy of a swing against the potential peak ahead (flip or fall back), the
+lift ratio at a landing (pivot on or stay down), the time to the second vertex
+crossing and the depth of a near-grazing vertex (which vertex touches first), and
+the distance of decisive positions from the joint and the arm's end.
+``ill_conditioned`` says that some decision is within 1e-6 (relative) or 1e-9
+(s, m) of flipping: there, a comparison with any other method is meaningless.
 
 Notes
 -----
@@ -284,111 +285,133 @@ def _pivot_swing(part, j, psi0, psidot0, g, rtol, atol, t_max):
     return (j - 1) % n, (j - 1) % n, psi, psidot, crossed
 
 
-def reference_roll(part, arm, j, psi, psidot, px, *, max_impacts=DEFAULT_MAX_IMPACTS, rtol=DEFAULT_RTOL,
-                   atol=DEFAULT_ATOL, pivot_t_max=DEFAULT_PIVOT_T_MAX, n_impacts=0):
+def reference_roll(part, arm, j, psi, psidot, px, *, side0=-1, max_impacts=DEFAULT_MAX_IMPACTS,
+                   rtol=DEFAULT_RTOL, atol=DEFAULT_ATOL, pivot_t_max=DEFAULT_PIVOT_T_MAX, n_impacts=0):
     """From pivoting on vertex ``w_j`` (world x ``px``) at body angle ``psi`` (rad) and rate
     ``psidot`` (rad/s, CCW +), follow swings and side landings until the part rests.
 
-    Returns a dict: ``x`` (resting CM x, m), ``side``, ``status``, ``n_impacts``
-    (``n_impacts`` given plus the landings), ``n_flips`` (peaks crossed),
-    ``margin`` (smallest relative decision margin), ``max_impact_energy_gain``
-    (J/kg, ≤ 0).
+    ``side0`` is the side the part was thrown from (−1: none). The pivot's world
+    x is tracked through every landing; the resting CM x follows from it.
+
+    Returns a dict: ``x`` (resting CM x, m; for an escape the CM x flat on the
+    side just landed on), ``side``, ``status``, ``escape`` (which contact decided
+    a non-"ok" status: ``"landing_vertex"``, ``"rest_left_vertex"``, ``"rest_cm"``,
+    ``"cap"`` or ``""``), ``n_impacts`` (``n_impacts`` given plus the landings),
+    ``n_flips`` (side changes: landings on a side other than the last one landed
+    on, starting from ``side0``), ``n_peaks`` (potential peaks crossed over a
+    pivot), ``margins`` (see :func:`reference_throw`), ``max_impact_energy_gain``
+    (J/kg, ≤ 0 for a physical impact).
     """
     w = np.asarray(part.w, dtype=float)
-    n = len(w)
     g = arm.g
     L = math.inf if arm.length is None else float(arm.length)
     rho2 = part.radius_of_gyration**2
     ell = np.hypot(w[:, 0], w[:, 1])
-    margin = math.inf
-    n_flips = 0
+    margins = {"energy": math.inf, "lift": math.inf, "position": math.inf}
+    n_flips = n_peaks = 0
+    last_side = side0
     gain = -math.inf
+
+    def result(x, side, status, escape=""):
+        return {"x": float(x), "side": int(side), "status": status, "escape": escape, "n_impacts": int(n_impacts),
+                "n_flips": n_flips, "n_peaks": n_peaks, "margins": dict(margins),
+                "max_impact_energy_gain": float(gain)}
+
+    def near(*positions):  # distance of position tests from x = 0 and x = L, m
+        for pos in positions:
+            margins["position"] = min(margins["position"], abs(pos), abs(pos - L) if math.isfinite(L) else math.inf)
+
     while True:
         # ----------------------------------------------------------- swing about w_j
         q = -(_rot(psi) @ w[j])  # CM − pivot
         I_P = rho2 + ell[j] ** 2
         E = 0.5 * I_P * psidot**2 + g * q[1]
         if psidot * q[0] > 0.0:  # moving toward the peak above the pivot
-            margin = min(margin, abs(E - g * ell[j]) / (g * ell[j]))
+            margins["energy"] = min(margins["energy"], abs(E - g * ell[j]) / (g * ell[j]))
         swing = _pivot_swing(part, j, psi, psidot, g, rtol, atol, pivot_t_max)
         if swing is None:
-            return _roll_result(math.nan, -1, "no_rest", n_impacts, n_flips, margin, gain)
-        k, jB, psi_ev, psidot_ev, crossed = swing
-        n_flips += int(crossed)
+            return result(math.nan, -1, "no_rest", "cap")
+        k, jB, _psi_ev, psidot_ev, crossed = swing
+        n_peaks += int(crossed)
+        if k != last_side:
+            n_flips += 1
+            last_side = k
         # ----------------------------------------------------------- landing on side k
         n_impacts += 1
         geo = rest_geometry(part, k)
-        pk = geo["p"]
-        qA = pk[j]  # CM → A (pivot), flat on side k
-        qB = pk[jB]  # CM → B (landing vertex)
+        qA = geo["p"][j]  # CM → A (the pivot), flat on side k
+        qB = geo["p"][jB]  # CM → B (the landing vertex)
         x_cm = px - qA[0]
         xB = x_cm + qB[0]
         if n_impacts > max_impacts:
-            return _roll_result(x_cm, k, "no_rest", n_impacts, n_flips, margin, gain)
+            return result(x_cm, k, "no_rest", "cap")
+        near(xB)
         if xB <= 0.0:
-            return _roll_result(x_cm, k, "behind_joint", n_impacts, n_flips, margin, gain)
+            return result(x_cm, k, "behind_joint", "landing_vertex")
         if xB > L:
-            return _roll_result(x_cm, k, "off_end", n_impacts, n_flips, margin, gain)
-        margin = min(margin, abs(xB) / _JOINT_NEAR * ILL_CONDITIONED_BELOW)
-        # pre-landing CM velocity: psidot × (CM − A), with CM − A = −qA
+            return result(x_cm, k, "off_end", "landing_vertex")
+        # plastic no-slip impact about B; pre-impact CM velocity psidot × (CM − A), CM − A = −qA
         vx, vy = psidot_ev * qA[1], -psidot_ev * qA[0]
         k_before = 0.5 * (vx * vx + vy * vy + rho2 * psidot_ev**2)
         vxp, vyp, wp, _, _ = impact_linear_system(vx, vy, psidot_ev, float(qB[0]), float(qB[1]), rho2)
-        lift_rate = wp * (qA[0] - qB[0])  # y-velocity of A about B after the landing
-        margin = min(margin, abs(wp) / max(abs(psidot_ev), 1e-300))
-        if lift_rate > 0.0:
+        margins["lift"] = min(margins["lift"], abs(wp) / max(abs(psidot_ev), 1e-300))
+        lifts = wp * (qA[0] - qB[0]) > 0.0  # A's y-velocity about B after the landing
+        if lifts:
             k_after = 0.5 * (vxp * vxp + vyp * vyp + rho2 * wp * wp)
             gain = max(gain, k_after - k_before)
-            if geo["stable"] and k_after < g * (ell[j] - geo["d"]) and k_after < g * (ell[jB] - geo["d"]):
-                return _rest(x_cm, k, geo, L, n_impacts, n_flips, margin, gain)
-            j, px, psi, psidot = jB, xB, float(part.beta[k]), wp
+            below = k_after < g * (ell[j] - geo["d"]) and k_after < g * (ell[jB] - geo["d"])
+            if not (geo["stable"] and below):
+                j, px, psi, psidot = jB, xB, float(part.beta[k]), wp
+                continue
         else:
             gain = max(gain, -k_before)
-            if geo["stable"]:
-                return _rest(x_cm, k, geo, L, n_impacts, n_flips, margin, gain)
-            # unstable side: tips from rest about the vertex its CM overhangs
-            xs = {j: px, jB: xB}
-            jT = min(xs, key=xs.get) if geo["uL"] >= 0.0 else max(xs, key=xs.get)
-            j, px, psi, psidot = jT, xs[jT], float(part.beta[k]), 0.0
-        if px <= 0.0:
-            return _roll_result(x_cm, k, "behind_joint", n_impacts, n_flips, margin, gain)
-        if px > L:
-            return _roll_result(x_cm, k, "off_end", n_impacts, n_flips, margin, gain)
-
-
-def _rest(x_cm, k, geo, L, n_impacts, n_flips, margin, gain):
-    xL = x_cm + geo["uL"]
-    status = "ok"
-    if xL <= 0.0:
-        status = "behind_joint"
-    elif x_cm > L:
-        status = "off_end"
-    margin = min(margin, abs(xL) / _JOINT_NEAR * ILL_CONDITIONED_BELOW)
-    return _roll_result(x_cm, k, status, n_impacts, n_flips, margin, gain)
-
-
-def _roll_result(x, side, status, n_impacts, n_flips, margin, gain):
-    return {"x": float(x), "side": int(side), "status": status, "n_impacts": int(n_impacts),
-            "n_flips": int(n_flips), "margin": float(margin), "max_impact_energy_gain": float(gain)}
+            if not geo["stable"]:  # tips from rest about the vertex its CM overhangs
+                xs = {j: px, jB: xB}
+                jT = min(xs, key=xs.get) if geo["uL"] >= 0.0 else max(xs, key=xs.get)
+                j, px, psi, psidot = jT, xs[jT], float(part.beta[k]), 0.0
+                continue
+        # ----------------------------------------------------------- at rest on side k
+        xL = x_cm + geo["uL"]
+        near(xL, x_cm)
+        if xL <= 0.0:
+            return result(x_cm, k, "behind_joint", "rest_left_vertex")
+        if x_cm > L:
+            return result(x_cm, k, "off_end", "rest_cm")
+        return result(x_cm, k, "ok")
 
 
 # ---------------------------------------------------------------------------- a throw
 def reference_throw(part, arm, x, side, omega, *, dt=DEFAULT_DT, t_max=DEFAULT_T_MAX,
                     max_impacts=DEFAULT_MAX_IMPACTS, rtol=DEFAULT_RTOL, atol=DEFAULT_ATOL,
                     pivot_t_max=DEFAULT_PIVOT_T_MAX, ill_conditioned_below=ILL_CONDITIONED_BELOW) -> dict:
-    """One throw of ``part`` resting at ``(x, side)`` on ``arm`` at release rate ``omega``.
+    """One throw of ``part`` resting at ``(x, side)`` on ``arm`` at release rate ``omega`` (rad/s).
 
     Model "paper" computed independently of the kernels (see the module docstring).
-    The start is not validated beyond ``side`` being stable and ``x + u_L > 0``.
+    The start is only checked for a stable ``side`` and ``x + u_L > 0``.
 
-    Returns a dict with keys ``x`` (m; the resting CM x, or the CM x when the part
-    left the arm), ``side``, ``status`` (string), ``t_flight`` (s),
-    ``contact_vertex`` (clockwise index j of ``part.w``), ``contact_x`` (m),
-    ``v_pre``/``v_post`` ((ẋ, ẏ, φ̇) around the first impact; m/s, m/s, rad/s),
-    ``impulse`` (first-impact impulse in N·s, mass ``part.mass``),
-    ``impulse_per_mass`` (m/s), ``kinetic_pre``/``kinetic_post`` (J/kg),
-    ``n_impacts`` (first impact plus every side landing), ``n_flips``,
-    ``max_impact_energy_gain`` (J/kg), ``margin`` and ``ill_conditioned``.
+    Returns a dict with keys
+
+    ``x`` (m; the resting CM x, or the CM x when the part left the arm), ``side``,
+    ``status`` (string, see the module docstring), ``escape`` (which contact
+    decided a non-"ok" status: ``"first_contact"``, ``"landing_vertex"``,
+    ``"rest_left_vertex"``, ``"rest_cm"``, ``"cap"``, else ``""``),
+    ``t_flight`` (s), ``contact_vertex`` (clockwise index j into ``part.w``; map
+    with ``part.user_vertex``), ``contact_x`` (m), ``v_pre``/``v_post`` ((ẋ, ẏ, φ̇)
+    around the first impact; m/s, m/s, rad/s), ``impulse`` (first-impact impulse,
+    **N·s**, for mass ``part.mass``), ``impulse_per_mass`` (m/s),
+    ``kinetic_pre``/``kinetic_post`` (J/kg), ``n_impacts`` (first impact plus
+    every side landing), ``n_flips`` (landings on a side other than the last one
+    landed on), ``n_peaks`` (potential peaks crossed), ``max_impact_energy_gain``
+    (J/kg, ≤ 0), ``margins`` and ``ill_conditioned``.
+
+    ``margins``: ``energy`` — smallest |E − gℓ|/(gℓ) of a swing heading for its
+    peak (flip or fall back); ``lift`` — smallest |φ̇⁺/φ̇⁻| at a landing (lift or
+    stay down); ``contact_tie`` — time from the first vertex crossing to the
+    next one in the same bracket (s); ``graze`` — smallest positive local minimum
+    of a vertex gap before contact (m); ``position`` — smallest distance of a
+    decisive contact/rest position from x = 0 or the arm's end (m).
+    ``ill_conditioned`` is true when energy or lift < ``ill_conditioned_below``,
+    contact_tie < 1e-9 s, graze < 1e-9 m or position < 1e-9 m.
     """
     geo = rest_geometry(part, side)
     if not geo["stable"]:
@@ -400,10 +423,13 @@ def reference_throw(part, arm, x, side, omega, *, dt=DEFAULT_DT, t_max=DEFAULT_T
     rho2 = part.radius_of_gyration**2
     d, p = geo["d"], geo["p"]
     n = len(p)
-    out = {"x": float(x), "side": int(side), "status": "ok", "t_flight": 0.0, "contact_vertex": -1,
+    margins = {"energy": math.inf, "lift": math.inf, "contact_tie": math.inf, "graze": math.inf,
+               "position": math.inf}
+    out = {"x": float(x), "side": int(side), "status": "ok", "escape": "", "t_flight": 0.0, "contact_vertex": -1,
            "contact_x": math.nan, "v_pre": (0.0, 0.0, 0.0), "v_post": (0.0, 0.0, 0.0), "impulse": (0.0, 0.0),
            "impulse_per_mass": (0.0, 0.0), "kinetic_pre": 0.0, "kinetic_post": 0.0, "n_impacts": 0,
-           "n_flips": 0, "max_impact_energy_gain": -math.inf, "margin": math.inf, "ill_conditioned": False}
+           "n_flips": 0, "n_peaks": 0, "max_impact_energy_gain": -math.inf, "margins": margins,
+           "ill_conditioned": False}
     if omega == 0.0:
         return out
     supports = np.zeros(n, dtype=bool)
@@ -412,9 +438,9 @@ def reference_throw(part, arm, x, side, omega, *, dt=DEFAULT_DT, t_max=DEFAULT_T
     out["t_flight"] = t_c
     out["contact_vertex"] = int(jc)
     if jc < 0:
-        out["status"] = "no_contact"
+        out.update(status="no_contact", escape="cap")
         return out
-    margin = min(info["tie"] / _CONTACT_TIE, info["graze"] / _GRAZE_DEPTH) * ill_conditioned_below
+    margins.update(contact_tie=info["tie"], graze=info["graze"])
     # state just before the impact (Eq. 1)
     xc = x - (h + d) * omega * t_c
     vx, vy, w0 = -(h + d) * omega, x * omega - g * t_c, float(omega)
@@ -424,19 +450,24 @@ def reference_throw(part, arm, x, side, omega, *, dt=DEFAULT_DT, t_max=DEFAULT_T
     vxp, vyp, wp, Jx, Jy = impact_linear_system(vx, vy, w0, float(r[0]), float(r[1]), rho2)
     k_pre = 0.5 * (vx * vx + vy * vy + rho2 * w0 * w0)
     k_post = 0.5 * (vxp * vxp + vyp * vyp + rho2 * wp * wp)
-    out.update(contact_x=float(px), v_pre=(vx, vy, w0), v_post=(vxp, vyp, wp), impulse=(part.mass * Jx, part.mass * Jy),
-               impulse_per_mass=(Jx, Jy), kinetic_pre=k_pre, kinetic_post=k_post, n_impacts=1,
-               max_impact_energy_gain=k_post - k_pre)
-    margin = min(margin, abs(px) / _JOINT_NEAR * ill_conditioned_below)
+    out.update(contact_x=float(px), v_pre=(vx, vy, w0), v_post=(vxp, vyp, wp),
+               impulse=(part.mass * Jx, part.mass * Jy), impulse_per_mass=(Jx, Jy), kinetic_pre=k_pre,
+               kinetic_post=k_post, n_impacts=1, max_impact_energy_gain=k_post - k_pre)
+    margins["position"] = min(abs(px), abs(px - L) if math.isfinite(L) else math.inf)
     if px <= 0.0 or px > L:
-        out.update(x=float(xc), status="behind_joint" if px <= 0.0 else "off_end", margin=margin,
-                   ill_conditioned=margin < ill_conditioned_below)
-        return out
-    roll = reference_roll(part, arm, jc, psi, wp, px, max_impacts=max_impacts, rtol=rtol, atol=atol,
-                          pivot_t_max=pivot_t_max, n_impacts=1)
-    margin = min(margin, roll["margin"])
-    out.update(x=roll["x"], side=roll["side"], status=roll["status"], n_impacts=roll["n_impacts"],
-               n_flips=roll["n_flips"], max_impact_energy_gain=max(out["max_impact_energy_gain"],
-                                                                    roll["max_impact_energy_gain"]),
-               margin=margin, ill_conditioned=margin < ill_conditioned_below)
+        out.update(x=float(xc), status="behind_joint" if px <= 0.0 else "off_end", escape="first_contact")
+    else:
+        roll = reference_roll(part, arm, jc, psi, wp, px, side0=int(side), max_impacts=max_impacts, rtol=rtol,
+                              atol=atol, pivot_t_max=pivot_t_max, n_impacts=1)
+        for key in ("energy", "lift", "position"):
+            margins[key] = min(margins[key], roll["margins"][key])
+        out.update({key: roll[key] for key in ("x", "side", "status", "escape", "n_impacts", "n_flips", "n_peaks")})
+        out["max_impact_energy_gain"] = max(out["max_impact_energy_gain"], roll["max_impact_energy_gain"])
+    out["ill_conditioned"] = bool(
+        margins["energy"] < ill_conditioned_below
+        or margins["lift"] < ill_conditioned_below
+        or margins["contact_tie"] < _CONTACT_TIE
+        or margins["graze"] < _GRAZE_DEPTH
+        or margins["position"] < _JOINT_NEAR
+    )
     return out
