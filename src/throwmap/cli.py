@@ -32,7 +32,7 @@ from .conventions import G
 from .errors import ConfigError, InvalidArmError, InvalidStateError, ThrowmapError, ThrowmapWarning
 from .io import atomic_write_bytes, atomic_write_text
 from .orbit import Orbit, iterate
-from .throw import MODELS, throw
+from .throw import MODELS, check_model, throw
 
 __all__ = ["app", "main"]
 
@@ -95,12 +95,6 @@ def _finite(value: float, field: str) -> float:
     if not math.isfinite(value):
         raise InvalidStateError(field, f"must be finite, got {value}")
     return value
-
-
-def _check_model(model: str) -> str:
-    if model not in MODELS:
-        raise InvalidStateError("model", f"unknown model {model!r} (choose from {', '.join(MODELS)})")
-    return model
 
 
 def _floats(values: list[str] | str, field: str) -> list[float]:
@@ -238,7 +232,7 @@ def throw_cmd(
 ) -> None:
     """One throw from rest at (x, side): where the part lands and how."""
     with _guard():
-        _check_model(model)
+        check_model(model)
         the_part, arm = _part_and_arm(part, h, g, length)
         _finite(x, "x")
         _finite(omega, "omega")
@@ -324,7 +318,7 @@ def iterate_cmd(
 ) -> None:
     """Repeated throws from (x, side): an orbit of the throw map."""
     with _guard():
-        _check_model(model)
+        check_model(model)
         the_part, arm = _part_and_arm(part, h, g, length)
         _finite(x, "x")
         omegas = _floats(omega, "omega")
@@ -426,7 +420,7 @@ def compare_cmd(
                 raise InvalidStateError("n_x", f"must be a positive integer, got {n_x}")
             kwargs["n_x"] = n_x
         if models is not None:
-            kwargs["models"] = tuple(_check_model(m.strip()) for m in models.split(","))
+            kwargs["models"] = tuple(check_model(m.strip()) for m in models.split(","))
         if out is not None:
             _check_output(out, "out")
         result = compare.compare_models(the_part, arm, **kwargs)

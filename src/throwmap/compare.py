@@ -9,7 +9,7 @@ import numpy as np
 from .arm import Arm
 from .outcome import Status
 from .part import Part
-from .throw import _check_model, throw_batch
+from .throw import check_model, throw_batch
 
 __all__ = ["ModelComparison", "compare_models"]
 
@@ -77,7 +77,7 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
     with the grid's resolution (x_max − x_min)/n_x.
     """
     for m in (*models, reference):
-        _check_model(m)
+        check_model(m)
     if x_max is None:
         x_max = arm.length if arm.length is not None else 0.4
     xs, ss = [], []

@@ -37,7 +37,7 @@ DEFAULT_N_SAMPLES = 16
 """Points per pivot swing at which the friction demand is sampled."""
 
 
-def _check_model(model: str) -> str:
+def check_model(model: str) -> str:
     if model not in MODELS:
         raise InvalidStateError("model", f"unknown model {model!r} (choose from {', '.join(MODELS)})")
     return model
@@ -91,7 +91,7 @@ def throw(
     Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible start:
     unknown or unstable side, a left support vertex at x ≤ 0, negative ω.
     """
-    _check_model(model)
+    check_model(model)
     x0, k, om = check_start(part, arm, x, side, omega)
     warn_if_outside_regime(part, arm)
     rec = np.empty(C.NREC)
@@ -126,7 +126,7 @@ def throw_batch(
     error names the index); ``"status"`` marks such entries ``INVALID_START`` and
     throws the rest. Runs the compiled kernels in parallel over the entries.
     """
-    _check_model(model)
+    check_model(model)
     if on_invalid not in ("raise", "status"):
         raise InvalidStateError("on_invalid", f"must be 'raise' or 'status', got {on_invalid!r}")
     xb, sb, ob = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(side), np.asarray(omega, dtype=float))
