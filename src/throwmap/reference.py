@@ -314,19 +314,19 @@ def reference_roll(part, arm, j, psi, psidot, px, *, side0=-1, max_impacts=DEFAU
 
     def result(x, side, status, escape=""):
         return {"x": float(x), "side": int(side), "status": status, "escape": escape, "n_impacts": int(n_impacts),
-                "n_flips": n_flips, "n_peaks": n_peaks, "margins": dict(margins),
+                "n_flips": n_flips, "n_peaks": n_peaks, "margins": {key: float(val) for key, val in margins.items()},
                 "max_impact_energy_gain": float(gain)}
 
     def near(*positions):  # distance of position tests from x = 0 and x = L, m
         for pos in positions:
-            margins["position"] = min(margins["position"], abs(pos), abs(pos - L) if math.isfinite(L) else math.inf)
+            margins["position"] = min(margins["position"], abs(float(pos)), abs(float(pos) - L))
 
     while True:
         # ----------------------------------------------------------- swing about w_j
         q = -(_rot(psi) @ w[j])  # CM − pivot
         I_P = rho2 + ell[j] ** 2
         E = 0.5 * I_P * psidot**2 + g * q[1]
-        if psidot * q[0] > 0.0:  # moving toward the peak above the pivot
+        if psidot * q[0] > 0.0 or abs(q[0]) < ILL_CONDITIONED_BELOW * ell[j]:  # heading for (or at) the peak
             margins["energy"] = min(margins["energy"], abs(E - g * ell[j]) / (g * ell[j]))
         swing = _pivot_swing(part, j, psi, psidot, g, rtol, atol, pivot_t_max)
         if swing is None:
@@ -453,7 +453,7 @@ def reference_throw(part, arm, x, side, omega, *, dt=DEFAULT_DT, t_max=DEFAULT_T
     out.update(contact_x=float(px), v_pre=(vx, vy, w0), v_post=(vxp, vyp, wp),
                impulse=(part.mass * Jx, part.mass * Jy), impulse_per_mass=(Jx, Jy), kinetic_pre=k_pre,
                kinetic_post=k_post, n_impacts=1, max_impact_energy_gain=k_post - k_pre)
-    margins["position"] = min(abs(px), abs(px - L) if math.isfinite(L) else math.inf)
+    margins["position"] = min(abs(float(px)), abs(float(px) - L))
     if px <= 0.0 or px > L:
         out.update(x=float(xc), status="behind_joint" if px <= 0.0 else "off_end", escape="first_contact")
     else:

@@ -27,7 +27,7 @@ __all__ = ["MODELS", "throw", "throw_batch"]
 
 MODELS = ("paper", "small_angle", "small_angle2")
 
-DEFAULT_TOL = 1e-12
+DEFAULT_TOL = 1e-14
 """Contact tolerance of the first-contact search, m."""
 DEFAULT_MAX_ITER = 100_000
 """Cap on first-contact search steps."""

@@ -11,12 +11,49 @@ gap of vertex j above the line y = h is
 
     G_j(t) = d + x0 ω t − ½ g t² + u_j sin ωt + v_j cos ωt,
 
-with (u_j, v_j) the vertex relative to the CM at the rest orientation.
+with (u_j, v_j) the vertex relative to the CM at the rest orientation. It is
+evaluated in the cancellation-free form
+
+    G_j(t) = (d + v_j) + (x0 + u_j) ω t − ½ g t² − 2 v_j sin²(ωt/2) + u_j (sin ωt − ωt),
+
+where d + v_j is exactly 0 for the support vertices, so the tiny flights of starts
+just in front of the joint keep their relative accuracy.
 """
 
 import math
 
 from numba import njit
+
+
+@njit(cache=True)
+def _gap(t, j, x0, d, omega, g, pu, pv, ell):
+    """Gap G_j(t) (m) in the cancellation-free form, and its derivative (m/s)."""
+    wt = omega * t
+    hs = math.sin(0.5 * wt)
+    s = math.sin(wt)
+    c = math.cos(wt)
+    c0 = d + pv[j]
+    if abs(c0) <= 1e-15 * ell[j]:
+        c0 = 0.0
+    gap = c0 + (x0 + pu[j]) * wt - 0.5 * g * t * t - 2.0 * pv[j] * hs * hs + pu[j] * (s - wt)
+    dg = omega * x0 - g * t + omega * (pu[j] * c - pv[j] * s)
+    return gap, dg
+
+
+@njit(cache=True)
+def _polish(t, j, x0, d, omega, g, pu, pv, ell):
+    """A few Newton steps on G_j from the safe side; each step is capped at 0.05 t."""
+    for _ in range(3):
+        gap, dg = _gap(t, j, x0, d, omega, g, pu, pv, ell)
+        if dg >= 0.0:
+            break
+        step = -gap / dg
+        if abs(step) > 0.05 * t:
+            break
+        t += step
+        if abs(step) <= 1e-15 * t:
+            break
+    return t
 
 
 @njit(cache=True)
@@ -31,6 +68,9 @@ def first_contact(x0, d, omega, g, pu, pv, ell, tol, max_iter):
     time, quadratically once near a transversal crossing. It stops when the
     smallest gap is ≤ ``tol`` (m).
 
+    A short Newton polish on the touching vertex's gap then removes the time error
+    ``tol / |G_j'|`` left by stopping at a positive gap.
+
     Returns ``(t, j)``; ``j = -1`` if ``max_iter`` steps did not reach contact.
     """
     n = pu.shape[0]
@@ -39,13 +79,19 @@ def first_contact(x0, d, omega, g, pu, pv, ell, tol, max_iter):
         wt = omega * t
         s = math.sin(wt)
         c = math.cos(wt)
-        base = d + omega * x0 * t - 0.5 * g * t * t
+        hs = math.sin(0.5 * wt)
+        cm1 = -2.0 * hs * hs  # cos ωt − 1 without cancellation
+        smw = s - wt  # sin ωt − ωt
+        base = -0.5 * g * t * t
         dbase = omega * x0 - g * t
         step = math.inf
         jmin = -1
         gmin = math.inf
         for j in range(n):
-            gap = base + pu[j] * s + pv[j] * c
+            c0 = d + pv[j]
+            if abs(c0) <= 1e-15 * ell[j]:
+                c0 = 0.0  # a support vertex: exactly on the arm at rest
+            gap = c0 + (x0 + pu[j]) * wt + base + pv[j] * cm1 + pu[j] * smw
             dg = dbase + omega * (pu[j] * c - pv[j] * s)
             if gap <= tol and (t > 0.0 or dg <= 0.0):
                 if gap < gmin:
@@ -62,6 +108,8 @@ def first_contact(x0, d, omega, g, pu, pv, ell, tol, max_iter):
             if sj < step:
                 step = sj
         if jmin >= 0:
+            if t > 0.0 and gmin > 0.0:
+                t = _polish(t, jmin, x0, d, omega, g, pu, pv, ell)
             return t, jmin
         t += step
     return t, -1

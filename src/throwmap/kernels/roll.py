@@ -195,6 +195,11 @@ def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, le
             rec[C.K_MAX_IMPACT_GAIN] = k_after - k_before
         x_cm = px - uA  # CM x with the part flat on side k
         pxB = x_cm + uB
+        # guard: the landing vertex B must hit the arm, not the air beyond its span
+        if pxB <= 0.0:
+            return x_cm, k, C.BEHIND_JOINT
+        if pxB > length:
+            return x_cm, k, C.OFF_END
         if lifts:
             if stable[k]:
                 barrier_A = g * (ell[j] - dk)

@@ -1,0 +1,42 @@
+"""The benchmark script runs end to end at tiny sizes (no timing assertions)."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+BENCH = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_throw.py"
+
+
+def _load():
+    spec = importlib.util.spec_from_file_location("bench_throw", BENCH)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_bench_script_runs_small(tmp_path, capsys):
+    bench = _load()
+    out = tmp_path / "bench.json"
+    res = bench.main(["--n", "2000", "--n-reference", "5", "--n-single", "50", "--repeat", "1", "--json", str(out)])
+    text = capsys.readouterr().out
+    for label in ("reference", "throw_batch, model paper", "small_angle", "throw() single", "cores"):
+        assert label in text
+    data = json.loads(out.read_text())
+    assert data["n_batch"] == 2000 and data["n_reference"] == 5 and data["n_single"] == 50
+    for key in ("reference_throws_per_s", "batch_paper_throws_per_s", "batch_small_angle_throws_per_s",
+                "single_throw_us", "ratio_batch_paper_over_reference"):
+        assert math.isfinite(data[key]) and data[key] > 0
+        assert data[key] == pytest.approx(res[key])
+    assert data["machine"]["cpu_count"] >= 1
+    assert data["reference_agreement"]["compared"] <= 5
+
+
+def test_bench_script_rejects_bad_sizes():
+    bench = _load()
+    with pytest.raises(SystemExit):
+        bench.main(["--n", "0"])
