@@ -85,7 +85,6 @@ class Part:
     name: str = ""
     # derived, computed once (not part of equality)
     w: np.ndarray = field(init=False, repr=False, compare=False)
-    order: np.ndarray = field(init=False, repr=False, compare=False)
     beta: np.ndarray = field(init=False, repr=False, compare=False)
     d: np.ndarray = field(init=False, repr=False, compare=False)
     uL: np.ndarray = field(init=False, repr=False, compare=False)
@@ -116,9 +115,6 @@ class Part:
             raise InvalidPartError("part.com", "the part has no stable side (the CM projects outside every edge)")
         set_ = object.__setattr__
         set_(self, "w", _readonly(w))
-        order = np.array(idx, dtype=np.int64)
-        order.setflags(write=False)
-        set_(self, "order", order)
         for key in ("beta", "d", "uL", "uR", "length", "ell"):
             set_(self, key, _readonly(tab[key]))
         st = np.array(tab["stable"], dtype=np.bool_)
