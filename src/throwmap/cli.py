@@ -30,7 +30,7 @@ from .arm import Arm
 from .config import resolve_part
 from .conventions import G
 from .errors import ConfigError, InvalidArmError, InvalidStateError, ThrowmapError, ThrowmapWarning
-from .io import atomic_write_bytes, atomic_write_text
+from .io import atomic_write_bytes, atomic_write_text, json_ready
 from .orbit import Orbit, iterate
 from .throw import MODELS, check_model, throw
 
@@ -72,23 +72,8 @@ def _guard():
             _stderr_line(f"warning: {msg}")
 
 
-def _clean(obj: Any) -> Any:
-    """JSON-ready copy: non-finite floats → None, tuples → lists, NumPy scalars → Python."""
-    if isinstance(obj, dict):
-        return {str(k): _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean(v) for v in obj]
-    if isinstance(obj, Path):
-        return str(obj)
-    if hasattr(obj, "tolist") and not isinstance(obj, (str, bytes)):
-        return _clean(obj.tolist())
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
-
-
 def _to_json(obj: Any) -> str:
-    return json.dumps(_clean(obj), indent=2, allow_nan=False, ensure_ascii=False)
+    return json.dumps(json_ready(obj), indent=2, allow_nan=False, ensure_ascii=False)
 
 
 def _finite(value: float, field: str) -> float:

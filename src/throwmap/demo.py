@@ -15,14 +15,13 @@ Every file is written atomically (temp file + rename).
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 
 import numpy as np
 
 from .arm import Arm
 from .compare import compare_models
-from .io import atomic_write_text
+from .io import atomic_write_text, json_ready
 from .orbit import iterate
 from .parts import triangle_30_60_90
 from .throw import throw
@@ -31,16 +30,6 @@ __all__ = ["DEMO", "run_demo"]
 
 DEMO = {"hypotenuse": 0.17, "h": -0.01, "omega": 4.0, "x0": 0.12, "side0": 0, "n_throws": 300}
 """Parameters of the built-in example (SI units)."""
-
-
-def _finite(obj):
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    if isinstance(obj, dict):
-        return {k: _finite(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_finite(v) for v in obj]
-    return obj
 
 
 def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
@@ -115,5 +104,5 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
         "files": [str(f) for f in files] + [str(out / "model_comparison.txt"), str(out / "summary.json")],
     }
     atomic_write_text(out / "model_comparison.txt", comp.table() + "\n")
-    atomic_write_text(out / "summary.json", json.dumps(_finite(summary), indent=2))
+    atomic_write_text(out / "summary.json", json.dumps(json_ready(summary), indent=2, allow_nan=False))
     return summary

@@ -142,13 +142,12 @@ def side_table(w: np.ndarray) -> dict[str, np.ndarray]:
 
     ``beta``   body rotation (rad) that puts side k flat at the bottom;
     ``d``      CM height above side k when resting on it (m);
-    ``uL, vL`` vector CM → left support vertex w_{k+1} at rest (m);
-    ``uR, vR`` vector CM → right support vertex w_k at rest (m);
+    ``uL``     x of the vector CM → left support vertex w_{k+1} at rest (m; its y is −d);
+    ``uR``     x of the vector CM → right support vertex w_k at rest (m; its y is −d);
     ``length`` edge length (m); ``stable`` u_L < 0 < u_R.
 
     and per vertex j: ``ell`` |w_j| (m), the CM height when balanced on vertex j.
     """
-    n = len(w)
     nxt = np.roll(w, -1, axis=0)
     e = nxt - w
     beta = np.mod(math.pi - np.arctan2(e[:, 1], e[:, 0]), 2.0 * math.pi)
@@ -162,11 +161,8 @@ def side_table(w: np.ndarray) -> dict[str, np.ndarray]:
         "beta": beta,
         "d": d,
         "uL": uL,
-        "vL": -d,
         "uR": uR,
-        "vR": -d,
         "length": np.hypot(e[:, 0], e[:, 1]),
         "stable": (uL < 0.0) & (uR > 0.0),
         "ell": np.hypot(w[:, 0], w[:, 1]),
-        "n": np.int64(n),
     }

@@ -1,4 +1,4 @@
-"""Atomic file output: every file throwmap writes goes through here.
+"""File output: atomic writes (every file throwmap writes goes through here) and JSON-ready values.
 
 A result file is either the old one or the complete new one, never half-written:
 the data go to a temporary file in the same directory, are flushed to disk, and
@@ -8,11 +8,28 @@ POSIX and Windows when both live on one file system).
 
 from __future__ import annotations
 
+import math
 import os
 import tempfile
 from pathlib import Path
+from typing import Any
 
-__all__ = ["atomic_write_bytes", "atomic_write_text"]
+__all__ = ["atomic_write_bytes", "atomic_write_text", "json_ready"]
+
+
+def json_ready(obj: Any) -> Any:
+    """JSON-ready copy: non-finite floats → None, tuples → lists, NumPy values and paths → Python/str."""
+    if isinstance(obj, dict):
+        return {str(k): json_ready(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [json_ready(v) for v in obj]
+    if isinstance(obj, Path):
+        return str(obj)
+    if hasattr(obj, "tolist") and not isinstance(obj, (str, bytes)):
+        return json_ready(obj.tolist())
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj
 
 
 def _new_file_mode() -> int:

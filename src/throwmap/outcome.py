@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import enum
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -135,20 +134,12 @@ class ThrowOutcome:
 
     def to_dict(self) -> dict:
         """JSON-ready dict (SI units; non-finite numbers become ``None``)."""
+        from .io import json_ready
 
-        def clean(v):
-            if isinstance(v, tuple):
-                return [clean(a) for a in v]
-            if isinstance(v, float) and not math.isfinite(v):
-                return None
-            return v
-
-        out = {}
-        for name in self.__dataclass_fields__:
-            v = getattr(self, name)
-            out[name] = v.label if isinstance(v, Status) else clean(v)
+        out = {name: getattr(self, name) for name in self.__dataclass_fields__}
+        out["status"] = self.status.label
         out["kind"] = self.kind
-        return out
+        return json_ready(out)
 
 
 @dataclass(frozen=True, slots=True)

@@ -27,13 +27,7 @@ def save_figure(fig, path, dpi: int = 130):
 
 
 def _plt():
-    import matplotlib
-
-    if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
-        try:
-            import matplotlib.pyplot as plt  # noqa: F401
-        except Exception:  # pragma: no cover - headless without a display
-            matplotlib.use("Agg")
+    """pyplot, imported on first use (matplotlib falls back to Agg where there is no display)."""
     import matplotlib.pyplot as plt
 
     return plt
