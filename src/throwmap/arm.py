@@ -26,11 +26,17 @@ class Arm:
         Gravitational acceleration along −y, m/s² (> 0).
     length : float or None
         The arm spans 0 ≤ x ≤ length, m; ``None`` means unbounded.
+    mu : float
+        Coulomb friction coefficient between the arm and a part (≥ 0; ``inf``: the
+        contact never slips, the paper's assumption). Used by the "rigid_body"
+        model and the engines; "paper" and the small-angle models assume no slip
+        and only report the friction ratio a throw needs.
     """
 
     h: float
     g: float = G
     length: float | None = None
+    mu: float = math.inf
 
     def __post_init__(self):
         for name in ("h", "g"):
@@ -45,10 +51,19 @@ class Arm:
             L = self.length
             if isinstance(L, bool) or not isinstance(L, (int, float)) or not math.isfinite(L) or L <= 0:
                 raise InvalidArmError("arm.length", f"must be a positive finite number or None, got {L!r}")
+        mu = self.mu
+        if isinstance(mu, bool) or not isinstance(mu, (int, float)) or math.isnan(mu) or mu < 0:
+            raise InvalidArmError("arm.mu", f"must be a number ≥ 0 (inf: no slip), got {mu!r}")
+        object.__setattr__(self, "mu", float(mu))
         object.__setattr__(self, "h", float(self.h))
         object.__setattr__(self, "g", float(self.g))
         if self.length is not None:
             object.__setattr__(self, "length", float(self.length))
+
+    @property
+    def no_slip(self) -> bool:
+        """Whether the arm contact can never slip (μ = ∞)."""
+        return math.isinf(self.mu)
 
     @property
     def length_or_inf(self) -> float:

@@ -96,6 +96,7 @@ class ArmSpec(_Spec):
     h: FiniteFloat
     g: FiniteFloat = G
     length: FiniteFloat | None = None
+    mu: float | None = None
 
 
 class FileSpec(_Spec):
@@ -185,7 +186,7 @@ def _build_part(spec: PartSpec, default_name: str = "") -> Part:
 
 
 def _build_arm(spec: ArmSpec) -> Arm:
-    return Arm(h=spec.h, g=spec.g, length=spec.length)
+    return Arm(h=spec.h, g=spec.g, length=spec.length, mu=math.inf if spec.mu is None else spec.mu)
 
 
 def part_from_spec(spec: dict) -> Part:

@@ -20,6 +20,11 @@ class Status(enum.IntEnum):
     length, or the resting CM beyond it. ``NO_REST``: the impact cap was reached.
     ``INVALID_START``: not thrown (batch with ``on_invalid="status"``).
     ``NO_CONTACT``: the contact search hit its cap (a bug if ever seen).
+    ``TIMEOUT``: an engine run did not settle within its time limit.
+    ``PENETRATION``: an engine lost a contact (a vertex sank deeper than the
+    tolerance); the engine's result is refused, not returned.
+    ``INCONSISTENT``: rigid-body Coulomb contact has no consistent solution there
+    (Painlevé's paradox); the model says so instead of giving a number.
     """
 
     OK = C.OK
@@ -28,6 +33,9 @@ class Status(enum.IntEnum):
     NO_REST = C.NO_REST
     INVALID_START = C.INVALID_START
     NO_CONTACT = C.NO_CONTACT
+    TIMEOUT = C.TIMEOUT
+    PENETRATION = C.PENETRATION
+    INCONSISTENT = C.INCONSISTENT
 
     @property
     def label(self) -> str:
@@ -35,6 +43,10 @@ class Status(enum.IntEnum):
 
 
 _STATUS = tuple(Status(c) for c in range(len(Status)))
+
+
+def _count(v: float) -> int:
+    return int(v) if v == v else 0
 
 
 @dataclass(frozen=True, slots=True)
@@ -55,6 +67,10 @@ class ThrowOutcome:
     ``min_normal_force`` while pivoting, in units of m g; validity flags
     ``lift_off`` (the pivot would need a pulling normal force: the part hops) and
     ``pull_impulse`` (an impact's normal impulse would have to pull).
+    Models that resolve them also fill ``n_lift_offs`` (contact phases ended by a
+    vanishing normal force), ``n_slips`` (sliding impacts and sliding phases),
+    ``slip_distance`` (m), ``t_rest`` (s from release to rest; nan where not
+    resolved) and ``penetration_max`` (m, engines).
     """
 
     x: float
@@ -83,6 +99,11 @@ class ThrowOutcome:
     min_normal_force: float
     lift_off: bool
     pull_impulse: bool
+    n_lift_offs: int = 0
+    n_slips: int = 0
+    slip_distance: float = 0.0
+    t_rest: float = float("nan")
+    penetration_max: float = 0.0
 
     @property
     def ok(self) -> bool:
@@ -130,6 +151,11 @@ class ThrowOutcome:
             n_min,
             n_min < 0.0,
             r[C.N_PULL] > 0,
+            _count(r[C.N_LIFTOFFS]),
+            _count(r[C.N_SLIPS]),
+            r[C.SLIP_DISTANCE],
+            r[C.T_REST],
+            r[C.PENETRATION_MAX],
         )
 
     def to_dict(self) -> dict:

@@ -10,6 +10,9 @@ OFF_END = 2  # a contact beyond the arm's end, or the resting CM beyond it
 NO_REST = 3  # the impact cap was reached before the part came to rest
 INVALID_START = 4  # the start was not admissible (batch with on_invalid="status")
 NO_CONTACT = 5  # the contact search hit its iteration cap (should not happen)
+TIMEOUT = 6  # an engine run did not settle within its time limit
+PENETRATION = 7  # an engine lost a contact: a vertex sank deeper than the tolerance (result refused)
+INCONSISTENT = 8  # rigid-body Coulomb contact has no consistent solution here (Painlevé)
 
 # record layout: one float64 row per throw (energies per unit mass, J/kg; impulses per unit mass, m/s)
 T_FLIGHT = 0  # s
@@ -35,4 +38,9 @@ MU_MAX = 19  # largest friction ratio needed at any impact or while pivoting
 N_MIN = 20  # smallest normal force while pivoting, in units of m g (< 0: lift-off)
 N_PULL = 21  # impacts whose normal impulse would have to pull (J_y < 0)
 K_MAX_IMPACT_GAIN = 22  # largest (K_after - K_before) at any impact, J/kg (must be <= 0)
-NREC = 23
+N_LIFTOFFS = 23  # contact phases that ended by the normal force reaching zero (the part hops)
+N_SLIPS = 24  # sliding impacts and sliding contact phases (impulse or force outside the friction cone)
+SLIP_DISTANCE = 25  # total distance contact points slid along the arm, m
+T_REST = 26  # time from release until at rest, s (nan where a model does not resolve time)
+PENETRATION_MAX = 27  # deepest penetration of any vertex into the arm or a fixture, m (engines; 0 for rigid models)
+NREC = 28

@@ -29,6 +29,7 @@ def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stab
     for i in range(C.NREC):
         rec[i] = 0.0
     rec[C.N_MIN] = math.inf
+    rec[C.T_REST] = math.nan
     rec[C.K_MAX_IMPACT_GAIN] = -math.inf
     rec[C.CONTACT_VERTEX] = -1.0
     dk = d[side]
