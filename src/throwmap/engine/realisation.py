@@ -1,0 +1,224 @@
+"""How the arm throws: the impulse idealisation and finite arm motions (paper Sec. III-B, IV-A).
+
+Each realisation gives the arm's angle about its rest angle α as a function of
+time, θ(t) (rad, CCW +), and its rate θ̇(t) (rad/s); t = 0 is the start of the run.
+
+* :class:`ImpulseThrow` — the paper's idealisation (Sec. III-B): at t = 0 every
+  resting part is given the velocity of the arm point at its CM, ω × r, and spin
+  ω; the arm itself never moves.
+* :class:`FiniteThrow` — the arm turns at constant ω for Δt and stops at α. It
+  starts ωΔt below α (the parts resting on it), so Δt → 0 recovers the impulse.
+* :class:`RecoilThrow` — the Flatland arm of Sec. IV-A: it recoils a few degrees
+  (a smooth ramp down to −θ_r), then a PD loop drives it to a set point θ_s < 0
+  chosen so that the first overshoot peaks exactly at the horizontal; the part
+  leaves the arm when the arm decelerates faster than gravity can follow. After
+  the ringing the arm eases back to α. :meth:`RecoilThrow.for_release_rate`
+  picks the loop's natural frequency so that the arm's peak rate equals ω.
+* :class:`TiltTo` — no throw: the arm turns from its rest angle to a new one at a
+  given rate (Sec. VI: lowering the arm to α < 0 before assembly).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import ThrowmapError
+
+__all__ = ["ImpulseThrow", "FiniteThrow", "RecoilThrow", "TiltTo", "check_realisation"]
+
+
+def _pos(value, field: str, *, allow_zero=False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ThrowmapError(field, f"must be a finite number, got {value!r}")
+    if value < 0 or (value == 0 and not allow_zero):
+        raise ThrowmapError(field, f"must be {'≥' if allow_zero else '>'} 0, got {value!r}")
+    return float(value)
+
+
+@dataclass(frozen=True, slots=True)
+class ImpulseThrow:
+    """The paper's impulsive release at rate ``omega`` (rad/s ≥ 0)."""
+
+    omega: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "omega", _pos(self.omega, "omega", allow_zero=True))
+
+    impulsive = True
+    start_angle = 0.0
+
+    @property
+    def duration(self) -> float:
+        return 0.0
+
+    def angle(self, t: float) -> float:
+        return 0.0
+
+    def rate(self, t: float) -> float:
+        return 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class FiniteThrow:
+    """The arm turns at ``omega`` (rad/s) for ``duration`` Δt (s), ending at its rest angle."""
+
+    omega: float
+    duration: float = 0.01
+
+    impulsive = False
+
+    def __post_init__(self):
+        object.__setattr__(self, "omega", _pos(self.omega, "omega", allow_zero=True))
+        object.__setattr__(self, "duration", _pos(self.duration, "duration"))
+        if self.omega * self.duration > 0.5:
+            raise ThrowmapError("duration", f"ω·Δt = {self.omega * self.duration:.3g} rad is too large (≤ 0.5 rad)")
+
+    @property
+    def start_angle(self) -> float:
+        return -self.omega * self.duration
+
+    def angle(self, t: float) -> float:
+        if t >= self.duration:
+            return 0.0
+        return -self.omega * (self.duration - max(t, 0.0))
+
+    def rate(self, t: float) -> float:
+        return self.omega if 0.0 <= t < self.duration else 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class RecoilThrow:
+    """Recoil by ``recoil`` (rad) over ``t_recoil`` (s), then a PD step (damping ratio
+    ``zeta``, natural frequency ``omega_n`` rad/s) whose first overshoot peaks at the
+    horizontal; after ``hold`` (s) past the peak the arm eases back to α over ``t_return`` (s).
+    """
+
+    omega_n: float
+    recoil: float = math.radians(3.0)
+    zeta: float = 0.5
+    t_recoil: float = 0.05
+    hold: float = 0.03
+    t_return: float = 0.05
+
+    impulsive = False
+    start_angle = 0.0
+
+    def __post_init__(self):
+        for name in ("omega_n", "recoil", "t_recoil", "hold", "t_return"):
+            object.__setattr__(self, name, _pos(getattr(self, name), name))
+        z = _pos(self.zeta, "zeta")
+        if z >= 1.0:
+            raise ThrowmapError("zeta", f"must be < 1 (an underdamped loop overshoots), got {z}")
+        object.__setattr__(self, "zeta", z)
+
+    @staticmethod
+    def _shape(zeta: float) -> tuple[float, float, float]:
+        """(M, set point per unit recoil, peak-rate factor f): peak rate = (θ_s + θ_r) ω_n f."""
+        sq = math.sqrt(1.0 - zeta * zeta)
+        M = math.exp(-zeta * math.pi / sq)
+        # rate ∝ e^{-ζ ω_n τ} sin(ω_d τ)/sq, maximal at ω_d τ* = atan(sq/ζ)
+        phase = math.atan2(sq, zeta)
+        f = math.exp(-zeta * phase / sq) * math.sin(phase) / sq
+        return M, -M / (1.0 + M), f
+
+    @classmethod
+    def for_release_rate(cls, omega: float, recoil: float = math.radians(3.0), zeta: float = 0.5, **kw) -> "RecoilThrow":
+        """The profile whose peak arm rate is ``omega`` (rad/s)."""
+        omega = _pos(omega, "omega")
+        recoil = _pos(recoil, "recoil")
+        M, sp, f = cls._shape(zeta)
+        step = recoil * (1.0 + sp)  # θ_s − (−θ_r)
+        return cls(omega_n=omega / (step * f), recoil=recoil, zeta=zeta, **kw)
+
+    @property
+    def setpoint(self) -> float:
+        return self.recoil * self._shape(self.zeta)[1]
+
+    @property
+    def omega_d(self) -> float:
+        return self.omega_n * math.sqrt(1.0 - self.zeta**2)
+
+    @property
+    def t_peak(self) -> float:
+        """Time of the overshoot peak at the horizontal, s from the start."""
+        return self.t_recoil + math.pi / self.omega_d
+
+    @property
+    def peak_rate(self) -> float:
+        M, sp, f = self._shape(self.zeta)
+        return self.recoil * (1.0 + sp) * self.omega_n * f
+
+    @property
+    def duration(self) -> float:
+        return self.t_peak + self.hold + self.t_return
+
+    def _pd(self, tau: float) -> tuple[float, float]:
+        z, wn, wd = self.zeta, self.omega_n, self.omega_d
+        sq = math.sqrt(1.0 - z * z)
+        a0 = -self.recoil - self.setpoint
+        e = math.exp(-z * wn * tau)
+        c, s = math.cos(wd * tau), math.sin(wd * tau)
+        th = self.setpoint + a0 * e * (c + z / sq * s)
+        thd = -a0 * e * wn / sq * s
+        return th, thd
+
+    def angle(self, t: float) -> float:
+        return self._eval(t)[0]
+
+    def rate(self, t: float) -> float:
+        return self._eval(t)[1]
+
+    def _eval(self, t: float) -> tuple[float, float]:
+        if t <= 0.0:
+            return 0.0, 0.0
+        if t < self.t_recoil:
+            u = math.pi * t / self.t_recoil
+            return -0.5 * self.recoil * (1.0 - math.cos(u)), -0.5 * self.recoil * math.pi / self.t_recoil * math.sin(u)
+        t_ret = self.t_peak + self.hold
+        if t < t_ret:
+            return self._pd(t - self.t_recoil)
+        th0, _ = self._pd(t_ret - self.t_recoil)
+        if t < t_ret + self.t_return:
+            u = math.pi * (t - t_ret) / self.t_return
+            return th0 * 0.5 * (1.0 + math.cos(u)), -th0 * 0.5 * math.pi / self.t_return * math.sin(u)
+        return 0.0, 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class TiltTo:
+    """Turn the arm by ``delta`` (rad, from its current rest angle) at ``rate`` (rad/s > 0)."""
+
+    delta: float
+    rate_: float = 0.5
+
+    impulsive = False
+    start_angle = 0.0
+    omega = 0.0
+
+    def __post_init__(self):
+        d = self.delta
+        if isinstance(d, bool) or not isinstance(d, (int, float)) or not math.isfinite(d):
+            raise ThrowmapError("delta", f"must be a finite angle in rad, got {d!r}")
+        object.__setattr__(self, "delta", float(d))
+        object.__setattr__(self, "rate_", _pos(self.rate_, "rate"))
+
+    @property
+    def duration(self) -> float:
+        return abs(self.delta) / self.rate_
+
+    def angle(self, t: float) -> float:
+        if t <= 0.0:
+            return 0.0
+        if t >= self.duration:
+            return self.delta
+        return math.copysign(self.rate_ * t, self.delta)
+
+    def rate(self, t: float) -> float:
+        return math.copysign(self.rate_, self.delta) if 0.0 <= t < self.duration else 0.0
+
+
+def check_realisation(r):
+    if not isinstance(r, (ImpulseThrow, FiniteThrow, RecoilThrow, TiltTo)):
+        raise ThrowmapError("realisation", f"unknown throw realisation {r!r}")
+    return r

@@ -1,0 +1,112 @@
+"""What an engine simulates: parts placed on an arm with fixtures at a rest angle."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..arm import Arm
+from ..errors import ThrowmapError
+from ..fixtures import Cavity, Wall
+from ..part import Part
+from ..trajectory import pose_at_rest
+from .settings import Friction
+
+__all__ = ["Placement", "Scene"]
+
+
+@dataclass(frozen=True, slots=True)
+class Placement:
+    """A part on the arm: at rest on ``side`` with CM abscissa ``x`` (m, arm frame),
+    or at an explicit arm-frame ``pose`` ``(x, y, φ)`` (see :mod:`throwmap.trajectory`)
+    with arm-frame ``velocity`` ``(ẋ, ẏ, φ̇)`` (m/s, m/s, rad/s).
+    """
+
+    part: Part
+    x: float | None = None
+    side: int | None = None
+    pose: tuple | None = None
+    velocity: tuple = (0.0, 0.0, 0.0)
+
+    def __post_init__(self):
+        if not isinstance(self.part, Part):
+            raise ThrowmapError("placement.part", f"must be a Part, got {type(self.part).__name__}")
+        if self.pose is None:
+            if self.x is None or self.side is None:
+                raise ThrowmapError("placement", "give either (x, side) or pose")
+            self.part.check_side(self.side)
+            if not math.isfinite(float(self.x)):
+                raise ThrowmapError("placement.x", f"must be finite, got {self.x}")
+        else:
+            p = tuple(float(v) for v in self.pose)
+            if len(p) != 3 or not all(math.isfinite(v) for v in p):
+                raise ThrowmapError("placement.pose", f"must be 3 finite numbers (x, y, φ), got {self.pose!r}")
+            object.__setattr__(self, "pose", p)
+        v = tuple(float(c) for c in self.velocity)
+        if len(v) != 3 or not all(math.isfinite(c) for c in v):
+            raise ThrowmapError("placement.velocity", f"must be 3 finite numbers, got {self.velocity!r}")
+        object.__setattr__(self, "velocity", v)
+
+    def arm_pose(self, h: float) -> tuple[float, float, float]:
+        """Arm-frame pose ``(x, y, φ)``."""
+        if self.pose is not None:
+            return self.pose
+        return pose_at_rest(self.part, h, float(self.x), int(self.side))
+
+
+@dataclass(frozen=True, slots=True)
+class Scene:
+    """Parts on an arm with fixtures; ``alpha`` is the arm's rest angle (rad, CCW +; Sec. VI).
+
+    ``length`` of the simulated arm is ``arm.length`` or, when that is None,
+    :attr:`EngineSettings.default_length` beyond the farthest part.
+    """
+
+    arm: Arm
+    placements: tuple
+    fixtures: tuple = ()
+    alpha: float = 0.0
+    friction: Friction = field(default_factory=Friction)
+
+    def __post_init__(self):
+        if not isinstance(self.arm, Arm):
+            raise ThrowmapError("scene.arm", f"must be an Arm, got {type(self.arm).__name__}")
+        pl = tuple(self.placements)
+        if not pl:
+            raise ThrowmapError("scene.placements", "needs at least one part")
+        object.__setattr__(self, "placements", pl)
+        fx = tuple(self.fixtures)
+        for f in fx:
+            if not isinstance(f, (Wall, Cavity)):
+                raise ThrowmapError("scene.fixtures", f"unknown fixture {f!r} (use Wall or Cavity)")
+        if fx and self.arm.length is None:
+            raise ThrowmapError("arm.length", "fixtures sit at the arm's end: give the arm a length")
+        object.__setattr__(self, "fixtures", fx)
+        a = self.alpha
+        if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a) or abs(a) >= math.pi / 2:
+            raise ThrowmapError("scene.alpha", f"must be a finite angle with |α| < π/2 rad, got {a!r}")
+        object.__setattr__(self, "alpha", float(a))
+        if not isinstance(self.friction, Friction):
+            raise ThrowmapError("scene.friction", "must be a Friction")
+
+    @property
+    def parts(self) -> tuple:
+        return tuple(p.part for p in self.placements)
+
+    def length(self, default_length: float) -> float:
+        if self.arm.length is not None:
+            return self.arm.length
+        far = max(p.arm_pose(self.arm.h)[0] for p in self.placements)
+        return max(far, 0.0) + default_length
+
+    def mu(self, which: str) -> float:
+        """The pair friction μ for ``"arm"``, ``"wall"`` or ``"part"`` contacts."""
+        f = self.friction
+        if which == "arm":
+            return self.arm.mu if f.arm_part is None else f.arm_part
+        if which == "wall":
+            if f.wall_part is not None:
+                return f.wall_part
+            walls = [w for w in self.fixtures if isinstance(w, Wall) and w.mu is not None]
+            return walls[0].mu if walls else self.mu("arm")
+        return f.part_part
