@@ -97,7 +97,7 @@ def _floats(values: list[str] | str, field: str) -> list[float]:
     return out
 
 
-def _part_and_arm(part: str, h: float | None, g: float | None, length: float | None):
+def _part_and_arm(part: str, h: float | None, g: float | None, length: float | None, mu: float | None = None):
     """The part (built-in name or file) and the arm: command line over the file's [arm]."""
     loaded = resolve_part(part)
     base = loaded.arm
@@ -107,12 +107,13 @@ def _part_and_arm(part: str, h: float | None, g: float | None, length: float | N
         h=h if h is not None else base.h,
         g=g if g is not None else (base.g if base is not None else G),
         length=length if length is not None else (base.length if base is not None else None),
+        mu=mu if mu is not None else (base.mu if base is not None else math.inf),
     )
     return loaded.part, arm
 
 
 def _arm_dict(arm: Arm) -> dict:
-    return {"h": arm.h, "g": arm.g, "length": arm.length}
+    return {"h": arm.h, "g": arm.g, "length": arm.length, "mu": arm.mu if math.isfinite(arm.mu) else None}
 
 
 def _fmt(v: Any, spec: str = ".6g") -> str:
@@ -182,6 +183,8 @@ HOpt = Annotated[float | None, typer.Option("--h", help="Arm surface height h, m
                                                       "Required unless the part file has an [arm] section.")]
 GOpt = Annotated[float | None, typer.Option("--g", help=f"Gravity, m/s² (default: the file's, or {G}).")]
 LengthOpt = Annotated[float | None, typer.Option("--length", help="Arm length, m (default: the file's, or unbounded).")]
+MuOpt = Annotated[float | None, typer.Option("--mu", help="Arm–part Coulomb friction μ (default: the file's, or inf = no slip; "
+                                               "used by rigid_body and engine).")]
 XOpt = Annotated[float, typer.Option("--x", help="Resting CM position along the arm, m.")]
 SideOpt = Annotated[int, typer.Option("--side", help="Side the part rests on (index, see conventions).")]
 ModelOpt = Annotated[str, typer.Option("--model", help=f"Throw model: {', '.join(MODELS)}.")]
@@ -212,13 +215,14 @@ def throw_cmd(
     h: HOpt = None,
     g: GOpt = None,
     length: LengthOpt = None,
+    mu: MuOpt = None,
     model: ModelOpt = "paper",
     as_json: JsonOpt = False,
 ) -> None:
     """One throw from rest at (x, side): where the part lands and how."""
     with _guard():
         check_model(model)
-        the_part, arm = _part_and_arm(part, h, g, length)
+        the_part, arm = _part_and_arm(part, h, g, length, mu)
         _finite(x, "x")
         _finite(omega, "omega")
         out = throw(the_part, arm, x, side, omega, model=model)
@@ -297,6 +301,7 @@ def iterate_cmd(
     h: HOpt = None,
     g: GOpt = None,
     length: LengthOpt = None,
+    mu: MuOpt = None,
     model: ModelOpt = "paper",
     as_json: JsonOpt = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a figure of the orbit (e.g. orbit.png).")] = None,
@@ -304,7 +309,7 @@ def iterate_cmd(
     """Repeated throws from (x, side): an orbit of the throw map."""
     with _guard():
         check_model(model)
-        the_part, arm = _part_and_arm(part, h, g, length)
+        the_part, arm = _part_and_arm(part, h, g, length, mu)
         _finite(x, "x")
         omegas = _floats(omega, "omega")
         if len(omegas) == 1:
@@ -380,6 +385,7 @@ def compare_cmd(
     h: HOpt = None,
     g: GOpt = None,
     length: LengthOpt = None,
+    mu: MuOpt = None,
     omegas: Annotated[str | None, typer.Option("--omegas", help="Release rates, rad/s, comma list "
                                                                 "(default: the library's).")] = None,
     n_x: Annotated[int | None, typer.Option("--n-x", help="Start positions per stable side.")] = None,
@@ -392,7 +398,7 @@ def compare_cmd(
     """Accuracy of the small-angle models against the exact 'paper' model."""
     compare = _need("compare")
     with _guard():
-        the_part, arm = _part_and_arm(part, h, g, length)
+        the_part, arm = _part_and_arm(part, h, g, length, mu)
         kwargs: dict[str, Any] = {}
         if omegas is not None:
             oms = _floats(omegas, "omegas")

@@ -149,7 +149,7 @@ class ThrowOutcome:
             int(n_imp) if n_imp == n_imp else 0,
             int(n_flip) if n_flip == n_flip else 0,
             n_min,
-            n_min < 0.0,
+            n_min < 0.0 or _count(r[C.N_LIFTOFFS]) > 0,
             r[C.N_PULL] > 0,
             _count(r[C.N_LIFTOFFS]),
             _count(r[C.N_SLIPS]),

@@ -7,6 +7,11 @@ Models
 ``"small_angle"``  the draft's first-order closed forms of Sec. IV–V, corrected
                    (:mod:`throwmap.kernels.small_angle`).
 ``"small_angle2"`` the same closed forms kept consistently to second order in ω t*.
+``"rigid_body"``   the exact rigid-body hybrid dynamics of one polygon on the arm line
+                   with Coulomb friction ``arm.mu``: lift-off, sliding impacts and
+                   sliding pivots (:mod:`throwmap.kernels.rigid_body`).
+``"engine"``       a full pymunk simulation (:mod:`throwmap.engine`): fixtures, arm
+                   rest angle and finite arm motions are available only here.
 """
 
 from __future__ import annotations
@@ -25,7 +30,8 @@ from .part import Part
 
 __all__ = ["MODELS", "throw", "throw_batch"]
 
-MODELS = ("paper", "small_angle", "small_angle2")
+MODELS = ("paper", "small_angle", "small_angle2", "rigid_body", "engine")
+ANALYTIC_MODELS = ("paper", "small_angle", "small_angle2", "rigid_body")
 
 DEFAULT_TOL = 1e-14
 """Contact tolerance of the first-contact search, m."""
@@ -35,6 +41,18 @@ DEFAULT_MAX_IMPACTS = 10_000
 """Cap on plastic impacts in one throw (status NO_REST beyond)."""
 DEFAULT_N_SAMPLES = 16
 """Points per pivot swing at which the friction demand is sampled."""
+
+
+_ENGINE_KEYS = ("settings", "fixtures", "alpha", "realisation", "friction", "workers", "progress")
+_NO_TRAJ = np.empty((0, 4))
+
+
+def _check_engine_options(model: str, options: dict) -> None:
+    for key in options:
+        if key not in _ENGINE_KEYS:
+            raise InvalidStateError(key, f"unknown keyword (engine keywords: {', '.join(_ENGINE_KEYS)})")
+        if model != "engine":
+            raise InvalidStateError(key, f"only the \"engine\" model takes {key!r} (model is {model!r})")
 
 
 def check_model(model: str) -> str:
@@ -84,20 +102,35 @@ def throw(
     max_iter: int = DEFAULT_MAX_ITER,
     max_impacts: int = DEFAULT_MAX_IMPACTS,
     n_samples: int = DEFAULT_N_SAMPLES,
+    **engine_options,
 ) -> ThrowOutcome:
     """Throw ``part`` resting at ``(x, side)`` on ``arm`` with release rate ``omega`` (rad/s).
 
     Returns a :class:`ThrowOutcome` (new ``x``, ``side``, ``status`` and the record).
     Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible start:
     unknown or unstable side, a left support vertex at x ≤ 0, negative ω.
+
+    ``model="engine"`` accepts the keywords of :func:`throwmap.engine.engine_throw`
+    (``settings``, ``fixtures``, ``alpha``, ``realisation``, ``friction``).
     """
     check_model(model)
+    _check_engine_options(model, engine_options)
     x0, k, om = check_start(part, arm, x, side, omega)
     warn_if_outside_regime(part, arm)
+    if model == "engine":
+        from .engine import engine_throw
+
+        return engine_throw(part, arm, x0, k, om, **engine_options)
     rec = np.empty(C.NREC)
     L = arm.length_or_inf
     rho2 = part.radius_of_gyration**2
-    if model == "paper":
+    if model == "rigid_body":
+        from .kernels.rigid_body import throw_one_rigid_body
+
+        xn, kn, st = throw_one_rigid_body(x0, k, om, arm.h, arm.g, L, rho2, arm.mu, part.w, part.beta, part.d,
+                                          part.uL, part.uR, part.ell, part.stable, tol, max_iter, max_impacts, rec,
+                                          _NO_TRAJ, 1.0)
+    elif model == "paper":
         xn, kn, st = throw_one(x0, k, om, arm.h, arm.g, L, rho2, part.w, part.beta, part.d, part.uL, part.uR,
                                part.ell, part.stable, tol, max_iter, max_impacts, n_samples, rec)
     else:
@@ -119,14 +152,18 @@ def throw_batch(
     max_iter: int = DEFAULT_MAX_ITER,
     max_impacts: int = DEFAULT_MAX_IMPACTS,
     n_samples: int = DEFAULT_N_SAMPLES,
+    **engine_options,
 ) -> BatchOutcome:
     """Many independent throws; ``x``, ``side`` and ``omega`` broadcast against each other.
 
     ``on_invalid="raise"`` refuses the batch at its first inadmissible start (the
     error names the index); ``"status"`` marks such entries ``INVALID_START`` and
-    throws the rest. Runs the compiled kernels in parallel over the entries.
+    throws the rest. Runs the compiled kernels in parallel over the entries;
+    ``model="engine"`` takes the keywords of :func:`throwmap.engine.engine_batch`
+    (``workers`` processes, ``progress``, and the engine keywords of :func:`throw`).
     """
     check_model(model)
+    _check_engine_options(model, engine_options)
     if on_invalid not in ("raise", "status"):
         raise InvalidStateError("on_invalid", f"must be 'raise' or 'status', got {on_invalid!r}")
     xb, sb, ob = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(side), np.asarray(omega, dtype=float))
@@ -162,7 +199,18 @@ def throw_batch(
     status_out = np.empty(m, dtype=np.int64)
     rec_out = np.empty((m, C.NREC))
     rho2 = part.radius_of_gyration**2
-    if model == "paper":
+    if model == "engine":
+        from .engine import engine_batch
+
+        res = engine_batch(part, arm, xf, sf_safe, of, valid=valid, **engine_options)
+        x_out, side_out, status_out, rec_out = res.x, res.side, res.status, res.records
+    elif model == "rigid_body":
+        from .kernels.rigid_body import throw_many_rigid_body
+
+        throw_many_rigid_body(xf, sf_safe, of, valid, arm.h, arm.g, L, rho2, arm.mu, part.w, part.beta, part.d,
+                              part.uL, part.uR, part.ell, part.stable, tol, max_iter, max_impacts, x_out, side_out,
+                              status_out, rec_out)
+    elif model == "paper":
         throw_many(xf, sf_safe, of, valid, arm.h, arm.g, L, rho2, part.w, part.beta, part.d, part.uL, part.uR,
                    part.ell, part.stable, tol, max_iter, max_impacts, n_samples, x_out, side_out, status_out, rec_out)
     else:
