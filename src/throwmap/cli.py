@@ -421,6 +421,90 @@ def compare_cmd(
         typer.echo(_to_json(doc) if as_json else result.table())
 
 
+# ------------------------------------------------------------------ validate
+@app.command("validate")
+def validate_cmd(
+    part: Annotated[list[str] | None, typer.Option("--part", help="Part(s) to validate (repeatable; default: "
+                                                                   "triangle, triangle+lead, rectangle+lead, square, "
+                                                                   "pentagon).")] = None,
+    n: Annotated[int, typer.Option("--n", help="Random throws in all (spread over the parts), besides the grid.")] = 400,
+    grid: Annotated[bool, typer.Option("--grid/--no-grid", help="Also throw a grid per part.")] = True,
+    engines: Annotated[str, typer.Option("--engines", help="Engines, comma list: pymunk (reference), mujoco.")] = "pymunk",
+    models: Annotated[str, typer.Option("--models", help="Analytic models, comma list.")] = "paper,small_angle,rigid_body",
+    mu: Annotated[float, typer.Option("--mu", help="Arm–part friction μ of the validation set.")] = 1.5,
+    seed: Annotated[int, typer.Option("--seed", help="Seed of the random cases.")] = 0,
+    workers: Annotated[int, typer.Option("--workers", help="Engine processes (0: one per core).")] = 0,
+    out: Annotated[Path, typer.Option("--out", help="Directory for validation.json and validation.md.")] = Path("out"),
+    as_json: JsonOpt = False,
+) -> None:
+    """Analytic models against full rigid-body simulation: side agreement, |Δx|, where assumptions fail."""
+    from .validation import default_parts, validate
+
+    with _guard():
+        if n < 0:
+            raise InvalidStateError("n", f"must be ≥ 0, got {n}")
+        if n == 0 and not grid:
+            raise InvalidStateError("n", "nothing to throw: give --n > 0 or --grid")
+        eng = tuple(e.strip() for e in engines.split(",") if e.strip())
+        for e in eng:
+            if e not in ("pymunk", "mujoco"):
+                raise InvalidStateError("engines", f"unknown engine {e!r} (choose from pymunk, mujoco)")
+        if "pymunk" not in eng:
+            eng = ("pymunk",) + eng
+        mods = tuple(check_model(m.strip()) for m in models.split(",") if m.strip())
+        if "engine" in mods:
+            raise InvalidStateError("models", "'engine' is the reference; list analytic models only")
+        _finite(mu, "mu")
+        if mu < 0:
+            raise InvalidStateError("mu", f"must be ≥ 0, got {mu:g}")
+        if out.exists() and not out.is_dir():
+            raise ConfigError("out", f"{out} exists and is not a directory")
+        if part:
+            parts = {}
+            builtin = default_parts()
+            for name in part:
+                parts[name] = builtin[name] if name in builtin else resolve_part(name).part
+        else:
+            parts = None
+        if "mujoco" in eng:
+            try:
+                import mujoco  # noqa: F401
+            except ImportError:
+                raise ConfigError("engines", "MuJoCo is not installed: pip install 'throwmap[mujoco]'") from None
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+        with Progress(TextColumn("engine throws"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                      console=Console(stderr=True), transient=True) as bar:
+            task = bar.add_task("engine", total=None)
+            report = validate(parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, workers=workers,
+                              progress=lambda done, total: bar.update(task, completed=done, total=total))
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as err:
+            raise ConfigError("out", f"cannot create {out}: {err.strerror or err}") from None
+        doc = {**report.to_dict(), "version": __version__}
+        _write_text(out / "validation.json", _to_json(doc) + "\n", "out")
+        md = (f"# throwmap validation ({report.settings['n_throws']} throws, seed {seed}, μ = {mu:g})\n\n"
+              + report.table() + "\n\n" + "\n".join(f"- {g}" for g in report.goal_lines()) + "\n")
+        _write_text(out / "validation.md", md, "out")
+        if as_json:
+            typer.echo(_to_json(doc))
+            return
+        typer.echo(report.table())
+        for line in report.goal_lines():
+            typer.echo(line)
+        typer.echo(f"wrote {out / 'validation.json'}, {out / 'validation.md'}")
+
+
+try:  # `throwmap animate` lives in its own module
+    from .cli_animate import register as _register_animate
+
+    _register_animate(app)
+except ImportError:  # pragma: no cover
+    pass
+
+
 # ------------------------------------------------------------------ entry
 def main(argv: list[str] | None = None) -> None:
     """Console entry point (``throwmap``, ``python -m throwmap``)."""

@@ -32,7 +32,7 @@ Checks
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -86,6 +86,7 @@ class EngineRun:
     alpha: float
     trajectory: Trajectory | None = None
     message: str = ""
+    retries: int = 0
 
     def outcome(self, i: int = 0, *, x0=None, side0=None, omega=0.0, model="engine") -> ThrowOutcome:
         """Part ``i``'s result as a :class:`~throwmap.ThrowOutcome`."""
@@ -142,21 +143,45 @@ def _rot(a):
 
 
 def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = None, *, record: bool = False,
-             progress=None) -> EngineRun:
+             progress=None, run_for: float | None = None) -> EngineRun:
     """Simulate one throw (or arm motion) of every part in ``scene`` until all settle.
 
     ``realisation``: :class:`ImpulseThrow` (default ω = 0: just settle),
     :class:`FiniteThrow`, :class:`RecoilThrow` or :class:`TiltTo`. With
     ``record=True`` the run's :class:`~throwmap.trajectory.Trajectory` is kept.
     ``progress(t, t_max)`` is called every simulated 10 ms if given.
+    ``run_for`` (s): simulate exactly this long instead of stopping once settled.
+
+    A run that loses a contact (status ``penetration``) is repeated with half the
+    step, up to ``settings.retries`` times; if it still fails, the failure is
+    returned (with its message), never the result.
     """
-    pm = _pymunk()
     settings = EngineSettings() if settings is None else settings
     if not isinstance(settings, EngineSettings):
         raise ThrowmapError("settings", "must be an EngineSettings")
+    run = _simulate_once(scene, realisation, settings, record, progress, run_for)
+    tries = 0
+    while run.status == Status.PENETRATION and tries < settings.retries:
+        tries += 1
+        finer = replace(settings, dt=settings.dt / 2**tries, settle_hold=max(settings.settle_hold, 4 * settings.dt))
+        first = run.message
+        run = _simulate_once(scene, realisation, finer, record, progress, run_for)
+        run = replace(run, message=(run.message + "; " if run.message else "")
+                      + f"retried at dt = {finer.dt:g} s after: {first}", retries=tries)
+    return run
+
+
+def _simulate_once(scene, realisation, settings, record, progress, run_for) -> EngineRun:
+    pm = _pymunk()
     if not isinstance(scene, Scene):
         raise ThrowmapError("scene", "must be a Scene")
     realisation = ImpulseThrow(0.0) if realisation is None else check_realisation(realisation)
+    t_max = settings.t_max
+    if run_for is not None:
+        if isinstance(run_for, bool) or not isinstance(run_for, (int, float)) or not run_for > 0 \
+                or not math.isfinite(run_for):
+            raise ThrowmapError("run_for", f"must be a positive number of seconds, got {run_for!r}")
+        t_max = float(run_for)
     arm = scene.arm
     h, g = arm.h, arm.g
     L = scene.length(settings.default_length)
@@ -378,9 +403,11 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
             sample(t)
             next_sample += settings.record_dt
         if progress is not None and t >= next_progress:
-            progress(t, settings.t_max)
+            progress(t, t_max)
             next_progress += 0.01
-        if t >= settings.t_max:
+        if t >= t_max - 1e-12:
+            if run_for is not None:
+                break
             status = Status.TIMEOUT
             message = f"not settled after {settings.t_max:g} s"
             for tr in tracks:
@@ -404,7 +431,7 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
                 usable = gap - 0.5 * settings.flight_margin
                 # vmax τ + g τ² ≤ usable (the g term bounds the speed gained during the leap)
                 tau = 2.0 * usable / (vmax + math.sqrt(vmax * vmax + 4.0 * g * usable))
-                tau = min(tau, 0.05, settings.t_max - t)
+                tau = min(tau, 0.05, t_max - t)
                 if record:
                     tau = min(tau, max(next_sample - t, dt))
                 if tau > 4 * dt:
@@ -426,7 +453,7 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
         coarse = (not arm_moving and settings.coarse_dt > dt and t - last_begin[0] >= settings.impact_window
                   and all(tr.fell is not None or tr.n_contacts > 0 for tr in tracks))
         h_step = settings.coarse_dt if coarse else dt
-        n_inner = max(1, int(math.ceil((next_check - t) / h_step - 1e-9)))
+        n_inner = max(1, int(math.ceil((min(next_check, t_max) - t) / h_step - 1e-9)))
         for _ in range(n_inner):
             if arm_moving:
                 a_now = alpha + realisation.angle(t)
@@ -495,7 +522,7 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
                 if slow:
                     if still_since is None:
                         still_since = t
-                    elif t - still_since >= settings.settle_hold:
+                    elif t - still_since >= settings.settle_hold and run_for is None:
                         done = True
                 else:
                     still_since = None

@@ -35,6 +35,8 @@ class EngineSettings:
     t_max : give up after this much simulated time (status ``timeout``), s.
     penetration_tol : a vertex deeper than this inside the arm or a fixture (m)
         means pymunk lost the contact: status ``penetration``, result refused.
+    retries : a run that lost a contact is repeated this many times, each with
+        half the previous step (0: report the failure at once).
     arm_thickness : thickness of the arm's solid below its surface, m.
     default_length : arm length simulated when ``Arm.length`` is None, m beyond
         the farthest part.
@@ -53,6 +55,7 @@ class EngineSettings:
     settle_hold: float = 0.05
     t_max: float = 10.0
     penetration_tol: float = 1e-3
+    retries: int = 2
     arm_thickness: float = 0.02
     default_length: float = 2.0
     record_dt: float = 1.0 / 240.0
@@ -67,6 +70,10 @@ class EngineSettings:
                 continue
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
                 raise ThrowmapError(key, f"must be a finite number, got {v!r}")
+            if f.name == "retries":
+                if int(v) != v or v < 0:
+                    raise ThrowmapError(key, f"must be an integer ≥ 0, got {v!r}")
+                continue
             if f.name == "iterations":
                 if int(v) != v or v < 1:
                     raise ThrowmapError(key, f"must be a positive integer, got {v!r}")
