@@ -80,10 +80,10 @@ class EngineSettings:
                 continue
             if v <= 0:
                 raise ThrowmapError(key, f"must be > 0, got {v!r}")
-        if self.coarse_dt < self.dt:
-            raise ThrowmapError("engine.coarse_dt", f"must be ≥ dt ({self.dt:g} s), got {self.coarse_dt:g}")
         if self.dt > 2e-3:
             raise ThrowmapError("engine.dt", f"{self.dt:g} s is too coarse for impacts (≤ 2 ms; 0.125 ms converged)")
+        if self.coarse_dt < self.dt:
+            raise ThrowmapError("engine.coarse_dt", f"must be ≥ dt ({self.dt:g} s), got {self.coarse_dt:g}")
         if self.settle_hold < 4 * self.dt:
             raise ThrowmapError("engine.settle_hold", f"must cover at least 4 steps ({4 * self.dt:g} s), got {self.settle_hold:g}")
         if self.t_max < self.settle_hold:
