@@ -313,9 +313,26 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for) -> E
     def world_vertices(i):
         return [bodies[i].local_to_world(tuple(v)) for v in parts[i].w]
 
+    wlists = [[(float(a), float(b)) for a, b in p.w] for p in parts]
+    plain_arm = not scene.fixtures and len(parts) == 1
+
     def penetration(i):
-        """Deepest penetration (m) of part i's vertices into any other shape, and vice versa for corners."""
+        """Deepest penetration (m) of part i's vertices into the arm, fixtures or other parts."""
         deepest = 0.0
+        if plain_arm:  # fast path: depth below the flat surface line, in the arm frame
+            b = bodies[i]
+            ca, sa = _rot(arm_body.angle)
+            c, s = _rot(b.angle)
+            px, py = b.position
+            for wx, wy in wlists[i]:
+                X = px + c * wx - s * wy
+                Y = py + s * wx + c * wy
+                xa = ca * X + sa * Y
+                if 0.0 <= xa <= L:
+                    d = h - (-sa * X + ca * Y)
+                    if d > deepest:
+                        deepest = d
+            return deepest
         for v in world_vertices(i):
             for s in all_other[i]:
                 d = s.point_query(v).distance
