@@ -79,7 +79,7 @@ def test_throw_json():
     assert doc["status"] == "ok"
     assert doc["kind"] in ("jog", "flip")
     assert doc["part"] == tm.triangle_30_60_90(0.17).name
-    assert doc["arm"] == {"h": -0.01, "g": 9.81, "length": None}
+    assert doc["arm"] == {"h": -0.01, "g": 9.81, "length": None, "mu": None}
     assert doc["version"] == tm.__version__
     direct = tm.throw(tm.triangle_30_60_90(0.17), tm.Arm(-0.01), 0.2, 0, 4.0)
     assert doc["x"] == direct.x and doc["side"] == direct.side
@@ -106,10 +106,10 @@ def test_throw_table():
 def test_throw_arm_from_file_and_override(tmp_path):
     path = part_file(tmp_path, arm="h = -0.01\nlength = 0.5")
     a = strict_json(invoke("throw", "--part", path, "--x", "0.07", "--side", "0", "--omega", "3", "--json").stdout)
-    assert a["arm"] == {"h": -0.01, "g": 9.81, "length": 0.5}
+    assert a["arm"] == {"h": -0.01, "g": 9.81, "length": 0.5, "mu": None}
     b = strict_json(invoke("throw", "--part", path, "--h", "-0.005", "--x", "0.07", "--side", "0", "--omega", "3",
                            "--json").stdout)
-    assert b["arm"] == {"h": -0.005, "g": 9.81, "length": 0.5}
+    assert b["arm"] == {"h": -0.005, "g": 9.81, "length": 0.5, "mu": None}
 
 
 def test_regime_warning_is_one_line():

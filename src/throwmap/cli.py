@@ -180,7 +180,7 @@ def _need(module: str):
 # ------------------------------------------------------------------ options
 PartOpt = Annotated[str, typer.Option("--part", help="Built-in part name or a .toml/.json part file.")]
 HOpt = Annotated[float | None, typer.Option("--h", help="Arm surface height h, m (h < 0: below the joint). "
-                                                      "Required unless the part file has an [arm] section.")]
+                                                      "Required unless the part file has an \\[arm] section.")]
 GOpt = Annotated[float | None, typer.Option("--g", help=f"Gravity, m/s² (default: the file's, or {G}).")]
 LengthOpt = Annotated[float | None, typer.Option("--length", help="Arm length, m (default: the file's, or unbounded).")]
 MuOpt = Annotated[float | None, typer.Option("--mu", help="Arm–part Coulomb friction μ (default: the file's, or inf = no slip; "

@@ -245,6 +245,8 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for) -> E
         parts.append(part)
     index = {id(b): i for i, b in enumerate(bodies)}
     betas = [tuple(float(v) for v in p.beta) for p in parts]
+    for i, b in enumerate(bodies):
+        tracks[i].last_side = _nearest_side(betas[i], b.angle - arm_body.angle)[0]
     mu_pp = engine_mu(scene.mu("part"))
     now = [0.0]
     finished = [False]
@@ -280,6 +282,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for) -> E
                         lv = b.world_to_local(p)
                         dist = np.hypot(parts[i].w[:, 0] - lv[0], parts[i].w[:, 1] - lv[1])
                         tr.rec[C.CONTACT_VERTEX] = float(np.argmin(dist))
+                        events.append((t, f"impact v{int(parts[i].user_index[int(np.argmin(dist))])}"))
                     tr.rec[C.N_IMPACTS] += 1.0
                 elif tr.t_sep is not None and (tr.t_sep == -math.inf or t - tr.t_sep >= _HOP_MIN):
                     tr.rec[C.N_IMPACTS] += 1.0
@@ -494,6 +497,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for) -> E
                 tr.armed = True
                 if tr.t_sep is not None and tr.t_sep > -math.inf and t - tr.t_sep >= _HOP_MIN:
                     tr.rec[C.N_LIFTOFFS] += 1.0  # a hop: out of contact for ≥ _HOP_MIN after touching
+                    events.append((tr.t_sep, "lift-off"))
                     tr.t_sep = -math.inf  # counted; the next begin counts the re-impact
         # -------------------------------------------- periodic checks
         if t >= next_check:
@@ -518,14 +522,16 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for) -> E
                 ya = -sa * b.position.x + ca * b.position.y
                 if ya < h - settings.arm_thickness - 3.0 * R[i] or (ya < h and (xa < -R[i] or xa > L + R[i])):
                     tr.fell = t
+                    events.append((t, f"escape: {'behind_joint' if xa < 0.5 * L else 'off_end'}"))
                     tr.status = Status.BEHIND_JOINT if xa < 0.5 * L else Status.OFF_END
                     space.remove(b, shapes[i])
                 # flips: the side the part lies on whenever it is in contact and nearly flat
                 if tr.n_contacts > 0:
                     k, tilt = _nearest_side(betas[i], b.angle - arm_body.angle)
-                    if abs(tilt) < 0.02:
-                        if tr.last_side is not None and k != tr.last_side:
+                    if abs(tilt) < 0.02 and tr.ever:
+                        if k != tr.last_side:
                             tr.rec[C.N_FLIPS] += 1.0
+                            events.append((t, f"flip {tr.last_side}→{k}"))
                         tr.last_side = k
             if done:
                 break
@@ -543,6 +549,8 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for) -> E
                         done = True
                 else:
                     still_since = None
+    if status == Status.OK and still_since is not None:
+        events.append((still_since, "rest"))
     if record:
         sample(t)
     finished[0] = True
