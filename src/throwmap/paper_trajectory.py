@@ -427,13 +427,9 @@ def trajectory_function(model: str):
 
         return engine_trajectory
     if model == "rigid_body":
-        import importlib
+        from .rigid_trajectory import rigid_trajectory
 
-        mod = importlib.import_module("throwmap")
-        fn = getattr(mod, "rigid_trajectory", None)
-        if fn is None:
-            raise ImportError("throwmap.rigid_trajectory is not available in this installation", name="throwmap")
-        return fn
+        return rigid_trajectory
     raise InvalidStateError("model", f"cannot animate model {model!r} (choose from {', '.join(TRAJECTORY_MODELS)})")
 
 

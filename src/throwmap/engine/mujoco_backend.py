@@ -30,8 +30,15 @@ volume never enters.
 
 *Arm.* A static box whose top face is z = h over 0 ≤ x ≤ L (L = ``arm.length``,
 or ``x + 2 m`` when the arm is unbounded), friction ``arm.mu`` with condim 3
-(μ = ∞ becomes :data:`NO_SLIP_MU` = 1e3, MuJoCo needs a finite number; μ = 0
-becomes condim 1, frictionless). Gravity is −g along z.
+(μ = 0 becomes condim 1, frictionless). Gravity is −g along z.
+
+*μ = ∞* becomes :data:`NO_SLIP_MU` = 10, not a huge number: MuJoCo needs a
+finite μ, and a large one spoils its contact solver. Measured on the triangle
+grid of the tests (ω = 3–5 rad/s): with the pyramidal cone μ = 10 already lets
+vertices sink > 1 mm (status ``penetration``) and μ ≥ 100 always does; with the
+elliptic cone (the default here) μ = 10 keeps the post-impact spin within 4 %
+of ω of Eq. (4), μ = 100 is off by 7 % (median) to 46 % and μ = 1000 by up to
+68 %. The no-slip impacts and pivots of these throws need μ ≲ 1.3.
 
 *Contact parameters* (the point of this backend). MuJoCo's defaults — solref
 (0.02 s, 1), solimp (0.9, 0.95, 1 mm), friction mixed as the larger of the two
@@ -42,10 +49,11 @@ solref ``(2·timestep, 10)`` (time constant 2 Δt, damping ratio 10: the normal
 velocity dies at a rate ≈ 1/Δt, the penetration recovers slowly without a
 rebound), solimp ``(0.99, 0.999, 0.1 mm)`` (impedance close to 1 within
 0.1 mm), multi-point convex collision (``multiccd``: a flat side rests on two
-contacts, not one wobbling point) and contact priority on the arm (its μ is used
-exactly, not max(μ, 1)). With ``defaults=True`` none of this is written and
-MuJoCo's own defaults apply (including its default for multiccd, which MuJoCo
-4 turned on).
+contacts, not one wobbling point), the elliptic friction cone (the pyramidal one
+needs μ ≲ 5) and contact priority on the arm (its μ is used exactly, not
+max(μ, 1)). With ``defaults=True`` none of this is written and MuJoCo's own
+defaults apply (including its default for multiccd, which MuJoCo 4 turned on;
+without multiccd a part resting on a side never settles: status ``timeout``).
 
 Reading the run
 ---------------
@@ -86,7 +94,23 @@ vertex has dropped below the arm's top (x ≤ 0: behind the joint, else past the
 end) or when the settled part has its CM outside [0, L], its CM below the arm's
 top, its left support vertex at x ≤ 0 or its CM beyond the end; ``TIMEOUT`` when
 it has not settled by ``t_max``; else ``OK`` with ``(x, side)`` from
-:func:`~throwmap.trajectory.state_from_pose`.
+:func:`~throwmap.trajectory.state_from_pose`. Unlike model ``"paper"``, a part
+that comes to rest with its CM on the arm and a support vertex past the end is
+``OK`` here (it is supported); the paper model calls any contact beyond the end
+``OFF_END``.
+
+Agreement with model "paper"
+----------------------------
+Measured on the grid of ``tests/test_mujoco_backend.py`` (canonical triangle on
+``Arm(h=-0.01, mu=1.5)``, ω = 3, 4, 5 rad/s, x = 0.1–0.4 m, every stable side;
+the 22 throws whose paper throw keeps contact): tuned settings — status and side
+agree on 100 %, |Δx| median 0.02 mm, max 0.12 mm, first-impact spin
+|ω⁺ − ω⁺_Eq.4| median 0.8 %, max 2.3 % of ω. MuJoCo's defaults — every throw
+refused (the part sinks > 1 mm); allowed to finish (tolerance 2 cm): 95 %
+agree, |Δx| median 1.5 mm, max 3.9 mm, spin error median 29 %, max 63 % of ω
+(median 69 % of |ω⁺|). Most of the tuned error is MuJoCo's semi-implicit Euler
+flight, whose height lags by g·t·Δt/2 so that the part lands about one step
+early; a 0.2 ms step halves it.
 """
 
 from __future__ import annotations
@@ -101,12 +125,13 @@ from ..errors import ThrowmapError
 from ..kernels import codes as C
 from ..outcome import Status, ThrowOutcome
 from ..part import Part
+from ..throw import check_start
 from ..trajectory import Trajectory, pose_at_rest, state_from_pose
 
 __all__ = ["MujocoSettings", "mujoco_model_xml", "mujoco_throw", "MODEL_NAME", "NO_SLIP_MU"]
 
 MODEL_NAME = "engine:mujoco"
-NO_SLIP_MU = 1.0e3
+NO_SLIP_MU = 10.0
 """Friction coefficient given to MuJoCo for μ = ∞ (MuJoCo needs a finite number)."""
 UNBOUNDED_EXTRA = 2.0
 """Arm length simulated beyond the start x when ``Arm.length`` is None, m."""
@@ -124,7 +149,7 @@ def _mujoco():
     """Import MuJoCo, or say how to install it."""
     try:
         import mujoco
-    except ImportError:  # pragma: no cover - exercised only without the extra
+    except ImportError:
         raise ThrowmapError("engine", "MuJoCo is not installed: pip install 'throwmap[mujoco]'") from None
     return mujoco
 
@@ -148,11 +173,13 @@ class MujocoSettings:
         form ``(−stiffness, −damping)`` (both < 0) is accepted too.
     solimp : contact impedance ``(dmin, dmax, width m[, midpoint, power])``.
     multiccd : multi-point convex collision (a side rests on two contacts).
+    cone : MuJoCo's friction cone, ``"elliptic"`` or ``"pyramidal"``.
     contact_priority : the arm geom has priority, so exactly ``arm.mu`` is used
         (otherwise MuJoCo takes the larger of the arm's and the part's μ, the part
         geom keeping MuJoCo's default 1).
-    defaults : write none of solref/solimp/multiccd/priority: MuJoCo's own
-        defaults, kept to show how wrong they are for plastic impacts.
+    defaults : write none of solref/solimp/multiccd/cone/priority: MuJoCo's own
+        defaults, kept to show how wrong they are for plastic impacts (``timestep``
+        is still used).
     settle_speed, settle_spin, settle_hold : settled when the CM is slower than
         ``settle_speed`` (m/s) and the spin below ``settle_spin`` (rad/s) for
         ``settle_hold`` (s).
@@ -167,6 +194,7 @@ class MujocoSettings:
     solimp: tuple = (0.99, 0.999, 1e-4, 0.5, 2)
     multiccd: bool = True
     contact_priority: bool = True
+    cone: str = "elliptic"
     defaults: bool = False
     settle_speed: float = 1e-3
     settle_spin: float = 1e-2
@@ -183,6 +211,9 @@ class MujocoSettings:
                 if not isinstance(v, (bool, np.bool_)):
                     raise ThrowmapError(key, f"must be true or false, got {v!r}")
                 object.__setattr__(self, f.name, bool(v))
+            elif f.name == "cone":
+                if v not in ("elliptic", "pyramidal"):
+                    raise ThrowmapError(key, f"must be 'elliptic' or 'pyramidal', got {v!r}")
             elif f.name == "solref":
                 if v is None:
                     continue
@@ -218,12 +249,13 @@ class MujocoSettings:
 
     @staticmethod
     def _tuple(v, key, lengths) -> tuple:
+        counts = " or ".join(map(str, lengths))
         try:
             vals = tuple(v)
         except TypeError:
-            raise ThrowmapError(key, f"must be a sequence of {' or '.join(map(str, lengths))} numbers, got {v!r}") from None
+            raise ThrowmapError(key, f"must be a sequence of {counts} numbers, got {v!r}") from None
         if len(vals) not in lengths:
-            raise ThrowmapError(key, f"must have {' or '.join(map(str, lengths))} numbers, got {v!r}")
+            raise ThrowmapError(key, f"must have {counts} numbers, got {v!r}")
         return tuple(_finite(c, key) for c in vals)
 
     @property
@@ -274,7 +306,7 @@ def mujoco_model_xml(part: Part, arm: Arm, settings: MujocoSettings = MujocoSett
         ref, imp = s.contact_solref, s.solimp
         sol = f'solref="{" ".join(map(_f, ref))}" solimp="{" ".join(map(_f, imp))}"'
         flags = f'\n    <flag multiccd="{"enable" if s.multiccd else "disable"}"/>'
-        option_extra = ""
+        option_extra = f' cone="{s.cone}"'
         arm_contact = f'{friction} condim="{condim}" {sol}'
         part_contact = f'condim="{condim}" {sol}'
         if s.contact_priority:
@@ -283,6 +315,8 @@ def mujoco_model_xml(part: Part, arm: Arm, settings: MujocoSettings = MujocoSett
     if x is not None and side is not None:
         px, py, phi = pose_at_rest(part, arm.h, x, side)
         key = f'\n  <keyframe>\n    <key name="rest" qpos="{_f(px)} {_f(py)} {_f(phi)}"/>\n  </keyframe>'
+    box = f'size="{_f(0.5 * L)} {_f(s.thickness)} {_f(0.5 * ARM_DEPTH)}"'
+    box += f' pos="{_f(0.5 * L)} 0 {_f(arm.h - 0.5 * ARM_DEPTH)}"'
     name = part.name.replace('"', "'").replace("&", "and").replace("<", "(").replace(">", ")")
     return f"""<mujoco model="throwmap {name}">
   <compiler angle="radian"/>
@@ -292,7 +326,7 @@ def mujoco_model_xml(part: Part, arm: Arm, settings: MujocoSettings = MujocoSett
     <mesh name="part" vertex="{verts}"/>
   </asset>
   <worldbody>
-    <geom name="arm" type="box" size="{_f(0.5 * L)} {_f(s.thickness)} {_f(0.5 * ARM_DEPTH)}" pos="{_f(0.5 * L)} 0 {_f(arm.h - 0.5 * ARM_DEPTH)}" {arm_contact}/>
+    <geom name="arm" type="box" {box} {arm_contact}/>
     <body name="part">
       <joint name="x" type="slide" axis="1 0 0"/>
       <joint name="y" type="slide" axis="0 0 1"/>
@@ -320,8 +354,6 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
     start (as :func:`throwmap.throw` does) and :class:`~throwmap.errors.ThrowmapError`
     when MuJoCo is not installed. Deterministic: same inputs, same result.
     """
-    from ..throw import check_start
-
     if not isinstance(part, Part):
         raise ThrowmapError("part", f"must be a Part, got {type(part).__name__}")
     if not isinstance(arm, Arm):
@@ -354,7 +386,8 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
     dt = s.timestep
     n_max = int(math.ceil(s.t_max / dt))
     n_hold = int(math.ceil(s.settle_hold / dt))
-    touching = np.zeros(n, dtype=bool)
+    # ω = 0: no throw, the resting contacts are not touch-downs
+    touching = np.zeros(n, dtype=bool) if om > 0 else (part.vertices_at_rest(x0, k0, h)[:, 1] <= h + 1e-12)
     any_touch = False
     jc = -1
     t_c = math.nan
