@@ -48,9 +48,10 @@ def test_validate_small_run_paper_exact_where_assumptions_hold():
 
 def test_validate_cli_writes_table_and_json(tmp_path):
     r = runner.invoke(app, ["validate", "--part", "square", "--n", "6", "--no-grid", "--models", "paper",
-                            "--workers", "1", "--out", str(tmp_path)])
+                            "--workers", "1", "--realisations", "2", "--out", str(tmp_path)])
     assert r.exit_code == 0, r.output
     assert "| paper |" in r.stdout
+    assert "recoil 3°" in r.stdout
     doc = json.loads((tmp_path / "validation.json").read_text())
     assert doc["settings"]["n_throws"] == 6
     assert (tmp_path / "validation.md").read_text().startswith("# throwmap validation")
@@ -63,9 +64,10 @@ def test_validate_cli_writes_table_and_json(tmp_path):
     (["--n", "-1"], "n"),
     (["--n", "0", "--no-grid"], "n"),
     (["--mu", "-1"], "mu"),
+    (["--realisations", "-1"], "realisations"),
 ])
 def test_validate_cli_bad_input(tmp_path, args, field):
-    r = runner.invoke(app, ["validate", "--out", str(tmp_path)] + args)
+    r = runner.invoke(app, ["validate", "--out", str(tmp_path), "--realisations", "0"] + args)
     assert r.exit_code == 2
     err = r.stderr.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"error: {field}")

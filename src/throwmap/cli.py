@@ -434,6 +434,8 @@ def validate_cmd(
     mu: Annotated[float, typer.Option("--mu", help="Arm–part friction μ of the validation set.")] = 1.5,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the random cases.")] = 0,
     workers: Annotated[int, typer.Option("--workers", help="Engine processes (0: one per core).")] = 0,
+    realisations: Annotated[int, typer.Option("--realisations", help="Also compare finite arm motions with the "
+                                                                     "impulse on this many throws (0: skip).")] = 40,
     out: Annotated[Path, typer.Option("--out", help="Directory for validation.json and validation.md.")] = Path("out"),
     as_json: JsonOpt = False,
 ) -> None:
@@ -443,6 +445,8 @@ def validate_cmd(
     with _guard():
         if n < 0:
             raise InvalidStateError("n", f"must be ≥ 0, got {n}")
+        if realisations < 0:
+            raise InvalidStateError("realisations", f"must be ≥ 0, got {realisations}")
         if n == 0 and not grid:
             raise InvalidStateError("n", "nothing to throw: give --n > 0 or --grid")
         eng = tuple(e.strip() for e in engines.split(",") if e.strip())
@@ -478,7 +482,8 @@ def validate_cmd(
                       console=Console(stderr=True), transient=True) as bar:
             task = bar.add_task("engine", total=None)
             report = validate(parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, workers=workers,
-                              progress=lambda done, total: bar.update(task, completed=done, total=total))
+                              progress=lambda done, total: bar.update(task, completed=done, total=total),
+                              n_realisations=realisations)
         try:
             out.mkdir(parents=True, exist_ok=True)
         except OSError as err:
@@ -486,7 +491,8 @@ def validate_cmd(
         doc = {**report.to_dict(), "version": __version__}
         _write_text(out / "validation.json", _to_json(doc) + "\n", "out")
         md = (f"# throwmap validation ({report.settings['n_throws']} throws, seed {seed}, μ = {mu:g})\n\n"
-              + report.table() + "\n\n" + "\n".join(f"- {g}" for g in report.goal_lines()) + "\n")
+              + report.table() + "\n\n" + "\n".join(f"- {g}" for g in report.goal_lines()) + "\n"
+              + ("\n" + report.realisation_table() + "\n" if report.realisation_rows else ""))
         _write_text(out / "validation.md", md, "out")
         if as_json:
             typer.echo(_to_json(doc))
@@ -494,6 +500,9 @@ def validate_cmd(
         typer.echo(report.table())
         for line in report.goal_lines():
             typer.echo(line)
+        if report.realisation_rows:
+            typer.echo("")
+            typer.echo(report.realisation_table())
         typer.echo(f"wrote {out / 'validation.json'}, {out / 'validation.md'}")
 
 

@@ -103,6 +103,7 @@ class ValidationReport:
     rows: tuple
     goals: dict
     settings: dict = field(default_factory=dict)
+    realisation_rows: tuple = ()
 
     def table(self) -> str:
         """The comparison table in Markdown (distances in mm)."""
@@ -117,6 +118,17 @@ class ValidationReport:
             )
         return "\n".join(lines)
 
+    def realisation_table(self) -> str:
+        """How far finite arm motions land from the impulse idealisation (engine vs engine, mm)."""
+        if not self.realisation_rows:
+            return ""
+        lines = ["| realisation vs impulse (pymunk) | throws | same status % | same side % | |Δx| median (mm) "
+                 "| |Δx| p90 (mm) | |Δx| max (mm) |", "|" + "---|" * 7]
+        for r in self.realisation_rows:
+            lines.append(f"| {r['model']} | {r['n']} | {r['same_status_pct']:.1f} | {r['same_side_pct']:.1f} | "
+                         f"{_f(r['dx_median_mm'], '.2f')} | {_f(r['dx_p90_mm'], '.2f')} | {_f(r['dx_max_mm'], '.2f')} |")
+        return "\n".join(lines)
+
     def goal_lines(self) -> list[str]:
         return [f"{name}: {g['value']:.2f} % (goal ≥ {g['goal']:g} %) — {'met' if g['met'] else 'NOT met'}"
                 for name, g in self.goals.items()]
@@ -125,7 +137,8 @@ class ValidationReport:
         from .io import json_ready
 
         return json_ready({"reference": self.reference, "rows": list(self.rows), "goals": self.goals,
-                           "settings": self.settings, "table_markdown": self.table()})
+                           "settings": self.settings, "table_markdown": self.table(),
+                           "realisations": list(self.realisation_rows)})
 
 
 def _f(v, spec=".3f"):
@@ -177,14 +190,48 @@ def _assumption_text(model: str, recs: np.ndarray, mu: np.ndarray, status: np.nd
     return f"timeouts {tmo}/{n}, penetration refused {pen}/{n}"
 
 
+def realisation_departures(part: Part, arm: Arm, n: int = 40, seed: int = 0, *, workers: int | None = 0,
+                           omega_range=DEFAULT_OMEGA, x_max: float = X_MAX) -> tuple:
+    """Engine throws by finite arm motions compared with the impulse idealisation (Sec. III-B, IV-A).
+
+    Realisations: :class:`~throwmap.engine.FiniteThrow` with Δt = 5 ms and 20 ms
+    (constant ω, ending at the rest angle) and the Flatland recoil-and-overshoot
+    profile :meth:`~throwmap.engine.RecoilThrow.for_release_rate` (3° recoil, ζ = 0.5).
+    Returns one comparison row per realisation.
+    """
+    from .engine import FiniteThrow, RecoilThrow
+
+    rng = np.random.default_rng(seed)
+    sides = np.flatnonzero(part.stable)
+    k = rng.choice(sides, n)
+    x = np.array([rng.uniform(-part.uL[s] + 0.01, x_max) for s in k])
+    om = rng.uniform(*omega_range, n)
+    imp = throw_batch(part, arm, x, k, om, model="engine", workers=workers)
+    ref = {"x": imp.x, "side": imp.side, "status": imp.status}
+    rows = []
+    for label, make in (("finite, Δt = 5 ms", lambda w: FiniteThrow(w, 0.005)),
+                        ("finite, Δt = 20 ms", lambda w: FiniteThrow(w, 0.02)),
+                        ("recoil 3°, PD overshoot", lambda w: RecoilThrow.for_release_rate(w))):
+        xs, ss, st = np.empty(n), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64)
+        for i in range(n):
+            from .engine import engine_run
+
+            r = engine_run(part, arm, float(x[i]), int(k[i]), float(om[i]), realisation=make(float(om[i])))
+            xs[i], ss[i], st[i] = r.states[0][0], r.states[0][1], int(r.status)
+        rows.append(_compare(label, ref, {"x": xs, "side": ss, "status": st}, ""))
+    return tuple(rows)
+
+
 def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 0, grid: bool = True,
              models=("paper", "small_angle", "rigid_body"), engines=("pymunk",), mu: float = DEFAULT_MU,
              hs=DEFAULT_H, omega_range=DEFAULT_OMEGA, workers: int | None = 0, engine_settings=None,
-             mujoco_settings=None, progress=None) -> ValidationReport:
+             mujoco_settings=None, progress=None, n_realisations: int = 0) -> ValidationReport:
     """Throw the validation set through ``models`` and ``engines``; compare each with pymunk.
 
     ``engines`` ⊆ {"pymunk", "mujoco"} ("pymunk" is always run: it is the
     reference). ``workers`` processes run the engine (0: one per core).
+    ``n_realisations`` > 0 also compares finite arm motions with the impulse on
+    that many throws of the first part (:func:`realisation_departures`).
     ``progress(done, total)`` is called as engine throws finish.
     """
     parts = default_parts() if parts is None else parts
@@ -270,4 +317,10 @@ def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 
                 "parts": list(parts), "models": list(models), "engines": list(engines),
                 "n_throws": int(ref["x"].size)}
     case_info = {c.part_name: int(c.x.size) for c in cases}
-    return ValidationReport("pymunk", case_info, results, tuple(rows), goals, settings)
+    real_rows = ()
+    if n_realisations > 0:
+        first = next(iter(parts.values()))
+        real_rows = realisation_departures(first, Arm(h=hs[0], mu=mu), n_realisations, seed, workers=workers,
+                                           omega_range=omega_range)
+        settings["n_realisations"] = n_realisations
+    return ValidationReport("pymunk", case_info, results, tuple(rows), goals, settings, real_rows)
