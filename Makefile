@@ -20,6 +20,8 @@ test: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_throw.py
+	$(PY) benchmarks/bench_rigid_body.py
+	$(PY) benchmarks/bench_engine.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

@@ -40,3 +40,26 @@ def test_bench_script_rejects_bad_sizes():
     bench = _load()
     with pytest.raises(SystemExit):
         bench.main(["--n", "0"])
+
+
+def _load_named(name):
+    path = BENCH.parent / name
+    spec = importlib.util.spec_from_file_location(name.removesuffix(".py"), path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_engine_bench_runs_small(tmp_path, capsys):
+    res = _load_named("bench_engine.py").main(["--n", "3", "--json", str(tmp_path / "e.json")])
+    text = capsys.readouterr().out
+    assert "one core" in text and "all cores" in text
+    assert res["n"] == 3 and res["throws_per_s_one_core"] > 0
+    assert json.loads((tmp_path / "e.json").read_text())["steps_per_throw"] > 0
+
+
+def test_rigid_body_bench_runs_small(capsys):
+    res = _load_named("bench_rigid_body.py").main(["--n", "500", "--repeat", "1", "--mu", "1.5"])
+    text = capsys.readouterr().out
+    assert "1.5" in text
+    assert res is not None
