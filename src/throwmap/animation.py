@@ -33,14 +33,13 @@ stored as one long frame.)
 from __future__ import annotations
 
 import math
-import os
 import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from .errors import ThrowmapError
+from .io import atomic_output
 from .trajectory import Trajectory, world_vertices
 
 __all__ = ["animate", "check_animation_path", "frame_times", "sample_frames", "ANIMATION_FORMATS", "MAX_FRAMES"]
@@ -230,7 +229,6 @@ def animate(traj: Trajectory, path, *, fps: int = 30, speed: float = 1.0, dpi: i
     """
     path = check_animation_path(path)
     suffix = path.suffix.lower()
-    directory = path.parent if str(path.parent) else Path(".")
     fps = int(_check_positive(fps, "fps", integer=True))
     speed = _check_positive(speed, "speed")
     dpi = int(_check_positive(dpi, "dpi", integer=True))
@@ -362,30 +360,11 @@ def animate(traj: Trajectory, path, *, fps: int = 30, speed: float = 1.0, dpi: i
         writer = mpl_animation.PillowWriter(fps=fps)
     else:
         writer = mpl_animation.FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=directory)
-    os.close(fd)
-    try:
-        try:
-            mode = path.stat().st_mode & 0o7777
-        except FileNotFoundError:
-            from .io import _new_file_mode
-
-            mode = _new_file_mode()
-        with writer.saving(fig, tmp, dpi):
-            total = times.size
-            for f in range(total):
-                draw(f)
-                writer.grab_frame()
-                if progress is not None:
-                    progress(f + 1, total)
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    with atomic_output(path, suffix=suffix) as tmp, writer.saving(fig, str(tmp), dpi):
+        total = times.size
+        for f in range(total):
+            draw(f)
+            writer.grab_frame()
+            if progress is not None:
+                progress(f + 1, total)
     return path

@@ -471,10 +471,10 @@ def validate_cmd(
         else:
             parts = None
         if "mujoco" in eng:
-            try:
-                import mujoco  # noqa: F401
-            except ImportError:
-                raise ConfigError("engines", "MuJoCo is not installed: pip install 'throwmap[mujoco]'") from None
+            import importlib.util
+
+            if importlib.util.find_spec("mujoco") is None:
+                raise ConfigError("engines", "MuJoCo is not installed: pip install 'throwmap[mujoco]'")
         from rich.console import Console
         from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import os
 import tempfile
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -39,8 +40,10 @@ def _new_file_mode() -> int:
     return 0o666 & ~umask
 
 
-def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
-    """Write ``data`` to ``path`` atomically; returns ``path`` as a :class:`Path`.
+@contextmanager
+def atomic_output(path: str | os.PathLike, suffix: str = ".tmp"):
+    """Context manager yielding a temporary path beside ``path``; on success the
+    file written there is synced and renamed onto ``path`` atomically.
 
     The parent directory must exist (it is not created). An existing target keeps
     its permission bits; a new one gets the usual ``0o666 & ~umask``. On any
@@ -52,11 +55,11 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
         mode = path.stat().st_mode & 0o7777
     except FileNotFoundError:
         mode = _new_file_mode()
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=directory)
+    os.close(fd)
     try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
+        yield Path(tmp)
+        with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
         os.chmod(tmp, mode)
         os.replace(tmp, path)
@@ -66,6 +69,13 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
         except OSError:
             pass
         raise
+
+
+def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
+    """Write ``data`` to ``path`` atomically (see :func:`atomic_output`); returns ``path`` as a :class:`Path`."""
+    path = Path(path)
+    with atomic_output(path) as tmp:
+        tmp.write_bytes(data)
     return path
 
 

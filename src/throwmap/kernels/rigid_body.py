@@ -100,6 +100,7 @@ from numba import njit, prange
 
 from . import codes as C
 from .impact import plastic_impact
+from .roll import _theta_a, _theta_b
 
 HALF_PI = 0.5 * math.pi
 TWO_PI = 2.0 * math.pi
@@ -772,17 +773,6 @@ def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip):
 
 
 # ============================================================================ helpers
-@njit(cache=True)
-def _theta_a(j, n, d, uL):
-    k = (j - 1) % n
-    return math.atan2(d[k], -uL[k])
-
-
-@njit(cache=True)
-def _theta_b(j, d, uR):
-    return math.atan2(d[j], -uR[j])
-
-
 @njit(cache=True)
 def _arc_ok(th_from, E, lj, I, g, mu, towards_peak):
     """Whether a sticking swing from θ at energy E up to its turning point keeps N > 0, |F| ≤ μN."""
