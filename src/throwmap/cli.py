@@ -506,12 +506,9 @@ def validate_cmd(
         typer.echo(f"wrote {out / 'validation.json'}, {out / 'validation.md'}")
 
 
-try:  # `throwmap animate` lives in its own module
-    from .cli_animate import register as _register_animate
+from .cli_animate import register as _register_animate  # noqa: E402  (`throwmap animate` lives in its own module)
 
-    _register_animate(app)
-except ImportError:  # pragma: no cover
-    pass
+_register_animate(app)
 
 
 # ------------------------------------------------------------------ entry

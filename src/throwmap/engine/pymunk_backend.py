@@ -50,7 +50,6 @@ __all__ = ["EngineRun", "simulate"]
 _ARM, _FIXTURE, _PART = 1, 2, 3
 _HOP_MIN = 1e-3  # s a part must stay out of contact for a separation to count as a hop
 _CHECK_EVERY = 1e-3  # s between penetration/clearance checks while stepping
-_DEBUG = False
 
 
 def _pymunk():
@@ -440,7 +439,6 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for) -> E
         if settings.exact_flight and t >= next_flight_check and all(tr.n_contacts == 0 for tr in tracks):
             next_flight_check = t + _CHECK_EVERY
             gaps = [clearance(i) if tracks[i].fell is None else math.inf for i in range(len(bodies))]
-            if _DEBUG: print("gap", t, gaps, [tr.n_contacts for tr in tracks])
             gap = min(gaps)
             if gap > settings.flight_margin:
                 vmax = 0.0
