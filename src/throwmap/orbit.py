@@ -61,6 +61,30 @@ class Orbit:
         return plot_orbit(self, ax=ax, **kwargs)
 
 
+def throw_rates(omegas, n=None, *, min_n: int = 0) -> np.ndarray:
+    """The release rate of each throw: ``omegas`` as given, or one ω repeated ``n`` times.
+
+    Raises :class:`InvalidStateError` (fields ``omegas``/``n``) for a non-1-D
+    sequence, a missing or bad ``n`` with a single ω, an ``n`` that contradicts the
+    sequence, or fewer than ``min_n`` throws.
+    """
+    om = np.atleast_1d(np.asarray(omegas, dtype=float))
+    if om.ndim != 1:
+        raise InvalidStateError("omegas", "must be a number or a 1-D sequence")
+    if np.ndim(omegas) == 0:
+        if n is None:
+            raise InvalidStateError("n", "the number of throws is required with a single omega")
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < min_n:
+            kind = "positive" if min_n >= 1 else "non-negative"
+            raise InvalidStateError("n", f"must be a {kind} integer, got {n!r}")
+        om = np.full(int(n), float(om[0]))
+    elif n is not None and n != len(om):
+        raise InvalidStateError("n", f"got n = {n} but {len(om)} omegas")
+    if om.size < min_n:
+        raise InvalidStateError("omegas", "at least one throw is needed")
+    return om
+
+
 def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: str = "paper", *, progress=None,
             **throw_kwargs) -> Orbit:
     """Throw repeatedly from ``state = (x, side)``.
@@ -74,17 +98,7 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
         x0, s0 = state
     except (TypeError, ValueError):
         raise InvalidStateError("state", f"must be a pair (x, side), got {state!r}") from None
-    om = np.atleast_1d(np.asarray(omegas, dtype=float))
-    if om.ndim != 1:
-        raise InvalidStateError("omegas", "must be a number or a 1-D sequence")
-    if np.ndim(omegas) == 0:
-        if n is None:
-            raise InvalidStateError("n", "the number of throws is required with a single omega")
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
-            raise InvalidStateError("n", f"must be a non-negative integer, got {n!r}")
-        om = np.full(int(n), float(om[0]))
-    elif n is not None and n != len(om):
-        raise InvalidStateError("n", f"got n = {n} but {len(om)} omegas")
+    om = throw_rates(omegas, n)
     xs = [float(x0)]
     ss = [part.check_side(s0)]
     outs = []

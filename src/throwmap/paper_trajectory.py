@@ -474,19 +474,9 @@ def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int |
     of throws done after each. ``meta["outcomes"]`` holds each throw's
     :class:`ThrowOutcome`; ``meta["throw_starts"]`` each release time (s).
     """
-    om = np.atleast_1d(np.asarray(omegas, dtype=float))
-    if om.ndim != 1:
-        raise InvalidStateError("omegas", "must be a number or a 1-D sequence")
-    if np.ndim(omegas) == 0:
-        if n is None:
-            raise InvalidStateError("n", "the number of throws is required with a single omega")
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-            raise InvalidStateError("n", f"must be a positive integer, got {n!r}")
-        om = np.full(int(n), float(om[0]))
-    elif n is not None and n != len(om):
-        raise InvalidStateError("n", f"got n = {n} but {len(om)} omegas")
-    if om.size == 0:
-        raise InvalidStateError("omegas", "at least one throw is needed")
+    from .orbit import throw_rates
+
+    om = throw_rates(omegas, n, min_n=1)
     pause = float(pause)
     if not (math.isfinite(pause) and pause >= 0):
         raise InvalidStateError("pause", f"must be a finite time ≥ 0 (s), got {pause!r}")

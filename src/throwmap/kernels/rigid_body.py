@@ -142,24 +142,21 @@ MODE_SELECT = 3  # a contact just began: choose stick / slide / flight (select_c
 @njit(cache=True)
 def _put(traj, ts, t, x, y, phi):
     """Append a row (regular samples keep the last row free for the final pose)."""
-    m = traj.shape[0]
     i = int(ts[0])
-    if i < m - 1:
-        traj[i, 0] = t
-        traj[i, 1] = x
-        traj[i, 2] = y
-        traj[i, 3] = phi
-        ts[0] = i + 1
+    if i < traj.shape[0] - 1:
+        _write_row(traj, ts, i, t, x, y, phi)
 
 
 @njit(cache=True)
 def _put_final(traj, ts, t, x, y, phi):
+    """Write the final pose, into the last row if the regular samples filled the rest."""
     m = traj.shape[0]
-    if m == 0:
-        return
-    i = int(ts[0])
-    if i > m - 1:
-        i = m - 1
+    if m > 0:
+        _write_row(traj, ts, min(int(ts[0]), m - 1), t, x, y, phi)
+
+
+@njit(cache=True)
+def _write_row(traj, ts, i, t, x, y, phi):
     traj[i, 0] = t
     traj[i, 1] = x
     traj[i, 2] = y
