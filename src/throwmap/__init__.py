@@ -18,6 +18,7 @@ from .errors import (
     ThrowmapError,
     ThrowmapWarning,
 )
+from .analysis import ConfigSet, FunctionMap, ThrowMap, basins, critical_points, funnels, limit_set, push
 from .orbit import Orbit, iterate
 from .outcome import BatchOutcome, Status, ThrowOutcome
 from .part import Part, Side
@@ -27,7 +28,8 @@ from .throw import MODELS, throw, throw_batch
 __version__ = "0.1.0"
 
 __all__ = [
-    "Arm", "BatchOutcome", "ConfigError", "G", "InvalidArmError", "InvalidPartError", "InvalidStateError",
+    "Arm", "BatchOutcome", "ConfigError", "ConfigSet", "FunctionMap", "ThrowMap", "basins", "critical_points",
+    "funnels", "limit_set", "push", "G", "InvalidArmError", "InvalidPartError", "InvalidStateError",
     "MODELS", "Orbit", "Part", "RegimeWarning", "Side", "Status", "ThrowOutcome", "ThrowmapError",
     "ThrowmapWarning", "cm", "iterate", "plot_throw_map", "rectangle", "regime_problems", "regular_polygon",
     "throw", "throw_batch", "triangle_30_60_90", "__version__",

@@ -1,0 +1,439 @@
+"""Composed throws and funnels (paper Sec. I-A, Fig. 2; Burridge, Rizzi & Koditschek's sequential composition).
+
+A *funnel* is one attractor of one throw map T^ω: its **mouth** is the attractor's
+basin (the configurations that end on it) and its **spout** is the attractor
+itself. Funnel A leads into funnel B when A's spout lies inside B's mouth: a part
+that has settled into A's limit set, thrown with B's speed from then on, ends on
+B's limit set. Given a goal set of configurations, the funnels whose spouts lie in
+the goal have priority 0, and a funnel whose spout lies in the mouth of a priority-k
+funnel has priority k + 1 — the paper's partial order of funnel maps, in which a
+sensor need only tell which mouth the part is in.
+
+Also here: :class:`ConfigSet` (a union of intervals per side) and :func:`push`,
+which applies a sequence of different throws Π T^{ω_j} to a set of configurations.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InvalidStateError
+from ..kernels import codes as C
+from .attractors import Attractor, fate_label, merge_intervals
+from .basins import Basins, basins, map_to_attractors
+from .maps import DEFAULT_MODEL, ThrowMap, as_map
+
+__all__ = ["ConfigSet", "Funnel", "FunnelGraph", "SetImage", "funnels", "push"]
+
+
+@dataclass(frozen=True, slots=True)
+class ConfigSet:
+    """A set of resting configurations: a union of intervals ``(side, lo, hi)`` (m, lo ≤ hi).
+
+    Build from intervals, or from a text spec with :meth:`parse`
+    (``"0:0.20-0.30, 1:0.10-0.15"``, metres).
+    """
+
+    intervals: tuple
+
+    def __post_init__(self):
+        out = []
+        for iv in self.intervals:
+            try:
+                s, lo, hi = iv
+            except (TypeError, ValueError):
+                raise InvalidStateError("goal", f"an interval must be (side, lo, hi), got {iv!r}") from None
+            if isinstance(s, bool) or not isinstance(s, (int, np.integer)) or s < 0:
+                raise InvalidStateError("goal", f"side must be a non-negative integer, got {s!r}")
+            lo, hi = float(lo), float(hi)
+            if not (math.isfinite(lo) and math.isfinite(hi)) or hi < lo:
+                raise InvalidStateError("goal", f"side {s}: need finite lo ≤ hi, got [{lo}, {hi}]")
+            out.append((int(s), lo, hi))
+        object.__setattr__(self, "intervals", tuple(sorted(out)))
+
+    @classmethod
+    def parse(cls, spec: str) -> "ConfigSet":
+        """``"side:lo-hi, side:lo-hi, …"`` in metres (``lo`` may equal ``hi``: one configuration)."""
+        ivs = []
+        for piece in str(spec).split(","):
+            piece = piece.strip()
+            if not piece:
+                continue
+            try:
+                s, rng = piece.split(":")
+                lo, hi = rng.split("-") if "-" in rng.strip()[1:] else (rng, rng)
+                ivs.append((int(s), float(lo), float(hi)))
+            except ValueError:
+                raise InvalidStateError("goal", f"expected side:lo-hi in metres (e.g. 0:0.20-0.30), got {piece!r}") from None
+        if not ivs:
+            raise InvalidStateError("goal", "is empty")
+        return cls(tuple(ivs))
+
+    @classmethod
+    def from_attractor(cls, a: Attractor) -> "ConfigSet":
+        return cls(tuple(a.bands))
+
+    @property
+    def sides(self) -> tuple:
+        return tuple(sorted({s for s, _, _ in self.intervals}))
+
+    def contains(self, x, side, tol: float = 0.0) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        side = np.asarray(side)
+        out = np.zeros(np.broadcast(x, side).shape, dtype=bool)
+        for s, lo, hi in self.intervals:
+            out |= (side == s) & (x >= lo - tol) & (x <= hi + tol)
+        return out
+
+    def sample(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """``n`` evenly spaced configurations per interval (one for a point), ends included."""
+        xs, ss = [], []
+        for s, lo, hi in self.intervals:
+            v = np.linspace(lo, hi, n) if hi > lo else np.array([lo])
+            xs.append(v)
+            ss.append(np.full(v.size, s, dtype=np.int64))
+        if not xs:
+            return np.zeros(0), np.zeros(0, dtype=np.int64)
+        return np.concatenate(xs), np.concatenate(ss)
+
+    def measure(self) -> float:
+        """Total length of the intervals, m."""
+        return float(sum(hi - lo for _, lo, hi in self.intervals))
+
+    def describe(self, unit: str = "m") -> str:
+        k = 100.0 if unit == "cm" else 1.0
+        if not self.intervals:
+            return "∅"
+        return " ∪ ".join(f"side {s}: [{k * lo:.4g}, {k * hi:.4g}] {unit}" if hi > lo else f"({k * lo:.4g} {unit}, {s})"
+                          for s, lo, hi in self.intervals)
+
+    def to_dict(self) -> list:
+        return [{"side": s, "lo_m": lo, "hi_m": hi} for s, lo, hi in self.intervals]
+
+    @classmethod
+    def from_dict(cls, d) -> "ConfigSet":
+        return cls(tuple((int(v["side"]), float(v["lo_m"]), float(v["hi_m"])) for v in d))
+
+
+def mouth_of(b: Basins, ident: int) -> ConfigSet:
+    """The basin of attractor ``ident`` on the grid, as intervals (each run of grid points widened by half a cell)."""
+    ivs = []
+    for s in np.unique(b.side):
+        g = np.flatnonzero(b.side == s)
+        xs = b.x[g]
+        hit = b.labels[g] == ident
+        if not np.any(hit):
+            continue
+        half = 0.5 * float(np.max(np.diff(xs))) if xs.size > 1 else 0.0
+        edges = np.diff(np.concatenate(([0], hit.astype(np.int8), [0])))
+        starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1
+        for a, e in zip(starts, ends):
+            ivs.append((int(s), float(xs[a] - half), float(xs[e] + half)))
+    return ConfigSet(tuple(ivs))
+
+
+@dataclass(frozen=True, eq=False)
+class Funnel:
+    """One attractor of one throw map: ``mouth`` (its basin) and spout (``attractor``).
+
+    ``omegas`` is the throw (or composed sequence) of the map, rad/s; ``mouth_fraction``
+    the basin's share of the analysed grid.
+    """
+
+    name: str
+    omegas: tuple
+    attractor: Attractor
+    mouth: ConfigSet
+    mouth_fraction: float
+
+    @property
+    def spout(self) -> ConfigSet:
+        return ConfigSet.from_attractor(self.attractor)
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "omegas_rad_s": list(self.omegas), "attractor": self.attractor.to_dict(),
+                "mouth": self.mouth.to_dict(), "mouth_fraction": self.mouth_fraction}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "Funnel":
+        return cls(name=str(d["name"]), omegas=tuple(float(w) for w in d["omegas_rad_s"]),
+                   attractor=Attractor.from_dict(d["attractor"]), mouth=ConfigSet.from_dict(d["mouth"]),
+                   mouth_fraction=float(d["mouth_fraction"]))
+
+
+@dataclass(frozen=True, eq=False)
+class FunnelGraph:
+    """Funnels, which spout lies in which mouth, and the priority order that reaches ``goal``.
+
+    ``edges``: ``(i, j, share)`` — ``share`` of funnel i's sampled spout ends on funnel
+    j's attractor under j's throw (an edge is listed when share ≥ ``containment``).
+    ``rank``: funnel index → priority (0: spout inside the goal) or None (leads
+    nowhere near the goal). ``order``: funnel indices by priority, then mouth size.
+    """
+
+    funnels: tuple
+    edges: tuple
+    goal: ConfigSet | None
+    rank: dict
+    containment: float
+    map_info: dict
+
+    @property
+    def order(self) -> tuple:
+        ranked = [i for i, r in self.rank.items() if r is not None]
+        return tuple(sorted(ranked, key=lambda i: (self.rank[i], -self.funnels[i].mouth_fraction, i)))
+
+    def policy(self):
+        """The controller this graph implies: for a configuration, the ω of the highest-priority funnel whose mouth holds it.
+
+        Returns a function ``policy(x, side) -> omegas or None``.
+        """
+        order = self.order
+
+        def choose(x, side):
+            for i in order:
+                if bool(self.funnels[i].mouth.contains(x, side)):
+                    return self.funnels[i].omegas
+            return None
+
+        return choose
+
+    def table(self) -> str:
+        """The funnels, their mouths and spouts, and the edges, as text (cm for reading)."""
+        lines = ["goal: " + (self.goal.describe("cm") if self.goal is not None else "none (all funnels listed)")]
+        lines.append(f"{'#':>3}  {'funnel':<16} {'priority':>8}  {'mouth %':>8}  spout")
+        for i, f in enumerate(self.funnels):
+            r = self.rank.get(i)
+            lines.append(f"{i:>3}  {f.name:<16} {('-' if r is None else str(r)):>8}  {100 * f.mouth_fraction:>8.2f}  "
+                         f"{f.spout.describe('cm')}")
+        lines.append("edges (spout of A inside mouth of B):")
+        if not self.edges:
+            lines.append("  none")
+        for i, j, share in self.edges:
+            lines.append(f"  {self.funnels[i].name} → {self.funnels[j].name}  ({100 * share:.1f} % of spout)")
+        if self.order:
+            lines.append("priority order: " + " > ".join(self.funnels[i].name for i in self.order))
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict:
+        return {"funnels": [f.to_dict() for f in self.funnels],
+                "edges": [{"from": i, "to": j, "share": s} for i, j, s in self.edges],
+                "goal": None if self.goal is None else self.goal.to_dict(),
+                "rank": {str(i): r for i, r in self.rank.items()}, "order": list(self.order),
+                "containment": self.containment, "map": dict(self.map_info)}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "FunnelGraph":
+        return cls(funnels=tuple(Funnel.from_dict(f) for f in d["funnels"]),
+                   edges=tuple((int(e["from"]), int(e["to"]), float(e["share"])) for e in d["edges"]),
+                   goal=None if d["goal"] is None else ConfigSet.from_dict(d["goal"]),
+                   rank={int(i): (None if r is None else int(r)) for i, r in d["rank"].items()},
+                   containment=float(d["containment"]), map_info=dict(d["map"]))
+
+    def plot(self, ax=None, **kwargs):
+        """The funnel graph; see :func:`throwmap.analysis.figures.plot_funnel_graph`."""
+        from .figures import plot_funnel_graph
+
+        return plot_funnel_graph(self, ax=ax, **kwargs)
+
+
+def _ranks(n: int, edges, rank0: set) -> dict:
+    rank = {i: (0 if i in rank0 else None) for i in range(n)}
+    k = 0
+    while True:
+        frontier = {i for i, r in rank.items() if r == k}
+        nxt = {i for i, j, _ in edges if rank[i] is None and j in frontier}
+        if not nxt:
+            break
+        k += 1
+        for i in nxt:
+            rank[i] = k
+    return rank
+
+
+def funnels(part, arm=None, omegas=None, model: str = DEFAULT_MODEL, *, maps=None, goal=None, grid=400,
+            containment: float = 1.0, spout_samples: int = 200, reach_tol: float = 1e-6, max_throws: int = 500,
+            rng=0, x_max=None, progress=None, **basin_options) -> FunnelGraph:
+    """Funnels of several throw speeds and the priority order that reaches ``goal`` (Sec. I-A).
+
+    Parameters
+    ----------
+    part, arm, omegas, model
+        One throw map per entry of ``omegas`` (an entry may itself be a sequence: a
+        composed map). Or give ``maps``: a list of :class:`ConfigMap` (then ``part``
+        may be None).
+    goal
+        A :class:`ConfigSet` (or its text spec); None ranks nothing and lists every
+        funnel and edge.
+    grid
+        Points per side for each map's basins (mouths).
+    containment
+        Share of a spout's samples that must end on the other funnel's attractor for
+        an edge (default 1.0: all of them).
+    spout_samples
+        Samples per spout interval; cycle points are used exactly.
+    reach_tol, max_throws
+        As in :func:`~throwmap.analysis.basins.basins`, for mapping spout samples.
+    basin_options
+        Passed on to :func:`~throwmap.analysis.basins.basins` (caps, ``method``, ``n_check``…).
+    progress
+        ``progress(stage, done, total)``.
+    """
+    if maps is None:
+        if omegas is None:
+            raise InvalidStateError("omegas", "give the throw speeds (or maps)")
+        oms = list(omegas) if np.ndim(omegas) else [omegas]
+        if not oms:
+            raise InvalidStateError("omegas", "needs at least one throw speed")
+        maps = [as_map(part, arm, w, model, x_max=x_max) for w in oms]
+    else:
+        maps = [as_map(m) for m in maps]
+        if not maps:
+            raise InvalidStateError("maps", "needs at least one map")
+    if isinstance(goal, str):
+        goal = ConfigSet.parse(goal)
+    if goal is not None and not isinstance(goal, ConfigSet):
+        raise InvalidStateError("goal", f"must be a ConfigSet or its text spec, got {type(goal).__name__}")
+    if isinstance(containment, bool) or not isinstance(containment, (int, float)) or not 0 < containment <= 1:
+        raise InvalidStateError("containment", f"must be in (0, 1], got {containment!r}")
+    if isinstance(spout_samples, bool) or not isinstance(spout_samples, (int, np.integer)) or spout_samples < 2:
+        raise InvalidStateError("spout_samples", f"must be an integer ≥ 2, got {spout_samples!r}")
+    fs: list[Funnel] = []
+    owner: list[int] = []
+    found: list[Basins] = []
+    for k, cmap in enumerate(maps):
+        b = basins(cmap, grid=grid, rng=rng, reach_tol=reach_tol, max_throws=max_throws, **basin_options)
+        found.append(b)
+        for a in b.attractors:
+            if a.fraction <= 0:
+                continue
+            w = ", ".join(f"{v:g}" for v in getattr(cmap, "omegas", ()))
+            name = (f"ω={w} #{a.id}" if w else f"{cmap.label} #{a.id}")
+            fs.append(Funnel(name=name, omegas=tuple(getattr(cmap, "omegas", ())), attractor=a,
+                             mouth=mouth_of(b, a.id), mouth_fraction=a.fraction))
+            owner.append(k)
+        if progress is not None:
+            progress("basins", k + 1, len(maps))
+    edges = []
+    for i, f in enumerate(fs):
+        xs, ss = f.spout.sample(spout_samples)
+        for j, g in enumerate(fs):
+            if owner[j] == owner[i]:
+                continue
+            cmap = maps[owner[j]]
+            ok_side = np.isin(ss, cmap.sides)
+            lab = np.full(xs.size, -1, dtype=np.int64)
+            if np.any(ok_side):
+                lab[ok_side], _, _ = map_to_attractors(cmap, xs[ok_side], ss[ok_side], found[owner[j]].attractors,
+                                                       reach_tol, max_throws)
+            share = float(np.mean(lab == g.attractor.id))
+            if share >= containment:
+                edges.append((i, j, share))
+        if progress is not None:
+            progress("edges", i + 1, len(fs))
+    rank0 = set()
+    if goal is not None:
+        for i, f in enumerate(fs):
+            xs, ss = f.spout.sample(spout_samples)
+            if np.all(goal.contains(xs, ss, 1e-12)):
+                rank0.add(i)
+    rank = _ranks(len(fs), edges, rank0) if goal is not None else {i: None for i in range(len(fs))}
+    info = {"maps": [m.describe() for m in maps], "grid": grid if isinstance(grid, int) else "custom"}
+    return FunnelGraph(funnels=tuple(fs), edges=tuple(edges), goal=goal, rank=rank, containment=float(containment),
+                       map_info=info)
+
+
+@dataclass(frozen=True, eq=False)
+class SetImage:
+    """A set of configurations pushed through a sequence of throws Π T^{ω_j}.
+
+    ``x``, ``side``, ``status`` (arrays, shape (n_steps + 1, n)): each configuration
+    after each throw (status 0 = on the arm; escaped ones keep their last state).
+    ``hulls``: the image after each throw as a :class:`ConfigSet` (points merged
+    into intervals across gaps ≤ ``gap``).
+    """
+
+    omegas: tuple
+    x: np.ndarray
+    side: np.ndarray
+    status: np.ndarray
+    hulls: tuple
+    gap: float
+
+    @property
+    def final(self) -> ConfigSet:
+        return self.hulls[-1]
+
+    @property
+    def escaped(self) -> float:
+        """Share of the configurations that left the arm (or failed a throw) along the sequence."""
+        return float(np.mean(self.status[-1] != C.OK)) if self.status.size else 0.0
+
+    def escapes(self) -> dict:
+        st = self.status[-1]
+        return {fate_label(int(c)): float(np.mean(st == c)) for c in np.unique(st) if c != C.OK}
+
+    def summary(self) -> str:
+        lines = [f"{self.x.shape[1]} configurations through {len(self.omegas)} throws"]
+        for k, w in enumerate(self.omegas, start=1):
+            lost = float(np.mean(self.status[k] != C.OK))
+            lines.append(f"  after throw {k} (ω = {w:g} rad/s): {self.hulls[k].describe('cm')}"
+                         + (f"; {100 * lost:.1f} % off the arm" if lost else ""))
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict:
+        return {"omegas_rad_s": list(self.omegas), "hulls": [h.to_dict() for h in self.hulls],
+                "escapes": self.escapes(), "gap_m": self.gap, "n": int(self.x.shape[1])}
+
+
+def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, *, n: int = 200, gap: float = 2e-3,
+         x_max=None, **throw_options) -> SetImage:
+    """Apply a sequence of throws Π T^{ω_j} (ω_1 first) to a set of configurations.
+
+    ``configs`` is a :class:`ConfigSet` (sampled with ``n`` points per interval) or
+    ``(x, side)`` arrays. With a :class:`ThrowMap` as ``part``, its part, arm and
+    model are used and ``omegas`` gives the sequence.
+    """
+    if isinstance(part, ThrowMap):
+        base = part
+    else:
+        base = as_map(part, arm, 1.0, model, x_max=x_max, **throw_options)
+    if not isinstance(base, ThrowMap):
+        raise InvalidStateError("part", "push needs a part (or ThrowMap), not a function map")
+    oms = np.atleast_1d(np.asarray(omegas, dtype=float)) if omegas is not None else np.zeros(0)
+    if oms.ndim != 1 or oms.size == 0:
+        raise InvalidStateError("omegas", "must be a non-empty sequence of release rates")
+    if isinstance(configs, str):
+        configs = ConfigSet.parse(configs)
+    if isinstance(configs, ConfigSet):
+        x0, s0 = configs.sample(n)
+        bad = ~np.isin(s0, base.sides)
+        if np.any(bad):
+            raise InvalidStateError("configs", f"side {int(s0[bad][0])} is not a stable side {list(base.sides)}")
+    else:
+        from .limitset import check_starts
+
+        x0, s0 = check_starts(base, configs)
+    maps = {float(w): base.with_omegas(float(w)) for w in np.unique(oms)}
+    X = np.empty((oms.size + 1, x0.size))
+    S = np.empty((oms.size + 1, x0.size), dtype=np.int64)
+    ST = np.zeros((oms.size + 1, x0.size), dtype=np.int64)
+    X[0], S[0] = x0, s0
+    hulls = [merge_intervals({int(k): x0[s0 == k] for k in np.unique(s0)}, gap)]
+    for k, w in enumerate(oms, start=1):
+        X[k], S[k], ST[k] = X[k - 1], S[k - 1], ST[k - 1]
+        alive = np.flatnonzero(ST[k] == C.OK)
+        if alive.size:
+            xn, sn, st = maps[float(w)](X[k, alive], S[k, alive])
+            ok = st == C.OK
+            X[k, alive[ok]] = xn[ok]
+            S[k, alive[ok]] = sn[ok]
+            ST[k, alive] = st
+        on = ST[k] == C.OK
+        hulls.append(merge_intervals({int(s): X[k][on & (S[k] == s)] for s in np.unique(S[k][on])}, gap))
+    return SetImage(omegas=tuple(float(w) for w in oms), x=X, side=S, status=ST,
+                    hulls=tuple(ConfigSet(h) for h in hulls), gap=float(gap))
+

@@ -1,0 +1,233 @@
+"""Discrete maps on resting configurations (x, side): the one interface the analysis uses.
+
+A *configuration map* takes arrays ``x`` (m) and ``side`` (int) and returns
+``(x', side', status)``: where each configuration rests after one application of
+the map, and a :class:`~throwmap.outcome.Status` code (``OK`` = 0 means it rests
+on the arm; anything else means the orbit ends there — it left the arm, or the
+throw did not come to rest). This is Attractors.jl's ``mapper`` idea for the
+paper's configuration space ℝ⁺ × ℕ mod n (Sec. III-D).
+
+Two kinds are provided:
+
+:class:`ThrowMap`     the physical throw map T^ω of a part on an arm under one model,
+                      or a composed sequence Π T^{ω_j} (Sec. I-A) applied as one step;
+:class:`FunctionMap`  any vectorised Python function — synthetic maps with known
+                      attractors (tests, teaching) or a user's own model.
+
+Both carry the domain on which "all initial configurations" are drawn: for every
+side in :attr:`sides` the open interval ``(x_lo[side], x_hi[side]]``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from ..arm import Arm
+from ..errors import InvalidStateError
+from ..kernels import codes as C
+from ..part import Part
+
+__all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid"]
+
+DEFAULT_MODEL = "rigid_body"
+"""The most faithful validated analytic model (issue 3: 99 % side agreement with pymunk)."""
+
+DEFAULT_X_MAX = 0.6
+"""Outer end of the analysed domain on an unbounded arm, m (the paper's arms span ≈ 60 cm)."""
+
+
+class ConfigMap:
+    """Interface: ``step(x, side) -> (x', side', status)`` on flat arrays, plus the domain.
+
+    Subclasses set ``sides`` (tuple of ints), ``x_lo``/``x_hi`` (dicts side → m),
+    ``throws_per_step`` (physical throws in one step) and ``label`` (str).
+    """
+
+    sides: tuple
+    x_lo: dict
+    x_hi: dict
+    throws_per_step: int
+    label: str
+
+    def step(self, x, side):  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def __call__(self, x, side):
+        """Vectorised step on anything array-like; returns ``(x', side', status)`` arrays."""
+        x = np.ascontiguousarray(np.asarray(x, dtype=float).ravel())
+        side = np.ascontiguousarray(np.asarray(side).ravel().astype(np.int64))
+        if side.size == 1 and x.size > 1:
+            side = np.full(x.size, int(side[0]), dtype=np.int64)
+        if x.size == 0:
+            return x.copy(), side.copy(), np.zeros(0, dtype=np.int64)
+        return self.step(x, side)
+
+    def check_side(self, side) -> int:
+        if isinstance(side, bool) or not isinstance(side, (int, np.integer)) or int(side) not in self.sides:
+            raise InvalidStateError("side", f"must be one of the stable sides {list(self.sides)}, got {side!r}")
+        return int(side)
+
+    def domain(self) -> dict:
+        """``{side: (x_lo, x_hi)}`` in metres."""
+        return {s: (float(self.x_lo[s]), float(self.x_hi[s])) for s in self.sides}
+
+
+def _check_x_max(x_max, lo_max: float, arm_length) -> float:
+    if x_max is None:
+        x_max = arm_length if arm_length is not None else DEFAULT_X_MAX
+    if isinstance(x_max, bool):
+        raise InvalidStateError("x_max", f"must be a number, got {x_max!r}")
+    try:
+        v = float(x_max)
+    except (TypeError, ValueError):
+        raise InvalidStateError("x_max", f"must be a number, got {x_max!r}") from None
+    if not math.isfinite(v):
+        raise InvalidStateError("x_max", f"must be finite, got {v}")
+    if v <= lo_max:
+        raise InvalidStateError("x_max", f"must exceed the first valid x on every side ({lo_max:.6g} m), got {v:.6g}")
+    if arm_length is not None and v > arm_length:
+        raise InvalidStateError("x_max", f"is beyond the arm's end ({arm_length:g} m), got {v:.6g}")
+    return v
+
+
+@dataclass(frozen=True, eq=False)
+class ThrowMap(ConfigMap):
+    """The throw map T^ω of ``part`` on ``arm`` (paper Sec. III-D), or a composed sequence.
+
+    ``omegas`` is one release rate (rad/s) or a sequence; one :meth:`step` applies
+    T^{ω_k} ∘ … ∘ T^{ω_1} (``throws_per_step = k``) and stops a configuration at
+    its first failed throw (its status is that throw's). ``model`` is any of
+    :data:`throwmap.throw.MODELS` (default ``"rigid_body"``); ``throw_options`` go
+    to :func:`throwmap.throw_batch` (e.g. ``fixtures``, ``settings`` for the engine).
+    The domain is every stable side, ``x_lo = part.x_min(side)`` (exclusive) to
+    ``x_max`` (default: the arm length, else :data:`DEFAULT_X_MAX`).
+    """
+
+    part: Part
+    arm: Arm
+    omegas: tuple
+    model: str = DEFAULT_MODEL
+    x_max: float | None = None
+    throw_options: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        from ..throw import check_model
+
+        check_model(self.model)
+        om = np.atleast_1d(np.asarray(self.omegas, dtype=float))
+        if om.ndim != 1 or om.size == 0:
+            raise InvalidStateError("omega", "must be a release rate or a non-empty sequence of them")
+        if not np.all(np.isfinite(om)):
+            raise InvalidStateError("omega", f"must be finite, got {om.tolist()}")
+        if np.any(om < 0):
+            raise InvalidStateError("omega", f"must be ≥ 0 (the arm throws upward), got {om.tolist()}")
+        object.__setattr__(self, "omegas", tuple(float(w) for w in om))
+        sides = self.part.stable_sides
+        lo = {s: self.part.x_min(s) for s in sides}
+        x_hi = _check_x_max(self.x_max, max(lo.values()), self.arm.length)
+        object.__setattr__(self, "x_max", x_hi)
+        object.__setattr__(self, "sides", sides)
+        object.__setattr__(self, "x_lo", lo)
+        object.__setattr__(self, "x_hi", {s: x_hi for s in sides})
+        object.__setattr__(self, "throws_per_step", len(self.omegas))
+        w = ", ".join(f"{v:g}" for v in self.omegas)
+        object.__setattr__(self, "label", f"{self.part.name or 'part'}, ω = {w} rad/s, model {self.model}")
+
+    def step(self, x, side):
+        from ..throw import throw_batch
+
+        x = x.copy()
+        side = side.copy()
+        status = np.zeros(x.size, dtype=np.int64)
+        for w in self.omegas:
+            alive = np.flatnonzero(status == C.OK)
+            if alive.size == 0:
+                break
+            res = throw_batch(self.part, self.arm, x[alive], side[alive], w, model=self.model,
+                              on_invalid="status", **self.throw_options)
+            x[alive] = res.x
+            side[alive] = res.side
+            status[alive] = res.status
+        return x, side, status
+
+    def with_omegas(self, omegas) -> "ThrowMap":
+        return ThrowMap(self.part, self.arm, omegas, self.model, self.x_max, dict(self.throw_options))
+
+    def describe(self) -> dict:
+        return {"kind": "throw", "part": self.part.name, "h_m": self.arm.h, "g_m_s2": self.arm.g,
+                "arm_length_m": self.arm.length, "mu": self.arm.mu, "omegas_rad_s": list(self.omegas),
+                "model": self.model, "x_max_m": self.x_max}
+
+
+@dataclass(frozen=True, eq=False)
+class FunctionMap(ConfigMap):
+    """A map given as a vectorised function ``f(x, side) -> (x', side', status)``.
+
+    ``domain`` is ``{side: (x_lo, x_hi)}`` (m); ``f`` receives float and int64 arrays
+    of equal length and must return three arrays of that length (``status`` 0 where
+    the image rests on the arm, a :class:`~throwmap.outcome.Status` code otherwise).
+    Used for synthetic maps with known attractors and for users' own models.
+    """
+
+    f: Callable
+    domain_: dict
+    name: str = "function map"
+
+    def __post_init__(self):
+        if not callable(self.f):
+            raise InvalidStateError("f", "must be callable")
+        if not self.domain_:
+            raise InvalidStateError("domain", "needs at least one side")
+        lo, hi = {}, {}
+        for s, iv in self.domain_.items():
+            a, b = (float(v) for v in iv)
+            if not (math.isfinite(a) and math.isfinite(b) and b > a):
+                raise InvalidStateError("domain", f"side {s}: need finite x_lo < x_hi, got {iv!r}")
+            lo[int(s)], hi[int(s)] = a, b
+        object.__setattr__(self, "sides", tuple(sorted(lo)))
+        object.__setattr__(self, "x_lo", lo)
+        object.__setattr__(self, "x_hi", hi)
+        object.__setattr__(self, "throws_per_step", 1)
+        object.__setattr__(self, "label", self.name)
+
+    def step(self, x, side):
+        xn, sn, st = self.f(x, side)
+        xn = np.asarray(xn, dtype=float).reshape(x.shape).copy()
+        sn = np.asarray(sn).reshape(x.shape).astype(np.int64)
+        st = np.asarray(st).reshape(x.shape).astype(np.int64)
+        return xn, sn, st
+
+    def describe(self) -> dict:
+        return {"kind": "function", "name": self.name,
+                "domain_m": {str(s): [self.x_lo[s], self.x_hi[s]] for s in self.sides}}
+
+
+def as_map(part_or_map, arm: Arm | None = None, omega=None, model: str = DEFAULT_MODEL, *, x_max=None,
+           **throw_options) -> ConfigMap:
+    """A :class:`ConfigMap` from ``(part, arm, omega, model)`` or an existing map (returned as is)."""
+    if isinstance(part_or_map, ConfigMap):
+        if arm is not None or omega is not None:
+            raise InvalidStateError("arm", "give either a map or (part, arm, omega), not both")
+        return part_or_map
+    if not isinstance(part_or_map, Part):
+        raise InvalidStateError("part", f"must be a Part or a configuration map, got {type(part_or_map).__name__}")
+    if not isinstance(arm, Arm):
+        raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
+    if omega is None:
+        raise InvalidStateError("omega", "a release rate is required")
+    return ThrowMap(part_or_map, arm, omega, model, x_max, dict(throw_options))
+
+
+def config_grid(cmap: ConfigMap, n: int, *, field_name: str = "grid") -> tuple[np.ndarray, np.ndarray]:
+    """``n`` evenly spaced x per side over ``(x_lo, x_hi]`` (the open end excluded); flat ``(x, side)``."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
+        raise InvalidStateError(field_name, f"must be an integer ≥ 2 (points per side), got {n!r}")
+    xs, ss = [], []
+    for s in cmap.sides:
+        xs.append(np.linspace(cmap.x_lo[s], cmap.x_hi[s], int(n) + 1)[1:])
+        ss.append(np.full(int(n), s, dtype=np.int64))
+    return np.concatenate(xs), np.concatenate(ss)
