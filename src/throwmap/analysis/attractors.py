@@ -144,7 +144,7 @@ class Attractor:
         """One line: kind, sides and intervals in metres."""
         if self.kind == "band":
             iv = "; ".join(f"side {s}: [{lo:.4f}, {hi:.4f}]" for s, lo, hi in self.bands)
-            return f"#{self.id} band (λ = {self.lyapunov:+.3f}/throw) {iv}"
+            return f"#{self.id} band (Lyapunov {self.lyapunov:+.3f}/step) {iv}"
         pts = ", ".join(f"({x:.5f}, {s})" for s, x in self.points)
         st = {True: "stable", False: "unstable", None: "?"}[self.stable]
         name = "fixed point" if self.kind == "fixed_point" else f"period-{self.period} cycle"
