@@ -510,6 +510,10 @@ from .cli_animate import register as _register_animate  # noqa: E402  (`throwmap
 
 _register_animate(app)
 
+from .cli_analysis import register as _register_analysis  # noqa: E402  (`limitset`, `basins`, `funnels`)
+
+_register_analysis(app)
+
 
 # ------------------------------------------------------------------ entry
 def main(argv: list[str] | None = None) -> None:

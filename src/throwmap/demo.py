@@ -6,8 +6,17 @@ h = −0.01 m, thrown at ω = 4.0 rad/s. Writes into ``out_dir``:
 ``throw_map.png``         T(x) per side with the diagonal (Fig. 2 analogue);
 ``orbit.png``             300 throws from (0.12 m, side 0) (Fig. 5/7 analogue);
 ``model_comparison.png``  jog-length error of the small-angle models vs "paper";
+``limit_set.png``         the limit set along the arm with r_i, l_i and an orbit of
+                          40 throws on it (Fig. 5 analogue; model rigid_body);
+``throw_map_limits.png``  T(x) per side with r_i, l_i and the limit set (Fig. 2 analogue);
+``basins.png``            basins of attraction on 2000 configurations per side, with the
+                          certificate of global attractivity;
+``funnels.png``           the funnel graph of ω = 3 and 4 rad/s (arm analysed to 1 m)
+                          towards the goal x in [0.50, 0.90] m on any side (Sec. I-A);
 ``summary.json``          the part's side table, the orbit's bands, two sample
-                          throws with their records, and the model-comparison table.
+                          throws with their records, the model-comparison table, and
+                          the analysis: r_i and l_i (m), the limit set's kind and bands,
+                          basin fractions with the certificate, the funnel order.
 
 Every file is written atomically (temp file + rename).
 """
@@ -26,10 +35,14 @@ from .orbit import iterate
 from .parts import triangle_30_60_90
 from .throw import throw
 
-__all__ = ["DEMO", "run_demo"]
+__all__ = ["ANALYSIS", "DEMO", "run_demo"]
 
 DEMO = {"hypotenuse": 0.17, "h": -0.01, "omega": 4.0, "x0": 0.12, "side0": 0, "n_throws": 300}
 """Parameters of the built-in example (SI units)."""
+
+ANALYSIS = {"model": "rigid_body", "x_max": 0.6, "basin_grid": 2000, "funnel_omegas": (3.0, 4.0),
+            "funnel_x_max": 1.0, "funnel_grid": 400, "goal": "0:0.50-0.90,1:0.50-0.90,2:0.50-0.90", "seed": 0}
+"""Parameters of the demo's limit-set, basin and funnel analysis (SI units; grids: points per side)."""
 
 
 def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
@@ -75,6 +88,9 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
     files.append(save_figure(fig, out / "model_comparison.png"))
     plt.close(fig)
 
+    analysis, more = _analysis(part, arm, omega, out, say, plt)
+    files += more
+
     jog = throw(part, arm, 0.2, 0, omega)
     flip = throw(part, arm, 0.5, 0, omega)
     summary = {
@@ -101,8 +117,72 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
         },
         "sample_throws": {"jog": jog.to_dict(), "flip": flip.to_dict()},
         "model_comparison": comp.to_dict(),
+        "analysis": analysis,
         "files": [str(f) for f in files] + [str(out / "model_comparison.txt"), str(out / "summary.json")],
     }
     atomic_write_text(out / "model_comparison.txt", comp.table() + "\n")
     atomic_write_text(out / "summary.json", json.dumps(json_ready(summary), indent=2, allow_nan=False))
     return summary
+
+
+def _analysis(part, arm, omega, out: Path, say, plt) -> tuple[dict, list]:
+    """Critical points, limit set, basins and funnels of the example (paper Sec. III-D, I-A); figures and summary."""
+    from .analysis import basins, critical_points, funnels, limit_set
+    from .analysis.figures import plot_basins, plot_funnel_graph, plot_limit_set, plot_map
+    from .analysis.maps import ThrowMap
+    from .cli_analysis import orbit_on_attractor
+    from .plotting import save_figure
+
+    p = ANALYSIS
+    model = p["model"]
+    files = []
+
+    say("critical points and limit set")
+    crit = critical_points(part, arm, omega, model, x_max=p["x_max"])
+    limit = limit_set(part, arm, omega, model, x_max=p["x_max"], rng=p["seed"])
+    orbit = orbit_on_attractor(part, arm, omega, model, limit)
+    fig = plot_limit_set(limit, critical=crit, orbit=orbit)
+    files.append(save_figure(fig, out / "limit_set.png"))
+    plt.close(fig)
+    fig = plot_map(ThrowMap(part, arm, omega, model, p["x_max"]), critical=crit, limit=limit)
+    files.append(save_figure(fig, out / "throw_map_limits.png"))
+    plt.close(fig)
+
+    say("basins")
+    bas = basins(part, arm, omega, model, grid=p["basin_grid"], limit=limit, rng=p["seed"], x_max=p["x_max"])
+    fig = plot_basins(bas)
+    files.append(save_figure(fig, out / "basins.png"))
+    plt.close(fig)
+
+    say("funnels")
+    graph = funnels(part, arm, list(p["funnel_omegas"]), model, goal=p["goal"], grid=p["funnel_grid"],
+                    x_max=p["funnel_x_max"], rng=p["seed"])
+    fig = plot_funnel_graph(graph)
+    files.append(save_figure(fig, out / "funnels.png"))
+    plt.close(fig)
+
+    cp = crit.to_dict()
+    summary = {
+        "parameters": {k: (list(v) if isinstance(v, tuple) else v) for k, v in p.items()},
+        "critical_points": {"r_m": cp["r_m"], "l_m": cp["l_m"], "next_kind": cp["next_kind"],
+                            "flips_beyond": cp["flips_beyond"], "l_method": cp["l_method"]},
+        "limit_set": {
+            "kind": limit.kind, "unique": limit.unique, "n_starts": limit.n_starts, "escapes": dict(limit.escapes),
+            "attractors": [{"id": a.id, "kind": a.kind, "period": a.period, "lyapunov": a.lyapunov,
+                            "bands_m": [{"side": s, "lo": lo, "hi": hi} for s, lo, hi in a.bands]}
+                           for a in limit.attractors],
+            "orbit_drawn": {"x0_m": float(orbit.x[0]), "side0": int(orbit.side[0]), "n_throws": orbit.n_throws},
+        },
+        "basins": {"n_configs": bas.n_configs, "grid_per_side": p["basin_grid"], "method": bas.method,
+                   "fractions": {str(k): v for k, v in bas.fractions.items()}, "escapes": bas.escapes,
+                   "certificate": {"unique": bas.certificate.unique, "statement": bas.certificate.statement}},
+        "funnels": {
+            "omegas_rad_s": list(p["funnel_omegas"]), "goal": p["goal"],
+            "funnels": [{"name": f.name, "mouth_fraction": f.mouth_fraction, "priority": graph.rank.get(i)}
+                        for i, f in enumerate(graph.funnels)],
+            "edges": [{"from": graph.funnels[i].name, "to": graph.funnels[j].name, "share": sh}
+                      for i, j, sh in graph.edges],
+            "order": [graph.funnels[i].name for i in graph.order],
+        },
+    }
+    return summary, files

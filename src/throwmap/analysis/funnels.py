@@ -297,6 +297,11 @@ def funnels(part, arm=None, omegas=None, model: str = DEFAULT_MODEL, *, maps=Non
         goal = ConfigSet.parse(goal)
     if goal is not None and not isinstance(goal, ConfigSet):
         raise InvalidStateError("goal", f"must be a ConfigSet or its text spec, got {type(goal).__name__}")
+    if goal is not None:
+        known = sorted({k for m in maps for k in m.sides})
+        bad = [k for k in goal.sides if k not in known]
+        if bad:
+            raise InvalidStateError("goal", f"side {bad[0]} is not a stable side of the maps {known}")
     if isinstance(containment, bool) or not isinstance(containment, (int, float)) or not 0 < containment <= 1:
         raise InvalidStateError("containment", f"must be in (0, 1], got {containment!r}")
     if isinstance(spout_samples, bool) or not isinstance(spout_samples, (int, np.integer)) or spout_samples < 2:
