@@ -22,6 +22,7 @@ bench: $(STAMP)
 	$(PY) benchmarks/bench_throw.py
 	$(PY) benchmarks/bench_rigid_body.py
 	$(PY) benchmarks/bench_engine.py
+	$(PY) benchmarks/bench_analysis.py
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .hypothesis

@@ -63,3 +63,24 @@ def test_rigid_body_bench_runs_small(capsys):
     text = capsys.readouterr().out
     assert "1.5" in text
     assert res is not None
+
+
+def test_analysis_bench_runs_quick(tmp_path, capsys):
+    out = tmp_path / "a.json"
+    res = _load_named("bench_analysis.py").main(["--quick", "--models", "paper", "--json", str(out)])
+    text = capsys.readouterr().out
+    for label in ("critical_points", "limit_set", "basins", "cores", "paper"):
+        assert label in text
+    data = json.loads(out.read_text())
+    assert data["machine"]["cpu_count"] >= 1 and data["models"] == ["paper"]
+    cp, ls, b = data["critical_points"]["paper"], data["limit_set"]["paper"], data["basins"]["paper"]
+    assert math.isfinite(cp["median_ms"]) and cp["median_ms"] > 0 and cp["map_evaluations"] > 0
+    assert ls["throws"] > 0 and ls["throws_per_s"] > 0
+    assert b["n_configs"] == 3 * b["grid_per_side"] and b["throws"] > 0
+    assert 0.0 <= b["check_agreement"] <= 1.0 and b["check_n"] <= 50
+    assert b["throws_per_s"] == pytest.approx(res["basins"]["paper"]["throws_per_s"])
+
+
+def test_analysis_bench_rejects_bad_sizes():
+    with pytest.raises(SystemExit):
+        _load_named("bench_analysis.py").main(["--grid", "1"])

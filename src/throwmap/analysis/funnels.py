@@ -24,7 +24,7 @@ from ..errors import InvalidStateError
 from ..kernels import codes as C
 from .attractors import Attractor, fate_label, merge_intervals
 from .basins import Basins, basins, map_to_attractors
-from .maps import DEFAULT_MODEL, ThrowMap, as_map
+from .maps import DEFAULT_MODEL, ConfigMap, ThrowMap, as_map
 
 __all__ = ["ConfigSet", "Funnel", "FunnelGraph", "SetImage", "funnels", "push"]
 
@@ -404,6 +404,8 @@ def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, 
     """
     if isinstance(part, ThrowMap):
         base = part
+    elif isinstance(part, ConfigMap):
+        raise InvalidStateError("part", "push needs a part (or ThrowMap), not a function map")
     else:
         base = as_map(part, arm, 1.0, model, x_max=x_max, **throw_options)
     if not isinstance(base, ThrowMap):
@@ -414,14 +416,13 @@ def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, 
     if isinstance(configs, str):
         configs = ConfigSet.parse(configs)
     if isinstance(configs, ConfigSet):
-        x0, s0 = configs.sample(n)
-        bad = ~np.isin(s0, base.sides)
-        if np.any(bad):
-            raise InvalidStateError("configs", f"side {int(s0[bad][0])} is not a stable side {list(base.sides)}")
-    else:
-        from .limitset import check_starts
+        configs = configs.sample(n)
+    from .limitset import check_starts
 
+    try:
         x0, s0 = check_starts(base, configs)
+    except InvalidStateError as err:
+        raise InvalidStateError("configs", err.reason) from None
     maps = {float(w): base.with_omegas(float(w)) for w in np.unique(oms)}
     X = np.empty((oms.size + 1, x0.size))
     S = np.empty((oms.size + 1, x0.size), dtype=np.int64)

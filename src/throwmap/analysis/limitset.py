@@ -154,6 +154,32 @@ def _stationary(X, S, gap: float) -> bool:
     return True
 
 
+def _converging(X, tol: float) -> bool:
+    """Whether some tail is still closing in on a cycle: its second half spans under half its first half."""
+    h = X.shape[1] // 2
+    a = np.nanmax(X[:, :h], axis=1) - np.nanmin(X[:, :h], axis=1)
+    b = np.nanmax(X[:, h:], axis=1) - np.nanmin(X[:, h:], axis=1)
+    return bool(np.any((b < 0.5 * a) & (a > tol)))
+
+
+def _leaky(cmap: ConfigMap, X, S, gap: float, n: int = 200) -> bool:
+    """Whether the set the tails wander on leaks: sampled images of its intervals leave the arm.
+
+    A leaky chaotic set is a long transient (a chaotic saddle), not an attractor: its
+    orbits are followed further until they escape or ``max_transient`` runs out.
+    """
+    ok = S >= 0
+    bands = merge_intervals({int(k): X[ok & (S == k)] for k in np.unique(S[ok])}, gap)
+    xs, ss = [], []
+    for k, lo, hi in bands:
+        xs.append(np.linspace(lo, hi, n) if hi > lo else np.array([lo]))
+        ss.append(np.full(xs[-1].size, k, dtype=np.int64))
+    if not xs:
+        return False
+    _, _, st = cmap(np.concatenate(xs), np.concatenate(ss))
+    return bool(np.any(st != C.OK))
+
+
 def _fill(cmap: ConfigMap, xs, ss, caps: dict) -> tuple:
     """A band's intervals: recorded points merged across ``band_gap``, then gaps filled by images.
 
@@ -233,22 +259,27 @@ def find_attractors(cmap: ConfigMap, x0, s0, caps: dict, progress=None):
     ``fraction`` = share of these starts; per start its label (−1 for escapes) and
     fate code (0 attracted, else the escape status); the recorded tails.
     """
-    X, S, fate, _ = run_orbits(cmap, x0, s0, caps["transient"], caps["n_record"], progress)
+    X, S, fate, fstep = run_orbits(cmap, x0, s0, caps["transient"], caps["n_record"], progress)
     m = X.shape[0]
     used = caps["transient"]
+    late = bool(np.any(fstep > caps["transient"]))  # orbits escaped while being recorded
     while True:
         alive = np.flatnonzero(fate == C.OK)
         per = np.zeros(m, dtype=np.int64)
         if alive.size:
             per[alive] = _periods(X[alive], S[alive], caps["max_period"], caps["tol"])
         wander = alive[per[alive] == 0]
-        if wander.size == 0 or _stationary(X[wander], S[wander], caps["band_gap"]):
+        if wander.size == 0 or (not late and _stationary(X[wander], S[wander], caps["band_gap"])
+                                and not _converging(X[wander], caps["tol"])
+                                and not _leaky(cmap, X[wander], S[wander], caps["band_gap"])):
             break
         if used + caps["n_record"] + caps["transient"] > caps["max_transient"]:
             break
-        # not yet stationary: go on from where the orbits are, discarding what was recorded
-        Xn, Sn, fn, _ = run_orbits(cmap, X[alive, -1], S[alive, -1], caps["transient"], caps["n_record"])
+        # not yet stationary, still converging, or leaking orbits (a chaotic saddle, not an
+        # attractor): go on from where the orbits are, discarding what was recorded
+        Xn, Sn, fn, fs = run_orbits(cmap, X[alive, -1], S[alive, -1], caps["transient"], caps["n_record"])
         X[alive], S[alive], fate[alive] = Xn, Sn, fn
+        late = bool(np.any(fs > caps["transient"]))
         used += caps["n_record"] + caps["transient"]
     caps["transient_used"] = used
     labels = np.full(m, LABEL_ESCAPE, dtype=np.int64)
@@ -284,6 +315,31 @@ def find_attractors(cmap: ConfigMap, x0, s0, caps: dict, progress=None):
             roots.setdefault(uf.find(j), []).append(int(band_idx[j]))
         groups = list(roots.values())
     found = []
+    merged: list[tuple] = []
+    for pts, members in cycles:
+        if len({q[0] for q in pts}) == 1 and max(q[1] for q in pts) - min(q[1] for q in pts) <= 10 * tol:
+            pts = (pts[0],)  # a "cycle" whose points coincide is a fixed point not yet settled to tol
+        for c in merged:
+            if len(c[0]) == len(pts) and all(a[0] == b[0] and abs(a[1] - b[1]) <= 10 * tol for a, b in zip(c[0], pts)):
+                c[1].extend(members)
+                break
+        else:
+            merged.append((pts, list(members)))
+    cycles = merged
+    # band orbits whose intervals overlap (to band_gap) on some side are one band
+    if len(groups) > 1:
+        hulls = [merge_intervals({int(k): X[g].ravel()[S[g].ravel() == k] for k in np.unique(S[g])}, caps["band_gap"])
+                 for g in groups]
+        uf = _UnionFind(len(groups))
+        for a in range(len(groups)):
+            for b in range(a + 1, len(groups)):
+                if any(p[0] == q[0] and p[1] <= q[2] + caps["band_gap"] and q[1] <= p[2] + caps["band_gap"]
+                       for p in hulls[a] for q in hulls[b]):
+                    uf.union(a, b)
+        joined: dict[int, list[int]] = {}
+        for a, g in enumerate(groups):
+            joined.setdefault(uf.find(a), []).extend(g)
+        groups = list(joined.values())
     for pts, members in cycles:
         p = len(pts)
         xs = np.array([q[1] for q in pts])

@@ -159,7 +159,7 @@ class ThrowMap(ConfigMap):
 
     def describe(self) -> dict:
         return {"kind": "throw", "part": self.part.name, "h_m": self.arm.h, "g_m_s2": self.arm.g,
-                "arm_length_m": self.arm.length, "mu": self.arm.mu, "omegas_rad_s": list(self.omegas),
+                "arm_length_m": self.arm.length, "mu": self.arm.mu if math.isfinite(self.arm.mu) else None, "omegas_rad_s": list(self.omegas),
                 "model": self.model, "x_max_m": self.x_max}
 
 
