@@ -22,14 +22,12 @@ the figures; ``--quick`` runs tiny sizes (for the smoke test). Usage::
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 import json
-import os
-import platform
 import statistics
 import sys
 import time
 
-import numpy as np
 
 import throwmap as tm
 from throwmap.analysis import ConfigMap, ThrowMap, basins, critical_points, limit_set
@@ -61,23 +59,13 @@ class CountingMap(ConfigMap):
 
 
 def machine_info() -> dict:
-    import numba
+    """The machine description :mod:`bench_throw` prints (loaded from beside this file)."""
+    import importlib.util
 
-    try:
-        usable = len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not Linux
-        usable = os.cpu_count()
-    return {
-        "platform": platform.platform(),
-        "processor": platform.processor() or platform.machine(),
-        "cpu_count": os.cpu_count(),
-        "usable_cores": usable,
-        "numba_threads": numba.get_num_threads(),
-        "python": platform.python_version(),
-        "numpy": np.__version__,
-        "numba": numba.__version__,
-        "throwmap": tm.__version__,
-    }
+    spec = importlib.util.spec_from_file_location("bench_throw", Path(__file__).with_name("bench_throw.py"))
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.machine_info()
 
 
 def _timed(fn, repeat: int):
