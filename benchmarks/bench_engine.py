@@ -27,7 +27,7 @@ from throwmap.engine import engine_run
 
 
 def cases(n: int, seed: int = 0):
-    part = tm.parts.triangle_30_60_90()
+    part = tm.triangle_30_60_90()
     rng = np.random.default_rng(seed)
     k = rng.integers(0, 3, n)
     x = np.array([rng.uniform(-part.uL[s] + 0.005, 0.45) for s in k])

@@ -26,7 +26,7 @@ from throwmap.kernels import codes as C
 from throwmap.kernels.rigid_body import throw_many_rigid_body
 
 REFERENCE_RATE = 421.0
-"""Throws/s of :func:`throwmap.reference.reference_throw` measured on this machine (bench_throw.py)."""
+"""Throws/s of :func:`throwmap.testing.reference.reference_throw` measured on this machine (bench_throw.py)."""
 GOAL_RATIO = 100.0
 H = -0.01  # m
 OMEGA_RANGE = (3.0, 6.0)  # rad/s

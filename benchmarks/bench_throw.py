@@ -2,7 +2,7 @@
 
 Measures, after warm-up (JIT caches loaded, first calls made):
 
-(a) ``throwmap.reference.reference_throw`` per throw on ``--n-reference`` throws of
+(a) ``throwmap.testing.reference.reference_throw`` per throw on ``--n-reference`` throws of
     the canonical triangle (random x on random stable sides, ω ∈ [3, 6] rad/s);
 (b) ``throw_batch`` throughput on ``--n`` throws from the same distribution, for
     model "paper" and "small_angle" (best of ``--repeat``);
@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 import throwmap as tm
-from throwmap.reference import reference_throw
+from throwmap.testing.reference import reference_throw
 
 GOAL_RATIO = 100.0
 """Required speed-up of the batch (model "paper") over the reference."""

@@ -7,7 +7,7 @@ SI units throughout; see :mod:`throwmap.conventions`.
 ``import throwmap`` loads neither matplotlib nor mujoco.
 """
 
-from .arm import Arm, regime_problems
+from .system.arm import Arm, regime_problems
 from .conventions import G, cm
 from .errors import (
     ConfigError,
@@ -19,11 +19,11 @@ from .errors import (
     ThrowmapWarning,
 )
 from .analysis import ConfigSet, FunctionMap, ThrowMap, basins, critical_points, funnels, limit_set, push
-from .orbit import Orbit, iterate
-from .outcome import BatchOutcome, Status, ThrowOutcome
-from .part import Part, Side
-from .parts import rectangle, regular_polygon, triangle_30_60_90
-from .throw import MODELS, throw, throw_batch
+from .throws.orbit import Orbit, iterate
+from .throws.outcome import BatchOutcome, Status, ThrowOutcome
+from .system.part import Part, Side
+from .system.catalogue import rectangle, regular_polygon, triangle_30_60_90
+from .throws.throw import MODELS, throw, throw_batch
 
 __version__ = "0.1.0"
 
@@ -37,7 +37,7 @@ __all__ = [
 
 
 def plot_throw_map(*args, **kwargs):
-    """T(x) against x per side (paper Fig. 2); see :func:`throwmap.plotting.plot_throw_map`."""
-    from .plotting import plot_throw_map as _plot
+    """T(x) against x per side (paper Fig. 2); see :func:`throwmap.viz.plotting.plot_throw_map`."""
+    from .viz.plotting import plot_throw_map as _plot
 
     return _plot(*args, **kwargs)

@@ -1,6 +1,6 @@
-"""``python -m throwmap``: the command line (see :mod:`throwmap.cli`)."""
+"""``python -m throwmap``: the command line (see :mod:`throwmap.cli.app`)."""
 
-from .cli import main
+from .cli.app import main
 
 if __name__ == "__main__":
     main()

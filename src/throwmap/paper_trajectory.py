@@ -45,14 +45,14 @@ import math
 
 import numpy as np
 
-from .arm import Arm
+from .system.arm import Arm
 from .errors import InvalidStateError
 from .kernels import codes as C
-from .outcome import Status, ThrowOutcome
-from .part import Part
+from .throws.outcome import Status, ThrowOutcome
+from .system.part import Part
 from .kernels.paper import throw_one
-from .throw import DEFAULT_MAX_IMPACTS, DEFAULT_MAX_ITER, DEFAULT_N_SAMPLES, DEFAULT_TOL, check_start, throw
-from .trajectory import Trajectory
+from .throws.throw import DEFAULT_MAX_IMPACTS, DEFAULT_MAX_ITER, DEFAULT_N_SAMPLES, DEFAULT_TOL, check_start, throw
+from .throws.trajectory import Trajectory
 
 __all__ = ["paper_trajectory", "orbit_trajectory", "QUADRATURE_NODES", "DEFAULT_DT"]
 
@@ -399,7 +399,7 @@ def paper_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, *,
     dt : float, s
         Sample interval (phase changes are sampled exactly in addition).
     max_impacts : int
-        Impact cap, as in :func:`throwmap.throw`.
+        Impact cap, as in :func:`throwmap.throws.throw`.
 
     Returns
     -------
@@ -474,7 +474,7 @@ def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int |
     of throws done after each. ``meta["outcomes"]`` holds each throw's
     :class:`ThrowOutcome`; ``meta["throw_starts"]`` each release time (s).
     """
-    from .orbit import throw_rates
+    from .throws.orbit import throw_rates
 
     om = throw_rates(omegas, n, min_n=1)
     pause = float(pause)

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from .arm import Arm
+from .system.arm import Arm
 from .kernels import codes as C
 from .kernels.rigid_body import count_samples, throw_one_rigid_body
-from .outcome import ThrowOutcome
-from .part import Part
-from .throw import DEFAULT_MAX_IMPACTS, DEFAULT_MAX_ITER, DEFAULT_TOL, check_start
-from .trajectory import Trajectory, world_vertices
+from .throws.outcome import ThrowOutcome
+from .system.part import Part
+from .throws.throw import DEFAULT_MAX_IMPACTS, DEFAULT_MAX_ITER, DEFAULT_TOL, check_start
+from .throws.trajectory import Trajectory, world_vertices
 
 __all__ = ["rigid_trajectory"]
 

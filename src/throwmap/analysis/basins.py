@@ -182,8 +182,8 @@ class Basins:
                    check=dict(d["check"]), caps=dict(d["caps"]), map_info=dict(d["map"]))
 
     def plot(self, ax=None, **kwargs):
-        """The basin map; see :func:`throwmap.analysis.figures.plot_basins`."""
-        from .figures import plot_basins
+        """The basin map; see :func:`throwmap.viz.analysis.plot_basins`."""
+        from ..viz.analysis import plot_basins
 
         return plot_basins(self, ax=ax, **kwargs)
 

@@ -234,8 +234,8 @@ class FunnelGraph:
                    containment=float(d["containment"]), map_info=dict(d["map"]))
 
     def plot(self, ax=None, **kwargs):
-        """The funnel graph; see :func:`throwmap.analysis.figures.plot_funnel_graph`."""
-        from .figures import plot_funnel_graph
+        """The funnel graph; see :func:`throwmap.viz.analysis.plot_funnel_graph`."""
+        from ..viz.analysis import plot_funnel_graph
 
         return plot_funnel_graph(self, ax=ax, **kwargs)
 

@@ -466,8 +466,8 @@ class LimitSet:
         )
 
     def plot(self, ax=None, **kwargs):
-        """The Fig. 5 analogue; see :func:`throwmap.analysis.figures.plot_limit_set`."""
-        from .figures import plot_limit_set
+        """The Fig. 5 analogue; see :func:`throwmap.viz.analysis.plot_limit_set`."""
+        from ..viz.analysis import plot_limit_set
 
         return plot_limit_set(self, ax=ax, **kwargs)
 

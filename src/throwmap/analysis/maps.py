@@ -2,7 +2,7 @@
 
 A *configuration map* takes arrays ``x`` (m) and ``side`` (int) and returns
 ``(x', side', status)``: where each configuration rests after one application of
-the map, and a :class:`~throwmap.outcome.Status` code (``OK`` = 0 means it rests
+the map, and a :class:`~throwmap.throws.outcome.Status` code (``OK`` = 0 means it rests
 on the arm; anything else means the orbit ends there — it left the arm, or the
 throw did not come to rest). This is Attractors.jl's ``mapper`` idea for the
 paper's configuration space ℝ⁺ × ℕ mod n (Sec. III-D).
@@ -26,10 +26,10 @@ from typing import Callable
 
 import numpy as np
 
-from ..arm import Arm
+from ..system.arm import Arm
 from ..errors import InvalidStateError
 from ..kernels import codes as C
-from ..part import Part
+from ..system.part import Part
 
 __all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid"]
 
@@ -101,7 +101,7 @@ class ThrowMap(ConfigMap):
     ``omegas`` is one release rate (rad/s) or a sequence; one :meth:`step` applies
     T^{ω_k} ∘ … ∘ T^{ω_1} (``throws_per_step = k``) and stops a configuration at
     its first failed throw (its status is that throw's). ``model`` is any of
-    :data:`throwmap.throw.MODELS` (default ``"rigid_body"``); ``throw_options`` go
+    :data:`throwmap.throws.throw.MODELS` (default ``"rigid_body"``); ``throw_options`` go
     to :func:`throwmap.throw_batch` (e.g. ``fixtures``, ``settings`` for the engine).
     The domain is every stable side, ``x_lo = part.x_min(side)`` (exclusive) to
     ``x_max`` (default: the arm length, else :data:`DEFAULT_X_MAX`).
@@ -115,7 +115,7 @@ class ThrowMap(ConfigMap):
     throw_options: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        from ..throw import check_model
+        from ..throws.throw import check_model
 
         check_model(self.model)
         om = np.atleast_1d(np.asarray(self.omegas, dtype=float))
@@ -138,7 +138,7 @@ class ThrowMap(ConfigMap):
         object.__setattr__(self, "label", f"{self.part.name or 'part'}, ω = {w} rad/s, model {self.model}")
 
     def step(self, x, side):
-        from ..throw import throw_batch
+        from ..throws.throw import throw_batch
 
         x = x.copy()
         side = side.copy()
@@ -169,7 +169,7 @@ class FunctionMap(ConfigMap):
 
     ``domain`` is ``{side: (x_lo, x_hi)}`` (m); ``f`` receives float and int64 arrays
     of equal length and must return three arrays of that length (``status`` 0 where
-    the image rests on the arm, a :class:`~throwmap.outcome.Status` code otherwise).
+    the image rests on the arm, a :class:`~throwmap.throws.outcome.Status` code otherwise).
     Used for synthetic maps with known attractors and for users' own models.
     """
 

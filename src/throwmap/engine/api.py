@@ -10,11 +10,11 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
-from ..arm import Arm
+from ..system.arm import Arm
 from ..errors import InvalidStateError
 from ..kernels import codes as C
-from ..outcome import BatchOutcome, Status, ThrowOutcome
-from ..part import Part
+from ..throws.outcome import BatchOutcome, Status, ThrowOutcome
+from ..system.part import Part
 from .pymunk_backend import EngineRun, simulate
 from .realisation import ImpulseThrow
 from .scene import Placement, Scene

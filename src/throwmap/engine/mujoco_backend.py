@@ -3,7 +3,7 @@
 Simulates the paper's impulse throw (Sec. III-B) — the part at rest on ``side``
 with CM at ``x`` gets the arm's velocity ω × r = ω(−(h + d_k), x) and spin ω at
 t = 0, the arm stays still — with MuJoCo's soft-contact solver, and reads the
-result back in throwmap's terms (:class:`~throwmap.outcome.ThrowOutcome`).
+result back in throwmap's terms (:class:`~throwmap.throws.outcome.ThrowOutcome`).
 
 ``mujoco`` is an optional extra (``pip install 'throwmap[mujoco]'``), imported
 only when a simulation runs; :func:`mujoco_model_xml` needs nothing beyond the
@@ -18,7 +18,7 @@ hinge about −y. A rotation by θ about +y takes +x toward −z (clockwise in t
 positive hinge angle is a CCW rotation in (x, y). With the body at the origin
 and the part's CM-centred vertices ``w`` as the body-frame geometry, the joint
 coordinates are exactly throwmap's pose: ``qpos = (x, y, φ)`` with
-``vertex_j = (x, y) + R(φ) w_j`` (:mod:`throwmap.trajectory`), and ``qvel`` is
+``vertex_j = (x, y) + R(φ) w_j`` (:mod:`throwmap.throws.trajectory`), and ``qvel`` is
 ``(ẋ, ẏ, φ̇)``. ``tests/test_mujoco_backend.py`` checks this against MuJoCo's
 own world geometry.
 
@@ -94,7 +94,7 @@ vertex has dropped below the arm's top (x ≤ 0: behind the joint, else past the
 end) or when the settled part has its CM outside [0, L], its CM below the arm's
 top, its left support vertex at x ≤ 0 or its CM beyond the end; ``TIMEOUT`` when
 it has not settled by ``t_max``; else ``OK`` with ``(x, side)`` from
-:func:`~throwmap.trajectory.state_from_pose`. Unlike model ``"paper"``, a part
+:func:`~throwmap.throws.trajectory.state_from_pose`. Unlike model ``"paper"``, a part
 that comes to rest with its CM on the arm and a support vertex past the end is
 ``OK`` here (it is supported); the paper model calls any contact beyond the end
 ``OFF_END``.
@@ -120,13 +120,13 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ..arm import Arm
+from ..system.arm import Arm
 from ..errors import ThrowmapError
 from ..kernels import codes as C
-from ..outcome import Status, ThrowOutcome
-from ..part import Part
-from ..throw import check_start
-from ..trajectory import Trajectory, pose_at_rest, state_from_pose
+from ..throws.outcome import Status, ThrowOutcome
+from ..system.part import Part
+from ..throws.throw import check_start
+from ..throws.trajectory import Trajectory, pose_at_rest, state_from_pose
 
 __all__ = ["MujocoSettings", "mujoco_model_xml", "mujoco_throw", "MODEL_NAME", "NO_SLIP_MU"]
 
@@ -348,10 +348,10 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
                  settings: MujocoSettings = MujocoSettings(), *, record: bool = False):
     """The impulse throw of ``part`` resting at ``(x, side)`` with release rate ``omega`` (rad/s), in MuJoCo.
 
-    Returns a :class:`~throwmap.outcome.ThrowOutcome` (model ``"engine:mujoco"``);
+    Returns a :class:`~throwmap.throws.outcome.ThrowOutcome` (model ``"engine:mujoco"``);
     with ``record=True`` the pair ``(ThrowOutcome, Trajectory)``, sampled every
     step. Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible
-    start (as :func:`throwmap.throw` does) and :class:`~throwmap.errors.ThrowmapError`
+    start (as :func:`throwmap.throws.throw` does) and :class:`~throwmap.errors.ThrowmapError`
     when MuJoCo is not installed. Deterministic: same inputs, same result.
     """
     if not isinstance(part, Part):

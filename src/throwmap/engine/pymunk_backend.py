@@ -1,7 +1,7 @@
 """Full rigid-body simulation of throws in pymunk (Chipmunk2D): the "engine" model.
 
 The arm is a kinematic body turning about the joint (the origin), built from
-convex solid pieces under its surface profile (:func:`throwmap.fixtures.arm_solids`);
+convex solid pieces under its surface profile (:func:`throwmap.system.fixtures.arm_solids`);
 fixtures are kinematic pieces on the same motion. Parts are convex polygons with
 their own mass, CM and inertia (lead weights included). Restitution is zero on
 every shape; friction is set per pair of bodies (:class:`Friction`): pymunk
@@ -37,10 +37,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import ThrowmapError
-from ..fixtures import arm_solids
+from ..system.fixtures import arm_solids
 from ..kernels import codes as C
-from ..outcome import Status, ThrowOutcome
-from ..trajectory import Trajectory, state_from_pose
+from ..throws.outcome import Status, ThrowOutcome
+from ..throws.trajectory import Trajectory, state_from_pose
 from .realisation import ImpulseThrow, check_realisation
 from .scene import Placement, Scene
 from .settings import EngineSettings, engine_mu
@@ -66,7 +66,7 @@ class EngineRun:
 
     ``status`` is the run's overall status (the first part's failure, else ok);
     ``statuses``/``states``/``poses`` are per part: ``states[i] = (x, side, tilt)``
-    read in the arm frame at the end (see :func:`throwmap.trajectory.state_from_pose`),
+    read in the arm frame at the end (see :func:`throwmap.throws.trajectory.state_from_pose`),
     ``poses[i]`` the arm-frame pose ``(x, y, φ)``. ``records`` is (P, NREC) per
     unit mass (see :mod:`throwmap.kernels.codes`; entries an engine cannot
     measure are nan). ``alpha`` is the arm's rest angle at the end.
@@ -147,7 +147,7 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
 
     ``realisation``: :class:`ImpulseThrow` (default ω = 0: just settle),
     :class:`FiniteThrow`, :class:`RecoilThrow` or :class:`TiltTo`. With
-    ``record=True`` the run's :class:`~throwmap.trajectory.Trajectory` is kept.
+    ``record=True`` the run's :class:`~throwmap.throws.trajectory.Trajectory` is kept.
     ``progress(t, t_max)`` is called every simulated 10 ms if given.
     ``run_for`` (s): simulate exactly this long instead of stopping once settled.
 

@@ -5,11 +5,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..arm import Arm
+from ..system.arm import Arm
 from ..errors import ThrowmapError
-from ..fixtures import Cavity, Wall
-from ..part import Part
-from ..trajectory import pose_at_rest
+from ..system.fixtures import Cavity, Wall
+from ..system.part import Part
+from ..throws.trajectory import pose_at_rest
 from .settings import Friction
 
 __all__ = ["Placement", "Scene"]
@@ -18,7 +18,7 @@ __all__ = ["Placement", "Scene"]
 @dataclass(frozen=True, slots=True)
 class Placement:
     """A part on the arm: at rest on ``side`` with CM abscissa ``x`` (m, arm frame),
-    or at an explicit arm-frame ``pose`` ``(x, y, φ)`` (see :mod:`throwmap.trajectory`)
+    or at an explicit arm-frame ``pose`` ``(x, y, φ)`` (see :mod:`throwmap.throws.trajectory`)
     with arm-frame ``velocity`` ``(ẋ, ẏ, φ̇)`` (m/s, m/s, rad/s).
     """
 

@@ -105,7 +105,7 @@ def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, le
     ``px`` is the pivot's world x (m), ``side0`` the side thrown from (flips are
     counted as landings on a side other than the last one landed on), ``length``
     the arm length (inf: unbounded).
-    Per-side/vertex arrays as in :func:`throwmap.geometry.side_table`.
+    Per-side/vertex arrays as in :func:`throwmap.system.geometry.side_table`.
     Returns ``(x, side, status)``; ``rec`` counters are updated in place.
     """
     n = d.shape[0]

@@ -1,0 +1,378 @@
+"""Part and arm files: TOML (or JSON, by extension), validated with pydantic.
+
+Schema (SI units, see :mod:`throwmap.conventions`)::
+
+    [part]
+    name = "my part"              # optional (default: the file's stem)
+    vertices = [[x, y], ...]      # m, a convex polygon in either orientation
+    mass = 0.05                   # kg, mass of the uniform plate
+    com = [x, y]                  # m, optional (default: computed)
+    radius_of_gyration = 0.04     # m, optional (default: computed)
+
+    [[part.point_masses]]         # optional, repeatable: lead weights
+    mass = 0.01                   # kg
+    at = [x, y]                   # m, inside or on the polygon
+
+    [arm]                         # optional section
+    h = -0.01                     # m, surface height (below the joint: h < 0)
+    g = 9.81                      # m/s², optional
+    length = 0.5                  # m, optional (default: unbounded)
+
+The JSON form is the same document as an object: ``{"part": {...}, "arm": {...}}``.
+
+Every failure raises :class:`~throwmap.errors.ConfigError` whose ``field`` is the
+dotted path of the culprit (``part.vertices[2][0]``, ``part.point_masses[0].mass``,
+``arm.h``) or ``"file"`` when the file cannot be read or parsed (the reason then
+names the path and the parser's line/column). Unknown keys, non-numbers, NaN and
+infinities are refused here; the geometric and physical rules (convexity, CM
+inside, positive masses, g > 0…) are those of :class:`~throwmap.Part` and
+:class:`~throwmap.Arm`, whose :class:`~throwmap.errors.InvalidPartError` /
+:class:`~throwmap.errors.InvalidArmError` propagate unchanged (their fields
+already read ``part.…`` / ``arm.…``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from ..system.arm import Arm
+from ..conventions import G
+from ..errors import ConfigError, InvalidPartError
+from .files import atomic_write_text
+from ..system.part import Part
+from ..system.catalogue import BUILTIN_PARTS, builtin_part
+
+__all__ = [
+    "LoadedConfig",
+    "load_config",
+    "part_from_spec",
+    "arm_from_spec",
+    "resolve_part",
+    "part_to_toml",
+    "save_part_toml",
+]
+
+SUFFIXES = (".toml", ".json")
+"""File types :func:`load_config` reads, by extension (case-insensitive)."""
+
+# ---------------------------------------------------------------------- schema
+FiniteFloat = Annotated[float, Field(strict=True, allow_inf_nan=False)]
+"""A finite number (int or float in the file; booleans and strings refused)."""
+Point = tuple[FiniteFloat, FiniteFloat]
+
+
+class _Spec(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class PointMassSpec(_Spec):
+    """One lead weight: ``mass`` (kg) at ``at`` (m, body frame)."""
+
+    mass: FiniteFloat
+    at: Point
+
+
+class PartSpec(_Spec):
+    """The ``[part]`` table; see :meth:`throwmap.Part.from_vertices` for the meaning."""
+
+    name: Annotated[str, Field(strict=True)] | None = None
+    vertices: list[Point]
+    mass: FiniteFloat
+    com: Point | None = None
+    radius_of_gyration: FiniteFloat | None = None
+    point_masses: list[PointMassSpec] = []
+
+
+class ArmSpec(_Spec):
+    """The ``[arm]`` table; see :class:`throwmap.Arm`."""
+
+    h: FiniteFloat
+    g: FiniteFloat = G
+    length: FiniteFloat | None = None
+    mu: float | None = None
+
+
+class FileSpec(_Spec):
+    """A whole part/arm file."""
+
+    part: PartSpec
+    arm: ArmSpec | None = None
+
+
+_KEYS_BY_TABLE = {
+    "": FileSpec,
+    "part": PartSpec,
+    "point_masses": PointMassSpec,
+    "arm": ArmSpec,
+}
+
+
+# ----------------------------------------------------------------- error mapping
+def _dotted(prefix: str, loc: tuple) -> str:
+    out = prefix
+    for item in loc:
+        if isinstance(item, int):
+            out += f"[{item}]"
+        else:
+            out = f"{out}.{item}" if out else str(item)
+    return out
+
+
+def _short_repr(value: Any, limit: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def _config_error(err: ValidationError, prefix: str, source: Path | None = None) -> ConfigError:
+    """The first pydantic error as one ``ConfigError(dotted.field, reason)``."""
+    errors = err.errors(include_url=False)
+    first = errors[0]
+    loc = tuple(first["loc"])
+    field = _dotted(prefix, loc) or "file"
+    kind = first["type"]
+    value = first.get("input")
+    if kind == "missing":
+        reason = "required key is missing"
+    elif kind == "extra_forbidden":
+        parent = prefix.split(".")[-1] if prefix else ""
+        for item in loc[:-1]:
+            if isinstance(item, str):
+                parent = item
+        model = _KEYS_BY_TABLE.get(parent)
+        allowed = f" (allowed: {', '.join(model.model_fields)})" if model is not None else ""
+        reason = f"unknown key{allowed}"
+    elif kind == "finite_number":
+        reason = f"must be a finite number, got {_short_repr(value)}"
+    elif kind in ("float_type", "float_parsing"):
+        reason = f"must be a number, got {_short_repr(value)}"
+    elif kind in ("model_type", "dict_type") or (not loc and isinstance(value, (list, str, int, float))):
+        reason = f"must be a table of keys, got {_short_repr(value)}"
+    else:
+        msg = first["msg"]
+        if msg.startswith("Input should be"):
+            msg = "must be" + msg[len("Input should be"):]
+        reason = f"{msg[:1].lower()}{msg[1:]}, got {_short_repr(value)}"
+    if len(errors) > 1:
+        reason += f" (and {len(errors) - 1} more problem{'s' if len(errors) > 2 else ''})"
+    if field == "file" and source is not None:
+        reason = f"{source}: {reason}"
+    return ConfigError(field, reason)
+
+
+def _validate(model: type[_Spec], data: Any, prefix: str, source: Path | None = None):
+    try:
+        return model.model_validate(data)
+    except ValidationError as err:
+        raise _config_error(err, prefix, source) from None
+
+
+# ----------------------------------------------------------------- build objects
+def _build_part(spec: PartSpec, default_name: str = "") -> Part:
+    return Part.from_vertices(
+        spec.vertices,
+        mass=spec.mass,
+        com=spec.com,
+        radius_of_gyration=spec.radius_of_gyration,
+        point_masses=[(pm.mass, pm.at) for pm in spec.point_masses],
+        name=spec.name if spec.name is not None else default_name,
+    )
+
+
+def _build_arm(spec: ArmSpec) -> Arm:
+    return Arm(h=spec.h, g=spec.g, length=spec.length, mu=math.inf if spec.mu is None else spec.mu)
+
+
+def part_from_spec(spec: dict) -> Part:
+    """A :class:`Part` from the contents of a ``[part]`` table (a dict).
+
+    Raises :class:`ConfigError` (fields ``part.…``) for schema problems and
+    :class:`InvalidPartError` for an invalid part.
+    """
+    return _build_part(_validate(PartSpec, spec, "part"))
+
+
+def arm_from_spec(spec: dict) -> Arm:
+    """An :class:`Arm` from the contents of an ``[arm]`` table (a dict).
+
+    Raises :class:`ConfigError` (fields ``arm.…``) for schema problems and
+    :class:`InvalidArmError` for an invalid arm.
+    """
+    return _build_arm(_validate(ArmSpec, spec, "arm"))
+
+
+@dataclass(frozen=True, slots=True)
+class LoadedConfig:
+    """What a part/arm file holds: the part, and the arm if the file has an ``[arm]`` table.
+
+    ``source`` is the file it came from (``None`` for a built-in part).
+    """
+
+    part: Part
+    arm: Arm | None = None
+    source: Path | None = None
+
+
+def _no_duplicate_keys(pairs):
+    out = {}
+    for key, value in pairs:
+        if key in out:
+            raise ConfigError("file", f"duplicate key {key!r}")
+        out[key] = value
+    return out
+
+
+def _read_document(path: Path) -> Any:
+    suffix = path.suffix.lower()
+    if suffix not in SUFFIXES:
+        raise ConfigError("file", f"{path}: unsupported file type {suffix or '(no extension)'!r}; use .toml or .json")
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise ConfigError("file", f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise ConfigError("file", f"{path}: is a directory, not a file") from None
+    except OSError as err:
+        raise ConfigError("file", f"{path}: cannot read ({err.strerror or err})") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise ConfigError("file", f"{path}: not UTF-8 text (byte {err.start})") from None
+    if suffix == ".toml":
+        try:
+            return tomllib.loads(text)
+        except tomllib.TOMLDecodeError as err:
+            raise ConfigError("file", f"{path}: malformed TOML: {err}") from None
+    try:
+        return json.loads(text, object_pairs_hook=_no_duplicate_keys)
+    except json.JSONDecodeError as err:
+        raise ConfigError("file", f"{path}: malformed JSON: {err}") from None
+    except ConfigError as err:
+        raise ConfigError("file", f"{path}: malformed JSON: {err.reason}") from None
+
+
+def load_config(path) -> LoadedConfig:
+    """Read and validate a part/arm file (``.toml`` or ``.json``).
+
+    The part's name defaults to the file's stem. Raises :class:`ConfigError`
+    (``field="file"`` for unreadable or malformed files, the dotted key path
+    otherwise), or the :class:`InvalidPartError` / :class:`InvalidArmError` of an
+    invalid part or arm.
+    """
+    path = Path(path)
+    spec = _validate(FileSpec, _read_document(path), "", path)
+    part = _build_part(spec.part, default_name=path.stem)
+    arm = _build_arm(spec.arm) if spec.arm is not None else None
+    return LoadedConfig(part=part, arm=arm, source=path)
+
+
+def resolve_part(value: str) -> LoadedConfig:
+    """A built-in part by name (see :data:`throwmap.system.catalogue.BUILTIN_PARTS`) or a part file.
+
+    A value that names a built-in part wins; otherwise a value with a ``.toml``
+    / ``.json`` extension, a path separator, or naming an existing file is read
+    with :func:`load_config`.
+    """
+    if value in BUILTIN_PARTS:
+        return LoadedConfig(part=builtin_part(value))
+    path = Path(value)
+    if path.suffix.lower() in SUFFIXES or "/" in value or "\\" in value or path.exists():
+        return load_config(path)
+    try:
+        return LoadedConfig(part=builtin_part(value))
+    except InvalidPartError as err:
+        raise InvalidPartError(err.field, f"{err.reason}, or give a .toml/.json part file") from None
+
+
+# ------------------------------------------------------------------------ write
+def _toml_float(v: float) -> str:
+    v = float(v)
+    if not math.isfinite(v):  # pragma: no cover - parts and arms are finite by construction
+        raise ConfigError("file", f"cannot write the non-finite number {v}")
+    return repr(v)  # shortest round-trip repr; always valid TOML for finite floats
+
+
+def _toml_point(p) -> str:
+    return f"[{_toml_float(p[0])}, {_toml_float(p[1])}]"
+
+
+def _toml_string(s: str) -> str:
+    out = ['"']
+    for ch in s:
+        code = ord(ch)
+        if ch == '"':
+            out.append('\\"')
+        elif ch == "\\":
+            out.append("\\\\")
+        elif ch == "\t":
+            out.append("\\t")
+        elif ch == "\n":
+            out.append("\\n")
+        elif code < 0x20 or code == 0x7F:
+            out.append(f"\\u{code:04X}")
+        else:
+            out.append(ch)
+    out.append('"')
+    return "".join(out)
+
+
+def _plate_mass(part: Part) -> float:
+    """The plate mass that :meth:`Part.from_vertices` turns back into ``part.mass`` exactly."""
+    added = sum(m for m, _ in part.point_masses)
+    plate = part.mass - added
+    if plate + added == part.mass:
+        return plate
+    for direction in (math.inf, -math.inf):
+        p = plate
+        for _ in range(4):
+            p = math.nextafter(p, direction)
+            if p + added == part.mass:
+                return p
+    return plate  # pragma: no cover - within one ulp of exact
+
+
+def part_to_toml(part: Part, arm: Arm | None = None) -> str:
+    """The TOML text of a part file that :func:`load_config` reads back to an equal part.
+
+    The centre of mass and radius of gyration are written explicitly, so the
+    file reproduces the part exactly; ``mass`` is the plate mass without the
+    point masses (the part's total mass is their sum).
+    """
+    from .. import __version__
+
+    lines = [
+        f"# throwmap {__version__} part file; SI units (m, kg, s), see throwmap.conventions",
+        "",
+        "[part]",
+        f"name = {_toml_string(part.name)}",
+        "vertices = [",
+        *(f"    {_toml_point(v)}," for v in part.vertices),
+        "]",
+        f"mass = {_toml_float(_plate_mass(part))}  # kg, plate only (total {part.mass:.6g} kg)",
+        f"com = {_toml_point(part.com)}  # m",
+        f"radius_of_gyration = {_toml_float(part.radius_of_gyration)}  # m, about the CM",
+    ]
+    for m, at in part.point_masses:
+        lines += ["", "[[part.point_masses]]", f"mass = {_toml_float(m)}  # kg", f"at = {_toml_point(at)}  # m"]
+    if arm is not None:
+        lines += ["", "[arm]", f"h = {_toml_float(arm.h)}  # m", f"g = {_toml_float(arm.g)}  # m/s^2"]
+        if arm.length is not None:
+            lines.append(f"length = {_toml_float(arm.length)}  # m")
+    return "\n".join(lines) + "\n"
+
+
+def save_part_toml(part: Part, arm: Arm | None, path) -> Path:
+    """Write ``part`` (and ``arm``, if given) as a TOML part file, atomically; returns the path.
+
+    :func:`load_config` reads the file back to an equal part and arm.
+    """
+    path = Path(path)
+    if path.suffix.lower() != ".toml":
+        raise ConfigError("file", f"{path}: a part file written as TOML must end in .toml")
+    return atomic_write_text(path, part_to_toml(part, arm))

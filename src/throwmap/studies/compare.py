@@ -1,0 +1,128 @@
+"""Accuracy of the approximate models against the exact "paper" model over a grid."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..system.arm import Arm
+from ..throws.outcome import Status
+from ..system.part import Part
+from ..throws.throw import check_model, throw_batch
+
+__all__ = ["ModelComparison", "compare_models"]
+
+
+@dataclass(frozen=True, slots=True)
+class ModelComparison:
+    """Per (model, ω) agreement with the reference model.
+
+    Each row: ``model``, ``omega`` (rad/s), ``n`` throws compared (both at rest on
+    the arm), ``side_agreement`` (fraction), ``dx_median``/``dx_p90``/``dx_max``
+    (|Δx| in m over same-side outcomes), ``jog_rel_err_median``/``jog_rel_err_max``
+    (|Δ jog length| / reference jog length over jogs of both), ``max_phi`` (largest
+    reference rotation in flight ω t, rad).
+    """
+
+    part_name: str
+    h: float
+    reference: str
+    models: tuple
+    rows: tuple
+    switches: tuple = ()
+
+    def switch_table(self) -> str:
+        """r_i, the first x on each side at which a throw stops being a jog, per model (cm)."""
+        models = (self.reference, *self.models)
+        head = f"{'ω rad/s':>8}{'side':>6}" + "".join(f"{m + ' cm':>16}" for m in models)
+        lines = ["jog→flip switch r_i (first non-jog x on the grid)", head, "-" * len(head)]
+        for r in self.switches:
+            vals = "".join(f"{100 * r[m]:>16.2f}" if r[m] == r[m] else f"{'none':>16}" for m in models)
+            lines.append(f"{r['omega']:>8.2f}{r['side']:>6d}{vals}")
+        return "\n".join(lines)
+
+    def table(self) -> str:
+        return self.error_table() + "\n\n" + self.switch_table()
+
+    def error_table(self) -> str:
+        head = (f"{'model':<13}{'ω rad/s':>8}{'n':>7}{'same side':>11}{'|Δx| med mm':>13}{'p90 mm':>9}"
+                f"{'max mm':>9}{'jog err med':>13}{'jog err max':>13}{'max ωt':>8}")
+        lines = [f"{self.part_name}, h = {self.h:g} m, against model {self.reference!r}", head, "-" * len(head)]
+        for r in self.rows:
+            lines.append(
+                f"{r['model']:<13}{r['omega']:>8.2f}{r['n']:>7d}{100 * r['side_agreement']:>10.1f}%"
+                f"{1e3 * r['dx_median']:>13.3f}{1e3 * r['dx_p90']:>9.3f}{1e3 * r['dx_max']:>9.3f}"
+                f"{100 * r['jog_rel_err_median']:>12.2f}%{100 * r['jog_rel_err_max']:>12.2f}%{r['max_phi']:>8.3f}"
+            )
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict:
+        return {"part": self.part_name, "h": self.h, "reference": self.reference, "models": list(self.models),
+                "rows": [dict(r) for r in self.rows], "switches": [dict(r) for r in self.switches]}
+
+    def plot(self, ax=None):
+        from ..viz.plotting import plot_model_comparison
+
+        return plot_model_comparison(self, ax=ax)
+
+
+def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), n_x: int = 200,
+                   x_max: float | None = None, models=("small_angle", "small_angle2"),
+                   reference: str = "paper") -> ModelComparison:
+    """Compare ``models`` with ``reference`` over x ∈ (x_min, x_max] on every stable side, for each ω.
+
+    ``x_max`` defaults to the arm length or 0.4 m. Also records, per ω and side, the
+    first grid x at which each model's throw is not a jog (the switch r_i, Sec. III-D),
+    with the grid's resolution (x_max − x_min)/n_x.
+    """
+    for m in (*models, reference):
+        check_model(m)
+    if x_max is None:
+        x_max = arm.length if arm.length is not None else 0.4
+    xs, ss = [], []
+    for s in part.stable_sides:
+        x = np.linspace(part.x_min(s), x_max, n_x + 1)[1:]
+        xs.append(x)
+        ss.append(np.full(x.shape, s))
+    xs = np.concatenate(xs)
+    ss = np.concatenate(ss)
+    rows = []
+    switches = []
+
+    def first_non_jog(res):
+        out = {}
+        for s in part.stable_sides:
+            m = ss == s
+            bad = np.flatnonzero(res.side[m] != s)
+            out[s] = float(xs[m][bad[0]]) if bad.size else float("nan")
+        return out
+
+    for om in omegas:
+        ref = throw_batch(part, arm, xs, ss, om, model=reference, on_invalid="status")
+        sw = {reference: first_non_jog(ref)}
+        phi = om * ref.record("T_FLIGHT")
+        for model in models:
+            res = throw_batch(part, arm, xs, ss, om, model=model, on_invalid="status")
+            sw[model] = first_non_jog(res)
+            both = (ref.status == Status.OK) & (res.status == Status.OK)
+            same = both & (ref.side == res.side)
+            dx = np.abs(res.x - ref.x)[same]
+            jogs = same & (ref.side == ss)
+            jog_ref = (ref.x - xs)[jogs]
+            rel = np.abs((res.x - ref.x)[jogs]) / np.maximum(np.abs(jog_ref), 1e-15)
+            rows.append({
+                "model": model,
+                "omega": float(om),
+                "n": int(both.sum()),
+                "side_agreement": float(same.sum() / max(both.sum(), 1)),
+                "dx_median": float(np.median(dx)) if dx.size else float("nan"),
+                "dx_p90": float(np.percentile(dx, 90)) if dx.size else float("nan"),
+                "dx_max": float(dx.max()) if dx.size else float("nan"),
+                "jog_rel_err_median": float(np.median(rel)) if rel.size else float("nan"),
+                "jog_rel_err_max": float(rel.max()) if rel.size else float("nan"),
+                "max_phi": float(np.nanmax(phi[both])) if both.any() else float("nan"),
+            })
+        for s in part.stable_sides:
+            switches.append({"omega": float(om), "side": int(s), **{m: sw[m][s] for m in (reference, *models)}})
+    return ModelComparison(part.name, arm.h, reference, tuple(models), tuple(rows), tuple(switches))

@@ -1,0 +1,326 @@
+"""Validation of the analytic models against full rigid-body simulation (issue: physics report).
+
+:func:`validate` throws random and gridded cases — several parts (offset-CM
+lead-weighted ones included), arm heights h, rates ω, and x on every stable
+side — through the analytic models and the engine(s), and compares every model
+with the reference engine (pymunk): side agreement, |Δx| statistics, status
+agreement, and where each model's assumptions failed. The report is a frozen
+:class:`ValidationReport` with ``.table()`` (Markdown) and ``.to_dict()`` (JSON).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..system.arm import Arm
+from ..kernels import codes as C
+from ..throws.outcome import Status
+from ..system.part import Part
+from ..system.catalogue import rectangle, regular_polygon, triangle_30_60_90
+from ..throws.throw import throw_batch
+
+__all__ = ["ValidationCase", "ValidationReport", "default_parts", "make_cases", "validate"]
+
+DEFAULT_MU = 1.5
+"""Arm friction of the validation set (measured μ > 1 for the paper's arm, Sec. VI)."""
+DEFAULT_H = (-0.01, -0.005)
+"""Arm heights of the validation set, m."""
+DEFAULT_OMEGA = (3.0, 7.0)
+"""Range of release rates, rad/s."""
+X_MAX = 0.45
+"""Largest starting CM abscissa, m."""
+
+
+def default_parts() -> dict[str, Part]:
+    """The validation parts: the canonical triangle, lead-weighted offset-CM parts, a square, a pentagon."""
+    return {
+        "triangle": triangle_30_60_90(),
+        "triangle+lead": triangle_30_60_90(point_masses=[(0.03, (0.10, 0.01))]),
+        "rectangle+lead": Part.from_vertices([(0, 0), (0.08, 0), (0.08, 0.04), (0, 0.04)], mass=0.05,
+                                             point_masses=[(0.02, (0.065, 0.01))], name="rectangle+lead"),
+        "square": rectangle(0.06, 0.06),
+        "pentagon": regular_polygon(5, 0.05),
+    }
+
+
+@dataclass(frozen=True, slots=True)
+class ValidationCase:
+    """The thrown cases of one part: arrays of x (m), side, ω (rad/s), h (m), and ``kind`` (grid/random)."""
+
+    part_name: str
+    x: np.ndarray
+    side: np.ndarray
+    omega: np.ndarray
+    h: np.ndarray
+    kind: np.ndarray
+
+
+def make_cases(parts: dict[str, Part], n: int, seed: int = 0, *, grid: bool = True, hs=DEFAULT_H,
+               omega_range=DEFAULT_OMEGA, x_max: float = X_MAX) -> list[ValidationCase]:
+    """``n`` random cases spread over ``parts`` plus, with ``grid``, a grid per part
+    (x at 4 points on every stable side × ω ∈ {min, mid, max} at h = hs[0])."""
+    rng = np.random.default_rng(seed)
+    out = []
+    per_part = max(1, n // max(len(parts), 1))
+    for name, part in parts.items():
+        sides = np.flatnonzero(part.stable)
+        xs, ss, oms, hh, kind = [], [], [], [], []
+        if grid:
+            for k in sides:
+                lo = -part.uL[k] + 0.01
+                for x in np.linspace(lo, x_max, 4):
+                    for om in (omega_range[0], 0.5 * sum(omega_range), omega_range[1]):
+                        xs.append(x), ss.append(k), oms.append(om), hh.append(hs[0]), kind.append("grid")
+        for _ in range(per_part):
+            k = int(rng.choice(sides))
+            lo = -part.uL[k] + 0.005
+            xs.append(float(rng.uniform(lo, x_max)))
+            ss.append(k)
+            oms.append(float(rng.uniform(*omega_range)))
+            hh.append(float(rng.choice(hs)))
+            kind.append("random")
+        out.append(ValidationCase(name, np.array(xs), np.array(ss, dtype=np.int64), np.array(oms), np.array(hh),
+                                  np.array(kind)))
+    return out
+
+
+@dataclass(frozen=True, slots=True)
+class ValidationReport:
+    """Results of :func:`validate`.
+
+    ``results[model]`` holds flat arrays over all cases: ``x``, ``side``,
+    ``status`` and, for analytic models, the per-throw record flags. ``rows`` is
+    the comparison table (one dict per model vs ``reference``), ``goals`` the
+    rigid_body-vs-pymunk goals with pass/fail, ``settings`` what was run.
+    """
+
+    reference: str
+    cases: dict
+    results: dict
+    rows: tuple
+    goals: dict
+    settings: dict = field(default_factory=dict)
+    realisation_rows: tuple = ()
+
+    def table(self) -> str:
+        """The comparison table in Markdown (distances in mm)."""
+        head = ("| model vs " + self.reference + " | throws | same status % | same side % | |Δx| median (mm) "
+                "| |Δx| p90 (mm) | |Δx| max (mm) | |Δx| ≤ 0.5 mm % | assumptions failed |")
+        lines = [head, "|" + "---|" * 9]
+        for r in self.rows:
+            lines.append(
+                f"| {r['model']} | {r['n']} | {r['same_status_pct']:.1f} | {r['same_side_pct']:.1f} | "
+                f"{_f(r['dx_median_mm'])} | {_f(r['dx_p90_mm'])} | {_f(r['dx_max_mm'])} | "
+                f"{_f(r['within_0p5mm_pct'], '.1f')} | {r['assumptions']} |"
+            )
+        return "\n".join(lines)
+
+    def realisation_table(self) -> str:
+        """How far finite arm motions land from the impulse idealisation (engine vs engine, mm)."""
+        if not self.realisation_rows:
+            return ""
+        lines = ["| realisation vs impulse (pymunk) | throws | same status % | same side % | |Δx| median (mm) "
+                 "| |Δx| p90 (mm) | |Δx| max (mm) |", "|" + "---|" * 7]
+        for r in self.realisation_rows:
+            lines.append(f"| {r['model']} | {r['n']} | {r['same_status_pct']:.1f} | {r['same_side_pct']:.1f} | "
+                         f"{_f(r['dx_median_mm'], '.2f')} | {_f(r['dx_p90_mm'], '.2f')} | {_f(r['dx_max_mm'], '.2f')} |")
+        return "\n".join(lines)
+
+    def goal_lines(self) -> list[str]:
+        return [f"{name}: {g['value']:.2f} % (goal ≥ {g['goal']:g} %) — {'met' if g['met'] else 'NOT met'}"
+                for name, g in self.goals.items()]
+
+    def to_dict(self) -> dict:
+        from ..io.files import json_ready
+
+        return json_ready({"reference": self.reference, "rows": list(self.rows), "goals": self.goals,
+                           "settings": self.settings, "table_markdown": self.table(),
+                           "realisations": list(self.realisation_rows)})
+
+
+def _f(v, spec=".3f"):
+    return "—" if v is None or not math.isfinite(v) else format(v, spec)
+
+
+def _compare(name, ref, res, assumptions: str) -> dict:
+    both_ok = (ref["status"] == Status.OK) & (res["status"] == Status.OK)
+    same_status = ref["status"] == res["status"]
+    same_side = both_ok & (ref["side"] == res["side"])
+    n = int(ref["status"].size)
+    dx = np.abs(res["x"][same_side] - ref["x"][same_side]) * 1e3
+    # a throw counts as within 0.5 mm when both end ok on the same side that close, or both escape alike
+    within = np.zeros(n, dtype=bool)
+    within[same_side] = np.abs(res["x"][same_side] - ref["x"][same_side]) <= 0.5e-3
+    within |= same_status & ~both_ok
+    return {
+        "model": name,
+        "n": n,
+        "n_both_ok": int(both_ok.sum()),
+        "same_status_pct": 100.0 * same_status.mean() if n else math.nan,
+        "same_side_pct": 100.0 * (same_side.sum() + (same_status & ~both_ok).sum()) / n if n else math.nan,
+        "dx_median_mm": float(np.median(dx)) if dx.size else math.nan,
+        "dx_p90_mm": float(np.percentile(dx, 90)) if dx.size else math.nan,
+        "dx_max_mm": float(dx.max()) if dx.size else math.nan,
+        "within_0p5mm_pct": 100.0 * within.mean() if n else math.nan,
+        "assumptions": assumptions,
+    }
+
+
+def _assumption_text(model: str, recs: np.ndarray, mu: np.ndarray, status: np.ndarray) -> str:
+    n = max(len(status), 1)
+    if model in ("paper", "small_angle", "small_angle2"):
+        if model != "paper":
+            return "small-angle flight and the paper's no-slip, no-lift contact"
+        lift = np.nan_to_num(recs[:, C.N_MIN], nan=1.0) < 0
+        slip = np.nan_to_num(recs[:, C.MU_MAX], nan=0.0) > mu
+        imp = np.nan_to_num(recs[:, C.MU_IMPACT], nan=0.0) > mu
+        return (f"lift-off {100 * lift.mean():.0f} %, impact outside cone {100 * imp.mean():.0f} %, "
+                f"needs μ > arm μ {100 * slip.mean():.0f} %")
+    if model == "rigid_body":
+        lo = np.nan_to_num(recs[:, C.N_LIFTOFFS]) > 0
+        sl = np.nan_to_num(recs[:, C.N_SLIPS]) > 0
+        inc = status == Status.INCONSISTENT
+        return (f"none assumed; lift-offs in {100 * lo.mean():.0f} %, slips in {100 * sl.mean():.0f} %, "
+                f"inconsistent (Painlevé) {100 * inc.mean():.1f} %")
+    tmo = (status == Status.TIMEOUT).sum()
+    pen = (status == Status.PENETRATION).sum()
+    return f"timeouts {tmo}/{n}, penetration refused {pen}/{n}"
+
+
+def realisation_departures(part: Part, arm: Arm, n: int = 40, seed: int = 0, *, workers: int | None = 0,
+                           omega_range=DEFAULT_OMEGA, x_max: float = X_MAX) -> tuple:
+    """Engine throws by finite arm motions compared with the impulse idealisation (Sec. III-B, IV-A).
+
+    Realisations: :class:`~throwmap.engine.FiniteThrow` with Δt = 5 ms and 20 ms
+    (constant ω, ending at the rest angle) and the Flatland recoil-and-overshoot
+    profile :meth:`~throwmap.engine.RecoilThrow.for_release_rate` (3° recoil, ζ = 0.5).
+    Returns one comparison row per realisation.
+    """
+    from ..engine import FiniteThrow, RecoilThrow
+
+    rng = np.random.default_rng(seed)
+    sides = np.flatnonzero(part.stable)
+    k = rng.choice(sides, n)
+    x = np.array([rng.uniform(-part.uL[s] + 0.01, x_max) for s in k])
+    om = rng.uniform(*omega_range, n)
+    imp = throw_batch(part, arm, x, k, om, model="engine", workers=workers)
+    ref = {"x": imp.x, "side": imp.side, "status": imp.status}
+    rows = []
+    for label, make in (("finite, Δt = 5 ms", lambda w: FiniteThrow(w, 0.005)),
+                        ("finite, Δt = 20 ms", lambda w: FiniteThrow(w, 0.02)),
+                        ("recoil 3°, PD overshoot", lambda w: RecoilThrow.for_release_rate(w))):
+        xs, ss, st = np.empty(n), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64)
+        for i in range(n):
+            from ..engine import engine_run
+
+            r = engine_run(part, arm, float(x[i]), int(k[i]), float(om[i]), realisation=make(float(om[i])))
+            xs[i], ss[i], st[i] = r.states[0][0], r.states[0][1], int(r.status)
+        rows.append(_compare(label, ref, {"x": xs, "side": ss, "status": st}, ""))
+    return tuple(rows)
+
+
+def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 0, grid: bool = True,
+             models=("paper", "small_angle", "rigid_body"), engines=("pymunk",), mu: float = DEFAULT_MU,
+             hs=DEFAULT_H, omega_range=DEFAULT_OMEGA, workers: int | None = 0, engine_settings=None,
+             mujoco_settings=None, progress=None, n_realisations: int = 0) -> ValidationReport:
+    """Throw the validation set through ``models`` and ``engines``; compare each with pymunk.
+
+    ``engines`` ⊆ {"pymunk", "mujoco"} ("pymunk" is always run: it is the
+    reference). ``workers`` processes run the engine (0: one per core).
+    ``n_realisations`` > 0 also compares finite arm motions with the impulse on
+    that many throws of the first part (:func:`realisation_departures`).
+    ``progress(done, total)`` is called as engine throws finish.
+    """
+    parts = default_parts() if parts is None else parts
+    engines = tuple(engines)
+    for e in engines:
+        if e not in ("pymunk", "mujoco"):
+            from ..errors import ThrowmapError
+
+            raise ThrowmapError("engines", f"unknown engine {e!r} (choose from pymunk, mujoco)")
+    cases = make_cases(parts, n, seed, grid=grid, hs=hs, omega_range=omega_range)
+    total = sum(c.x.size for c in cases) * (1 + ("mujoco" in engines))
+    done = [0]
+    acc: dict[str, dict[str, list]] = {}
+
+    def add(model, x, side, status, recs, mus):
+        d = acc.setdefault(model, {"x": [], "side": [], "status": [], "recs": [], "mu": []})
+        d["x"].append(x), d["side"].append(side), d["status"].append(status), d["recs"].append(recs)
+        d["mu"].append(mus)
+
+    for case in cases:
+        part = parts[case.part_name]
+        for hv in np.unique(case.h):
+            sel = case.h == hv
+            arm = Arm(h=float(hv), mu=mu)
+            xs, ss, oms = case.x[sel], case.side[sel], case.omega[sel]
+            mus = np.full(xs.size, mu)
+            for model in models:
+                import warnings
+
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    b = throw_batch(part, arm, xs, ss, oms, model=model, on_invalid="status")
+                add(model, b.x, b.side, b.status, b.records, mus)
+
+            def tick(k, tot, base=done[0]):
+                if progress is not None:
+                    progress(base + k, total)
+
+            b = throw_batch(part, arm, xs, ss, oms, model="engine", on_invalid="status", workers=workers,
+                            progress=tick, **({"settings": engine_settings} if engine_settings else {}))
+            done[0] += xs.size
+            add("pymunk", b.x, b.side, b.status, b.records, mus)
+            if "mujoco" in engines:
+                from ..engine.mujoco_backend import MujocoSettings, mujoco_throw
+
+                mset = MujocoSettings() if mujoco_settings is None else mujoco_settings
+                mx, ms, mst, mr = [], [], [], []
+                for i in range(xs.size):
+                    o = mujoco_throw(part, arm, float(xs[i]), int(ss[i]), float(oms[i]), mset)
+                    mx.append(o.x), ms.append(o.side), mst.append(int(o.status)), mr.append(np.full(C.NREC, np.nan))
+                    done[0] += 1
+                    if progress is not None:
+                        progress(done[0], total)
+                add("mujoco", np.array(mx), np.array(ms), np.array(mst), np.array(mr), mus)
+    results = {}
+    for model, d in acc.items():
+        results[model] = {"x": np.concatenate(d["x"]), "side": np.concatenate(d["side"]),
+                          "status": np.concatenate(d["status"]), "recs": np.concatenate(d["recs"]),
+                          "mu": np.concatenate(d["mu"])}
+    ref = results["pymunk"]
+    rows = []
+    for model in list(models) + (["mujoco"] if "mujoco" in engines else []):
+        res = results[model]
+        rows.append(_compare(model, ref, res, _assumption_text(model, res["recs"], res["mu"], res["status"])))
+    rows.append(_compare("pymunk (self)", ref, ref, _assumption_text("pymunk", ref["recs"], ref["mu"], ref["status"])))
+    # the paper model where its own assumptions hold
+    if "paper" in results:
+        pr = results["paper"]["recs"]
+        holds = (np.nan_to_num(pr[:, C.N_MIN], nan=1.0) >= 0) & (np.nan_to_num(pr[:, C.MU_MAX], nan=0.0) <= mu)
+        if holds.any():
+            sub = {k: v[holds] for k, v in results["paper"].items()}
+            subref = {k: v[holds] for k, v in ref.items()}
+            r = _compare("paper, assumptions hold", subref, sub, f"{100 * holds.mean():.0f} % of throws")
+            rows.insert(1, r)
+    goals = {}
+    if "rigid_body" in results:
+        r = next(r for r in rows if r["model"] == "rigid_body")
+        goals["rigid_body vs pymunk: same side"] = {"value": r["same_side_pct"], "goal": 99.0,
+                                                     "met": bool(r["same_side_pct"] >= 99.0)}
+        goals["rigid_body vs pymunk: |Δx| ≤ 0.5 mm"] = {"value": r["within_0p5mm_pct"], "goal": 95.0,
+                                                         "met": bool(r["within_0p5mm_pct"] >= 95.0)}
+    settings = {"n_random": n, "grid": grid, "seed": seed, "mu": mu, "h": list(hs), "omega_range": list(omega_range),
+                "parts": list(parts), "models": list(models), "engines": list(engines),
+                "n_throws": int(ref["x"].size)}
+    case_info = {c.part_name: int(c.x.size) for c in cases}
+    real_rows = ()
+    if n_realisations > 0:
+        first = next(iter(parts.values()))
+        real_rows = realisation_departures(first, Arm(h=hs[0], mu=mu), n_realisations, seed, workers=workers,
+                                           omega_range=omega_range)
+        settings["n_realisations"] = n_realisations
+    return ValidationReport("pymunk", case_info, results, tuple(rows), goals, settings, real_rows)

@@ -1,0 +1,191 @@
+"""Result types of a throw: :class:`Status`, :class:`ThrowOutcome`, :class:`BatchOutcome`."""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernels import codes as C
+
+__all__ = ["Status", "ThrowOutcome", "BatchOutcome"]
+
+
+class Status(enum.IntEnum):
+    """How a throw ended (integer codes shared with the kernels).
+
+    ``OK``: at rest on a stable side on the arm. ``BEHIND_JOINT``: a contact, or a
+    resting support vertex, at x ≤ 0. ``OFF_END``: a contact beyond the arm's
+    length, or the resting CM beyond it. ``NO_REST``: the impact cap was reached.
+    ``INVALID_START``: not thrown (batch with ``on_invalid="status"``).
+    ``NO_CONTACT``: the contact search hit its cap (a bug if ever seen).
+    ``TIMEOUT``: an engine run did not settle within its time limit.
+    ``PENETRATION``: an engine lost a contact (a vertex sank deeper than the
+    tolerance); the engine's result is refused, not returned.
+    ``INCONSISTENT``: rigid-body Coulomb contact has no consistent solution there
+    (Painlevé's paradox); the model says so instead of giving a number.
+    """
+
+    OK = C.OK
+    BEHIND_JOINT = C.BEHIND_JOINT
+    OFF_END = C.OFF_END
+    NO_REST = C.NO_REST
+    INVALID_START = C.INVALID_START
+    NO_CONTACT = C.NO_CONTACT
+    TIMEOUT = C.TIMEOUT
+    PENETRATION = C.PENETRATION
+    INCONSISTENT = C.INCONSISTENT
+
+    @property
+    def label(self) -> str:
+        return self.name.lower()
+
+
+_STATUS = tuple(Status(c) for c in range(len(Status)))
+
+
+def _count(v: float) -> int:
+    return int(v) if v == v else 0
+
+
+@dataclass(frozen=True, slots=True)
+class ThrowOutcome:
+    """One throw: where the part came to rest and the record of how (SI units).
+
+    ``x``/``side`` are the new resting configuration when ``status`` is OK; for an
+    escape they are the CM x and side at the moment the part left the arm.
+
+    Record (first impact unless stated): ``t_flight`` (s); ``contact_vertex``, the
+    user's index of the vertex that touched first; ``contact_x`` (m); ``v_pre`` and
+    ``v_post``, (ẋ, ẏ, φ̇) of the CM in m/s, m/s, rad/s around the impact (Eq. 4);
+    ``impulse`` (N·s); ``friction_ratio_impact`` = |J_x|/J_y that no-slip needs;
+    ``friction_ratio_max`` over every impact and pivot swing; energies in J
+    (potential from the arm line): ``energy_release``, ``kinetic_pre``,
+    ``kinetic_post``, ``potential_impact``, ``energy_final``; ``max_impact_energy_gain``
+    (J, ≤ 0 for a physical impact law); ``n_impacts``, ``n_flips`` (landings on a side other than the previous one);
+    ``min_normal_force`` while pivoting, in units of m g; validity flags
+    ``lift_off`` (the pivot would need a pulling normal force: the part hops) and
+    ``pull_impulse`` (an impact's normal impulse would have to pull).
+    Models that resolve them also fill ``n_lift_offs`` (contact phases ended by a
+    vanishing normal force), ``n_slips`` (sliding impacts and sliding phases),
+    ``slip_distance`` (m), ``t_rest`` (s from release to rest; nan where not
+    resolved) and ``penetration_max`` (m, engines).
+    """
+
+    x: float
+    side: int
+    status: Status
+    x0: float
+    side0: int
+    omega: float
+    model: str
+    t_flight: float
+    contact_vertex: int
+    contact_x: float
+    v_pre: tuple
+    v_post: tuple
+    impulse: tuple
+    friction_ratio_impact: float
+    friction_ratio_max: float
+    energy_release: float
+    kinetic_pre: float
+    kinetic_post: float
+    potential_impact: float
+    energy_final: float
+    max_impact_energy_gain: float
+    n_impacts: int
+    n_flips: int
+    min_normal_force: float
+    lift_off: bool
+    pull_impulse: bool
+    n_lift_offs: int = 0
+    n_slips: int = 0
+    slip_distance: float = 0.0
+    t_rest: float = float("nan")
+    penetration_max: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return self.status == Status.OK
+
+    @property
+    def kind(self) -> str:
+        """``"jog"`` (same side), ``"flip"`` (another side) or the escape status."""
+        if self.status != Status.OK:
+            return self.status.label
+        return "jog" if self.side == self.side0 else "flip"
+
+    @property
+    def assumptions_hold(self) -> bool:
+        """Whether the paper's contact assumptions are self-consistent for this throw."""
+        return not (self.lift_off or self.pull_impulse)
+
+    @classmethod
+    def from_record(cls, part, x0, side0, omega, model, x, side, status, rec) -> "ThrowOutcome":
+        """Build from a kernel record (per unit mass) — the hot path of :func:`throwmap.throws.throw`."""
+        m = part.mass
+        r = rec.tolist()
+        cv = int(r[C.CONTACT_VERTEX]) if r[C.CONTACT_VERTEX] == r[C.CONTACT_VERTEX] else -1
+        n_min = r[C.N_MIN]
+        n_imp = r[C.N_IMPACTS]
+        n_flip = r[C.N_FLIPS]
+        return cls(
+            float(x), int(side), _STATUS[int(status)], float(x0), int(side0), float(omega), model,
+            r[C.T_FLIGHT],
+            part.user_index[cv] if cv >= 0 else -1,
+            r[C.CONTACT_X],
+            (r[C.VX_PRE], r[C.VY_PRE], r[C.W_PRE]),
+            (r[C.VX_POST], r[C.VY_POST], r[C.W_POST]),
+            (m * r[C.JX], m * r[C.JY]),
+            r[C.MU_IMPACT],
+            r[C.MU_MAX],
+            m * r[C.E_RELEASE],
+            m * r[C.K_PRE],
+            m * r[C.K_POST],
+            m * r[C.U_IMPACT],
+            m * r[C.E_FINAL],
+            m * r[C.K_MAX_IMPACT_GAIN],
+            int(n_imp) if n_imp == n_imp else 0,
+            int(n_flip) if n_flip == n_flip else 0,
+            n_min,
+            n_min < 0.0 or _count(r[C.N_LIFTOFFS]) > 0,
+            r[C.N_PULL] > 0,
+            _count(r[C.N_LIFTOFFS]),
+            _count(r[C.N_SLIPS]),
+            r[C.SLIP_DISTANCE],
+            r[C.T_REST],
+            r[C.PENETRATION_MAX],
+        )
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict (SI units; non-finite numbers become ``None``)."""
+        from ..io.files import json_ready
+
+        out = {name: getattr(self, name) for name in self.__dataclass_fields__}
+        out["status"] = self.status.label
+        out["kind"] = self.kind
+        return json_ready(out)
+
+
+@dataclass(frozen=True, slots=True)
+class BatchOutcome:
+    """Results of :func:`throwmap.throw_batch`: arrays in the broadcast shape of the inputs.
+
+    ``x`` (m), ``side`` (int), ``status`` (int codes of :class:`Status`) and
+    ``records`` (shape + (NREC,), per-unit-mass record, see :mod:`throwmap.kernels.codes`).
+    """
+
+    x: np.ndarray
+    side: np.ndarray
+    status: np.ndarray
+    records: np.ndarray
+    model: str
+
+    @property
+    def ok(self) -> np.ndarray:
+        return self.status == Status.OK
+
+    def record(self, name: str) -> np.ndarray:
+        """A record column by its name in :mod:`throwmap.kernels.codes` (e.g. ``"T_FLIGHT"``)."""
+        return self.records[..., getattr(C, name.upper())]
