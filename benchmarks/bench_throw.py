@@ -97,13 +97,13 @@ def bench_single(part, arm, x, sides, omega, n_calls):
     """Median seconds of one ``throw()`` call (model "paper") over ``n_calls`` calls."""
     m = len(x)
     for i in range(min(m, 100)):  # warm-up
-        tm.throw(part, arm, float(x[i]), int(sides[i]), float(omega[i]))
+        tm.throw(part, arm, float(x[i]), int(sides[i]), float(omega[i]), model="paper")
     times = []
     args = [(float(x[i % m]), int(sides[i % m]), float(omega[i % m])) for i in range(n_calls)]
     clock = time.perf_counter
     for xi, si, oi in args:
         t0 = clock()
-        tm.throw(part, arm, xi, si, oi)
+        tm.throw(part, arm, xi, si, oi, model="paper")
         times.append(clock() - t0)
     return statistics.median(times)
 

@@ -110,7 +110,7 @@ def test_where_paper_assumptions_hold_engine_agrees_to_half_a_mm():
         k = int(rng.integers(0, 3))
         x = float(rng.uniform(-TRI.uL[k] + 0.01, 0.45))
         om = float(rng.uniform(2.0, 6.0))
-        p = throw(TRI, ARM, x, k, om)
+        p = throw(TRI, ARM, x, k, om, model="paper")
         if p.lift_off or p.friction_ratio_max > ARM.mu or not p.ok:
             continue
         e = throw(TRI, ARM, x, k, om, model="engine")
@@ -146,7 +146,7 @@ def test_rigid_body_model_agrees_with_engine_on_a_grid():
 
 
 def test_first_impact_matches_plastic_law_when_inside_the_cone():
-    p = throw(TRI, ARM, 0.25, 1, 5.0)
+    p = throw(TRI, ARM, 0.25, 1, 5.0, model="paper")
     assert p.friction_ratio_impact < ARM.mu
     e = throw(TRI, ARM, 0.25, 1, 5.0, model="engine")
     assert e.v_post[2] == pytest.approx(p.v_post[2], rel=0.01)
@@ -175,7 +175,7 @@ def test_throw_batch_engine_marks_invalid_starts():
 def test_escape_off_the_end_and_wall_stops_it():
     """A part jogging past a short arm's end falls off; a wall there keeps it on."""
     arm = Arm(h=-0.01, mu=1.5, length=0.36)
-    ref = throw(TRI, arm, 0.35, 1, 2.5)
+    ref = throw(TRI, arm, 0.35, 1, 2.5, model="paper")
     assert ref.status == Status.OFF_END
     free = engine_run(TRI, arm, 0.35, 1, 2.5)
     assert free.status == Status.OFF_END
@@ -187,7 +187,7 @@ def test_escape_off_the_end_and_wall_stops_it():
 @pytest.mark.parametrize("x, omega", [(0.1357, 5.6), (0.0905, 7.0)])
 def test_escape_behind_the_joint(x, omega):
     arm = Arm(h=-0.01, mu=1.5)
-    assert throw(TRI, arm, x, 2, omega).status == Status.BEHIND_JOINT
+    assert throw(TRI, arm, x, 2, omega, model="paper").status == Status.BEHIND_JOINT
     assert engine_run(TRI, arm, x, 2, omega).status == Status.BEHIND_JOINT
 
 

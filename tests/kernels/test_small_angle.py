@@ -61,7 +61,7 @@ def test_small_angle_within_a_few_percent_of_paper_for_gentle_throws(canonical_p
     for s in canonical_part.stable_sides:
         for omega in (0.3, 0.6, 1.0, 1.5):
             xs = np.linspace(canonical_part.x_min(s), canonical_part.x_min(s) + 0.3, 200)[1:]
-            ref = tm.throw_batch(canonical_part, arm, xs, s, omega)
+            ref = tm.throw_batch(canonical_part, arm, xs, s, omega, model="paper")
             sa = tm.throw_batch(canonical_part, arm, xs, s, omega, model=model)
             gentle = (omega * ref.record("T_FLIGHT") < phi_max) & (ref.status == 0) & (ref.side == s)
             assert np.all(sa.side[gentle] == s)

@@ -65,7 +65,7 @@ def _check_invariants(part, arm, o):
 @pytest.mark.parametrize("omega", OMEGAS)
 def test_invariants_on_grid(canonical_part, arm, omega):
     for x, s in _grid(canonical_part):
-        o = tm.throw(canonical_part, arm, x, s, omega)
+        o = tm.throw(canonical_part, arm, x, s, omega, model="paper")
         _check_invariants(canonical_part, arm, o)
 
 
@@ -74,7 +74,7 @@ def test_no_vertex_below_the_arm_before_contact(canonical_part, arm, omega):
     """Dense check of the first-contact guarantee (Eq. 3 for every vertex)."""
     part = canonical_part
     for x, s in _grid(part, n=12):
-        o = tm.throw(part, arm, x, s, omega)
+        o = tm.throw(part, arm, x, s, omega, model="paper")
         d = part.d[s]
         t = np.linspace(0.0, o.t_flight, 4001)
         phi = part.beta[s] + omega * t
@@ -90,7 +90,7 @@ def test_jogs_are_outward_for_negative_h(canonical_part, arm, omega):
     part = canonical_part
     for s in part.stable_sides:
         xs = np.linspace(part.x_min(s), 0.5, 301)[1:]
-        res = tm.throw_batch(part, arm, xs, s, omega)
+        res = tm.throw_batch(part, arm, xs, s, omega, model="paper")
         jog = (res.status == tm.Status.OK) & (res.side == s)
         assert np.all(res.x[jog] > xs[jog])
 
@@ -98,7 +98,7 @@ def test_jogs_are_outward_for_negative_h(canonical_part, arm, omega):
 def test_jog_and_flip_both_occur_and_flip_moves_inward(triangle, arm):
     """Fig. 5 behaviour for the canonical triangle at ω = 4: jogs out, flips in."""
     xs = np.linspace(triangle.x_min(0), 0.6, 400)[1:]
-    res = tm.throw_batch(triangle, arm, xs, 0, 4.0)
+    res = tm.throw_batch(triangle, arm, xs, 0, 4.0, model="paper")
     flip = (res.status == 0) & (res.side != 0)
     jog = (res.status == 0) & (res.side == 0)
     assert jog.any() and flip.any()
@@ -109,11 +109,11 @@ def test_jog_and_flip_both_occur_and_flip_moves_inward(triangle, arm):
 def test_batch_matches_single_throws_and_broadcasts(triangle, arm):
     xs = np.linspace(0.11, 0.4, 7)
     om = np.array([[2.0], [4.5]])
-    res = tm.throw_batch(triangle, arm, xs, 0, om)
+    res = tm.throw_batch(triangle, arm, xs, 0, om, model="paper")
     assert res.x.shape == (2, 7) and res.records.shape == (2, 7, C.NREC)
     for i in range(2):
         for j in range(7):
-            o = tm.throw(triangle, arm, xs[j], 0, om[i, 0])
+            o = tm.throw(triangle, arm, xs[j], 0, om[i, 0], model="paper")
             assert res.x[i, j] == o.x and res.side[i, j] == o.side and res.status[i, j] == o.status
             assert res.record("t_flight")[i, j] == o.t_flight
 
@@ -121,14 +121,14 @@ def test_batch_matches_single_throws_and_broadcasts(triangle, arm):
 def test_batch_invalid_starts(triangle, arm):
     xs = np.array([0.05, 0.2, np.nan])
     with pytest.raises(InvalidStateError) as err:
-        tm.throw_batch(triangle, arm, xs, 0, 3.0)
+        tm.throw_batch(triangle, arm, xs, 0, 3.0, model="paper")
     assert err.value.field == "x[0]"
-    res = tm.throw_batch(triangle, arm, xs, 0, 3.0, on_invalid="status")
+    res = tm.throw_batch(triangle, arm, xs, 0, 3.0, on_invalid="status", model="paper")
     assert list(res.status) == [tm.Status.INVALID_START, tm.Status.OK, tm.Status.INVALID_START]
 
 
 def test_zero_omega_is_identity(triangle, arm):
-    o = tm.throw(triangle, arm, 0.2, 1, 0.0)
+    o = tm.throw(triangle, arm, 0.2, 1, 0.0, model="paper")
     assert (o.x, o.side, o.status) == (0.2, 1, tm.Status.OK)
 
 
@@ -139,14 +139,14 @@ def test_zero_omega_is_identity(triangle, arm):
 )
 def test_bad_starts(triangle, arm, x, side, omega, field):
     with pytest.raises(InvalidStateError) as err:
-        tm.throw(triangle, arm, x, side, omega)
+        tm.throw(triangle, arm, x, side, omega, model="paper")
     assert err.value.field == field
 
 
 def test_arm_length_gives_off_end(triangle):
     arm = tm.Arm(h=-0.01, length=0.3)
     xs = np.linspace(0.11, 0.3, 200)
-    res = tm.throw_batch(triangle, arm, xs, 0, 4.0)
+    res = tm.throw_batch(triangle, arm, xs, 0, 4.0, model="paper")
     assert np.any(res.status == tm.Status.OFF_END)
     ok = res.status == tm.Status.OK
     assert np.all(res.x[ok] <= 0.3)
@@ -154,7 +154,7 @@ def test_arm_length_gives_off_end(triangle):
 
 def test_hard_throw_leaves_behind_joint(triangle, arm):
     """Known fact: at ω = 5.6 rad/s, h = −1 cm the canonical triangle's orbit leaves the arm."""
-    orbit = tm.iterate(triangle, arm, (0.12, 0), 5.6, n=500)
+    orbit = tm.iterate(triangle, arm, (0.12, 0), 5.6, n=500, model="paper")
     assert orbit.status == tm.Status.BEHIND_JOINT
     assert orbit.n_throws < 500
 
@@ -165,8 +165,8 @@ def test_relabelled_part_gives_the_same_throws(triangle, arm):
     offset = [o for o in range(3) if np.allclose(np.roll(triangle.d, -o), q.d)][0]
     for s in range(3):
         xs = np.linspace(triangle.x_min(s), 0.4, 50)[1:]
-        a = tm.throw_batch(triangle, arm, xs, s, 4.0)
-        b = tm.throw_batch(q, arm, xs, (s - offset) % 3, 4.0)
+        a = tm.throw_batch(triangle, arm, xs, s, 4.0, model="paper")
+        b = tm.throw_batch(q, arm, xs, (s - offset) % 3, 4.0, model="paper")
         assert np.allclose(a.x, b.x, atol=1e-12)
         assert np.array_equal((a.side - offset) % 3, b.side)
 
@@ -208,7 +208,7 @@ def test_random_convex_parts_satisfy_invariants(part, data):
     omega = data.draw(st.floats(0.3, 8.0))
     h = -data.draw(st.floats(0.01, 0.99)) * part.min_d
     arm = tm.Arm(h=h)
-    o = tm.throw(part, arm, x, s, omega)
+    o = tm.throw(part, arm, x, s, omega, model="paper")
     assert o.status in (tm.Status.OK, tm.Status.BEHIND_JOINT, tm.Status.OFF_END)
     assert math.isfinite(o.x) and math.isfinite(o.t_flight) and o.t_flight > 0
     _check_invariants(part, arm, o)
@@ -247,8 +247,8 @@ def test_rigid_motions_and_relabelling_change_nothing_but_labels(part, data):
     s = data.draw(st.sampled_from(part.stable_sides))
     x = part.x_min(s) + data.draw(st.floats(1e-3, 0.4))
     omega = data.draw(st.floats(0.3, 8.0))
-    a = tm.throw(part, arm, x, s, omega)
-    b = tm.throw(q, arm, x, sigma(s), omega)
+    a = tm.throw(part, arm, x, s, omega, model="paper")
+    b = tm.throw(q, arm, x, sigma(s), omega, model="paper")
     assert a.status == b.status
     assert b.x == pytest.approx(a.x, abs=1e-9)
     assert b.side == sigma(a.side)

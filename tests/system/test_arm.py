@@ -29,6 +29,6 @@ def test_bad_arms(kwargs, field):
 def test_regime_warnings_name_the_lost_guarantee(triangle):
     assert tm.regime_problems(triangle, tm.Arm(h=-0.01)) == []
     with pytest.warns(tm.RegimeWarning, match="jogs are no longer guaranteed to move outward"):
-        tm.throw(triangle, tm.Arm(h=0.01), 0.15, 0, 2.0)
+        tm.throw(triangle, tm.Arm(h=0.01), 0.15, 0, 2.0, model="paper")
     with pytest.warns(tm.RegimeWarning, match="flips are no longer guaranteed to move inward"):
-        tm.throw(triangle, tm.Arm(h=-0.03), 0.15, 0, 2.0)
+        tm.throw(triangle, tm.Arm(h=-0.03), 0.15, 0, 2.0, model="paper")

@@ -125,6 +125,6 @@ def test_unstable_sides_are_numbered_and_refused_as_start():
     assert not p.stable.all() and p.stable.any()
     k = int(np.flatnonzero(~p.stable)[0])
     with pytest.raises(InvalidStateError, match=f"side {k} is unstable"):
-        tm.throw(p, tm.Arm(h=-0.001), 0.3, k, 1.0)
+        tm.throw(p, tm.Arm(h=-0.001), 0.3, k, 1.0, model="paper")
     with pytest.raises(InvalidStateError, match="does not exist"):
-        tm.throw(p, tm.Arm(h=-0.001), 0.3, 7, 1.0)
+        tm.throw(p, tm.Arm(h=-0.001), 0.3, 7, 1.0, model="paper")

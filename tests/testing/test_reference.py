@@ -115,7 +115,7 @@ def _arm_checked(part, h, length=None):
     if _outside_regime(part, arm):
         side = part.stable_sides[0]
         with pytest.warns(tm.RegimeWarning):
-            tm.throw(part, arm, part.x_min(side) + 0.05, side, 3.0)
+            tm.throw(part, arm, part.x_min(side) + 0.05, side, 3.0, model="paper")
     return arm
 
 
@@ -168,7 +168,7 @@ def test_near_x_min_flight_time():
     for side in TRIANGLE.stable_sides:
         for omega in OMEGAS:
             x = TRIANGLE.x_min(side) + 1e-6
-            k = tm.throw(TRIANGLE, arm, x, side, omega)
+            k = tm.throw(TRIANGLE, arm, x, side, omega, model="paper")
             r = reference_throw(TRIANGLE, arm, x, side, omega)
             assert (k.status.label, k.side) == (r["status"], r["side"])
             assert k.contact_vertex == TRIANGLE.user_vertex(r["contact_vertex"])
@@ -188,7 +188,7 @@ def test_finite_arm_agrees_including_landing_vertex_beyond_end(part):
     for side in part.stable_sides:
         for omega in (2.0, 3.0, 4.0, 5.0):
             for x in _x_grid(part, side, 16, x_max=0.25):
-                k = tm.throw(part, FINITE_ARM, float(x), side, omega)
+                k = tm.throw(part, FINITE_ARM, float(x), side, omega, model="paper")
                 r = reference_throw(part, FINITE_ARM, float(x), side, omega)
                 if r["ill_conditioned"]:
                     continue
@@ -200,7 +200,7 @@ def test_finite_arm_agrees_including_landing_vertex_beyond_end(part):
 
 def test_finite_arm_landing_vertex_beyond_end_is_off_end():
     """Found by the reference: a rectangle falling back onto a landing vertex past the end."""
-    k = tm.throw(RECTANGLE, FINITE_ARM, 0.2150166666666667, 0, 2.0)
+    k = tm.throw(RECTANGLE, FINITE_ARM, 0.2150166666666667, 0, 2.0, model="paper")
     r = reference_throw(RECTANGLE, FINITE_ARM, 0.2150166666666667, 0, 2.0)
     assert r["status"] == "off_end" and r["escape"] == "landing_vertex"
     assert k.status == Status.OFF_END
@@ -212,7 +212,7 @@ def test_finite_arm_landing_vertex_beyond_end_is_off_end():
 def _flip_threshold(part, arm, side, omega, lo, hi, iters=60):
     """x at which the kernel's throw turns from a jog (at lo) into a flip (at hi), by bisection."""
     def kind(x):
-        return tm.throw(part, arm, x, side, omega).kind
+        return tm.throw(part, arm, x, side, omega, model="paper").kind
 
     assert kind(lo) == "jog" and kind(hi) == "flip"
     for _ in range(iters):
@@ -229,7 +229,7 @@ def test_ill_conditioned_throws_are_flagged(side, omega):
     """At the jog/flip threshold the reference flags the throw, and agrees just off it."""
     arm = tm.Arm(h=-0.01)
     xs = _x_grid(TRIANGLE, side, 40)
-    kinds = [tm.throw(TRIANGLE, arm, float(x), side, omega).kind for x in xs]
+    kinds = [tm.throw(TRIANGLE, arm, float(x), side, omega, model="paper").kind for x in xs]
     i = next(i for i in range(len(xs) - 1) if kinds[i] == "jog" and kinds[i + 1] == "flip")
     lo, hi = _flip_threshold(TRIANGLE, arm, side, omega, float(xs[i]), float(xs[i + 1]))
     assert hi - lo < 1e-12

@@ -10,7 +10,7 @@ from ..system.arm import Arm
 from ..errors import InvalidStateError
 from .outcome import Status, ThrowOutcome
 from ..system.part import Part
-from .throw import throw
+from .throw import DEFAULT_MODEL, throw
 
 __all__ = ["Orbit", "iterate"]
 
@@ -56,7 +56,7 @@ class Orbit:
 
     def plot(self, ax=None, **kwargs):
         """x against throw number, side by colour (like paper Figs. 7, 16)."""
-        from ..viz.plotting import plot_orbit
+        from ..viz.orbit import plot_orbit
 
         return plot_orbit(self, ax=ax, **kwargs)
 
@@ -85,7 +85,7 @@ def throw_rates(omegas, n=None, *, min_n: int = 0) -> np.ndarray:
     return om
 
 
-def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: str = "paper", *, progress=None,
+def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: str = DEFAULT_MODEL, *, progress=None,
             **throw_kwargs) -> Orbit:
     """Throw repeatedly from ``state = (x, side)``.
 

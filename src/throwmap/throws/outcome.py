@@ -158,6 +158,26 @@ class ThrowOutcome:
             r[C.PENETRATION_MAX],
         )
 
+    def to_record(self, part) -> np.ndarray:
+        """The kernel record row (per unit mass, :mod:`throwmap.kernels.codes`) this outcome was built from."""
+        m = part.mass
+        r = np.full(C.NREC, np.nan)
+        cv = self.contact_vertex
+        r[C.CONTACT_VERTEX] = int(np.flatnonzero(np.asarray(part.user_index) == cv)[0]) if cv >= 0 else -1
+        r[C.T_FLIGHT], r[C.CONTACT_X] = self.t_flight, self.contact_x
+        r[C.VX_PRE], r[C.VY_PRE], r[C.W_PRE] = self.v_pre
+        r[C.VX_POST], r[C.VY_POST], r[C.W_POST] = self.v_post
+        r[C.JX], r[C.JY] = self.impulse[0] / m, self.impulse[1] / m
+        r[C.MU_IMPACT], r[C.MU_MAX] = self.friction_ratio_impact, self.friction_ratio_max
+        r[C.E_RELEASE], r[C.K_PRE], r[C.K_POST] = self.energy_release / m, self.kinetic_pre / m, self.kinetic_post / m
+        r[C.U_IMPACT], r[C.E_FINAL] = self.potential_impact / m, self.energy_final / m
+        r[C.K_MAX_IMPACT_GAIN] = self.max_impact_energy_gain / m
+        r[C.N_IMPACTS], r[C.N_FLIPS], r[C.N_MIN] = self.n_impacts, self.n_flips, self.min_normal_force
+        r[C.N_PULL] = 1.0 if self.pull_impulse else 0.0
+        r[C.N_LIFTOFFS], r[C.N_SLIPS], r[C.SLIP_DISTANCE] = self.n_lift_offs, self.n_slips, self.slip_distance
+        r[C.T_REST], r[C.PENETRATION_MAX] = self.t_rest, self.penetration_max
+        return r
+
     def to_dict(self) -> dict:
         """JSON-ready dict (SI units; non-finite numbers become ``None``)."""
         from ..io.files import json_ready

@@ -1,64 +1,62 @@
 """The throw map T^ω(x, side): one throw or a batch, by model (paper Sec. III-D).
 
-Models
-------
-``"paper"``        exact within the paper's assumptions (Sec. III, Eqs. 1–4), no
-                   small-angle approximation (:mod:`throwmap.kernels.paper`).
-``"small_angle"``  the draft's first-order closed forms of Sec. IV–V, corrected
-                   (:mod:`throwmap.kernels.small_angle`).
-``"small_angle2"`` the same closed forms kept consistently to second order in ω t*.
-``"rigid_body"``   the exact rigid-body hybrid dynamics of one polygon on the arm line
-                   with Coulomb friction ``arm.mu``: lift-off, sliding impacts and
-                   sliding pivots (:mod:`throwmap.kernels.rigid_body`).
-``"engine"``       a full pymunk simulation (:mod:`throwmap.engine`): fixtures, arm
-                   rest angle and finite arm motions are available only here.
+Validates the start once, builds the :class:`~throwmap.system.system.System`
+(arm + ``fixtures`` + rest angle ``alpha``) and the model's options from keywords,
+and hands flat arrays to the model found in the registry (:mod:`throwmap.models`:
+``"rigid_body"`` by default, ``"paper"``, ``"small_angle"``, ``"small_angle2"``,
+``"engine"``, ``"mujoco"``). No model is named here.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
-from ..system.arm import Arm, warn_if_outside_regime
 from ..errors import InvalidStateError
 from ..kernels import codes as C
-from ..kernels.paper import throw_many, throw_one
-from ..kernels.small_angle import throw_many_small_angle, throw_one_small_angle
-from .outcome import BatchOutcome, ThrowOutcome
+from ..models import DEFAULT_MODEL, build_options, check_model, get_model, model_names
+from ..system.arm import Arm, warn_if_outside_regime
 from ..system.part import Part
+from ..system.system import System
+from .outcome import BatchOutcome, ThrowOutcome
 
-__all__ = ["MODELS", "throw", "throw_batch"]
+__all__ = ["MODELS", "DEFAULT_MODEL", "throw", "throw_batch", "check_model", "check_start", "prepare"]
 
-MODELS = ("paper", "small_angle", "small_angle2", "rigid_body", "engine")
-ANALYTIC_MODELS = ("paper", "small_angle", "small_angle2", "rigid_body")
+MODELS = model_names()
+"""The registered model names at import (see :func:`throwmap.models.model_names` for later registrations)."""
 
-DEFAULT_TOL = 1e-14
-"""Contact tolerance of the first-contact search, m."""
-DEFAULT_MAX_ITER = 100_000
-"""Cap on first-contact search steps."""
-DEFAULT_MAX_IMPACTS = 10_000
-"""Cap on plastic impacts in one throw (status NO_REST beyond)."""
-DEFAULT_N_SAMPLES = 16
-"""Points per pivot swing at which the friction demand is sampled."""
+_FEATURE_OF = {"fixtures": "fixtures", "alpha": "tilt"}
 
 
-_ENGINE_KEYS = ("settings", "fixtures", "alpha", "realisation", "friction", "workers", "progress")
-_NO_TRAJ = np.empty((0, 4))
+def _only(key: str, able: list, model: str) -> InvalidStateError:
+    names = ", ".join(repr(n) for n in able)
+    verb = "take" if len(able) > 1 else "takes"
+    return InvalidStateError(key, f"only the {names} model{'s' if len(able) > 1 else ''} {verb} {key!r} (model is {model!r})")
 
 
-def _check_engine_options(model: str, options: dict) -> None:
-    for key in options:
-        if key not in _ENGINE_KEYS:
-            raise InvalidStateError(key, f"unknown keyword (engine keywords: {', '.join(_ENGINE_KEYS)})")
-        if model != "engine":
-            raise InvalidStateError(key, f"only the \"engine\" model takes {key!r} (model is {model!r})")
+def prepare(model, arm: Arm, fixtures=(), alpha: float = 0.0, options=None, option_kw=None):
+    """The model, the :class:`System` and the options value for a call, validated.
 
-
-def check_model(model: str) -> str:
-    if model not in MODELS:
-        raise InvalidStateError("model", f"unknown model {model!r} (choose from {', '.join(MODELS)})")
-    return model
+    A System feature the model does not support (fixtures, a tilted arm) is refused
+    naming the keyword and the models that take it; so is an option keyword of another
+    model, and any unknown keyword.
+    """
+    m = get_model(model)
+    system = System(arm, fixtures, alpha)
+    for key, value in (("fixtures", system.fixtures), ("alpha", system.alpha)):
+        feature = _FEATURE_OF[key]
+        if value and not getattr(m.features, feature):
+            raise _only(key, [n for n in model_names() if getattr(get_model(n).features, feature)], m.name)
+    if option_kw:
+        own = {f.name for f in dataclasses.fields(m.options_type)}
+        for key in option_kw:
+            if key not in own:
+                able = [n for n in model_names() if key in {f.name for f in dataclasses.fields(get_model(n).options_type)}]
+                if able:
+                    raise _only(key, able, m.name)
+    return m, system, build_options(m, options, option_kw)
 
 
 def _check_scalar(value, field: str) -> float:
@@ -96,13 +94,12 @@ def throw(
     x: float,
     side: int,
     omega: float,
-    model: str = "paper",
+    model: str = DEFAULT_MODEL,
     *,
-    tol: float = DEFAULT_TOL,
-    max_iter: int = DEFAULT_MAX_ITER,
-    max_impacts: int = DEFAULT_MAX_IMPACTS,
-    n_samples: int = DEFAULT_N_SAMPLES,
-    **engine_options,
+    fixtures=(),
+    alpha: float = 0.0,
+    options=None,
+    **option_kw,
 ) -> ThrowOutcome:
     """Throw ``part`` resting at ``(x, side)`` on ``arm`` with release rate ``omega`` (rad/s).
 
@@ -110,33 +107,21 @@ def throw(
     Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible start:
     unknown or unstable side, a left support vertex at x ≤ 0, negative ω.
 
-    ``model="engine"`` accepts the keywords of :func:`throwmap.engine.engine_throw`
-    (``settings``, ``fixtures``, ``alpha``, ``realisation``, ``friction``).
+    ``model`` is a registered model name (default ``"rigid_body"``, see
+    :mod:`throwmap.models`). ``fixtures`` and ``alpha`` (rad) describe the
+    :class:`~throwmap.system.system.System`; models that do not support them refuse
+    them. Further keywords are the model's options (e.g. ``tol``, ``max_impacts`` for
+    "paper"; ``settings``, ``realisation``, ``friction`` for "engine"), or pass
+    ``options=`` an instance of its options dataclass.
     """
-    check_model(model)
-    _check_engine_options(model, engine_options)
+    m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     x0, k, om = check_start(part, arm, x, side, omega)
     warn_if_outside_regime(part, arm)
-    if model == "engine":
-        from ..engine import engine_throw
-
-        return engine_throw(part, arm, x0, k, om, **engine_options)
-    rec = np.empty(C.NREC)
-    L = arm.length_or_inf
-    rho2 = part.radius_of_gyration**2
-    if model == "rigid_body":
-        from ..kernels.rigid_body import throw_one_rigid_body
-
-        xn, kn, st = throw_one_rigid_body(x0, k, om, arm.h, arm.g, L, rho2, arm.mu, part.w, part.beta, part.d,
-                                          part.uL, part.uR, part.ell, part.stable, tol, max_iter, max_impacts, rec,
-                                          _NO_TRAJ, 1.0)
-    elif model == "paper":
-        xn, kn, st = throw_one(x0, k, om, arm.h, arm.g, L, rho2, part.w, part.beta, part.d, part.uL, part.uR,
-                               part.ell, part.stable, tol, max_iter, max_impacts, n_samples, rec)
-    else:
-        xn, kn, st = throw_one_small_angle(x0, k, om, arm.h, arm.g, L, rho2, part.d, part.uL, part.uR, part.ell,
-                                           part.length, part.stable, 1 if model == "small_angle" else 2, rec)
-    return ThrowOutcome.from_record(part, x0, k, om, model, xn, kn, st, rec)
+    own = getattr(m, "outcome", None)
+    if own is not None:
+        return own(part, system, x0, k, om, opts)
+    xn, kn, st, rec = m.throw_one(part, system, x0, k, om, opts)
+    return ThrowOutcome.from_record(part, x0, k, om, m.name, xn, kn, st, rec)
 
 
 def throw_batch(
@@ -145,31 +130,31 @@ def throw_batch(
     x,
     side,
     omega,
-    model: str = "paper",
+    model: str = DEFAULT_MODEL,
     *,
     on_invalid: str = "raise",
-    tol: float = DEFAULT_TOL,
-    max_iter: int = DEFAULT_MAX_ITER,
-    max_impacts: int = DEFAULT_MAX_IMPACTS,
-    n_samples: int = DEFAULT_N_SAMPLES,
-    **engine_options,
+    fixtures=(),
+    alpha: float = 0.0,
+    options=None,
+    progress=None,
+    **option_kw,
 ) -> BatchOutcome:
     """Many independent throws; ``x``, ``side`` and ``omega`` broadcast against each other.
 
     ``on_invalid="raise"`` refuses the batch at its first inadmissible start (the
     error names the index); ``"status"`` marks such entries ``INVALID_START`` and
-    throws the rest. Runs the compiled kernels in parallel over the entries;
-    ``model="engine"`` takes the keywords of :func:`throwmap.engine.engine_batch`
-    (``workers`` processes, ``progress``, and the engine keywords of :func:`throw`).
+    throws the rest. Model, ``fixtures``, ``alpha`` and options as :func:`throw`;
+    the analytic models run their compiled kernels in parallel over the entries,
+    the engine in ``workers`` processes. ``progress(done, total)``, where a model
+    reports progress, is called as throws finish.
     """
-    check_model(model)
-    _check_engine_options(model, engine_options)
+    m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     if on_invalid not in ("raise", "status"):
         raise InvalidStateError("on_invalid", f"must be 'raise' or 'status', got {on_invalid!r}")
     xb, sb, ob = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(side), np.asarray(omega, dtype=float))
     shape = xb.shape
-    xf = np.ascontiguousarray(xb, dtype=float).ravel()
-    of = np.ascontiguousarray(ob, dtype=float).ravel()
+    xf = np.array(xb, dtype=float).ravel()
+    of = np.array(ob, dtype=float).ravel()
     sraw = np.asarray(sb).ravel()
     if sraw.size and not np.issubdtype(sraw.dtype, np.integer):
         if not np.all(np.isfinite(sraw.astype(float))) or np.any(sraw.astype(float) != np.round(sraw.astype(float))):
@@ -193,35 +178,13 @@ def throw_batch(
     if np.any(valid):
         warn_if_outside_regime(part, arm)
     sf_safe = np.where(in_range, sf, 0)
-    m = xf.size
-    x_out = np.empty(m)
-    side_out = np.empty(m, dtype=np.int64)
-    status_out = np.empty(m, dtype=np.int64)
-    rec_out = np.empty((m, C.NREC))
-    rho2 = part.radius_of_gyration**2
-    if model == "engine":
-        from ..engine import engine_batch
-
-        res = engine_batch(part, arm, xf, sf_safe, of, valid=valid, **engine_options)
-        x_out, side_out, status_out, rec_out = res.x, res.side, res.status, res.records
-    elif model == "rigid_body":
-        from ..kernels.rigid_body import throw_many_rigid_body
-
-        throw_many_rigid_body(xf, sf_safe, of, valid, arm.h, arm.g, L, rho2, arm.mu, part.w, part.beta, part.d,
-                              part.uL, part.uR, part.ell, part.stable, tol, max_iter, max_impacts, x_out, side_out,
-                              status_out, rec_out)
-    elif model == "paper":
-        throw_many(xf, sf_safe, of, valid, arm.h, arm.g, L, rho2, part.w, part.beta, part.d, part.uL, part.uR,
-                   part.ell, part.stable, tol, max_iter, max_impacts, n_samples, x_out, side_out, status_out, rec_out)
-    else:
-        throw_many_small_angle(xf, sf_safe, of, valid, arm.h, arm.g, L, rho2, part.d, part.uL, part.uR, part.ell,
-                               part.length, part.stable, 1 if model == "small_angle" else 2, x_out, side_out,
-                               status_out, rec_out)
+    res = m.throw_batch(part, system, xf, sf_safe, of, valid, opts, progress)
+    side_out = np.asarray(res.side, dtype=np.int64).copy()
     side_out[~valid] = sf[~valid]
     return BatchOutcome(
-        x=x_out.reshape(shape),
+        x=np.asarray(res.x, dtype=float).reshape(shape),
         side=side_out.reshape(shape),
-        status=status_out.reshape(shape),
-        records=rec_out.reshape(shape + (C.NREC,)),
-        model=model,
+        status=np.asarray(res.status, dtype=np.int64).reshape(shape),
+        records=np.asarray(res.records, dtype=float).reshape(shape + (C.NREC,)),
+        model=m.name,
     )

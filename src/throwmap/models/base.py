@@ -1,0 +1,106 @@
+"""The model interface: what a throw model is, what it supports, and its options.
+
+A model (paper Sec. III-D: a throw map T^ω) turns resting configurations
+``(x, side)`` of a part on a :class:`~throwmap.system.system.System` into new
+ones. Every model is one module of :mod:`throwmap.models` holding
+
+* a frozen options dataclass (its tolerances, caps, settings) — the keywords
+  ``throw(..., **options)`` accepts for that model and no others;
+* a :class:`Features` value: which parts of a System and which extras it supports;
+* ``throw_one`` / ``throw_batch`` (kernel calls on validated, flat inputs) and,
+  where it can, ``trajectory`` (the sampled motion of one throw).
+
+It registers itself once with :func:`throwmap.models.registry.register`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+from ..errors import InvalidStateError
+
+__all__ = ["Features", "ThrowModel", "BatchArrays", "NoOptions", "build_options"]
+
+
+@dataclass(frozen=True, slots=True)
+class Features:
+    """What a model supports beyond a part on the paper's plain arm.
+
+    ``fixtures`` (walls, cavities), ``tilt`` (an arm rest angle α ≠ 0),
+    ``realisation`` (finite arm motions instead of the impulse), ``trajectory``
+    (sampled motion for animation), ``friction`` (uses ``Arm.mu``),
+    ``parallel`` (batches run on all cores).
+    """
+
+    fixtures: bool = False
+    tilt: bool = False
+    realisation: bool = False
+    trajectory: bool = False
+    friction: bool = False
+    parallel: bool = True
+
+    def supported(self) -> tuple[str, ...]:
+        return tuple(f.name for f in dataclasses.fields(self) if getattr(self, f.name))
+
+
+@dataclass(frozen=True, slots=True)
+class BatchArrays:
+    """Flat outputs of a model's batch call: new x (m), side, status code and records (n, NREC)."""
+
+    x: np.ndarray
+    side: np.ndarray
+    status: np.ndarray
+    records: np.ndarray
+
+
+@dataclass(frozen=True, slots=True)
+class NoOptions:
+    """A model without options."""
+
+
+@runtime_checkable
+class ThrowModel(Protocol):
+    """One throw model. Inputs are validated by :mod:`throwmap.throws.throw` before any call.
+
+    ``throw_one(part, system, x, side, omega, options) -> (x', side', status, record)``;
+    ``throw_batch(part, system, x, side, omega, valid, options, progress) -> BatchArrays``
+    on flat arrays (``valid`` marks admissible starts; the rest get ``INVALID_START``);
+    ``trajectory(part, system, x, side, omega, options, dt) -> (ThrowOutcome, Trajectory)``
+    where ``features.trajectory``.
+    """
+
+    name: str
+    summary: str
+    options_type: type
+    features: Features
+
+    def throw_one(self, part, system, x: float, side: int, omega: float, options) -> tuple: ...
+
+    def throw_batch(self, part, system, x, side, omega, valid, options, progress=None) -> BatchArrays: ...
+
+    def trajectory(self, part, system, x: float, side: int, omega: float, options, dt: float) -> Any: ...
+
+
+def build_options(model: ThrowModel, options=None, overrides: dict | None = None):
+    """The model's options value: ``options`` (an instance of its options type, or None
+    for the defaults) with keyword ``overrides`` applied. Unknown keywords are refused
+    with the field named and the model's keywords listed."""
+    typ = model.options_type
+    if options is None:
+        opts = typ()
+    elif isinstance(options, typ):
+        opts = options
+    else:
+        raise InvalidStateError("options", f"model {model.name!r} takes {typ.__name__}, got {type(options).__name__}")
+    if overrides:
+        names = {f.name for f in dataclasses.fields(typ)}
+        for key in overrides:
+            if key not in names:
+                known = ", ".join(sorted(names)) or "none"
+                raise InvalidStateError(key, f"unknown keyword for model {model.name!r} (its options: {known})")
+        opts = dataclasses.replace(opts, **overrides)
+    return opts

@@ -1,0 +1,81 @@
+"""Model "rigid_body": exact rigid-body dynamics of one polygon on the arm line (the default model).
+
+Drops the paper's two contact assumptions: the pivot may lift off and may slip
+(Coulomb friction ``Arm.mu``); Routh impacts, sticking and sliding pivots, flat
+slides and the Zeno rocking rule, as a hybrid automaton
+(:mod:`throwmap.kernels.rigid_body`). Validated against pymunk and MuJoCo
+(README, "Validation"). Plain arm only (no fixtures, α = 0) for now.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernels import codes as C
+from ..kernels.rigid_body import throw_many_rigid_body, throw_one_rigid_body
+from ._checks import int_at_least, positive_float
+from .base import BatchArrays, Features
+from .registry import register
+
+__all__ = ["RigidBodyOptions", "RigidBodyModel", "MODEL", "NO_TRAJ"]
+
+NO_TRAJ = np.empty((0, 4))
+"""An empty trajectory buffer: the kernel records nothing."""
+
+
+@dataclass(frozen=True, slots=True)
+class RigidBodyOptions:
+    """Numerical options of the "rigid_body" kernel.
+
+    ``tol`` (m): contact tolerance of the first-contact search; ``max_iter``: cap on the
+    contact-search and integration steps of one mode; ``max_impacts``: cap on mode
+    changes (events) in one throw (status NO_REST beyond).
+    """
+
+    tol: float = 1e-14
+    max_iter: int = 100_000
+    max_impacts: int = 10_000
+
+    def __post_init__(self):
+        object.__setattr__(self, "tol", positive_float(self.tol, "tol"))
+        object.__setattr__(self, "max_iter", int_at_least(self.max_iter, "max_iter", 1))
+        object.__setattr__(self, "max_impacts", int_at_least(self.max_impacts, "max_impacts", 1))
+
+
+def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt: float = 1.0):
+    """One kernel call: ``(x', side', status, record)``; ``traj`` (M, 4) receives the sampled motion."""
+    rec = np.empty(C.NREC)
+    xn, kn, st = throw_one_rigid_body(x, side, omega, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2,
+                                      arm.mu, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable,
+                                      o.tol, o.max_iter, o.max_impacts, rec, traj, dt)
+    return xn, kn, st, rec
+
+
+class RigidBodyModel:
+    name = "rigid_body"
+    summary = ("the exact rigid-body dynamics of one polygon on the arm line with plastic impacts and Coulomb "
+               "friction Arm.mu: lift-off, sliding impacts and pivots, flat slides, Painlevé status")
+    options_type = RigidBodyOptions
+    features = Features(trajectory=True, friction=True)
+
+    def throw_one(self, part, system, x, side, omega, o: RigidBodyOptions):
+        return run_kernel(part, system.arm, x, side, omega, o)
+
+    def throw_batch(self, part, system, x, side, omega, valid, o: RigidBodyOptions, progress=None):
+        arm = system.arm
+        m = x.size
+        out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
+        throw_many_rigid_body(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2,
+                              arm.mu, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol,
+                              o.max_iter, o.max_impacts, out.x, out.side, out.status, out.records)
+        return out
+
+    def trajectory(self, part, system, x, side, omega, o: RigidBodyOptions, dt):
+        from ..rigid_trajectory import rigid_trajectory
+
+        return rigid_trajectory(part, system.arm, x, side, omega, dt=dt)
+
+
+MODEL = register(RigidBodyModel())

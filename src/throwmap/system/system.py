@@ -1,0 +1,59 @@
+"""The system a part is thrown on: the arm, its fixtures and its rest angle α.
+
+Models take a :class:`System` besides the part (see :mod:`throwmap.models`).
+Each model states which features of it it supports (:class:`throwmap.models.Features`)
+and refuses the rest with a one-line error naming the field; ``throw``,
+``throw_batch`` and ``iterate`` build the System from their ``arm``,
+``fixtures=`` and ``alpha=`` keywords.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import InvalidStateError
+from .arm import Arm
+from .fixtures import Cavity, Wall
+
+__all__ = ["System"]
+
+
+@dataclass(frozen=True, slots=True)
+class System:
+    """An arm with fixtures, resting at angle ``alpha`` (rad, counter-clockwise from horizontal).
+
+    ``fixtures`` is a tuple of :class:`~throwmap.system.fixtures.Wall` /
+    :class:`~throwmap.system.fixtures.Cavity` in the arm frame. The paper's analytic
+    models (Sec. III) assume a plain horizontal arm: ``fixtures=()``, ``alpha=0``.
+    """
+
+    arm: Arm
+    fixtures: tuple = ()
+    alpha: float = 0.0
+
+    def __post_init__(self):
+        if not isinstance(self.arm, Arm):
+            raise InvalidStateError("arm", f"must be an Arm, got {type(self.arm).__name__}")
+        fx = self.fixtures
+        if fx is None:
+            fx = ()
+        if isinstance(fx, (Wall, Cavity)):
+            fx = (fx,)
+        try:
+            fx = tuple(fx)
+        except TypeError:
+            raise InvalidStateError("fixtures", f"must be a sequence of Wall/Cavity, got {fx!r}") from None
+        for i, f in enumerate(fx):
+            if not isinstance(f, (Wall, Cavity)):
+                raise InvalidStateError(f"fixtures[{i}]", f"must be a Wall or a Cavity, got {type(f).__name__}")
+        object.__setattr__(self, "fixtures", fx)
+        a = self.alpha
+        if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a):
+            raise InvalidStateError("alpha", f"must be a finite angle in rad, got {a!r}")
+        object.__setattr__(self, "alpha", float(a))
+
+    @property
+    def plain(self) -> bool:
+        """True for the paper's arm: no fixtures, horizontal at rest."""
+        return not self.fixtures and self.alpha == 0.0
