@@ -23,12 +23,15 @@ from .throws.orbit import Orbit, iterate
 from .throws.outcome import BatchOutcome, Status, ThrowOutcome
 from .system.part import Part, Side
 from .system.catalogue import rectangle, regular_polygon, triangle_30_60_90
+from . import models
+from .models import DEFAULT_MODEL, get_model, model_names, register
+from .system.system import System
 from .throws.throw import MODELS, throw, throw_batch
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "Arm", "BatchOutcome", "ConfigError", "ConfigSet", "FunctionMap", "ThrowMap", "basins", "critical_points",
+    "Arm", "BatchOutcome", "DEFAULT_MODEL", "System", "get_model", "model_names", "models", "register", "ConfigError", "ConfigSet", "FunctionMap", "ThrowMap", "basins", "critical_points",
     "funnels", "limit_set", "push", "G", "InvalidArmError", "InvalidPartError", "InvalidStateError",
     "MODELS", "Orbit", "Part", "RegimeWarning", "Side", "Status", "ThrowOutcome", "ThrowmapError",
     "ThrowmapWarning", "cm", "iterate", "plot_throw_map", "rectangle", "regime_problems", "regular_polygon",
@@ -36,8 +39,19 @@ __all__ = [
 ]
 
 
-def plot_throw_map(*args, **kwargs):
-    """T(x) against x per side (paper Fig. 2); see :func:`throwmap.viz.plotting.plot_throw_map`."""
-    from .viz.plotting import plot_throw_map as _plot
+def plot_throw_map(part, arm, omega, *, model: str = "paper", sides=None, x_max=None, n: int = 1500, axes=None,
+                   unit: str = "cm", **throw_options):
+    """T(x) against x, one panel per starting side, with the diagonal (paper Fig. 2); returns the Figure.
 
-    return _plot(*args, **kwargs)
+    Samples the throw map at ``n`` x per side over ``(x_min(side), x_max]`` (m;
+    ``x_max`` defaults to the arm length, or 0.5 m for an unbounded arm) with
+    :func:`throwmap.throws.samples.throw_map_samples` and draws it with
+    :func:`throwmap.viz.throw_map.plot_map` (``compact`` look): points coloured
+    by the side the part lands on, escapes marked ``x`` on the axis. ``omega`` in
+    rad/s; ``unit`` ``"cm"`` or ``"m"``; ``throw_options`` go to :func:`throw_batch`.
+    """
+    from .throws.samples import throw_map_samples
+    from .viz.throw_map import plot_map
+
+    samples = throw_map_samples(part, arm, omega, model=model, sides=sides, x_max=x_max, n=n, **throw_options)
+    return plot_map(samples, axes=axes, unit=unit, compact=True)
