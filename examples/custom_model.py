@@ -63,19 +63,24 @@ def main(out_dir: str | Path = "out") -> dict:
         exact = tm.throw_batch(part, arm, x, 0, 4.0, model="paper")
         noisy = tm.throw_batch(part, arm, x, 0, 4.0, model="paper_jitter", sigma=0.02, seed=1)
         one = tm.throw(part, arm, 0.25, 0, 4.0, model="paper_jitter", sigma=0.0)
+        cp = tm.critical_points(part, arm, 4.0, model="paper_jitter", sigma=0.0)  # analysis takes it by name too
+        cp_paper = tm.critical_points(part, arm, 4.0, model="paper")
         result = {
             "model": "paper_jitter", "sigma": 0.02, "seed": 1, "n": int(x.size),
             "exact_x_m": float(exact.x[0]), "exact_side": int(exact.side[0]),
             "jitter_x_mean_m": float(np.mean(noisy.x[noisy.ok])), "jitter_x_std_m": float(np.std(noisy.x[noisy.ok])),
             "jitter_same_side_share": float(np.mean(noisy.side == exact.side[0])),
-            "sigma0_equals_paper": bool(one.x == exact.x[0] and one.side == exact.side[0]),
+            "sigma0_equals_paper": bool(one.x == exact.x[0] and one.side == exact.side[0]
+                                        and all(cp.r[s] == cp_paper.r[s] for s in cp_paper.r)),
+            "r_m": {int(s): float(v) for s, v in cp.r.items()},
             "models": list(tm.models.model_names()),
         }
     finally:
         unregister("paper_jitter")
     print(f"exact: x' = {result['exact_x_m']:.4f} m on side {result['exact_side']}; "
           f"σ = 2 %: x' = {result['jitter_x_mean_m']:.4f} ± {result['jitter_x_std_m']:.4f} m, "
-          f"same side {100 * result['jitter_same_side_share']:.1f} % of {result['n']}")
+          f"same side {100 * result['jitter_same_side_share']:.1f} % of {result['n']}; "
+          f"σ = 0 reproduces 'paper' (throws and r_i): {result['sigma0_equals_paper']}")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     (out / "custom_model.json").write_text(json.dumps(result, indent=2))

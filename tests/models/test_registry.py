@@ -199,3 +199,17 @@ def test_mujoco_model_matches_the_backend():
     assert (o.x, o.side, o.status) == (direct.x, direct.side, direct.status)
     b = tm.throw_batch(TRI, ARM, [0.25, 0.0], 0, 4.0, model="mujoco", on_invalid="status")
     assert b.x[0] == direct.x and b.status[1] == tm.Status.INVALID_START
+
+
+def test_the_readme_example_model_reproduces_paper_at_zero_jitter(tmp_path):
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).parents[2] / "examples" / "custom_model.py"
+    spec = importlib.util.spec_from_file_location("custom_model", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    res = mod.main(tmp_path)
+    assert res["sigma0_equals_paper"]
+    assert 0 < res["jitter_x_std_m"] < 0.01  # the jitter really spreads the landings, by millimetres
+    assert "paper_jitter" not in model_names()  # main() unregisters it
