@@ -203,11 +203,13 @@ def test_mujoco_model_matches_the_backend():
 
 def test_the_readme_example_model_reproduces_paper_at_zero_jitter(tmp_path):
     import importlib.util
+    import sys
     from pathlib import Path
 
     path = Path(__file__).parents[2] / "examples" / "custom_model.py"
     spec = importlib.util.spec_from_file_location("custom_model", path)
     mod = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = mod  # dataclasses look their module up
     spec.loader.exec_module(mod)
     res = mod.main(tmp_path)
     assert res["sigma0_equals_paper"]
