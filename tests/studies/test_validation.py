@@ -44,6 +44,8 @@ def test_validate_small_run_paper_exact_where_assumptions_hold():
     assert "lift-off" in rows["paper"]["assumptions"]
     doc = rep.to_dict()
     assert json.loads(json.dumps(doc))["reference"] == "pymunk"
+    back = type(rep).from_dict(json.loads(json.dumps(doc)))
+    assert back.table() == rep.table() and back.goals == json.loads(json.dumps(rep.goals))
 
 
 def test_validate_cli_writes_table_and_json(tmp_path):

@@ -61,8 +61,16 @@ class ModelComparison:
         return {"part": self.part_name, "h": self.h, "reference": self.reference, "models": list(self.models),
                 "rows": [dict(r) for r in self.rows], "switches": [dict(r) for r in self.switches]}
 
+    @classmethod
+    def from_dict(cls, d: dict) -> "ModelComparison":
+        """Inverse of :meth:`to_dict` (after JSON, missing switches — ``None`` — come back as nan)."""
+        nan = float("nan")
+        switches = tuple({k: (nan if v is None else v) for k, v in r.items()} for r in d.get("switches", ()))
+        rows = tuple({k: (nan if v is None else v) for k, v in r.items()} for r in d["rows"])
+        return cls(d["part"], d["h"], d["reference"], tuple(d["models"]), rows, switches)
+
     def plot(self, ax=None):
-        from ..viz.plotting import plot_model_comparison
+        from ..viz.comparison import plot_model_comparison
 
         return plot_model_comparison(self, ax=ax)
 

@@ -140,6 +140,13 @@ class ValidationReport:
                            "settings": self.settings, "table_markdown": self.table(),
                            "realisations": list(self.realisation_rows)})
 
+    @classmethod
+    def from_dict(cls, d: dict) -> "ValidationReport":
+        """The report's summary back from :meth:`to_dict` (rows, goals, settings, realisations);
+        the per-throw arrays (``cases``, ``results``) are not written and come back empty."""
+        return cls(d["reference"], {}, {}, tuple(d["rows"]), dict(d["goals"]), dict(d.get("settings", {})),
+                   tuple(d.get("realisations", ())))
+
 
 def _f(v, spec=".3f"):
     return "—" if v is None or not math.isfinite(v) else format(v, spec)
@@ -275,7 +282,7 @@ def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 
             done[0] += xs.size
             add("pymunk", b.x, b.side, b.status, b.records, mus)
             if "mujoco" in engines:
-                from ..engine.mujoco_backend import MujocoSettings, mujoco_throw
+                from ..engine.mujoco import MujocoSettings, mujoco_throw
 
                 mset = MujocoSettings() if mujoco_settings is None else mujoco_settings
                 mx, ms, mst, mr = [], [], [], []

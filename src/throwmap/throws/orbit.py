@@ -52,7 +52,24 @@ class Orbit:
             "side": [int(v) for v in self.side],
             "omegas": [float(v) for v in self.omegas],
             "kinds": list(self.kinds),
+            "outcomes": [o.to_dict() for o in self.outcomes],
         }
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "Orbit":
+        """Inverse of :meth:`to_dict`."""
+        return cls(x=np.array(d["x"], dtype=float), side=np.array(d["side"], dtype=int),
+                   omegas=np.array(d["omegas"], dtype=float),
+                   outcomes=tuple(ThrowOutcome.from_dict(o) for o in d["outcomes"]),
+                   status=Status.from_label(d["status"]), model=d["model"])
+
+    def table(self) -> str:
+        """One line per throw: ω, the start, the kind of throw and where it ended."""
+        lines = [f"orbit, model {self.model}: {self.n_throws} throws, {self.status.label}",
+                 f"{'#':>5}{'ω rad/s':>10}{'x m':>12}{'side':>6}  {'kind':<14}{'new x m':>12}{'side':>7}"]
+        for i, o in enumerate(self.outcomes):
+            lines.append(f"{i + 1:>5}{o.omega:>10.4g}{o.x0:>12.6f}{o.side0:>6d}  {o.kind:<14}{o.x:>12.6f}{o.side:>7d}")
+        return "\n".join(lines)
 
     def plot(self, ax=None, **kwargs):
         """x against throw number, side by colour (like paper Figs. 7, 16)."""

@@ -41,6 +41,14 @@ class Status(enum.IntEnum):
     def label(self) -> str:
         return self.name.lower()
 
+    @classmethod
+    def from_label(cls, label: str) -> "Status":
+        """The status called ``label`` (as :attr:`label` writes it)."""
+        try:
+            return cls[str(label).upper()]
+        except KeyError:
+            raise ValueError(f"status: unknown status {label!r}") from None
+
 
 _STATUS = tuple(Status(c) for c in range(len(Status)))
 
@@ -187,6 +195,33 @@ class ThrowOutcome:
         out["kind"] = self.kind
         return json_ready(out)
 
+    @classmethod
+    def from_dict(cls, d: dict) -> "ThrowOutcome":
+        """Inverse of :meth:`to_dict` (non-finite numbers, written as ``None``, come back as nan)."""
+        kw = {}
+        for name in cls.__dataclass_fields__:
+            v = d[name]
+            if name == "status":
+                v = Status.from_label(v)
+            elif isinstance(v, list):
+                v = tuple(float("nan") if e is None else e for e in v)
+            elif v is None:
+                v = float("nan")
+            kw[name] = v
+        return cls(**kw)
+
+    def table(self) -> str:
+        """A few lines for people: the throw, where it ended, and the first impact."""
+        om = f"{self.omega:g} rad/s"
+        head = f"model {self.model}: (x = {self.x0:.6g} m, side {self.side0}), ω = {om} → "
+        head += (f"(x = {self.x:.6g} m, side {self.side}), {self.kind}" if self.ok
+                 else f"{self.status.label} at x = {self.x:.6g} m")
+        lines = [head,
+                 f"  first impact: t = {self.t_flight:.6g} s, vertex {self.contact_vertex}, x = {self.contact_x:.6g} m",
+                 f"  impacts {self.n_impacts}, flips {self.n_flips}, lift-offs {self.n_lift_offs}, slips {self.n_slips},"
+                 f" friction needed {self.friction_ratio_max:.3g}"]
+        return "\n".join(lines)
+
 
 @dataclass(frozen=True, slots=True)
 class BatchOutcome:
@@ -209,3 +244,33 @@ class BatchOutcome:
     def record(self, name: str) -> np.ndarray:
         """A record column by its name in :mod:`throwmap.kernels.codes` (e.g. ``"T_FLIGHT"``)."""
         return self.records[..., getattr(C, name.upper())]
+
+    def counts(self) -> dict:
+        """How many throws ended in each status (labels), e.g. ``{"ok": 998, "behind_joint": 2}``."""
+        codes, n = np.unique(self.status, return_counts=True)
+        return {Status(int(c)).label: int(k) for c, k in zip(codes, n)}
+
+    def table(self) -> str:
+        """Throws per status, with the share of each."""
+        total = int(self.status.size)
+        lines = [f"model {self.model}: {total} throws"]
+        for label, k in self.counts().items():
+            lines.append(f"  {label:<14}{k:>10d}  {100.0 * k / max(total, 1):6.2f} %")
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict:
+        """JSON-ready arrays (records as rows of the kernel layout, :mod:`throwmap.kernels.codes`)."""
+        from ..io.files import json_ready
+
+        return json_ready({"model": self.model, "shape": list(self.x.shape), "x": self.x.ravel().tolist(),
+                           "side": self.side.ravel().tolist(), "status": self.status.ravel().tolist(),
+                           "records": self.records.reshape(-1, C.NREC).tolist()})
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "BatchOutcome":
+        shape = tuple(d["shape"])
+        rec = np.array([[np.nan if v is None else v for v in row] for row in d["records"]], dtype=float)
+        return cls(x=np.array([np.nan if v is None else v for v in d["x"]], dtype=float).reshape(shape),
+                   side=np.array(d["side"], dtype=np.int64).reshape(shape),
+                   status=np.array(d["status"], dtype=np.int64).reshape(shape),
+                   records=rec.reshape(shape + (C.NREC,)), model=d["model"])
