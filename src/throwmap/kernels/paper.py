@@ -12,7 +12,7 @@ import numpy as np
 from numba import njit, prange
 
 from . import codes as C
-from .flight import first_contact
+from .flight import gap_constants, release_state, rest_offsets, touch_time
 from .impact import plastic_impact
 from .roll import roll_to_rest
 
@@ -39,25 +39,24 @@ def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stab
         rec[C.E_FINAL] = g * dk
         rec[C.N_MIN] = 1.0
         return x0, side, C.OK
-    # vertices relative to the CM at the rest orientation on `side`
-    cb = math.cos(beta[side])
-    sb = math.sin(beta[side])
-    pu = np.empty(n)
-    pv = np.empty(n)
+    # reset release (Eq. 1); vertices relative to the CM at the rest orientation on `side`
+    vx, vy0, _ = release_state(x0, dk, h, omega)
+    pu, pv = rest_offsets(w, beta[side])
+    c0 = np.empty(n)
+    b = np.empty(n)
+    gap_constants(dk, pv, ell, c0)
     for j in range(n):
-        pu[j] = cb * w[j, 0] - sb * w[j, 1]
-        pv[j] = sb * w[j, 0] + cb * w[j, 1]
-    t, jc = first_contact(x0, dk, omega, g, pu, pv, ell, tol, max_iter)
+        b[j] = omega * (x0 + pu[j])  # the gaps' initial rates, cancellation-free
+    t, jc = touch_time(c0, b, pu, pv, vy0, omega, g, ell, -1, 0.0, tol, max_iter)
     rec[C.T_FLIGHT] = t
     rec[C.CONTACT_VERTEX] = jc
     if jc < 0:
         return x0, side, C.NO_CONTACT
     # state just before impact (Eq. 1)
     phi = omega * t
-    xc = x0 - (h + dk) * omega * t
-    yc = h + dk + x0 * omega * t - 0.5 * g * t * t
-    vx = -(h + dk) * omega
-    vy = x0 * omega - g * t
+    xc = x0 + vx * t
+    yc = h + dk + vy0 * t - 0.5 * g * t * t
+    vy = vy0 - g * t
     cp = math.cos(phi)
     sp = math.sin(phi)
     rx = cp * pu[jc] - sp * pv[jc]

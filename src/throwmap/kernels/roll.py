@@ -50,16 +50,20 @@ HALF_PI = 0.5 * math.pi
 
 
 @njit(cache=True)
-def _theta_a(j, n, d, uL):
-    """Angle of pivot→CM when resting on side j−1 with w_j its left vertex."""
+def theta_a(j, n, d, uL):
+    """Angle (rad) of pivot→CM when resting on side j−1 with w_j its left vertex."""
     k = (j - 1) % n
     return math.atan2(d[k], -uL[k])
 
 
 @njit(cache=True)
-def _theta_b(j, d, uR):
-    """Angle of pivot→CM when resting on side j with w_j its right vertex."""
+def theta_b(j, d, uR):
+    """Angle (rad) of pivot→CM when resting on side j with w_j its right vertex."""
     return math.atan2(d[j], -uR[j])
+
+
+_theta_a = theta_a  # names rigid_body imports
+_theta_b = theta_b
 
 
 @njit(cache=True)
@@ -99,6 +103,134 @@ def _record_impulse(jx, jy, rec):
 
 
 @njit(cache=True)
+def swing_sense(theta, thdot):
+    """Sense (+1 CCW, −1 CW) of a swing at θ̇; from rest, the sense gravity pulls (down, away from the peak)."""
+    if thdot > 0.0:
+        return 1
+    if thdot < 0.0:
+        return -1
+    return 1 if math.cos(theta) < 0.0 else -1
+
+
+@njit(cache=True)
+def reach_end(theta, dirn, ta, tb, E, g, lj):
+    """Guard ``reach_end``: the swing from θ in sense ``dirn`` at energy E (J/kg) reaches the end ahead.
+
+    True when no barrier lies ahead (downhill to the end) or E is above it (the
+    peak g ℓ_j at θ = π/2 if it lies ahead, else the end's own height).
+    """
+    if dirn > 0:
+        end = tb
+        peak_ahead = theta < HALF_PI < tb
+    else:
+        end = ta
+        peak_ahead = ta < HALF_PI < theta
+    if peak_ahead:
+        barrier = g * lj
+    elif math.sin(end) > math.sin(theta):
+        barrier = g * lj * math.sin(end)
+    else:
+        barrier = -math.inf
+    return E > barrier
+
+
+@njit(cache=True)
+def turn_back(E, g, lj, dirn):
+    """Guard ``turn_back``: the angle (rad) at which a swing in sense ``dirn`` below its barrier stops (θ̇ = 0)."""
+    s_turn = min(E / (g * lj), 1.0)
+    return math.asin(s_turn) if dirn > 0 else math.pi - math.asin(s_turn)
+
+
+@njit(cache=True)
+def pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec):
+    """One swing about a pivot vertex (compound pendulum), from θ at rate θ̇ (rad/s) to a landing.
+
+    Returns ``(E, end, land_dir, th_turn, thdot_end)``: the energy (J/kg), the end
+    angle reached (θa or θb), the sense of the landing, the turning angle (NaN when
+    the guard ``reach_end`` held) and θ̇ on arrival. Records the force demand.
+    """
+    E = 0.5 * I * thdot * thdot + g * lj * math.sin(theta)
+    dirn = swing_sense(theta, thdot)
+    if reach_end(theta, dirn, ta, tb, E, g, lj):
+        end = tb if dirn > 0 else ta
+        _check_arc(theta, end, E, lj, I, g, n_samples, rec)
+        land_dir = dirn
+        th_turn = math.nan
+    else:
+        # turns back below the barrier and lands on the side behind
+        th_turn = turn_back(E, g, lj, dirn)
+        if dirn > 0:
+            _check_arc(ta, th_turn, E, lj, I, g, n_samples, rec)
+            end = ta
+        else:
+            _check_arc(th_turn, tb, E, lj, I, g, n_samples, rec)
+            end = tb
+        land_dir = -dirn
+    w2 = 2.0 * (E - g * lj * math.sin(end)) / I
+    speed = math.sqrt(w2) if w2 > 0.0 else 0.0
+    return E, end, land_dir, th_turn, (speed if land_dir > 0 else -speed)
+
+
+@njit(cache=True)
+def land_side(j, land_dir, thdot, rho2, n, d, uL, uR, rec):
+    """Reset ``land_side``: side k slams flat while pivoting on w_j at θ̇ (plastic impact about its other vertex B).
+
+    Returns ``(k, uA, uB, jB, w_new, lifts)``: the side, the CM-frame abscissae of
+    the pivot A and of B on it (m), B's index, the spin after the impact about B
+    (rad/s) and whether it lifts the edge (the part then pivots on B). Records the
+    impulse and the kinetic-energy change.
+    """
+    if land_dir > 0:
+        k = j  # landed on side j; pivot A = its right vertex, B = left vertex w_{j+1}
+        uA = uR[k]
+        uB = uL[k]
+        jB = (j + 1) % n
+    else:
+        k = (j - 1) % n  # landed on side j−1; A = its left vertex w_j, B = right vertex
+        uA = uL[k]
+        uB = uR[k]
+        jB = k
+    dk = d[k]
+    IA = rho2 + uA * uA + dk * dk
+    IB = rho2 + uB * uB + dk * dk
+    w_new = thdot * (rho2 + uA * uB + dk * dk) / IB
+    # CM velocity relative to the pivot: w × (c − P) with c − P = (−u, d)
+    vx_m = -thdot * dk
+    vy_m = -thdot * uA
+    lifts = (w_new > 0.0) if land_dir > 0 else (w_new < 0.0)
+    k_before = 0.5 * IA * thdot * thdot
+    if lifts:
+        vx_p = -w_new * dk
+        vy_p = -w_new * uB
+        _record_impulse(vx_p - vx_m, vy_p - vy_m, rec)
+        k_after = 0.5 * IB * w_new * w_new
+    else:
+        _record_impulse(-vx_m, -vy_m, rec)  # both vertices stop the part
+        k_after = 0.0
+    if k_after - k_before > rec[C.K_MAX_IMPACT_GAIN]:
+        rec[C.K_MAX_IMPACT_GAIN] = k_after - k_before
+    return k, uA, uB, jB, w_new, lifts
+
+
+@njit(cache=True)
+def rocking_rest(k_after, lA, lB, dk, g):
+    """Guard ``rocking_rest`` (Zeno, decided on purpose): kinetic energy (J/kg) below both topple barriers g(ℓ − d)."""
+    return k_after < min(g * (lA - dk), g * (lB - dk))
+
+
+@njit(cache=True)
+def tip_over(k, x_cm, n, d, uL, uR):
+    """Reset ``tip_over``: flat on unstable side k, the part tips from rest over the vertex its CM overhangs.
+
+    Returns ``(j, px, theta)``: the pivot vertex, its x (m) and the angle of pivot→CM.
+    """
+    if uL[k] >= 0.0:
+        j = (k + 1) % n
+        return j, x_cm + uL[k], theta_a(j, n, d, uL)
+    return k, x_cm + uR[k], theta_b(k, d, uR)
+
+
+@njit(cache=True)
 def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, length, max_impacts, n_samples, rec):
     """Pivot on vertex ``w_j`` from angle ``theta`` at rate ``thdot`` (rad/s, CCW +) until rest.
 
@@ -114,115 +246,43 @@ def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, le
         # ---------------------------------------------------------- pivot phase on w_j
         lj = ell[j]
         I = rho2 + lj * lj
-        ta = _theta_a(j, n, d, uL)
-        tb = _theta_b(j, d, uR)
+        ta = theta_a(j, n, d, uL)
+        tb = theta_b(j, d, uR)
         if theta < ta:
             theta = ta
         elif theta > tb:
             theta = tb
-        E = 0.5 * I * thdot * thdot + g * lj * math.sin(theta)
-        if thdot > 0.0:
-            dirn = 1
-        elif thdot < 0.0:
-            dirn = -1
-        else:
-            dirn = 1 if math.cos(theta) < 0.0 else -1
-        if dirn > 0:
-            end = tb
-            peak_ahead = theta < HALF_PI < tb
-        else:
-            end = ta
-            peak_ahead = ta < HALF_PI < theta
-        if peak_ahead:
-            barrier = g * lj
-        elif math.sin(end) > math.sin(theta):
-            barrier = g * lj * math.sin(end)
-        else:
-            barrier = -math.inf
-        if E > barrier:
-            # guard reach_end: over the peak or downhill to the end
-            _check_arc(theta, end, E, lj, I, g, n_samples, rec)
-            land_dir = dirn
-        else:
-            # turns back below the barrier and lands on the side behind
-            s_turn = min(E / (g * lj), 1.0)
-            th_turn = math.asin(s_turn) if dirn > 0 else math.pi - math.asin(s_turn)
-            if dirn > 0:
-                _check_arc(ta, th_turn, E, lj, I, g, n_samples, rec)
-                end = ta
-            else:
-                _check_arc(th_turn, tb, E, lj, I, g, n_samples, rec)
-                end = tb
-            land_dir = -dirn
-        w2 = 2.0 * (E - g * lj * math.sin(end)) / I
-        speed = math.sqrt(w2) if w2 > 0.0 else 0.0
-        thdot = speed if land_dir > 0 else -speed
+        E, end, land_dir, th_turn, thdot = pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec)
         # ---------------------------------------------------------- reset land_side
-        if land_dir > 0:
-            k = j  # landed on side j; pivot A = its right vertex, B = left vertex w_{j+1}
-            uA = uR[k]
-            uB = uL[k]
-            jB = (j + 1) % n
-        else:
-            k = (j - 1) % n  # landed on side j−1; A = its left vertex w_j, B = right vertex
-            uA = uL[k]
-            uB = uR[k]
-            jB = k
-        dk = d[k]
+        k = j if land_dir > 0 else (j - 1) % n
         if k != last_side:
             rec[C.N_FLIPS] += 1.0
             last_side = k
         rec[C.N_IMPACTS] += 1.0
+        uA = uR[k] if land_dir > 0 else uL[k]
         if rec[C.N_IMPACTS] > max_impacts:
             return px - uA, k, C.NO_REST
-        IA = rho2 + uA * uA + dk * dk
-        IB = rho2 + uB * uB + dk * dk
-        w_new = thdot * (rho2 + uA * uB + dk * dk) / IB
-        # CM velocity relative to the pivot: w × (c − P) with c − P = (−u, d)
-        vx_m = -thdot * dk
-        vy_m = -thdot * uA
-        lifts = (w_new > 0.0) if land_dir > 0 else (w_new < 0.0)
-        k_before = 0.5 * IA * thdot * thdot
-        if lifts:
-            vx_p = -w_new * dk
-            vy_p = -w_new * uB
-            _record_impulse(vx_p - vx_m, vy_p - vy_m, rec)
-            k_after = 0.5 * IB * w_new * w_new
-        else:
-            _record_impulse(-vx_m, -vy_m, rec)  # both vertices stop the part
-            k_after = 0.0
-        if k_after - k_before > rec[C.K_MAX_IMPACT_GAIN]:
-            rec[C.K_MAX_IMPACT_GAIN] = k_after - k_before
+        k, uA, uB, jB, w_new, lifts = land_side(j, land_dir, thdot, rho2, n, d, uL, uR, rec)
+        dk = d[k]
         x_cm = px - uA  # CM x with the part flat on side k
         pxB = x_cm + uB
-        # guard: the landing vertex B must hit the arm, not the air beyond its span
+        # guard leave_arm: the landing vertex B must hit the arm, not the air beyond its span
         if pxB <= 0.0:
             return x_cm, k, C.BEHIND_JOINT
         if pxB > length:
             return x_cm, k, C.OFF_END
         if lifts:
-            if stable[k]:
-                barrier_A = g * (ell[j] - dk)
-                barrier_B = g * (ell[jB] - dk)
-                if k_after < min(barrier_A, barrier_B):
-                    return x_cm, k, C.OK  # rocks to rest (Zeno), energy below both barriers
+            if stable[k] and rocking_rest(0.5 * (rho2 + uB * uB + dk * dk) * w_new * w_new, ell[j], ell[jB], dk, g):
+                return x_cm, k, C.OK  # rocks to rest (Zeno), energy below both barriers
             j = jB
             px = pxB
             thdot = w_new
-            theta = _theta_a(j, n, d, uL) if land_dir > 0 else _theta_b(j, d, uR)
+            theta = theta_a(j, n, d, uL) if land_dir > 0 else theta_b(j, d, uR)
         elif stable[k]:
             return x_cm, k, C.OK
         else:
-            # flat on an unstable side: tips over the vertex its CM overhangs, from rest
             thdot = 0.0
-            if uL[k] >= 0.0:
-                j = (k + 1) % n
-                px = x_cm + uL[k]
-                theta = _theta_a(j, n, d, uL)
-            else:
-                j = k
-                px = x_cm + uR[k]
-                theta = _theta_b(j, d, uR)
+            j, px, theta = tip_over(k, x_cm, n, d, uL, uR)
         if px <= 0.0:
             return x_cm, k, C.BEHIND_JOINT
         if px > length:

@@ -45,6 +45,7 @@ import math
 from numba import njit, prange
 
 from . import codes as C
+from .flight import release_state
 
 
 @njit(cache=True)
@@ -69,14 +70,14 @@ def throw_one_small_angle(x0, side, omega, h, g, length, rho2, d, uL, uR, ell, e
         if geff <= 0.0:
             return x0, side, C.NO_CONTACT
         t = 2.0 * omega * (x0 + u) / geff
+    vx, vy0, _ = release_state(x0, dk, h, omega)  # Eq. (1)
     phi = omega * t
-    xs = x0 - (h + dk) * omega * t  # 2.
-    ys = h + dk + x0 * omega * t - 0.5 * g * t * t
+    xs = x0 + vx * t  # 2.
+    ys = h + dk + vy0 * t - 0.5 * g * t * t
     cph = 1.0 if order == 1 else 1.0 - 0.5 * phi * phi
     rx = u * cph + dk * phi  # 3.
     ry = -dk * cph + u * phi
-    vx = -omega * (h + dk)
-    vy = omega * x0 - g * t
+    vy = vy0 - g * t
     H = rho2 * omega + ry * vx - rx * vy  # 4.
     Ir = rho2 + rx * rx + ry * ry
     wp = H / Ir
