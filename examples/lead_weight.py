@@ -29,7 +29,7 @@ def main(out_dir: str | Path = "out") -> dict:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from throwmap.viz.plotting import save_figure
+    from throwmap.viz.style import save_figure
 
     arm = tm.Arm(h=-0.01)
     parts = {

@@ -40,7 +40,7 @@ def test_plots_render(triangle, arm, tmp_path):
     import matplotlib
 
     matplotlib.use("Agg")
-    from throwmap.viz.plotting import save_figure
+    from throwmap.viz.style import save_figure
 
     orb = tm.iterate(triangle, arm, (0.12, 0), 4.0, n=40)
     fig = orb.plot()

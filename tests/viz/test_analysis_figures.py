@@ -20,7 +20,11 @@ from matplotlib.patches import FancyArrowPatch, FancyBboxPatch  # noqa: E402
 
 from throwmap import Arm, Status, iterate, triangle_30_60_90  # noqa: E402
 from throwmap.analysis import FunctionMap, limit_set  # noqa: E402
-from throwmap.viz import analysis as F  # noqa: E402
+from throwmap.throws.samples import sample_map  # noqa: E402
+from throwmap.viz.basins import plot_basins  # noqa: E402
+from throwmap.viz.funnels import plot_funnel_graph  # noqa: E402
+from throwmap.viz.limit_set import plot_limit_set  # noqa: E402
+from throwmap.viz.throw_map import plot_map  # noqa: E402
 from throwmap.analysis.attractors import Attractor  # noqa: E402
 from throwmap.analysis.basins import Basins, basins  # noqa: E402
 from throwmap.analysis.critical import critical_points  # noqa: E402
@@ -102,21 +106,23 @@ def _gids(ax, kind):
 
 
 def test_import_does_not_load_matplotlib():
-    code = "import sys, throwmap.viz.analysis; print('matplotlib' in sys.modules)"
+    code = ("import sys, throwmap.viz.style, throwmap.viz.throw_map, throwmap.viz.orbit, throwmap.viz.limit_set, "
+            "throwmap.viz.basins, throwmap.viz.funnels, throwmap.viz.comparison, throwmap.throws.samples; "
+            "print('matplotlib' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 
 
 def test_bad_unit_is_refused(limit):
     with pytest.raises(InvalidStateError, match="unit"):
-        F.plot_limit_set(limit, unit="inch")
+        plot_limit_set(limit, unit="inch")
 
 
 # --- Fig. 5 analogue ------------------------------------------------------------------------
 
 
 def test_limit_set_triangle_with_critical_and_orbit(limit, critical, orbit, tmp_path):
-    fig = F.plot_limit_set(limit, critical=critical, orbit=orbit, n_arrows=20)
+    fig = plot_limit_set(limit, critical=critical, orbit=orbit, n_arrows=20)
     assert isinstance(fig, Figure)
     ax = fig.axes[0]
     # one lane per stable side, labelled
@@ -138,7 +144,7 @@ def test_limit_set_triangle_with_critical_and_orbit(limit, critical, orbit, tmp_
 
 def test_limit_set_in_given_axes_and_metres(limit):
     fig, (a0, a1) = plt.subplots(1, 2)
-    out = F.plot_limit_set(limit, ax=a1, unit="m")
+    out = plot_limit_set(limit, ax=a1, unit="m")
     assert out is fig
     assert not a0.has_data() and a1.has_data()
     assert a1.get_xlim()[1] < 1.0  # metres
@@ -149,7 +155,7 @@ def test_limit_set_cycle_draws_dots_and_its_throws(two_cycle, tmp_path):
     lim = limit_set(two_cycle, n_starts=6, transient=30, n_record=64)
     assert lim.kind == "cycle"
     crit = critical_points(two_cycle)
-    fig = F.plot_limit_set(lim, critical=crit)
+    fig = plot_limit_set(lim, critical=crit)
     ax = fig.axes[0]
     dots = [c for c in ax.collections if c.get_gid() == "attractor-1"]
     assert len(dots) == 1 and len(dots[0].get_offsets()) == 2
@@ -163,7 +169,7 @@ def test_limit_set_cycle_draws_dots_and_its_throws(two_cycle, tmp_path):
 def test_limit_set_several_attractors_and_escapes(bistable):
     lim = limit_set(bistable, n_starts=16, transient=30, n_record=64)
     assert len(lim.attractors) == 2 and "off_end" in lim.escapes
-    fig = F.plot_limit_set(lim)
+    fig = plot_limit_set(lim)
     ax = fig.axes[0]
     assert {"#1", "#2"} <= set(_texts(ax))
     legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
@@ -174,7 +180,7 @@ def test_limit_set_all_escape_still_draws(tmp_path):
     away = FunctionMap(lambda x, s: (x + 0.1, s, np.where(x > 0.3, 2, 0)), {0: (0.0, 0.5)}, name="walks off")
     lim = limit_set(away, n_starts=8, transient=10, n_record=64)
     assert lim.kind == "escape"
-    fig = F.plot_limit_set(lim)
+    fig = plot_limit_set(lim)
     ax = fig.axes[0]
     assert any("every orbit escapes" in t for t in _texts(ax))
     assert [t.get_text() for t in ax.get_yticklabels()] == ["side 0"]
@@ -187,7 +193,7 @@ def test_limit_set_escaping_orbit_is_marked(limit):
            types.SimpleNamespace(kind="off_end", status=Status.OFF_END, x=0.7)]
     orb = types.SimpleNamespace(x=np.array([0.2, 0.25, 0.3]), side=np.array([0, 0, 1]), outcomes=tuple(out),
                                 status=Status.OFF_END, escaped=True)
-    fig = F.plot_limit_set(limit, orbit=orb)
+    fig = plot_limit_set(limit, orbit=orb)
     ax = fig.axes[0]
     assert any(c.get_gid() == "escape" for c in ax.collections)
     assert len([p for p in ax.patches if isinstance(p, FancyArrowPatch) and p.get_gid() == "orbit"]) == 2
@@ -195,7 +201,7 @@ def test_limit_set_escaping_orbit_is_marked(limit):
 
 def test_limit_set_rejects_bad_n_arrows(limit):
     with pytest.raises(InvalidStateError, match="n_arrows"):
-        F.plot_limit_set(limit, n_arrows=-1)
+        plot_limit_set(limit, n_arrows=-1)
 
 
 def test_limit_set_plot_method(limit):
@@ -209,7 +215,7 @@ def test_map_of_throw_map_with_critical_and_limit(part, arm, critical, limit, tm
     from throwmap.analysis import as_map
 
     cmap = as_map(part, arm, OMEGA, "paper")
-    fig = F.plot_map(cmap, critical=critical, limit=limit, n=400)
+    fig = plot_map(sample_map(cmap, 400), critical=critical, limit=limit)
     assert len(fig.axes) == len(cmap.sides) == 3
     for ax, s in zip(fig.axes, cmap.sides):
         gids = {l.get_gid() for l in ax.lines}
@@ -225,7 +231,7 @@ def test_map_of_function_map_marks_the_fixed_point(contraction, tmp_path):
     lim = limit_set(contraction, n_starts=4, transient=30, n_record=64)
     assert lim.kind == "fixed_point"
     fig, ax = plt.subplots()
-    out = F.plot_map(contraction, axes=ax, limit=lim, n=50)
+    out = plot_map(sample_map(contraction, 50), axes=ax, limit=lim)
     assert out is fig
     fp = [c for c in ax.collections if c.get_gid() == "attractor-1"]
     assert len(fp) == 1
@@ -235,7 +241,7 @@ def test_map_of_function_map_marks_the_fixed_point(contraction, tmp_path):
 
 
 def test_map_escapes_drawn_on_the_axis(bistable):
-    fig = F.plot_map(bistable, n=100)
+    fig = plot_map(sample_map(bistable, 100))
     esc = [c for c in fig.axes[0].collections if c.get_gid() == "escapes"]
     assert len(esc) == 1 and len(esc[0].get_offsets()) == 10  # x in (0.45, 0.5]
 
@@ -243,14 +249,14 @@ def test_map_escapes_drawn_on_the_axis(bistable):
 def test_map_needs_one_axes_per_side(two_cycle):
     fig, ax = plt.subplots()
     with pytest.raises(InvalidStateError, match="axes"):
-        F.plot_map(two_cycle, axes=[ax])
+        plot_map(sample_map(two_cycle), axes=[ax])
 
 
 # --- basins ---------------------------------------------------------------------------------
 
 
 def test_basins_triangle(basin_map, tmp_path):
-    fig = F.plot_basins(basin_map)
+    fig = plot_basins(basin_map)
     ax = fig.axes[0]
     assert len(ax.images) == 3  # one lane per side
     for im in ax.images:
@@ -278,7 +284,7 @@ def test_basins_million_points_binned(tmp_path):
     b = _fake_basins()
     assert b.n_configs == 10**6
     fig, ax = plt.subplots()
-    out = F.plot_basins(b, ax=ax, max_columns=800)
+    out = plot_basins(b, ax=ax, max_columns=800)
     assert out is fig
     assert len(ax.images) == 2
     assert all(im.get_array().shape[1] <= 800 for im in ax.images)
@@ -293,7 +299,7 @@ def test_basins_million_points_binned(tmp_path):
 
 
 def test_basins_mode_label_per_column():
-    from throwmap.viz.analysis import _bin_lane
+    from throwmap.viz.basins import _bin_lane
 
     x = np.array([0.0, 0.1, 0.2, 0.3, 0.9, 1.0])
     labels = np.array([1, 1, 2, -1, 2, 2])
@@ -308,7 +314,7 @@ def test_basins_mode_label_per_column():
 def test_basins_plot_method(basin_map):
     assert isinstance(basin_map.plot(max_columns=50), Figure)
     with pytest.raises(InvalidStateError, match="max_columns"):
-        F.plot_basins(basin_map, max_columns=0)
+        plot_basins(basin_map, max_columns=0)
 
 
 # --- funnel graph ---------------------------------------------------------------------------
@@ -333,7 +339,7 @@ def _stand_in_graph():
 
 def test_funnel_graph_layers_by_rank(tmp_path):
     g = _stand_in_graph()
-    fig = F.plot_funnel_graph(g)
+    fig = plot_funnel_graph(g)
     ax = fig.axes[0]
     boxes = {p.get_gid(): p for p in ax.patches if isinstance(p, FancyBboxPatch)}
     assert set(boxes) == {"goal", "funnel-0", "funnel-1", "funnel-2", "funnel-3", "funnel-4"}
@@ -355,7 +361,7 @@ def test_funnel_graph_real_object_in_given_axes(tmp_path):
     to30 = FunctionMap(lambda x, s: (0.3 + 0.5 * (x - 0.3), s, 0 * s), {0: (0.0, 0.5)}, name="to 30 cm")
     g = funnels(None, maps=[to10, to30], goal=ConfigSet(((0, 0.29, 0.31),)), grid=60)
     fig, ax = plt.subplots()
-    assert F.plot_funnel_graph(g, ax=ax) is fig
+    assert plot_funnel_graph(g, ax=ax) is fig
     assert len([p for p in ax.patches if isinstance(p, FancyBboxPatch)]) == 3
     assert any(t.startswith("goal\nside 0: [29, 31] cm") for t in _texts(ax))
     assert isinstance(g.plot(), Figure)
@@ -366,7 +372,7 @@ def test_funnel_graph_without_goal_or_funnels():
     g = _stand_in_graph()
     g.goal = None
     g.rank = {i: None for i in range(len(g.funnels))}
-    ax = F.plot_funnel_graph(g).axes[0]
+    ax = plot_funnel_graph(g).axes[0]
     assert "goal" not in {p.get_gid() for p in ax.patches}
     empty = types.SimpleNamespace(funnels=(), edges=(), goal=None, rank={})
-    assert "no funnels" in _texts(F.plot_funnel_graph(empty).axes[0])
+    assert "no funnels" in _texts(plot_funnel_graph(empty).axes[0])

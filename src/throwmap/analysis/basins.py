@@ -182,8 +182,8 @@ class Basins:
                    check=dict(d["check"]), caps=dict(d["caps"]), map_info=dict(d["map"]))
 
     def plot(self, ax=None, **kwargs):
-        """The basin map; see :func:`throwmap.viz.analysis.plot_basins`."""
-        from ..viz.analysis import plot_basins
+        """The basin map; see :func:`throwmap.viz.basins.plot_basins`."""
+        from ..viz.basins import plot_basins
 
         return plot_basins(self, ax=ax, **kwargs)
 
@@ -499,4 +499,3 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
                     rng=rng if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool) else None)
     return Basins(x=x, side=s, labels=labels, fates=fates, throws=throws, attractors=attractors, certificate=cert,
                   method=method, check=check, caps=caps_out, map_info=info)
-

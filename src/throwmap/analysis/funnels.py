@@ -234,8 +234,8 @@ class FunnelGraph:
                    containment=float(d["containment"]), map_info=dict(d["map"]))
 
     def plot(self, ax=None, **kwargs):
-        """The funnel graph; see :func:`throwmap.viz.analysis.plot_funnel_graph`."""
-        from ..viz.analysis import plot_funnel_graph
+        """The funnel graph; see :func:`throwmap.viz.funnels.plot_funnel_graph`."""
+        from ..viz.funnels import plot_funnel_graph
 
         return plot_funnel_graph(self, ax=ax, **kwargs)
 
@@ -442,4 +442,3 @@ def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, 
         hulls.append(merge_intervals({int(s): X[k][on & (S[k] == s)] for s in np.unique(S[k][on])}, gap))
     return SetImage(omegas=tuple(float(w) for w in oms), x=X, side=S, status=ST,
                     hulls=tuple(ConfigSet(h) for h in hulls), gap=float(gap))
-

@@ -466,8 +466,8 @@ class LimitSet:
         )
 
     def plot(self, ax=None, **kwargs):
-        """The Fig. 5 analogue; see :func:`throwmap.viz.analysis.plot_limit_set`."""
-        from ..viz.analysis import plot_limit_set
+        """The Fig. 5 analogue; see :func:`throwmap.viz.limit_set.plot_limit_set`."""
+        from ..viz.limit_set import plot_limit_set
 
         return plot_limit_set(self, ax=ax, **kwargs)
 
@@ -562,4 +562,3 @@ def check_starts(cmap: ConfigMap, starts) -> tuple[np.ndarray, np.ndarray]:
         raise InvalidStateError("starts", f"x[{i}] = {x[i]:.6g} m is at or behind the first valid x on side "
                                           f"{s[i]} ({lo[i]:.6g} m)")
     return x, s
-

@@ -204,16 +204,16 @@ def register(app: typer.Typer) -> None:
                                   transient=transient, n_record=record, tol=tol, max_period=max_period,
                                   progress=lambda done, total: bar("iterating", done, total))
             if plot is not None:
-                from ..viz.analysis import plot_limit_set
+                from ..viz.limit_set import plot_limit_set
 
                 orbit = orbit_on_attractor(the_part, arm, omega, model, limit)
                 _save_figure(plot_limit_set(limit, critical=crit, orbit=orbit), plot, fmt, "plot")
             if plot_map is not None:
-                from ..viz.analysis import plot_map as draw_map
+                from ..throws.samples import sample_map
                 from ..analysis.maps import ThrowMap
 
                 cmap = ThrowMap(the_part, arm, omega, model, x_max)
-                _save_figure(draw_map(cmap, critical=crit, limit=limit), plot_map, fmt_map, "plot_map")
+                _save_figure(sample_map(cmap).plot(critical=crit, limit=limit), plot_map, fmt_map, "plot_map")
             doc = {"limit_set": limit.to_dict(), "critical_points": crit.to_dict(), "part": the_part.name,
                    "arm": _arm_dict(arm), "omega": omega, "model": model, "seed": seed,
                    "plot": str(plot) if plot is not None else None,
@@ -277,7 +277,7 @@ def register(app: typer.Typer) -> None:
                                 max_throws=max_throws, n_check=check, n_seeds=starts, transient=transient,
                                 n_record=record, x_max=x_max, progress=bar)
             if plot is not None:
-                from ..viz.analysis import plot_basins
+                from ..viz.basins import plot_basins
 
                 _save_figure(plot_basins(result), plot, fmt, "plot")
             extra = {"part": the_part.name, "arm": _arm_dict(arm), "omega": omega, "model": model, "seed": seed,
@@ -352,7 +352,7 @@ def register(app: typer.Typer) -> None:
                 graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment,
                                 rng=seed, x_max=x_max, method=method, n_seeds=starts, progress=bar)
             if plot is not None:
-                from ..viz.analysis import plot_funnel_graph
+                from ..viz.funnels import plot_funnel_graph
 
                 _save_figure(plot_funnel_graph(graph), plot, fmt, "plot")
             doc = {**graph.to_dict(), "part": the_part.name, "arm": _arm_dict(arm), "omegas": omegas,

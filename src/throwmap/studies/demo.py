@@ -55,7 +55,8 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..viz.plotting import plot_throw_map, save_figure
+    from ..throws.samples import throw_map_samples
+    from ..viz.style import save_figure
 
     say = progress or (lambda msg: None)
     out = Path(out_dir)
@@ -66,7 +67,7 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
     files = []
 
     say("throw map")
-    fig = plot_throw_map(part, arm, omega, x_max=0.6)
+    fig = throw_map_samples(part, arm, omega, x_max=0.6).plot(compact=True)
     files.append(save_figure(fig, out / "throw_map.png"))
     plt.close(fig)
 
@@ -128,10 +129,10 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
 def _analysis(part, arm, omega, out: Path, say, plt) -> tuple[dict, list]:
     """Critical points, limit set, basins and funnels of the example (paper Sec. III-D, I-A); figures and summary."""
     from ..analysis import basins, critical_points, funnels, limit_set
-    from ..viz.analysis import plot_basins, plot_funnel_graph, plot_limit_set, plot_map
+    from ..viz.basins import plot_basins, plot_funnel_graph, plot_limit_set, plot_map
     from ..analysis.maps import ThrowMap
     from ..cli.analysis import orbit_on_attractor
-    from ..viz.plotting import save_figure
+    from ..viz.style import save_figure
 
     p = ANALYSIS
     model = p["model"]
@@ -144,7 +145,7 @@ def _analysis(part, arm, omega, out: Path, say, plt) -> tuple[dict, list]:
     fig = plot_limit_set(limit, critical=crit, orbit=orbit)
     files.append(save_figure(fig, out / "limit_set.png"))
     plt.close(fig)
-    fig = plot_map(ThrowMap(part, arm, omega, model, p["x_max"]), critical=crit, limit=limit)
+    fig = sample_map(ThrowMap(part, arm, omega, model, p["x_max"])).plot(critical=crit, limit=limit)
     files.append(save_figure(fig, out / "throw_map_limits.png"))
     plt.close(fig)
 

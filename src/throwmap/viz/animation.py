@@ -12,7 +12,7 @@ What is drawn, per frame
   (m; joint at the origin, x along the arm), turned with the arm. Objects without
   it are skipped. (This is the whole fixture protocol the animation relies on.)
 * each part: its polygon filled, each side drawn in its colour
-  (:func:`throwmap.viz.plotting.side_colors`) with its number at mid-edge (side k is
+  (:func:`throwmap.viz.style.side_colors`) with its number at mid-edge (side k is
   the edge w_k → w_{k+1}, see :mod:`throwmap.conventions`), and the CM as a dot;
 * the contact points of the sample as red markers;
 * a text box with the time, the throw number (from ``meta["throw_starts"]`` or the
@@ -247,7 +247,7 @@ def animate(traj: Trajectory, path, *, fps: int = 30, speed: float = 1.0, dpi: i
     from matplotlib.figure import Figure
     from matplotlib.patches import Circle, Polygon
 
-    from .plotting import side_colors
+    from .style import side_colors
 
     poses, arm_angles, idx = sample_frames(traj, times)
     outlines = []

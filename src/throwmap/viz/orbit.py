@@ -1,0 +1,48 @@
+"""Orbit figure: x against throw number, side by colour (paper Figs. 7 and 16).
+
+Draws an :class:`~throwmap.throws.orbit.Orbit` that :func:`throwmap.iterate` has
+already computed; matplotlib is imported on first use.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..throws.outcome import Status
+from .style import _plt, side_colors
+
+__all__ = ["plot_orbit"]
+
+
+def plot_orbit(orbit, ax=None, part=None, unit: str = "cm"):
+    """x against throw number, side by colour (like paper Figs. 7 and 16); returns the Figure.
+
+    ``orbit.x`` is in m and drawn in ``unit`` (``"cm"``, the default, else m);
+    ``part`` (optional) fixes the number of side colours. An orbit that ended
+    early (``status`` not OK) has its last outcome marked ``x`` with the reason.
+    """
+    plt = _plt()
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(7, 3.5))
+    fig = ax.figure
+    scale = 100.0 if unit == "cm" else 1.0
+    k = np.arange(len(orbit.x))
+    sides = np.asarray(orbit.side)
+    n_sides = int(sides.max()) + 1 if part is None else part.n_sides
+    colors = side_colors(max(n_sides, 1))
+    ax.plot(k, orbit.x * scale, "-", color="0.8", lw=0.8, zorder=1)
+    for s in np.unique(sides):
+        m = sides == s
+        ax.scatter(k[m], orbit.x[m] * scale, s=12, color=colors[int(s)], label=f"side {int(s)}", zorder=2)
+    if orbit.status != Status.OK and orbit.outcomes:
+        last = orbit.outcomes[-1]
+        ax.scatter([len(orbit.x)], [last.x * scale], marker="x", color="k", s=40, zorder=3,
+                   label=f"escape: {orbit.status.label}")
+    ax.set_xlabel("throw number")
+    ax.set_ylabel(f"x of CM on the arm ({unit})")
+    omegas = np.unique(np.round(orbit.omegas, 6))
+    om = f"ω = {omegas[0]:g} rad/s" if len(omegas) == 1 else f"{len(omegas)} release rates"
+    ax.set_title(f"orbit, model {orbit.model!r}, {om}")
+    ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    return fig
