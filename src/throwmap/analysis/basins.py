@@ -499,3 +499,4 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
                     rng=rng if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool) else None)
     return Basins(x=x, side=s, labels=labels, fates=fates, throws=throws, attractors=attractors, certificate=cert,
                   method=method, check=check, caps=caps_out, map_info=info)
+

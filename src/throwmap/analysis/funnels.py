@@ -442,3 +442,4 @@ def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, 
         hulls.append(merge_intervals({int(s): X[k][on & (S[k] == s)] for s in np.unique(S[k][on])}, gap))
     return SetImage(omegas=tuple(float(w) for w in oms), x=X, side=S, status=ST,
                     hulls=tuple(ConfigSet(h) for h in hulls), gap=float(gap))
+

@@ -562,3 +562,4 @@ def check_starts(cmap: ConfigMap, starts) -> tuple[np.ndarray, np.ndarray]:
         raise InvalidStateError("starts", f"x[{i}] = {x[i]:.6g} m is at or behind the first valid x on side "
                                           f"{s[i]} ({lo[i]:.6g} m)")
     return x, s
+

@@ -129,7 +129,10 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
 def _analysis(part, arm, omega, out: Path, say, plt) -> tuple[dict, list]:
     """Critical points, limit set, basins and funnels of the example (paper Sec. III-D, I-A); figures and summary."""
     from ..analysis import basins, critical_points, funnels, limit_set
-    from ..viz.basins import plot_basins, plot_funnel_graph, plot_limit_set, plot_map
+    from ..throws.samples import sample_map
+    from ..viz.basins import plot_basins
+    from ..viz.funnels import plot_funnel_graph
+    from ..viz.limit_set import plot_limit_set
     from ..analysis.maps import ThrowMap
     from ..cli.analysis import orbit_on_attractor
     from ..viz.style import save_figure
