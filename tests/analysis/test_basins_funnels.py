@@ -27,7 +27,7 @@ from throwmap.analysis import (
     funnels,
     push,
 )
-from throwmap.analysis.basins import map_to_attractors
+from throwmap.analysis.cellmap import map_to_attractors
 from throwmap.errors import InvalidStateError
 from throwmap.throws.outcome import Status
 
@@ -79,6 +79,7 @@ def test_contraction_basin_is_everything_and_throws_follow_the_closed_form():
     assert b.method == "orbits" and b.n_configs == 300
     assert np.all(b.labels == 1) and np.all(b.fates == 0) and b.fractions == {1: 1.0}
     n, clear = _expected_throws(b.x, a, k, tol)
+    assert np.count_nonzero(clear) >= 0.9 * clear.size  # the exact comparison below covers most of the grid
     np.testing.assert_array_equal(b.throws[clear], n[clear])
     assert np.all(np.abs(b.throws - n) <= 1)
     cert = b.certificate
@@ -109,6 +110,7 @@ def test_escaping_map_labels_everything_minus_one_off_end():
     # 2^n x > 1 first at n = floor(log2(1/x)) + 1
     n = np.floor(np.log2(1.0 / b.x)).astype(int) + 1
     clear = np.abs(np.log2(1.0 / b.x) - np.round(np.log2(1.0 / b.x))) > 1e-9
+    assert np.count_nonzero(clear) >= 0.9 * clear.size
     np.testing.assert_array_equal(b.throws[clear], n[clear])
     assert not b.certificate.unique and b.certificate.attractor is None
     assert "off_end" in b.certificate.statement
@@ -450,7 +452,7 @@ def test_push_equals_throw_batch_applied_throw_by_throw(triangle, arm):
         np.testing.assert_array_equal(im.status[k], status)
         # the hull after each throw holds exactly the configurations still on the arm
         on = status == OK
-        assert np.all(im.hulls[k].contains(x[on], s[on]))
+        assert np.any(on) and np.all(im.hulls[k].contains(x[on], s[on]))
     assert 0 < im.escaped < 1 and im.escapes() == {"behind_joint": pytest.approx(im.escaped)}
     assert im.omegas == tuple(omegas) and im.final == im.hulls[-1]
 

@@ -23,7 +23,8 @@ import numpy as np
 
 from ..throws.outcome import Status
 
-__all__ = ["Attractor", "LABEL_ESCAPE", "FATE_UNRESOLVED", "fate_label", "fate_code", "merge_intervals"]
+__all__ = ["Attractor", "LABEL_ESCAPE", "FATE_UNRESOLVED", "fate_label", "fate_code", "merge_intervals",
+           "escape_fractions", "attractor_table"]
 
 LABEL_ESCAPE = -1
 """Label of a configuration whose orbit does not end on an attractor on the arm."""
@@ -53,6 +54,14 @@ def fate_code(label: str) -> int:
         if s.label == label:
             return int(s)
     raise ValueError(f"unknown fate {label!r}")
+
+
+def escape_fractions(fates, labels) -> dict:
+    """``{fate label: share}`` over the starts labelled −1 (shares of all starts)."""
+    fates = np.asarray(fates)
+    n = max(1, fates.size)
+    esc = np.asarray(labels) == LABEL_ESCAPE
+    return {fate_label(c): float(np.sum(esc & (fates == c)) / n) for c in np.unique(fates[esc])}
 
 
 def merge_intervals(side_x: dict, gap: float) -> tuple:
@@ -169,6 +178,23 @@ class Attractor:
             multiplier=_unnum(d["multiplier"]), lyapunov=_unnum(d["lyapunov"]), fraction=float(d["fraction"]),
             side_visits=tuple((int(v["side"]), float(v["share"])) for v in d["side_visits"]),
         )
+
+
+def attractor_table(attractors, escapes: dict, share: str = "share %") -> str:
+    """Attractors and escapes as a plain-text table, one row per label (intervals in cm for reading).
+
+    ``escapes`` maps each escape fate to its share; ``share`` heads the share column.
+    """
+    rows = [f"{'label':>5}  {'kind':<13}{'period':>6}  {'multiplier':>10}  {'Lyapunov':>8}  {share:>9}  "
+            "intervals per side (cm)"]
+    for a in attractors:
+        iv = "; ".join(f"{s}: {100 * lo:.3f}–{100 * hi:.3f}" if hi > lo else f"{s}: {100 * lo:.4f}"
+                       for s, lo, hi in a.bands)
+        rows.append(f"{a.id:>5}  {a.kind:<13}{a.period:>6}  {a.multiplier:>10.4g}  {a.lyapunov:>+8.3f}  "
+                    f"{100 * a.fraction:>9.2f}  {iv}")
+    for k, v in escapes.items():
+        rows.append(f"{LABEL_ESCAPE:>5}  {k:<13}{'':>6}  {'':>10}  {'':>8}  {100 * v:>9.2f}")
+    return "\n".join(rows)
 
 
 def _num(v: float):
