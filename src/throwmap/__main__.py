@@ -1,6 +1,6 @@
-"""``python -m throwmap``: the command line (see :mod:`throwmap.cli.app`)."""
+"""``python -m throwmap``: the command line (see :mod:`throwmap.cli`)."""
 
-from .cli.app import main
+from .cli import main
 
 if __name__ == "__main__":
     main()

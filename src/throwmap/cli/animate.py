@@ -3,11 +3,11 @@
 A thin shell: parse, build the part and arm, get a :class:`~throwmap.throws.trajectory.Trajectory`
 from the chosen model (:func:`throwmap.paper_trajectory.orbit_trajectory`), draw it
 (:func:`throwmap.viz.animation.animate`) and say where the file went. Errors follow
-:mod:`throwmap.cli.app`: one ``error: <field>: <reason>`` line on stderr, exit 2.
+:mod:`throwmap.cli.options`: one ``error: <field>: <reason>`` line on stderr, exit 2.
 """
 
-# no ``from __future__ import annotations``: Typer evaluates the option annotations, which
-# are imported from throwmap.cli.app inside register() (so cli.py may import this module anywhere).
+from __future__ import annotations
+
 import math
 import os
 from pathlib import Path
@@ -16,8 +16,10 @@ from typing import Annotated
 import typer
 
 from ..errors import InvalidStateError, ThrowmapError
+from .options import (GOpt, HOpt, LengthOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, check_finite, guard,
+                      part_and_arm)
 
-__all__ = ["register", "ANIMATE_MODELS", "PROGRESS_FRAMES"]
+__all__ = ["register", "animate_cmd", "ANIMATE_MODELS", "PROGRESS_FRAMES"]
 
 ANIMATE_MODELS = ("paper", "rigid_body", "engine")
 """Models ``animate`` can draw (each must provide a trajectory)."""
@@ -50,77 +52,77 @@ def _summary(traj) -> tuple[str, str]:
     return throws, f"{throws} ({', '.join(counted)}); {final}"
 
 
+def animate_cmd(
+    part: PartOpt,
+    omega: OmegaOpt,
+    x: XOpt,
+    side: SideOpt,
+    h: HOpt = None,
+    g: GOpt = None,
+    length: LengthOpt = None,
+    mu: MuOpt = None,
+    n: Annotated[int, typer.Option("-n", "--n", help="Number of throws (> 1 animates an orbit).")] = 1,
+    model: Annotated[str, typer.Option("--model", help=f"Model: {', '.join(ANIMATE_MODELS)}.")] = "engine",
+    out: Annotated[Path, typer.Option("--out", help="Animation file, .gif or .mp4 (mp4 needs ffmpeg).")]
+    = Path("out/throw.gif"),
+    fps: Annotated[int, typer.Option("--fps", help="Frames per second.")] = 30,
+    speed: Annotated[float, typer.Option("--speed", help="Playback speed relative to real time "
+                                                         "(0.25: four times slower).")] = 0.25,
+) -> None:
+    """Draw a throw (or -n throws: an orbit) as an animation."""
+    with guard():
+        if model not in ANIMATE_MODELS:
+            raise InvalidStateError("model", f"unknown model {model!r} (choose from {', '.join(ANIMATE_MODELS)})")
+        if n < 1:
+            raise InvalidStateError("n", f"must be a positive integer, got {n}")
+        if fps < 1:
+            raise ThrowmapError("fps", f"must be a positive integer, got {fps}")
+        if not (math.isfinite(speed) and speed > 0):
+            raise ThrowmapError("speed", f"must be a positive finite number, got {speed}")
+        from ..viz.animation import animate, check_animation_path, frame_times
+
+        check_animation_path(out, need_directory=False)  # before any work; the directory is made below
+        the_part, arm = part_and_arm(part, h, g, length, mu)
+        check_finite(x, "x")
+        check_finite(omega, "omega")
+        os.environ.setdefault("MPLBACKEND", "Agg")  # files only, never a window
+        try:
+            traj = _trajectory(model, the_part, arm, x, side, omega, n)
+        except ImportError as err:
+            missing = getattr(err, "name", None) or ""
+            if missing.startswith("throwmap") or not missing:
+                reason = f"the {model!r} model is not available in this installation"
+            else:
+                reason = f"the {model!r} model needs the optional package {missing!r} (pip install it)"
+            raise ThrowmapError("model", reason) from None
+        parent = out.parent if str(out.parent) else Path(".")
+        try:
+            parent.mkdir(parents=True, exist_ok=True)
+        except OSError as err:
+            raise ThrowmapError("out", f"cannot create directory {parent}: {err.strerror or err}") from None
+        throws, summary = _summary(traj)
+        title = f"{the_part.name or 'part'} — model {model!r}, ω = {omega:g} rad/s, {throws}"
+        n_frames = len(frame_times(traj, fps, speed, 0.5))
+        try:
+            from rich.console import Console
+
+            console = Console(stderr=True)
+            if n_frames > PROGRESS_FRAMES and console.is_terminal:
+                from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
+
+                with Progress(TextColumn("drawing"), BarColumn(), MofNCompleteColumn(),
+                              console=console, transient=True) as bar:
+                    task = bar.add_task("drawing", total=n_frames)
+                    animate(traj, out, fps=fps, speed=speed, title=title,
+                            progress=lambda done, total: bar.update(task, completed=done))
+            else:
+                animate(traj, out, fps=fps, speed=speed, title=title)
+        except OSError as err:
+            raise ThrowmapError("out", f"cannot write {out}: {err.strerror or err}") from None
+        typer.echo(f"wrote {out} ({n_frames} frames, {fps} fps, {speed:g}× real time)")
+        typer.echo(summary)
+
+
 def register(app: typer.Typer) -> None:
     """Add the ``animate`` command to ``app``."""
-    from .app import GOpt, HOpt, LengthOpt, MuOpt, PartOpt, SideOpt, XOpt, _finite, _guard, _part_and_arm
-
-    @app.command("animate")
-    def animate_cmd(
-        part: PartOpt,
-        omega: Annotated[float, typer.Option("--omega", help="Release angular velocity ω, rad/s (≥ 0).")],
-        x: XOpt,
-        side: SideOpt,
-        h: HOpt = None,
-        g: GOpt = None,
-        length: LengthOpt = None,
-        mu: MuOpt = None,
-        n: Annotated[int, typer.Option("-n", "--n", help="Number of throws (> 1 animates an orbit).")] = 1,
-        model: Annotated[str, typer.Option("--model", help=f"Model: {', '.join(ANIMATE_MODELS)}.")] = "engine",
-        out: Annotated[Path, typer.Option("--out", help="Animation file, .gif or .mp4 (mp4 needs ffmpeg).")]
-        = Path("out/throw.gif"),
-        fps: Annotated[int, typer.Option("--fps", help="Frames per second.")] = 30,
-        speed: Annotated[float, typer.Option("--speed", help="Playback speed relative to real time "
-                                                             "(0.25: four times slower).")] = 0.25,
-    ) -> None:
-        """Draw a throw (or -n throws: an orbit) as an animation."""
-        with _guard():
-            if model not in ANIMATE_MODELS:
-                raise InvalidStateError("model", f"unknown model {model!r} (choose from {', '.join(ANIMATE_MODELS)})")
-            if n < 1:
-                raise InvalidStateError("n", f"must be a positive integer, got {n}")
-            if fps < 1:
-                raise ThrowmapError("fps", f"must be a positive integer, got {fps}")
-            if not (math.isfinite(speed) and speed > 0):
-                raise ThrowmapError("speed", f"must be a positive finite number, got {speed}")
-            from ..viz.animation import animate, check_animation_path, frame_times
-
-            check_animation_path(out, need_directory=False)  # before any work; the directory is made below
-            the_part, arm = _part_and_arm(part, h, g, length, mu)
-            _finite(x, "x")
-            _finite(omega, "omega")
-            os.environ.setdefault("MPLBACKEND", "Agg")  # files only, never a window
-            try:
-                traj = _trajectory(model, the_part, arm, x, side, omega, n)
-            except ImportError as err:
-                missing = getattr(err, "name", None) or ""
-                if missing.startswith("throwmap") or not missing:
-                    reason = f"the {model!r} model is not available in this installation"
-                else:
-                    reason = f"the {model!r} model needs the optional package {missing!r} (pip install it)"
-                raise ThrowmapError("model", reason) from None
-            parent = out.parent if str(out.parent) else Path(".")
-            try:
-                parent.mkdir(parents=True, exist_ok=True)
-            except OSError as err:
-                raise ThrowmapError("out", f"cannot create directory {parent}: {err.strerror or err}") from None
-            throws, summary = _summary(traj)
-            title = f"{the_part.name or 'part'} — model {model!r}, ω = {omega:g} rad/s, {throws}"
-            n_frames = len(frame_times(traj, fps, speed, 0.5))
-            try:
-                from rich.console import Console
-
-                console = Console(stderr=True)
-                if n_frames > PROGRESS_FRAMES and console.is_terminal:
-                    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
-
-                    with Progress(TextColumn("drawing"), BarColumn(), MofNCompleteColumn(),
-                                  console=console, transient=True) as bar:
-                        task = bar.add_task("drawing", total=n_frames)
-                        animate(traj, out, fps=fps, speed=speed, title=title,
-                                progress=lambda done, total: bar.update(task, completed=done))
-                else:
-                    animate(traj, out, fps=fps, speed=speed, title=title)
-            except OSError as err:
-                raise ThrowmapError("out", f"cannot write {out}: {err.strerror or err}") from None
-            typer.echo(f"wrote {out} ({n_frames} frames, {fps} fps, {speed:g}× real time)")
-            typer.echo(summary)
+    app.command("animate")(animate_cmd)

@@ -1,0 +1,217 @@
+"""What every ``throwmap`` command shares: options, parsing, errors and writing.
+
+- Options: :data:`PartOpt`, :data:`HOpt`, … (``Annotated`` Typer options; SI units).
+- Parsing: :func:`check_finite`, :func:`parse_floats`, :func:`part_and_arm`.
+- Errors: :func:`guard` turns every :class:`~throwmap.errors.ThrowmapError` into exactly
+  one line ``error: <field>: <reason>`` on stderr and exit status 2, and prints each
+  warning (e.g. :class:`~throwmap.errors.RegimeWarning`) once as ``warning: <message>``.
+  Usage errors found by the option parser keep its own message and status 2.
+- Writing: :func:`to_json` (strict JSON: non-finite numbers become ``null``), files
+  written atomically (:mod:`throwmap.io.files`), figures checked before any work
+  (:func:`figure_format`) and saved after it (:func:`save_figure`).
+
+Nothing here imports another ``throwmap.cli`` module; the command modules import this one.
+"""
+
+from __future__ import annotations
+
+import io as _io
+import json
+import math
+import os
+import sys
+import warnings
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from ..conventions import G
+from ..errors import ConfigError, InvalidArmError, InvalidStateError, ThrowmapError, ThrowmapWarning
+from ..io.config import resolve_part
+from ..io.files import atomic_write_bytes, atomic_write_text, json_ready
+from ..system.arm import Arm
+from ..throws.throw import MODELS
+
+__all__ = [
+    "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "MuOpt", "OmegaOpt", "PartOpt", "SideOpt", "XOpt",
+    "arm_dict", "check_finite", "check_out_dir", "check_output", "figure_format", "format_value", "guard",
+    "make_out_dir", "parse_floats", "part_and_arm", "plot_format", "save_figure", "stderr_line", "to_json",
+    "write_bytes", "write_text",
+]
+
+# ------------------------------------------------------------------ options
+PartOpt = Annotated[str, typer.Option("--part", help="Built-in part name or a .toml/.json part file.")]
+HOpt = Annotated[float | None, typer.Option("--h", help="Arm surface height h, m (h < 0: below the joint). "
+                                                      "Required unless the part file has an \\[arm] section.")]
+GOpt = Annotated[float | None, typer.Option("--g", help=f"Gravity, m/s² (default: the file's, or {G}).")]
+LengthOpt = Annotated[float | None, typer.Option("--length", help="Arm length, m (default: the file's, or unbounded).")]
+MuOpt = Annotated[float | None, typer.Option("--mu", help="Arm–part Coulomb friction μ (default: the file's, or inf = no slip; "
+                                               "used by rigid_body and engine).")]
+XOpt = Annotated[float, typer.Option("--x", help="Resting CM position along the arm, m.")]
+SideOpt = Annotated[int, typer.Option("--side", help="Side the part rests on (index, see conventions).")]
+OmegaOpt = Annotated[float, typer.Option("--omega", help="Release angular velocity ω, rad/s (≥ 0).")]
+ModelOpt = Annotated[str, typer.Option("--model", help=f"Throw model: {', '.join(MODELS)}.")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON to stdout instead of a table.")]
+
+
+# ------------------------------------------------------------------ errors
+def stderr_line(text: str) -> None:
+    """Write ``text`` as one line on stderr (newlines become spaces)."""
+    sys.stderr.write(" ".join(str(text).split("\n")) + "\n")
+    sys.stderr.flush()
+
+
+@contextmanager
+def guard():
+    """Turn ThrowmapErrors into one ``error:`` line and exit 2; print warnings one line each."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ThrowmapWarning)
+        try:
+            yield
+        except ThrowmapError as err:
+            stderr_line(f"error: {err}")
+            raise typer.Exit(2) from None
+    seen = set()
+    for w in caught:
+        msg = str(w.message)
+        if msg not in seen:
+            seen.add(msg)
+            stderr_line(f"warning: {msg}")
+
+
+# ------------------------------------------------------------------ parsing
+def check_finite(value: float, field: str) -> float:
+    """``value``, or :class:`~throwmap.errors.InvalidStateError` on ``field`` if it is not finite."""
+    if not math.isfinite(value):
+        raise InvalidStateError(field, f"must be finite, got {value}")
+    return value
+
+
+def parse_floats(values: list[str] | str, field: str) -> list[float]:
+    """Numbers from repeated options and/or comma lists (``--omega 1,2 --omega 3``)."""
+    items = [values] if isinstance(values, str) else list(values)
+    out = []
+    for item in items:
+        for piece in item.split(","):
+            piece = piece.strip()
+            try:
+                v = float(piece)
+            except ValueError:
+                raise InvalidStateError(field, f"must be numbers separated by commas, got {piece!r}") from None
+            out.append(check_finite(v, field))
+    return out
+
+
+def part_and_arm(part: str, h: float | None, g: float | None, length: float | None, mu: float | None = None):
+    """The part (built-in name or file) and the arm: command line over the file's [arm]."""
+    loaded = resolve_part(part)
+    base = loaded.arm
+    if h is None and base is None:
+        raise InvalidArmError("arm.h", "required: give --h, or an [arm] section in the part file")
+    arm = Arm(
+        h=h if h is not None else base.h,
+        g=g if g is not None else (base.g if base is not None else G),
+        length=length if length is not None else (base.length if base is not None else None),
+        mu=mu if mu is not None else (base.mu if base is not None else math.inf),
+    )
+    return loaded.part, arm
+
+
+# ------------------------------------------------------------------ output
+def to_json(obj: Any) -> str:
+    """Strict, indented JSON (non-finite numbers become ``null``)."""
+    return json.dumps(json_ready(obj), indent=2, allow_nan=False, ensure_ascii=False)
+
+
+def arm_dict(arm: Arm) -> dict:
+    """The arm for JSON output (``mu`` = inf becomes ``None``)."""
+    return {"h": arm.h, "g": arm.g, "length": arm.length, "mu": arm.mu if math.isfinite(arm.mu) else None}
+
+
+def format_value(v: Any, spec: str = ".6g") -> str:
+    """A table cell: yes/no for booleans, ``—`` for non-finite floats."""
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, float):
+        return format(v, spec) if math.isfinite(v) else "—"
+    return str(v)
+
+
+def check_output(path: Path, field: str) -> None:
+    """Refuse an output file whose directory is missing, or which is a directory."""
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise ConfigError(field, f"cannot write {path}: directory {parent} does not exist")
+    if path.is_dir():
+        raise ConfigError(field, f"cannot write {path}: it is a directory")
+
+
+def check_out_dir(out: Path | None) -> None:
+    """Refuse an ``--out`` directory that exists as something else."""
+    if out is not None and out.exists() and not out.is_dir():
+        raise ConfigError("out", f"{out} exists and is not a directory")
+
+
+def make_out_dir(out: Path) -> None:
+    """Create the ``--out`` directory (and its parents)."""
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ConfigError("out", f"cannot create {out}: {err.strerror or err}") from None
+
+
+def write_text(path: Path, text: str, field: str) -> None:
+    """Write ``text`` atomically; an OS error becomes a :class:`~throwmap.errors.ConfigError` on ``field``."""
+    try:
+        atomic_write_text(path, text)
+    except OSError as err:
+        raise ConfigError(field, f"cannot write {path}: {err.strerror or err}") from None
+
+
+def write_bytes(path: Path, data: bytes, field: str) -> None:
+    """Write ``data`` atomically; an OS error becomes a :class:`~throwmap.errors.ConfigError` on ``field``."""
+    try:
+        atomic_write_bytes(path, data)
+    except OSError as err:
+        raise ConfigError(field, f"cannot write {path}: {err.strerror or err}") from None
+
+
+def plot_format(path: Path) -> str:
+    """The image format of ``path`` (its extension), refused unless Matplotlib can write it."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    fmt = path.suffix.lower().lstrip(".")
+    supported = FigureCanvasBase.get_supported_filetypes()
+    if fmt not in supported:
+        raise ConfigError("plot", f"unsupported image type {path.suffix or '(no extension)'!r} "
+                                  f"(use one of {', '.join('.' + k for k in sorted(supported))})")
+    return fmt
+
+
+def figure_format(path: Path | None, field: str) -> str | None:
+    """Check a figure path (directory exists, image type known) before any work; its format."""
+    if path is None:
+        return None
+    check_output(path, field)
+    os.environ.setdefault("MPLBACKEND", "Agg")  # files only, never a window
+    try:
+        return plot_format(path)
+    except ThrowmapError as err:
+        raise ConfigError(field, err.reason) from None
+
+
+def save_figure(fig, path: Path, fmt: str, field: str) -> None:
+    """Save a Figure (or an Axes' figure) atomically at 130 dpi, then close it."""
+    fig = fig if hasattr(fig, "savefig") else fig.figure  # an Axes → its Figure
+    buf = _io.BytesIO()
+    fig.savefig(buf, format=fmt, dpi=130)
+    try:
+        atomic_write_bytes(path, buf.getvalue())
+    except OSError as err:
+        raise ConfigError(field, f"cannot write {path}: {err.strerror or err}") from None
+    finally:
+        plt = sys.modules.get("matplotlib.pyplot")
+        if plt is not None:
+            plt.close(fig)

@@ -1,0 +1,193 @@
+"""``throwmap compare``, ``throwmap validate``, ``throwmap demo``: the studies on the command line.
+
+A thin shell over :mod:`throwmap.studies`: :func:`~throwmap.studies.compare.compare_models`
+(small-angle models against the exact ``paper`` model),
+:func:`~throwmap.studies.validation.validate` (analytic models against rigid-body
+simulation) and :func:`~throwmap.studies.demo.run_demo` (the paper's triangle, figures
+and summary). Errors follow :mod:`throwmap.cli.options`: one ``error: <field>: <reason>``
+line on stderr, exit 2.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from .. import __version__
+from ..errors import ConfigError, InvalidStateError
+from ..io.config import resolve_part
+from ..throws.throw import check_model
+from .options import (GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, arm_dict, check_finite, check_out_dir,
+                      check_output, guard, make_out_dir, parse_floats, part_and_arm, stderr_line, to_json,
+                      write_text)
+
+__all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "ENGINES"]
+
+ENGINES = ("pymunk", "mujoco")
+"""Engines ``validate`` can use; pymunk is the reference and always runs."""
+
+
+# ------------------------------------------------------------------ demo
+def demo_cmd(
+    out: Annotated[Path, typer.Option("--out", help="Directory for the figures and summary.")] = Path("out"),
+) -> None:
+    """Run the built-in example (the paper's triangle) and write its figures and summary."""
+    from ..studies import demo
+
+    with guard():
+        check_out_dir(out)
+        try:
+            summary = demo.run_demo(out, progress=lambda msg: stderr_line(f"demo: {msg}…"))
+        except OSError as err:
+            raise ConfigError("out", f"cannot write into {out}: {err.strerror or err}") from None
+        files = summary.get("files", []) if isinstance(summary, dict) else []
+        for f in files:
+            typer.echo(f"wrote {f}")
+
+
+# ------------------------------------------------------------------ compare
+def _compare_kwargs(omegas: str | None, n_x: int | None, models: str | None) -> dict[str, Any]:
+    """The options of :func:`~throwmap.studies.compare.compare_models` given on the command line."""
+    kwargs: dict[str, Any] = {}
+    if omegas is not None:
+        oms = parse_floats(omegas, "omegas")
+        for w in oms:
+            if w < 0:
+                raise InvalidStateError("omegas", f"must be ≥ 0 (the arm throws upward), got {w:g}")
+        kwargs["omegas"] = tuple(oms)
+    if n_x is not None:
+        if n_x < 1:
+            raise InvalidStateError("n_x", f"must be a positive integer, got {n_x}")
+        kwargs["n_x"] = n_x
+    if models is not None:
+        kwargs["models"] = tuple(check_model(m.strip()) for m in models.split(","))
+    return kwargs
+
+
+def compare_cmd(
+    part: PartOpt,
+    h: HOpt = None,
+    g: GOpt = None,
+    length: LengthOpt = None,
+    mu: MuOpt = None,
+    omegas: Annotated[str | None, typer.Option("--omegas", help="Release rates, rad/s, comma list "
+                                                                "(default: the library's).")] = None,
+    n_x: Annotated[int | None, typer.Option("--n-x", help="Start positions per stable side.")] = None,
+    models: Annotated[str | None, typer.Option("--models", help="Models to compare with 'paper', comma list "
+                                                                "(default: the library's).")] = None,
+    as_json: JsonOpt = False,
+    out: Annotated[Path | None, typer.Option("--out", help="Also write the result: JSON if FILE ends in .json, "
+                                                           "else the table as text.")] = None,
+) -> None:
+    """Accuracy of the small-angle models against the exact 'paper' model."""
+    from ..studies import compare
+
+    with guard():
+        the_part, arm = part_and_arm(part, h, g, length, mu)
+        kwargs = _compare_kwargs(omegas, n_x, models)
+        if out is not None:
+            check_output(out, "out")
+        result = compare.compare_models(the_part, arm, **kwargs)
+        doc = {**result.to_dict(), "arm": arm_dict(arm), "version": __version__}
+        if out is not None:
+            write_text(out, to_json(doc) + "\n" if out.suffix.lower() == ".json" else result.table() + "\n", "out")
+        typer.echo(to_json(doc) if as_json else result.table())
+
+
+# ------------------------------------------------------------------ validate
+def _validate_settings(n: int, grid: bool, engines: str, models: str, mu: float, realisations: int):
+    """Check ``validate``'s numbers; the engines (pymunk first) and analytic models to run."""
+    if n < 0:
+        raise InvalidStateError("n", f"must be ≥ 0, got {n}")
+    if realisations < 0:
+        raise InvalidStateError("realisations", f"must be ≥ 0, got {realisations}")
+    if n == 0 and not grid:
+        raise InvalidStateError("n", "nothing to throw: give --n > 0 or --grid")
+    eng = tuple(e.strip() for e in engines.split(",") if e.strip())
+    for e in eng:
+        if e not in ENGINES:
+            raise InvalidStateError("engines", f"unknown engine {e!r} (choose from {', '.join(ENGINES)})")
+    if "pymunk" not in eng:
+        eng = ("pymunk",) + eng
+    mods = tuple(check_model(m.strip()) for m in models.split(",") if m.strip())
+    if "engine" in mods:
+        raise InvalidStateError("models", "'engine' is the reference; list analytic models only")
+    check_finite(mu, "mu")
+    if mu < 0:
+        raise InvalidStateError("mu", f"must be ≥ 0, got {mu:g}")
+    return eng, mods
+
+
+def _validation_parts(names: list[str] | None):
+    """The parts named on the command line (validation set names, built-in names or files); ``None``: the default set."""
+    from ..studies.validation import default_parts
+
+    if not names:
+        return None
+    builtin = default_parts()
+    return {name: builtin[name] if name in builtin else resolve_part(name).part for name in names}
+
+
+def validate_cmd(
+    part: Annotated[list[str] | None, typer.Option("--part", help="Part(s) to validate (repeatable; default: "
+                                                                   "triangle, triangle+lead, rectangle+lead, square, "
+                                                                   "pentagon).")] = None,
+    n: Annotated[int, typer.Option("--n", help="Random throws in all (spread over the parts), besides the grid.")] = 400,
+    grid: Annotated[bool, typer.Option("--grid/--no-grid", help="Also throw a grid per part.")] = True,
+    engines: Annotated[str, typer.Option("--engines", help="Engines, comma list: pymunk (reference), mujoco.")] = "pymunk",
+    models: Annotated[str, typer.Option("--models", help="Analytic models, comma list.")] = "paper,small_angle,rigid_body",
+    mu: Annotated[float, typer.Option("--mu", help="Arm–part friction μ of the validation set.")] = 1.5,
+    seed: Annotated[int, typer.Option("--seed", help="Seed of the random cases.")] = 0,
+    workers: Annotated[int, typer.Option("--workers", help="Engine processes (0: one per core).")] = 0,
+    realisations: Annotated[int, typer.Option("--realisations", help="Also compare finite arm motions with the "
+                                                                     "impulse on this many throws (0: skip).")] = 40,
+    out: Annotated[Path, typer.Option("--out", help="Directory for validation.json and validation.md.")] = Path("out"),
+    as_json: JsonOpt = False,
+) -> None:
+    """Analytic models against full rigid-body simulation: side agreement, |Δx|, where assumptions fail."""
+    from ..studies.validation import validate
+
+    with guard():
+        eng, mods = _validate_settings(n, grid, engines, models, mu, realisations)
+        check_out_dir(out)
+        parts = _validation_parts(part)
+        if "mujoco" in eng:
+            import importlib.util
+
+            if importlib.util.find_spec("mujoco") is None:
+                raise ConfigError("engines", "MuJoCo is not installed: pip install 'throwmap[mujoco]'")
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+        with Progress(TextColumn("engine throws"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                      console=Console(stderr=True), transient=True) as bar:
+            task = bar.add_task("engine", total=None)
+            report = validate(parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, workers=workers,
+                              progress=lambda done, total: bar.update(task, completed=done, total=total),
+                              n_realisations=realisations)
+        make_out_dir(out)
+        doc = {**report.to_dict(), "version": __version__}
+        write_text(out / "validation.json", to_json(doc) + "\n", "out")
+        md = (f"# throwmap validation ({report.settings['n_throws']} throws, seed {seed}, μ = {mu:g})\n\n"
+              + report.table() + "\n\n" + "\n".join(f"- {g}" for g in report.goal_lines()) + "\n"
+              + ("\n" + report.realisation_table() + "\n" if report.realisation_rows else ""))
+        write_text(out / "validation.md", md, "out")
+        if as_json:
+            typer.echo(to_json(doc))
+            return
+        typer.echo(report.table())
+        for line in report.goal_lines():
+            typer.echo(line)
+        if report.realisation_rows:
+            typer.echo("")
+            typer.echo(report.realisation_table())
+        typer.echo(f"wrote {out / 'validation.json'}, {out / 'validation.md'}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``demo``, ``compare`` and ``validate`` commands to ``app``."""
+    app.command("demo")(demo_cmd)
+    app.command("compare")(compare_cmd)
+    app.command("validate")(validate_cmd)

@@ -1,0 +1,189 @@
+"""``throwmap throw`` and ``throwmap iterate``: one throw, and an orbit of throws (paper Sec. III).
+
+A thin shell over :func:`throwmap.throws.throw.throw` and :func:`throwmap.throws.orbit.iterate`:
+parse, build the part and arm (:func:`~throwmap.cli.options.part_and_arm`), throw, print a
+table (or JSON with ``--json``) and, for ``iterate --plot``, write the orbit's figure.
+Errors follow :mod:`throwmap.cli.options`: one ``error: <field>: <reason>`` line, exit 2.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from .. import __version__
+from ..errors import InvalidStateError
+from ..throws.orbit import Orbit, iterate
+from ..throws.throw import check_model, throw
+from .options import (GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, arm_dict,
+                      check_finite, figure_format, format_value, guard, parse_floats, part_and_arm, save_figure,
+                      to_json)
+
+__all__ = ["register", "throw_cmd", "iterate_cmd", "PROGRESS_THRESHOLD"]
+
+PROGRESS_THRESHOLD = 200
+"""``iterate`` shows a progress bar (on stderr) for more throws than this."""
+
+
+# ------------------------------------------------------------------ throw
+def throw_cmd(
+    part: PartOpt,
+    omega: OmegaOpt,
+    x: XOpt,
+    side: SideOpt,
+    h: HOpt = None,
+    g: GOpt = None,
+    length: LengthOpt = None,
+    mu: MuOpt = None,
+    model: ModelOpt = "paper",
+    as_json: JsonOpt = False,
+) -> None:
+    """One throw from rest at (x, side): where the part lands and how."""
+    with guard():
+        check_model(model)
+        the_part, arm = part_and_arm(part, h, g, length, mu)
+        check_finite(x, "x")
+        check_finite(omega, "omega")
+        out = throw(the_part, arm, x, side, omega, model=model)
+        if as_json:
+            doc = {**out.to_dict(), "part": the_part.name, "arm": arm_dict(arm), "version": __version__}
+            typer.echo(to_json(doc))
+            return
+        from rich.console import Console
+        from rich.markup import escape
+        from rich.table import Table
+
+        fmt = format_value
+        console = Console()
+        console.print(escape(f"{the_part.name}: throw from x = {fmt(x)} m, side {side}, ω = {fmt(omega)} rad/s "
+                             f"(model {model!r})"), soft_wrap=True)
+        table = Table()
+        table.add_column("quantity")
+        table.add_column("value", justify="right")
+        rows = [
+            ("new x (m)", fmt(out.x)),
+            ("side", fmt(out.side)),
+            ("status", out.status.label),
+            ("kind", out.kind),
+            ("flight time (s)", fmt(out.t_flight)),
+            ("contact vertex", fmt(out.contact_vertex)),
+            ("impacts", fmt(out.n_impacts)),
+            ("flips", fmt(out.n_flips)),
+            ("friction ratio needed", fmt(out.friction_ratio_max, ".4g")),
+            ("lift-off", fmt(out.lift_off)),
+        ]
+        for name, value in rows:
+            table.add_row(name, value)
+        console.print(table)
+
+
+# ------------------------------------------------------------------ iterate
+def _iterate_with_progress(part, arm, state, omegas: list[float], model: str) -> Orbit:
+    """:func:`throwmap.iterate` with a Rich progress bar on stderr."""
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+    with Progress(TextColumn("throwing"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                  console=Console(stderr=True), transient=True) as bar:
+        task = bar.add_task("throwing", total=len(omegas))
+        return iterate(part, arm, state, omegas, model=model,
+                       progress=lambda done: bar.update(task, completed=done))
+
+
+def _orbit_summary(orbit: Orbit, requested: int) -> dict:
+    """Throws done, status, jogs/flips, final state, escape and the x range visited per side."""
+    import numpy as np
+
+    kinds = orbit.kinds
+    per_side = {}
+    for s in np.unique(orbit.side):
+        xs = orbit.x[orbit.side == s]
+        per_side[str(int(s))] = {"x_min": float(xs.min()), "x_max": float(xs.max()), "visits": int(xs.size)}
+    return {
+        "throws_requested": requested,
+        "throws_done": orbit.n_throws,
+        "status": orbit.status.label,
+        "jogs": sum(k == "jog" for k in kinds),
+        "flips": sum(k == "flip" for k in kinds),
+        "final": {"x": float(orbit.x[-1]), "side": int(orbit.side[-1])},
+        "escape": orbit.outcomes[-1].to_dict() if orbit.escaped else None,
+        "per_side": per_side,
+    }
+
+
+def _throw_rates(omega: list[str], n: int | None) -> list[float]:
+    """The release rates of ``--omega`` (one per throw, or one repeated ``-n`` times)."""
+    omegas = parse_floats(omega, "omega")
+    if len(omegas) == 1:
+        if n is None:
+            raise InvalidStateError("n", "give -n/--n, the number of throws, with a single --omega")
+        if n < 0:
+            raise InvalidStateError("n", f"must be a non-negative integer, got {n}")
+        return omegas * n
+    if n is not None and n != len(omegas):
+        raise InvalidStateError("n", f"got n = {n} but {len(omegas)} omegas")
+    return omegas
+
+
+def iterate_cmd(
+    part: PartOpt,
+    omega: Annotated[list[str], typer.Option("--omega", help="Release rate ω, rad/s: one value (with -n), or "
+                                                             "one per throw (repeat the option or give a comma list).")],
+    x: XOpt,
+    side: SideOpt,
+    n: Annotated[int | None, typer.Option("-n", "--n", help="Number of throws (required with a single ω).")] = None,
+    h: HOpt = None,
+    g: GOpt = None,
+    length: LengthOpt = None,
+    mu: MuOpt = None,
+    model: ModelOpt = "paper",
+    as_json: JsonOpt = False,
+    plot: Annotated[Path | None, typer.Option("--plot", help="Write a figure of the orbit (e.g. orbit.png).")] = None,
+) -> None:
+    """Repeated throws from (x, side): an orbit of the throw map."""
+    with guard():
+        check_model(model)
+        the_part, arm = part_and_arm(part, h, g, length, mu)
+        check_finite(x, "x")
+        omegas = _throw_rates(omega, n)
+        fmt = figure_format(plot, "plot")
+        if len(omegas) > PROGRESS_THRESHOLD:
+            orbit = _iterate_with_progress(the_part, arm, (x, side), omegas, model)
+        else:
+            orbit = iterate(the_part, arm, (x, side), omegas, model=model)
+        summary = _orbit_summary(orbit, len(omegas))
+        if plot is not None:
+            save_figure(orbit.plot(part=the_part), plot, fmt, "plot")
+        if as_json:
+            doc = {**orbit.to_dict(), "summary": summary, "part": the_part.name, "arm": arm_dict(arm),
+                   "plot": str(plot) if plot is not None else None, "version": __version__}
+            typer.echo(to_json(doc))
+            return
+        from rich.console import Console
+        from rich.markup import escape
+        from rich.table import Table
+
+        console = Console()
+        console.print(escape(f"{the_part.name}: orbit from x = {format_value(x)} m, side {side} (model {model!r})"),
+                      soft_wrap=True)
+        table = Table()
+        table.add_column("quantity")
+        table.add_column("value", justify="right")
+        table.add_row("throws done", f"{summary['throws_done']} of {summary['throws_requested']}")
+        table.add_row("status", summary["status"])
+        table.add_row("jogs / flips", f"{summary['jogs']} / {summary['flips']}")
+        table.add_row("final state", f"x = {format_value(summary['final']['x'])} m, side {summary['final']['side']}")
+        for s, band in summary["per_side"].items():
+            table.add_row(f"side {s}: x min … max (m)",
+                          f"{format_value(band['x_min'])} … {format_value(band['x_max'])} ({band['visits']} visits)")
+        if plot is not None:
+            table.add_row("figure", str(plot))
+        console.print(table)
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``throw`` and ``iterate`` commands to ``app``."""
+    app.command("throw")(throw_cmd)
+    app.command("iterate")(iterate_cmd)

@@ -1,0 +1,96 @@
+"""The command line's modules import one way: ``app`` → command modules → ``options``.
+
+Read from the source with :mod:`ast` (function-local imports included), and checked
+by importing each module first in a fresh interpreter.
+"""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import throwmap.cli
+
+CLI_DIR = Path(throwmap.cli.__file__).parent
+MODULES = sorted(p.stem for p in CLI_DIR.glob("*.py"))
+COMMAND_MODULES = ("analysis", "animate", "studies", "throws")
+
+
+def cli_imports(stem: str) -> set[str]:
+    """The ``throwmap.cli`` modules (by stem) that ``cli/<stem>.py`` imports anywhere in its body."""
+    tree = ast.parse((CLI_DIR / f"{stem}.py").read_text(encoding="utf-8"))
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level == 1:  # from . import x / from .x import y
+                out |= {a.name for a in node.names} if node.module is None else {node.module.split(".")[0]}
+            elif node.level == 0 and (node.module or "").startswith("throwmap.cli"):
+                rest = node.module.split(".")[2:]
+                out |= {rest[0]} if rest else {a.name for a in node.names}
+            elif node.level == 2 and (node.module or "").startswith("cli"):  # from ..cli(.x) import
+                rest = node.module.split(".")[1:]
+                out |= {rest[0]} if rest else {a.name for a in node.names}
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.startswith("throwmap.cli."):
+                    out.add(a.name.split(".")[2])
+    return {m for m in out if m in MODULES} - {stem}
+
+
+GRAPH = {stem: cli_imports(stem) for stem in MODULES}
+
+
+def test_the_modules_are_there():
+    assert set(MODULES) == {"__init__", "app", "options", *COMMAND_MODULES}
+
+
+def test_options_imports_no_cli_module():
+    assert GRAPH["options"] == set()
+
+
+@pytest.mark.parametrize("stem", COMMAND_MODULES)
+def test_command_modules_import_only_options(stem):
+    assert GRAPH[stem] <= {"options"}
+
+
+def test_app_registers_every_command_module():
+    assert GRAPH["app"] == set(COMMAND_MODULES)
+
+
+def test_only_the_package_imports_app():
+    assert {stem for stem, targets in GRAPH.items() if "app" in targets} == {"__init__"}
+
+
+def test_no_cycle():
+    """Depth-first search for a back edge in the module graph."""
+    state: dict[str, int] = {}  # 1: on the path, 2: done
+
+    def visit(stem, path):
+        state[stem] = 1
+        for t in sorted(GRAPH[stem]):
+            assert state.get(t) != 1, f"import cycle: {' → '.join(path + [stem, t])}"
+            if t not in state:
+                visit(t, path + [stem])
+        state[stem] = 2
+
+    for stem in MODULES:
+        if stem not in state:
+            visit(stem, [])
+
+
+@pytest.mark.parametrize("stem", [m for m in MODULES if m != "__init__"])
+def test_each_module_imports_first_in_a_fresh_interpreter(stem):
+    """Importing any module first (then the rest, in reverse order) works, and builds the whole app."""
+    others = [m for m in reversed(MODULES) if m not in (stem, "__init__")]
+    code = (f"import importlib; importlib.import_module('throwmap.cli.{stem}'); "
+            + "".join(f"importlib.import_module('throwmap.cli.{m}'); " for m in others)
+            + "from throwmap.cli import app; import typer.main; "
+            + "print(' '.join(sorted(typer.main.get_command(app).commands)))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == sorted(["throw", "iterate", "demo", "compare", "validate", "animate",
+                                          "limitset", "basins", "funnels"])
