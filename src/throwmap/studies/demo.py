@@ -3,8 +3,8 @@
 The paper's part: a uniform 30-60-90 triangle, hypotenuse 0.17 m, on an arm with
 h = −0.01 m, thrown at ω = 4.0 rad/s. Writes into ``out_dir``:
 
-``throw_map.png``         T(x) per side with the diagonal (Fig. 2 analogue);
-``orbit.png``             300 throws from (0.12 m, side 0) (Fig. 5/7 analogue);
+``throw_map.png``         T(x) per side with the diagonal (Fig. 2 analogue; model paper);
+``orbit.png``             300 throws from (0.12 m, side 0) (Fig. 5/7 analogue; model paper);
 ``model_comparison.png``  jog-length error of the small-angle models vs "paper";
 ``limit_set.png``         the limit set along the arm with r_i, l_i and an orbit of
                           40 throws on it (Fig. 5 analogue; model rigid_body);
@@ -37,7 +37,7 @@ from ..throws.throw import throw
 
 __all__ = ["ANALYSIS", "DEMO", "run_demo"]
 
-DEMO = {"hypotenuse": 0.17, "h": -0.01, "omega": 4.0, "x0": 0.12, "side0": 0, "n_throws": 300}
+DEMO = {"hypotenuse": 0.17, "h": -0.01, "omega": 4.0, "x0": 0.12, "side0": 0, "n_throws": 300, "model": "paper"}
 """Parameters of the built-in example (SI units)."""
 
 ANALYSIS = {"model": "rigid_body", "x_max": 0.6, "basin_grid": 2000, "funnel_omegas": (3.0, 4.0),
@@ -67,12 +67,12 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
     files = []
 
     say("throw map")
-    fig = throw_map_samples(part, arm, omega, x_max=0.6).plot(compact=True)
+    fig = throw_map_samples(part, arm, omega, model=DEMO["model"], x_max=0.6).plot(compact=True)
     files.append(save_figure(fig, out / "throw_map.png"))
     plt.close(fig)
 
     say("orbit")
-    orbit = iterate(part, arm, (DEMO["x0"], DEMO["side0"]), omega, n=DEMO["n_throws"])
+    orbit = iterate(part, arm, (DEMO["x0"], DEMO["side0"]), omega, n=DEMO["n_throws"], model=DEMO["model"])
     fig = orbit.plot(part=part)
     files.append(save_figure(fig, out / "orbit.png"))
     plt.close(fig)
@@ -92,8 +92,8 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
     analysis, more = _analysis(part, arm, omega, out, say, plt)
     files += more
 
-    jog = throw(part, arm, 0.2, 0, omega)
-    flip = throw(part, arm, 0.5, 0, omega)
+    jog = throw(part, arm, 0.2, 0, omega, model=DEMO["model"])
+    flip = throw(part, arm, 0.5, 0, omega, model=DEMO["model"])
     summary = {
         "example": dict(DEMO),
         "part": {
@@ -134,7 +134,7 @@ def _analysis(part, arm, omega, out: Path, say, plt) -> tuple[dict, list]:
     from ..viz.funnels import plot_funnel_graph
     from ..viz.limit_set import plot_limit_set
     from ..analysis.maps import ThrowMap
-    from ..cli.analysis import orbit_on_attractor
+    from ..analysis.orbits import orbit_on_attractor
     from ..viz.style import save_figure
 
     p = ANALYSIS
