@@ -39,7 +39,7 @@ def main(out_dir: str | Path = "out") -> dict:
     fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     result = {}
     for ax, (label, part) in zip(axes, parts.items()):
-        orbit = tm.iterate(part, arm, (part.x_min(0) + 0.01, 0), 4.0, n=400)
+        orbit = tm.iterate(part, arm, (part.x_min(0) + 0.01, 0), 4.0, n=400, model="paper")
         orbit.plot(ax=ax, part=part)
         ax.set_title(f"{label}: CM at ({100 * part.com[0]:.1f}, {100 * part.com[1]:.1f}) cm, {orbit.status.label}")
         result[label] = bands(orbit, part)
