@@ -1,4 +1,4 @@
-"""MuJoCo cross-check of the impulse throw (throwmap.engine.mujoco_backend).
+"""MuJoCo cross-check of the impulse throw (throwmap.engine.mujoco).
 
 The tuned contact (stiff, over-damped, multi-point, elliptic cone, arm priority)
 reproduces the paper's plastic no-slip impact (Eq. 4) and its throw map; MuJoCo's
@@ -18,7 +18,7 @@ from throwmap.throws.trajectory import Trajectory, pose_at_rest, world_vertices
 
 mujoco = pytest.importorskip("mujoco")
 
-from throwmap.engine.mujoco_backend import (  # noqa: E402
+from throwmap.engine.mujoco import (  # noqa: E402
     MODEL_NAME,
     MujocoSettings,
     mujoco_model_xml,

@@ -15,7 +15,7 @@ from ..errors import InvalidStateError
 from ..kernels import codes as C
 from ..throws.outcome import BatchOutcome, Status, ThrowOutcome
 from ..system.part import Part
-from .pymunk_backend import EngineRun, simulate
+from .pymunk import EngineRun, simulate
 from .realisation import ImpulseThrow
 from .scene import Placement, Scene
 from .settings import EngineSettings, Friction

@@ -1,0 +1,37 @@
+"""Full rigid-body simulation of throws in pymunk (Chipmunk2D): the "engine" model.
+
+The scene (:mod:`.world`): the arm is a kinematic body turning about the joint,
+built from convex solids under its surface profile, with the fixtures on it;
+parts are convex polygons with their own mass, CM and inertia; restitution is
+zero and friction is set per pair of bodies.
+
+Stepping (:mod:`.stepping`)
+---------------------------
+While any part is in or near contact the space advances by the fixed step
+``dt`` (0.125 ms by default, the converged value), or by ``coarse_dt`` in smooth
+contact phases (every part touching, arm still, no new contact for
+``impact_window``). While every part is clear of everything by more than
+``flight_margin``, the parts are advanced by the exact ballistic solution, in
+leaps short enough that no vertex can reach any shape; this removes pymunk's
+free-flight drift of g·t·dt/2 and most of the steps.
+
+Checks (:mod:`.checks`)
+-----------------------
+* penetration: every millisecond, each part vertex is tested against the arm,
+  fixtures and other parts; deeper than ``penetration_tol`` → status
+  ``penetration`` (pymunk can lose grazing high-friction contacts) — that
+  result is refused, and the run retried with a finer step.
+* settling: after the arm has stopped, every part slower than ``settle_speed``
+  and ``settle_spin`` for ``settle_hold`` → status ``ok``; ``t_max`` → ``timeout``.
+* escape: a part whose CM drops below the arm's underside has left the arm:
+  ``behind_joint`` if it is behind the joint, else ``off_end``.
+
+Contacts, impacts, hops and flips are counted in :mod:`.contacts`; the loop is
+:func:`.run.simulate`, its result :class:`.result.EngineRun`. pymunk itself is
+imported only when a run starts.
+"""
+
+from .result import EngineRun
+from .run import simulate
+
+__all__ = ["EngineRun", "simulate"]

@@ -1,0 +1,140 @@
+"""The result of an engine run (:class:`EngineRun`), its recorded motion and how both are read off the space."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...kernels import codes as C
+from ...throws.outcome import Status, ThrowOutcome
+from ...throws.trajectory import Trajectory, state_from_pose
+from ..scene import Placement, Scene
+from .contacts import Contacts
+from .world import World
+
+__all__ = ["EngineRun", "Recorder", "finish"]
+
+
+@dataclass(frozen=True, slots=True)
+class EngineRun:
+    """The result of :func:`~throwmap.engine.simulate` (SI units, arm frame unless stated).
+
+    ``status`` is the run's overall status (the first part's failure, else ok);
+    ``statuses``/``states``/``poses`` are per part: ``states[i] = (x, side, tilt)``
+    read in the arm frame at the end (see :func:`throwmap.throws.trajectory.state_from_pose`),
+    ``poses[i]`` the arm-frame pose ``(x, y, φ)``. ``records`` is (P, NREC) per
+    unit mass (see :mod:`throwmap.kernels.codes`; entries an engine cannot
+    measure are nan). ``alpha`` is the arm's rest angle at the end.
+
+    The run's cost: ``n_steps`` pymunk steps (``n_coarse`` of them at
+    ``coarse_dt``), ``n_leaps`` exact-flight leaps, ``n_checks`` rounds of the
+    periodic checks (penetration, escape, flips, settling) and ``n_clearance``
+    clearance evaluations (exact flight).
+    """
+
+    scene: Scene
+    status: Status
+    statuses: tuple
+    states: tuple
+    poses: tuple
+    records: np.ndarray
+    t_end: float
+    n_steps: int
+    n_leaps: int
+    penetration_max: float
+    alpha: float
+    trajectory: Trajectory | None = None
+    message: str = ""
+    retries: int = 0
+    n_coarse: int = 0
+    n_checks: int = 0
+    n_clearance: int = 0
+
+    def outcome(self, i: int = 0, *, x0=None, side0=None, omega=0.0, model="engine") -> ThrowOutcome:
+        """Part ``i``'s result as a :class:`~throwmap.ThrowOutcome`."""
+        part = self.scene.placements[i].part
+        pl = self.scene.placements[i]
+        if x0 is None:
+            x0, side0, _ = state_from_pose(part, pl.arm_pose(self.scene.arm.h))
+        x, side, _ = self.states[i]
+        return ThrowOutcome.from_record(part, x0, side0, omega, model, x, side, self.statuses[i], self.records[i])
+
+    def next_scene(self, **changes) -> Scene:
+        """A scene starting from this run's end (final poses at rest, arm at ``alpha``)."""
+        pls = tuple(Placement(p.part, pose=pose) for p, pose in zip(self.scene.placements, self.poses))
+        kw = dict(arm=self.scene.arm, placements=pls, fixtures=self.scene.fixtures, alpha=self.alpha,
+                  friction=self.scene.friction)
+        kw.update(changes)
+        return Scene(**kw)
+
+
+class Recorder:
+    """Samples of a run for its :class:`~throwmap.throws.trajectory.Trajectory`: time, arm angle, world poses, contact points."""
+
+    __slots__ = ("world", "t", "arm", "poses", "contacts")
+
+    def __init__(self, world: World):
+        self.world = world
+        self.t, self.arm, self.poses, self.contacts = [], [], [], []
+
+    def sample(self, t: float):
+        w = self.world
+        self.t.append(t)
+        self.arm.append(w.arm.angle)
+        self.poses.append([(b.position.x, b.position.y, b.angle) for b in w.bodies])
+        pts = []
+        for b in w.bodies:
+            def _collect(arb, out=pts):
+                for cp in arb.contact_point_set.points:
+                    out.append((cp.point_a.x, cp.point_a.y))
+            b.each_arbiter(_collect)
+        self.contacts.append(np.array(pts).reshape(-1, 2))
+
+    def trajectory(self, scene: Scene, events) -> Trajectory:
+        w = self.world
+        return Trajectory(np.array(self.t), np.array(self.arm), np.array(self.poses), tuple(w.parts), w.h, w.L,
+                          scene.fixtures, tuple(self.contacts), tuple(events), "engine:pymunk")
+
+
+def finish(scene: Scene, w: World, contacts: Contacts, status: Status, message: str, t: float, still_since,
+           counts: dict, pen_max: float, recorder: Recorder | None) -> EngineRun:
+    """Read the final poses and states off the space and assemble the :class:`EngineRun`.
+
+    A part that settled with status ok is still ``behind_joint`` when its left
+    support vertex is behind the joint while it lies flat, and ``off_end`` when
+    its CM is past the arm's end.
+    """
+    g, h, L = w.g, w.h, w.L
+    final_alpha = w.arm.angle
+    ca, sa = math.cos(final_alpha), math.sin(final_alpha)
+    states, poses, statuses = [], [], []
+    for b, part, tr in zip(w.bodies, w.parts, contacts.tracks):
+        pose_w = (b.position.x, b.position.y, b.angle)
+        xa = ca * pose_w[0] + sa * pose_w[1]
+        ya = -sa * pose_w[0] + ca * pose_w[1]
+        pose_a = (xa, ya, pose_w[2] - final_alpha)
+        x, k, tilt = state_from_pose(part, pose_w, final_alpha)
+        st = tr.status
+        if st == Status.OK and status == Status.OK:
+            if x + part.uL[k] <= 0.0 and abs(tilt) < 0.05:
+                st = Status.BEHIND_JOINT
+            elif x > L:
+                st = Status.OFF_END
+        statuses.append(st)
+        states.append((x, k, tilt))
+        poses.append(pose_a)
+        tr.rec[C.E_FINAL] = g * (ya - h)
+        tr.rec[C.T_REST] = (still_since if still_since is not None and st == Status.OK else math.nan)
+    overall = status
+    if overall == Status.OK:
+        for st in statuses:
+            if st != Status.OK:
+                overall = st
+                break
+    traj = recorder.trajectory(scene, contacts.events) if recorder is not None else None
+    return EngineRun(scene, overall, tuple(statuses), tuple(states), tuple(poses),
+                     np.array([tr.rec for tr in contacts.tracks]), t, counts["steps"], counts["leaps"], pen_max,
+                     final_alpha, traj, message, n_coarse=counts["coarse"], n_checks=counts["checks"],
+                     n_clearance=counts["clearance"])

@@ -1,0 +1,192 @@
+"""One engine run: the loop that leaps, steps and checks until every part settles (:func:`simulate`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from ...errors import ThrowmapError
+from ...kernels import codes as C
+from ...throws.outcome import Status
+from ..realisation import ImpulseThrow, check_realisation
+from ..scene import Scene
+from ..settings import EngineSettings
+from .checks import all_slow, clearance, escape, inspect
+from .contacts import Contacts, nearest_side
+from .result import EngineRun, Recorder, finish
+from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
+from .world import build_world
+
+__all__ = ["simulate", "CHECK_EVERY"]
+
+CHECK_EVERY = 1e-3
+"""s between penetration/clearance checks while stepping at ``dt``."""
+FLIP_TILT = 0.02
+"""A part in contact within this angle of a resting orientation lies on that side (rad; flip counting)."""
+
+
+def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = None, *, record: bool = False,
+             progress=None, run_for: float | None = None) -> EngineRun:
+    """Simulate one throw (or arm motion) of every part in ``scene`` until all settle.
+
+    ``realisation``: :class:`~throwmap.engine.ImpulseThrow` (default ω = 0: just
+    settle), :class:`~throwmap.engine.FiniteThrow`, :class:`~throwmap.engine.RecoilThrow`
+    or :class:`~throwmap.engine.TiltTo`. With ``record=True`` the run's
+    :class:`~throwmap.throws.trajectory.Trajectory` is kept. ``progress(t, t_max)``
+    is called every simulated 10 ms if given. ``run_for`` (s): simulate exactly
+    this long instead of stopping once settled.
+
+    A run that loses a contact (status ``penetration``) is repeated with half the
+    step, up to ``settings.retries`` times; if it still fails, the failure is
+    returned (with its message), never the result.
+    """
+    settings = EngineSettings() if settings is None else settings
+    if not isinstance(settings, EngineSettings):
+        raise ThrowmapError("settings", "must be an EngineSettings")
+    run = _simulate_once(scene, realisation, settings, record, progress, run_for)
+    tries = 0
+    while run.status == Status.PENETRATION and tries < settings.retries:
+        tries += 1
+        finer = replace(settings, dt=settings.dt / 2**tries, settle_hold=max(settings.settle_hold, 4 * settings.dt))
+        first = run.message
+        run = _simulate_once(scene, realisation, finer, record, progress, run_for)
+        run = replace(run, message=(run.message + "; " if run.message else "")
+                      + f"retried at dt = {finer.dt:g} s after: {first}", retries=tries)
+    return run
+
+
+def _simulate_once(scene, realisation, settings, record, progress, run_for, *, raw: bool = True) -> EngineRun:
+    """One attempt of :func:`simulate` (no retries); ``raw=False`` calls pymunk's public API only."""
+    if not isinstance(scene, Scene):
+        raise ThrowmapError("scene", "must be a Scene")
+    realisation = ImpulseThrow(0.0) if realisation is None else check_realisation(realisation)
+    t_max = settings.t_max
+    if run_for is not None:
+        if isinstance(run_for, bool) or not isinstance(run_for, (int, float)) or not run_for > 0 \
+                or not math.isfinite(run_for):
+            raise ThrowmapError("run_for", f"must be a positive number of seconds, got {run_for!r}")
+        t_max = float(run_for)
+    w = build_world(scene, realisation, settings, raw=raw)
+    contacts = Contacts(w)
+    tracks, events = contacts.tracks, contacts.events
+    recorder = Recorder(w) if record else None
+    cp = w.cp
+    dt, coarse_dt, margin = settings.dt, settings.coarse_dt, settings.flight_margin
+    use_coarse = coarse_dt > dt
+    alpha = scene.alpha
+    end_alpha = alpha + (realisation.delta if hasattr(realisation, "delta") else 0.0)
+    arm_stop = realisation.duration
+    omega_arm_bound = abs(getattr(realisation, "omega", 0.0)) + abs(getattr(realisation, "peak_rate", 0.0)) \
+        + abs(getattr(realisation, "rate_", 0.0))
+    n_parts = w.n
+    pen_tol, thickness, impact_window = settings.penetration_tol, settings.arm_thickness, settings.impact_window
+    settle_speed, settle_spin, settle_hold = settings.settle_speed, settings.settle_spin, settings.settle_hold
+    exact_flight = settings.exact_flight
+    n_steps = n_coarse = n_leaps = n_checks = n_clearance = 0
+
+    t = 0.0
+    next_check = next_flight_check = next_sample = next_progress = 0.0
+    still_since = None
+    status = Status.OK
+    message = ""
+    pen_max = 0.0
+    done = False
+    while not done:
+        if record and t >= next_sample - 1e-12:
+            recorder.sample(t)
+            next_sample += settings.record_dt
+        if progress is not None and t >= next_progress:
+            progress(t, t_max)
+            next_progress += 0.01
+        if t >= t_max - 1e-12:
+            if run_for is not None:
+                break
+            status = Status.TIMEOUT
+            message = f"not settled after {settings.t_max:g} s"
+            for tr in tracks:
+                if tr.fell is None:
+                    tr.status = Status.TIMEOUT
+            break
+        arm_moving = t < arm_stop
+        # -------------------------------------------- exact free flight when every part is clear
+        if exact_flight and t >= next_flight_check and contacts.all_free():
+            next_flight_check = t + CHECK_EVERY
+            n_clearance += n_parts
+            gap = min(clearance(w, i) if tracks[i].fell is None else math.inf for i in range(n_parts)) \
+                if n_parts > 1 else clearance(w, 0) if tracks[0].fell is None else math.inf
+            if gap > margin:
+                vmax = vertex_speed_bound(w, tracks)
+                vmax += 2.0 * omega_arm_bound * w.reach if arm_moving else 0.0
+                tau = min(leap_length(w, gap, vmax, margin), 0.05, t_max - t)
+                if record:
+                    tau = min(tau, max(next_sample - t, dt))
+                if tau > 4 * dt:
+                    t += tau
+                    contacts.now = t
+                    leap(w, tau, alpha + realisation.angle(t))
+                    n_leaps += 1
+                    continue
+        # -------------------------------------------- fixed steps up to the next check
+        coarse = (use_coarse and not arm_moving and t - contacts.last_begin >= impact_window
+                  and contacts.all_touching())
+        h_step = coarse_dt if coarse else dt
+        n_inner = max(1, int(math.ceil((min(next_check, t_max) - t) / h_step - 1e-9)))
+        t = fixed_steps(w, contacts, t, n_inner, h_step, realisation, alpha, arm_stop, end_alpha)
+        n_steps += n_inner
+        if coarse:
+            n_coarse += n_inner
+        if contacts.n_touching < n_parts:
+            contacts.after_steps(t)
+        # -------------------------------------------- periodic checks
+        if t >= next_check:
+            n_checks += 1
+            next_check = t + (CHECK_EVERY if h_step == dt else 4.0 * h_step)
+            aa = cp.angle(w.arm_h)
+            ca, sa = math.cos(aa), math.sin(aa)
+            for i in range(n_parts):
+                tr = tracks[i]
+                if tr.fell is not None:
+                    continue
+                pen, xa, ya, phi = inspect(w, i, aa, ca, sa)
+                if pen > tr.rec[C.PENETRATION_MAX]:
+                    tr.rec[C.PENETRATION_MAX] = pen
+                if pen > pen_max:
+                    pen_max = pen
+                if pen > pen_tol:
+                    tr.status = Status.PENETRATION
+                    status = Status.PENETRATION
+                    message = (f"part {i}: a vertex sank {pen * 1e3:.2f} mm into a shape at t = {t:.4f} s "
+                               f"(> penetration_tol {pen_tol * 1e3:g} mm); result refused")
+                    done = True
+                    break
+                gone = escape(w, i, xa, ya, thickness)
+                if gone is not None:
+                    contacts.fell(i, t, gone)
+                # flips: the side the part lies on whenever it is in contact and nearly flat
+                if tr.n_contacts > 0 and tr.ever:
+                    k, tilt = nearest_side(w.betas[i], phi)
+                    if abs(tilt) < FLIP_TILT:
+                        if k != tr.last_side:
+                            tr.rec[C.N_FLIPS] += 1.0
+                            events.append((t, f"flip {tr.last_side}→{k}"))
+                        tr.last_side = k
+            if done:
+                break
+            if contacts.n_fell == n_parts:
+                break
+            # settling
+            if t >= arm_stop:
+                if all_slow(w, tracks, settle_speed, settle_spin):
+                    if still_since is None:
+                        still_since = t
+                    elif t - still_since >= settle_hold and run_for is None:
+                        done = True
+                else:
+                    still_since = None
+    if status == Status.OK and still_since is not None:
+        events.append((still_since, "rest"))
+    if record:
+        recorder.sample(t)
+    contacts.finished = True
+    counts = {"steps": n_steps, "coarse": n_coarse, "leaps": n_leaps, "checks": n_checks, "clearance": n_clearance}
+    return finish(scene, w, contacts, status, message, t, still_since, counts, pen_max, recorder)

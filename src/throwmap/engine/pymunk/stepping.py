@@ -1,0 +1,91 @@
+"""Advancing a run: exact ballistic leaps while every part is clear, fixed pymunk steps otherwise.
+
+pymunk's symplectic Euler drifts by g·t·dt/2 in free flight. While every part
+is clear of everything by more than ``flight_margin``, the parts are instead
+moved along their exact parabolas, in leaps short enough that no vertex can
+reach any shape: with ``v`` a bound on every vertex's speed relative to the
+shapes and ``d`` the usable gap, the leap τ solves v τ + g τ² = d (the g term
+bounds the speed gained during the leap). Near contacts, the space advances by
+the fixed step ``dt``; the arm's kinematic body follows the realisation θ(t)
+with the rate that takes it to θ(t + step) in one step.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .world import World
+
+__all__ = ["leap_length", "leap", "fixed_steps"]
+
+
+def leap_length(w: World, gap: float, vmax: float, margin: float) -> float:
+    """Longest safe exact-flight leap (s) for clearance ``gap`` (m) and vertex speed bound ``vmax`` (m/s)."""
+    usable = gap - 0.5 * margin
+    g = w.g
+    # vmax τ + g τ² ≤ usable (the g term bounds the speed gained during the leap)
+    return 2.0 * usable / (vmax + math.sqrt(vmax * vmax + 4.0 * g * usable))
+
+
+def vertex_speed_bound(w: World, tracks) -> float:
+    """Largest CM speed plus spin × reach over the parts still on the arm, m/s."""
+    cp = w.cp
+    vmax = 0.0
+    for i, b in enumerate(w.bodies_h):
+        if tracks[i].fell is None:
+            v = cp.velocity(b)
+            vmax = max(vmax, math.hypot(v.x, v.y) + abs(cp.spin(b)) * w.R[i])
+    return vmax
+
+
+def leap(w: World, tau: float, arm_angle: float):
+    """Move every part along its exact parabola for ``tau`` (s); put the arm at ``arm_angle`` (rad), at rest."""
+    cp, g = w.cp, w.g
+    for b in w.bodies_h:
+        p, v = cp.position(b), cp.velocity(b)
+        px, py, vx, vy = p.x, p.y, v.x, v.y
+        cp.set_position(b, (px + vx * tau, py + vy * tau - 0.5 * g * tau * tau))
+        cp.set_velocity(b, (vx, vy - g * tau))
+        cp.set_angle(b, cp.angle(b) + cp.spin(b) * tau)
+    cp.set_angle(w.arm_h, arm_angle)
+    cp.set_spin(w.arm_h, 0.0)
+    w.arm_w = 0.0
+    w.space.reindex_shapes_for_body(w.arm)
+
+
+def fixed_steps(w: World, contacts, t: float, n: int, step: float, realisation, alpha: float, arm_stop: float,
+                end_alpha: float) -> float:
+    """Take ``n`` pymunk steps of ``step`` (s) from time ``t`` (s); return the new time.
+
+    While t < ``arm_stop`` the arm follows α + θ(t) (``alpha``, rad); after it, it
+    is parked at ``end_alpha`` once. First impacts get their post-impact record
+    after the step they happened in.
+    """
+    cp = w.cp
+    space_step, space_h, arm_h = cp.step, w.space_h, w.arm_h
+    arm_moving = t < arm_stop
+    if not arm_moving and w.arm_w == 0.0:  # the arm is parked: only the space moves
+        for _ in range(n):
+            contacts.now = t + step
+            space_step(space_h, step)
+            t += step
+            if contacts.need_post:
+                contacts.record_post(step)
+        return t
+    for _ in range(n):
+        if arm_moving:
+            a_now = alpha + realisation.angle(t)
+            cp.set_angle(arm_h, a_now)
+            w.arm_w = (alpha + realisation.angle(t + step) - a_now) / step
+            cp.set_spin(arm_h, w.arm_w)
+            arm_moving = t + step < arm_stop
+        elif w.arm_w != 0.0:
+            cp.set_angle(arm_h, end_alpha)
+            cp.set_spin(arm_h, 0.0)
+            w.arm_w = 0.0
+        contacts.now = t + step
+        space_step(space_h, step)
+        t += step
+        if contacts.need_post:
+            contacts.record_post(step)
+    return t

@@ -1,0 +1,195 @@
+"""The pymunk space of a :class:`~throwmap.engine.Scene`: arm, fixtures and parts, ready to step.
+
+The arm is a kinematic body turning about the joint (the origin), built from
+convex solid pieces under its surface profile (:func:`throwmap.system.fixtures.arm_solids`);
+fixtures are kinematic pieces on the same body. Parts are convex polygons with
+their own mass, CM and inertia. Restitution is zero on every shape; friction is
+set per pair of bodies (:class:`~throwmap.engine.Friction`): pymunk multiplies the
+two shapes' values, so arm and wall shapes carry the pair's μ and part shapes
+carry 1 (part–part μ is set in a ``pre_solve`` hook, :mod:`.contacts`).
+
+Chipmunk is called through :class:`Chipmunk`: pymunk's own cffi functions on the
+raw C handles (``pymunk._chipmunk``), a few times faster than pymunk's Python
+wrappers, which build a ``Vec2d`` or a query object per call; where that binding
+is missing (another pymunk), the public API with the same results.
+"""
+
+from __future__ import annotations
+
+import math
+from operator import attrgetter
+
+import numpy as np
+
+from ...errors import ThrowmapError
+from ...system.fixtures import arm_solids
+from ..settings import engine_mu
+
+__all__ = ["ARM", "FIXTURE", "PART", "Chipmunk", "World", "build_world", "load_pymunk"]
+
+ARM, FIXTURE, PART = 1, 2, 3
+"""pymunk collision types of arm pieces, fixture pieces and parts."""
+
+
+def load_pymunk():
+    """Import pymunk, or say how to install it."""
+    try:
+        import pymunk
+    except ImportError:  # pragma: no cover - pymunk is a dependency
+        raise ThrowmapError("engine", "pymunk is not installed: pip install pymunk") from None
+    return pymunk
+
+
+class Chipmunk:
+    """The Chipmunk calls of the run loop, on handles from :meth:`body`/:meth:`shape`/:meth:`space`.
+
+    ``raw=True`` (when pymunk's cffi binding is there): handles are C pointers and
+    the calls are Chipmunk's (``position(b).x``, ``distance(s, p, NULL)``, …);
+    ``raw=False``: handles are the pymunk objects and the calls pymunk's public API.
+    Both give bit-identical runs (``tests/engine/test_engine_layout.py``).
+    """
+
+    __slots__ = ("raw", "NULL", "position", "angle", "velocity", "spin", "to_world", "distance", "step",
+                 "set_position", "set_angle", "set_velocity", "set_spin")
+
+    def __init__(self, pm, raw: bool = True):
+        lib = None
+        if raw:
+            try:
+                from pymunk._chipmunk import ffi, lib
+                lib.cpSpaceStep, lib.cpShapePointQuery, lib.cpBodyLocalToWorld  # noqa: B018
+            except (ImportError, AttributeError):
+                lib = None
+        self.raw = lib is not None
+        if self.raw:
+            self.NULL = ffi.NULL
+            self.position, self.angle = lib.cpBodyGetPosition, lib.cpBodyGetAngle
+            self.velocity, self.spin = lib.cpBodyGetVelocity, lib.cpBodyGetAngularVelocity
+            self.to_world, self.distance, self.step = lib.cpBodyLocalToWorld, lib.cpShapePointQuery, lib.cpSpaceStep
+            self.set_position, self.set_angle = lib.cpBodySetPosition, lib.cpBodySetAngle
+            self.set_velocity, self.set_spin = lib.cpBodySetVelocity, lib.cpBodySetAngularVelocity
+        else:
+            B = pm.Body
+            self.NULL = None
+            self.position, self.angle = attrgetter("position"), attrgetter("angle")
+            self.velocity, self.spin = attrgetter("velocity"), attrgetter("angular_velocity")
+            self.to_world, self.step = B.local_to_world, pm.Space.step
+            self.distance = lambda s, p, _null: s.point_query(p).distance
+            self.set_position, self.set_angle = B.position.fset, B.angle.fset
+            self.set_velocity, self.set_spin = B.velocity.fset, B.angular_velocity.fset
+
+    def body(self, b):
+        return b._body if self.raw else b
+
+    def shape(self, s):
+        return s._shape if self.raw else s
+
+    def space(self, s):
+        return s._space if self.raw else s
+
+
+class World:
+    """A scene in pymunk: bodies, shapes, their Chipmunk handles and the geometry the checks use (SI, world frame).
+
+    ``arm`` is the kinematic arm body (fixtures on it), ``bodies``/``shapes``/
+    ``parts`` per part; ``*_h`` are the matching :class:`Chipmunk` handles.
+    ``L`` is the simulated arm length, ``corners`` the arm pieces' corners in the
+    arm frame and ``reach`` their largest distance from the joint, ``R[i]`` part
+    i's largest vertex distance from its CM, ``others_h[i]`` the handles of every
+    shape part i can touch. ``plain_arm``: one part and no fixtures (the
+    penetration check then reads depth below the flat surface directly).
+    ``arm_w`` is the arm's angular velocity as last set, rad/s.
+    """
+
+    __slots__ = ("pm", "cp", "space", "space_h", "arm", "arm_h", "arm_w", "bodies", "bodies_h", "shapes", "shapes_h",
+                 "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h",
+                 "plain_arm", "index", "mu_pp")
+
+    @property
+    def n(self) -> int:
+        return len(self.bodies)
+
+
+def build_world(scene, realisation, settings, *, raw: bool = True) -> World:
+    """Build the space of ``scene`` at t = 0: arm at α + θ(0), parts at their poses with their start velocities.
+
+    An impulsive realisation gives each part the velocity of the arm point at its
+    CM, ω × r, and spin ω (paper Sec. III-B); otherwise parts start with their
+    placement's arm-frame velocity.
+    """
+    pm = load_pymunk()
+    cp = Chipmunk(pm, raw)
+    w = World()
+    w.pm, w.cp = pm, cp
+    arm = scene.arm
+    w.h, w.g = arm.h, arm.g
+    w.L = L = scene.length(settings.default_length)
+    space = pm.Space()
+    space.gravity = (0.0, -arm.g)
+    space.iterations = int(settings.iterations)
+    space.collision_slop = settings.collision_slop
+    space.damping = 1.0
+
+    arm_body = pm.Body(body_type=pm.Body.KINEMATIC)
+    arm_body.position = (0.0, 0.0)
+    a0 = scene.alpha + realisation.angle(0.0)
+    arm_body.angle = a0
+    arm_pieces, fixture_pieces = arm_solids(arm.h, L, settings.arm_thickness, scene.fixtures)
+    mu_arm = engine_mu(scene.mu("arm"))
+    mu_wall = engine_mu(scene.mu("wall"))
+    static_shapes, corners = [], []
+    for piece, ctype, mu in [(p, ARM, mu_arm) for p in arm_pieces] + [(p, FIXTURE, mu_wall) for p in fixture_pieces]:
+        piece = [tuple(v) for v in piece.tolist()]
+        s = pm.Poly(arm_body, piece)
+        s.friction = mu
+        s.elasticity = 0.0
+        s.collision_type = ctype
+        static_shapes.append(s)
+        corners.extend(piece)
+    space.add(arm_body, *static_shapes)
+
+    bodies, shapes, parts = [], [], []
+    c0, s0 = math.cos(a0), math.sin(a0)
+    for i, pl in enumerate(scene.placements):
+        part = pl.part
+        m = part.mass
+        body = pm.Body(m, m * part.radius_of_gyration**2)
+        x, y, phi = pl.arm_pose(arm.h)
+        body.position = (c0 * x - s0 * y, s0 * x + c0 * y)
+        body.angle = phi + a0
+        vx, vy, om = pl.velocity
+        if realisation.impulsive and realisation.omega > 0:
+            # paper Sec. III-B: the part leaves with the arm point's velocity ω × r and spin ω
+            w_arm = realisation.omega
+            px, py = body.position
+            vx, vy, om = vx - w_arm * py, vy + w_arm * px, om + w_arm
+        else:
+            vx, vy = c0 * vx - s0 * vy, s0 * vx + c0 * vy
+        body.velocity = (vx, vy)
+        body.angular_velocity = om
+        shp = pm.Poly(body, [tuple(v) for v in part.w.tolist()])
+        shp.friction = 1.0
+        shp.elasticity = 0.0
+        shp.collision_type = PART
+        shp.filter = pm.ShapeFilter(group=i + 1)
+        space.add(body, shp)
+        bodies.append(body)
+        shapes.append(shp)
+        parts.append(part)
+
+    w.space, w.arm, w.arm_w = space, arm_body, 0.0
+    w.bodies, w.shapes, w.parts, w.static_shapes = bodies, shapes, parts, static_shapes
+    w.space_h, w.arm_h = cp.space(space), cp.body(arm_body)
+    w.bodies_h = [cp.body(b) for b in bodies]
+    w.shapes_h = [cp.shape(s) for s in shapes]
+    static_h = [cp.shape(s) for s in static_shapes]
+    w.others_h = [static_h + [w.shapes_h[j] for j in range(len(shapes)) if j != i] for i in range(len(shapes))]
+    w.corners = corners
+    w.reach = float(np.max(np.hypot(*np.array(corners).T))) if corners else L
+    w.R = [float(np.max(np.hypot(p.w[:, 0], p.w[:, 1]))) for p in parts]
+    w.wlists = [[tuple(v) for v in p.w.tolist()] for p in parts]
+    w.betas = [tuple(p.beta.tolist()) for p in parts]
+    w.plain_arm = not scene.fixtures and len(parts) == 1
+    w.index = {id(b): i for i, b in enumerate(bodies)}
+    w.mu_pp = engine_mu(scene.mu("part"))
+    return w
