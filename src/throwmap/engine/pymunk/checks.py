@@ -18,7 +18,7 @@ import math
 from ...throws.outcome import Status
 from .world import World
 
-__all__ = ["inspect", "penetration", "clearance", "escape", "all_slow"]
+__all__ = ["inspect", "clearance", "escape", "all_slow"]
 
 
 def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float):
@@ -54,12 +54,6 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float):
                 if d < -deepest:
                     deepest = -d
     return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle
-
-
-def penetration(w: World, i: int) -> float:
-    """Deepest penetration (m) of part i's vertices into the arm, fixtures or other parts."""
-    aa = w.cp.angle(w.arm_h)
-    return inspect(w, i, aa, math.cos(aa), math.sin(aa))[0]
 
 
 def clearance(w: World, i: int) -> float:

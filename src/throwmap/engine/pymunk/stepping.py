@@ -16,7 +16,7 @@ import math
 
 from .world import World
 
-__all__ = ["leap_length", "leap", "fixed_steps"]
+__all__ = ["leap_length", "vertex_speed_bound", "leap", "fixed_steps"]
 
 
 def leap_length(w: World, gap: float, vmax: float, margin: float) -> float:
