@@ -5,38 +5,12 @@ validates once and calls these. Setting ``NUMBA_DISABLE_JIT=1`` runs them as
 plain Python (slow, but debuggable).
 
 Numba's on-disk cache (``cache=True``) is keyed on each function's own source
-file only, so a kernel that calls into an edited module would keep running the
-stale machine code. On import we therefore hash every kernel source and drop the
-cache files when the hash changed.
+file only, so a kernel calling into an edited module would keep running stale
+machine code. :mod:`~throwmap.kernels.numba_cache` registers a cache locator for
+this package whose source stamp covers all its files; it reads and writes
+nothing at import (the stamp is computed when a kernel is first called).
 """
 
-from __future__ import annotations
+from .numba_cache import install as _install_cache_locator
 
-import hashlib
-from pathlib import Path
-
-
-def _invalidate_stale_numba_cache() -> None:
-    here = Path(__file__).parent
-    digest = hashlib.sha256()
-    for src in sorted(here.glob("*.py")):
-        digest.update(src.name.encode())
-        digest.update(src.read_bytes())
-    stamp_value = digest.hexdigest()
-    cache = here / "__pycache__"
-    stamp = cache / "kernels.sha256"
-    try:
-        if stamp.read_text() == stamp_value:
-            return
-    except OSError:
-        pass
-    try:
-        cache.mkdir(exist_ok=True)
-        for f in list(cache.glob("*.nbi")) + list(cache.glob("*.nbc")):
-            f.unlink(missing_ok=True)
-        stamp.write_text(stamp_value)
-    except OSError:  # read-only install: numba falls back to its own cache locator
-        pass
-
-
-_invalidate_stale_numba_cache()
+_install_cache_locator()
