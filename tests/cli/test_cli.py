@@ -80,7 +80,7 @@ def test_throw_json():
     assert doc["part"] == tm.triangle_30_60_90(0.17).name
     assert doc["arm"] == {"h": -0.01, "g": 9.81, "length": None, "mu": None}
     assert doc["version"] == tm.__version__
-    direct = tm.throw(tm.triangle_30_60_90(0.17), tm.Arm(-0.01), 0.2, 0, 4.0, model="paper")
+    direct = tm.throw(tm.triangle_30_60_90(0.17), tm.Arm(-0.01), 0.2, 0, 4.0)
     assert doc["x"] == direct.x and doc["side"] == direct.side
     assert result.stderr == ""
 
@@ -142,7 +142,7 @@ def test_iterate_progress_path_matches_library():
     result = invoke("iterate", *TRIANGLE, "--x", "0.12", "--side", "0", "--omega", "4", "-n", "230", "--json")
     assert result.exit_code == 0, result.output
     doc = strict_json(result.stdout)
-    orbit = tm.iterate(tm.triangle_30_60_90(0.17), tm.Arm(-0.01), (0.12, 0), 4.0, n=230, model="paper")
+    orbit = tm.iterate(tm.triangle_30_60_90(0.17), tm.Arm(-0.01), (0.12, 0), 4.0, n=230)
     assert doc["x"] == [float(v) for v in orbit.x]
     assert doc["side"] == [int(v) for v in orbit.side]
     assert doc["status"] == orbit.status.label

@@ -32,7 +32,7 @@ from ..errors import ConfigError, InvalidArmError, InvalidStateError, ThrowmapEr
 from ..io.config import resolve_part
 from ..io.files import atomic_write_bytes, atomic_write_text, json_ready
 from ..system.arm import Arm
-from ..throws.throw import MODELS
+from ..throws.throw import DEFAULT_MODEL, MODELS
 
 __all__ = [
     "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "MuOpt", "OmegaOpt", "PartOpt", "SideOpt", "XOpt",
@@ -52,7 +52,7 @@ MuOpt = Annotated[float | None, typer.Option("--mu", help="Arm–part Coulomb fr
 XOpt = Annotated[float, typer.Option("--x", help="Resting CM position along the arm, m.")]
 SideOpt = Annotated[int, typer.Option("--side", help="Side the part rests on (index, see conventions).")]
 OmegaOpt = Annotated[float, typer.Option("--omega", help="Release angular velocity ω, rad/s (≥ 0).")]
-ModelOpt = Annotated[str, typer.Option("--model", help=f"Throw model: {', '.join(MODELS)}.")]
+ModelOpt = Annotated[str, typer.Option("--model", help=f"Throw model: {', '.join(MODELS)} (default {DEFAULT_MODEL}).")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON to stdout instead of a table.")]
 
 

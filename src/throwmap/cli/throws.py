@@ -16,7 +16,7 @@ import typer
 from .. import __version__
 from ..errors import InvalidStateError
 from ..throws.orbit import Orbit, iterate
-from ..throws.throw import check_model, throw
+from ..throws.throw import DEFAULT_MODEL, check_model, throw
 from .options import (GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, arm_dict,
                       check_finite, figure_format, format_value, guard, parse_floats, part_and_arm, save_figure,
                       to_json)
@@ -37,7 +37,7 @@ def throw_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
-    model: ModelOpt = "paper",
+    model: ModelOpt = DEFAULT_MODEL,
     as_json: JsonOpt = False,
 ) -> None:
     """One throw from rest at (x, side): where the part lands and how."""
@@ -138,7 +138,7 @@ def iterate_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
-    model: ModelOpt = "paper",
+    model: ModelOpt = DEFAULT_MODEL,
     as_json: JsonOpt = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a figure of the orbit (e.g. orbit.png).")] = None,
 ) -> None:
