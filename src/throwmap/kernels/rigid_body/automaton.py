@@ -1,0 +1,216 @@
+"""The "rigid_body" hybrid automaton: one throw as a loop over modes (see :mod:`throwmap.kernels.rigid_body`).
+
+FLIGHT --touch--> impact --> SELECT --> PIVOT_STICK | PIVOT_SLIDE | FLIGHT
+PIVOT_STICK --slip--> PIVOT_SLIDE --stick--> PIVOT_STICK   (slip_start / stick_start)
+PIVOT_* --lift_off--> FLIGHT (lift) --land--> land_side --> REST | FLAT_SLIDE | pivot on B | FLIGHT
+any contact --leave_arm--> BEHIND_JOINT / OFF_END;  PIVOT_SLIDE --painleve--> INCONSISTENT.
+
+:func:`run_throw` takes the sticking phase as its first argument (a jitted
+function with the signature of :func:`~throwmap.kernels.rigid_body.stick.pivot_stick`),
+so the closed-form phase (:func:`throw_one_rigid_body`) and the RK4 reference
+(:func:`throw_one_rigid_body_rk4`) share every other line.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .. import codes as C
+from ..roll import _theta_a, _theta_b
+from .flight import departure_window, flight_frame, fly, leave_arm, lift, release
+from .impact import coulomb_impact, record_first_contact, record_first_impact, record_impact
+from .landing import land_side, rest
+from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_B, EV_LIFT_OFF, EV_NONE, EV_OFF_END, EV_SLIP,
+                    EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST,
+                    MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID)
+from .slide import pivot_slide, select_contact_mode
+from .stick import pivot_stick
+from .stick_exact import pivot_stick_exact
+from .trajectory import _put, clear
+
+
+@njit(cache=True)
+def _start_record(rec):
+    for i in range(C.NREC):
+        rec[i] = 0.0
+    rec[C.N_MIN] = math.inf
+    rec[C.T_REST] = math.nan
+    rec[C.K_MAX_IMPACT_GAIN] = -math.inf
+    rec[C.CONTACT_VERTEX] = -1.0
+    rec[C.PENETRATION_MAX] = 0.0
+
+
+@njit(cache=True, inline='always')
+def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+              max_events, rec, traj, traj_dt):
+    """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`."""
+    n = w.shape[0]
+    _start_record(rec)
+    ts = np.zeros(3)
+    clear(traj, ts, traj_dt)
+    sample = traj.shape[0] > 0
+    dk = d[side]
+    rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + g * dk
+    if sample:
+        _put(traj, ts, 0.0, x0, h + dk, beta[side])
+        ts[1] = ts[2]
+    if omega == 0.0:
+        rec[C.N_MIN] = 1.0
+        return rest(x0, side, 0.0, h, g, d, uL, beta, length, beta[side], traj, ts, rec)
+    ru = np.empty(n)
+    rv = np.empty(n)
+    c0 = np.empty(n)
+    x, y, phi, vx, vy, om = release(x0, dk, beta[side], omega, h, w, ell, ru, rv, c0)
+    t = 0.0
+    excl_j = -1  # a vertex that just left the line, and how long it provably stays above it
+    excl_t = 0.0
+    mode = MODE_FLIGHT
+    last_side = side
+    first = True
+    n_events = 0
+    # contact state: pivot vertex jp at x = px, angle θ of pivot→CM, rates θ̇ and slip velocity v_A, φ = θ + phi_off
+    jp = -1
+    px = 0.0
+    theta = 0.0
+    thdot = 0.0
+    va = 0.0
+    phi_off = 0.0
+    sig = 0.0
+    mu_s = MU_SKID if math.isinf(mu) else mu
+    ev = EV_NONE
+    while True:
+        n_events += 1
+        if n_events > max_events:
+            return x, last_side, C.NO_REST
+        if mode == MODE_FLIGHT:
+            # ---------------------------------------------------------- FLIGHT until guard touch
+            jc, t, x, y, vy, phi, rx, ry = fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol,
+                                               max_iter, traj, ts)
+            if jc < 0:
+                return x, last_side, C.NO_CONTACT
+            pxc = x + rx
+            k_pre = 0.5 * (vx * vx + vy * vy + rho2 * om * om)
+            if first:
+                record_first_contact(rec, t, jc, pxc, vx, vy, om, k_pre, y - h, g)
+            status = leave_arm(pxc, length)
+            if status != C.OK:
+                return x, last_side, status
+            # ---------------------------------------------------------- reset impact
+            vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vx, vy, om, rx, ry, rho2, mu)
+            if jn0 < 0.0:
+                rec[C.N_PULL] += 1.0
+            if kind == IMP_INCONSISTENT:
+                rec[C.N_IMPACTS] += 1.0
+                return x, last_side, C.INCONSISTENT
+            k_post = 0.5 * (vxp * vxp + vyp * vyp + rho2 * wp * wp)
+            record_impact(pt, pn, k_pre, k_post, rec)
+            if kind != IMP_STICK:
+                rec[C.N_SLIPS] += 1.0
+            if first:
+                first = False
+                record_first_impact(rec, vxp, vyp, wp, pt, pn, jt0, jn0, k_post)
+            vx, vy, om = vxp, vyp, wp
+            if kind == IMP_SEPARATE:
+                # the vertex leaves at once: flight again, this vertex excluded for a while
+                un = vy + om * rx
+                excl_j = jc
+                excl_t = departure_window(un, rx, ry, om, g, ell[jc]) if un <= 1e-12 else 0.0
+                flight_frame(phi, y, h, w, ru, rv, c0, jc)
+                continue
+            jp = jc
+            px = pxc
+            theta = math.atan2(-ry, -rx)
+            thdot = om
+            phi_off = phi - theta
+            va = 0.0 if kind == IMP_STICK else vx - om * ry  # contact slip velocity
+            mode = MODE_SELECT
+            continue
+        # ============================================================== contact modes on vertex jp
+        lj = ell[jp]
+        I = rho2 + lj * lj
+        ta = _theta_a(jp, n, d, uL)
+        tb = _theta_b(jp, d, uR)
+        theta = min(max(theta, ta), tb)
+        if mode == MODE_SELECT:
+            mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, False)
+            if mode < 0:
+                return px + lj * math.cos(theta), last_side, C.INCONSISTENT
+            if mode == MODE_SLIDE and va == 0.0:
+                rec[C.N_SLIPS] += 1.0  # (a sliding impact was counted already)
+            if mode == MODE_FLIGHT:
+                ev = EV_LIFT_OFF
+        if mode == MODE_STICK:
+            ev, theta, thdot, t = stick_phase(theta, thdot, ta, tb, lj, I, g, mu, t, max_iter, px, h, phi_off, traj,
+                                              ts, rec)
+            va = 0.0
+        elif mode == MODE_SLIDE:
+            ev, px, theta, va, thdot, t = pivot_slide(px, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu_s, length,
+                                                      t, max_iter, h, phi_off, traj, ts, rec)
+            if ev == EV_INCONSISTENT:
+                return px + lj * math.cos(theta), last_side, C.INCONSISTENT
+            if ev == EV_BEHIND_JOINT:
+                return px + lj * math.cos(theta), last_side, C.BEHIND_JOINT
+            if ev == EV_OFF_END:
+                return px + lj * math.cos(theta), last_side, C.OFF_END
+        if ev == EV_SLIP or ev == EV_LIFT_OFF or ev == EV_STICK:
+            # ---------------------------------------------------------- resets slip_start / stick_start / lift
+            new_mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, ev != EV_STICK)
+            if new_mode < 0:
+                return px + lj * math.cos(theta), last_side, C.INCONSISTENT
+            if new_mode == MODE_SLIDE:
+                rec[C.N_SLIPS] += 1.0
+                mode = MODE_SLIDE
+                continue
+            if new_mode == MODE_STICK:
+                mode = MODE_STICK
+                continue
+            ev = EV_LIFT_OFF
+        if ev == EV_STEP_CAP:
+            return px + lj * math.cos(theta), last_side, C.NO_REST
+        phi = theta + phi_off
+        if ev == EV_LIFT_OFF:
+            # ---------------------------------------------------------- reset lift
+            rec[C.N_LIFTOFFS] += 1.0
+            x, y, vx, vy, om, excl_t = lift(px, h, lj, theta, thdot, va, phi, g, w, ru, rv, c0, jp)
+            if excl_t <= 0.0:
+                # N = 0 with a friction force that only infinite friction supplies and a free
+                # motion that would sink the vertex: no consistent contact (μ = ∞ only)
+                return x, last_side, C.INCONSISTENT
+            excl_j = jp
+            sig = 0.0
+            mode = MODE_FLIGHT
+            continue
+        # -------------------------------------------------------------- guard land: reset land_side
+        (mode, status, x, y, vx, vy, om, phi, t, jp, px, theta, thdot, va, phi_off, j_ex, t_ex,
+         last_side) = land_side(1 if ev == EV_LAND_B else -1, jp, px, thdot, va, phi, t, last_side, h, g, length,
+                                rho2, mu, w, beta, d, uL, uR, ell, stable, ta, tb, ru, rv, c0, traj, ts, rec)
+        if mode == MODE_REST:
+            return x, last_side, status
+        if mode == MODE_FLIGHT:
+            excl_j = j_ex
+            excl_t = t_ex
+
+
+@njit(cache=True)
+def throw_one_rigid_body(x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+                         max_events, rec, traj, traj_dt):
+    """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s), model "rigid_body".
+
+    Fills ``rec`` (layout :mod:`~throwmap.kernels.codes`) and ``traj`` (see
+    :mod:`throwmap.kernels.rigid_body`; rows not written are NaN) and returns
+    ``(x, side, status)``. ``mu`` is the Coulomb coefficient (``inf``: no slip),
+    ``max_iter`` caps the contact-search and integration steps of one mode,
+    ``max_events`` the mode changes (status NO_REST beyond). The caller has
+    checked the start. The sticking phase is closed form (:func:`pivot_stick_exact`).
+    """
+    return run_throw(pivot_stick_exact, x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable,
+                     tol, max_iter, max_events, rec, traj, traj_dt)
+
+
+@njit(cache=True)
+def throw_one_rigid_body_rk4(x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+                             max_events, rec, traj, traj_dt):
+    """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`pivot_stick`): the reference it is checked against."""
+    return run_throw(pivot_stick, x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol,
+                     max_iter, max_events, rec, traj, traj_dt)

@@ -1,0 +1,153 @@
+"""Reset ``impact`` of model "rigid_body": a plastic one-vertex impact with Coulomb friction.
+
+The no-slip impulse is paper Eq. (4) (:func:`~throwmap.kernels.impact.plastic_impact`);
+outside the friction cone, Routh's compression-only process in impulse space.
+"""
+
+import math
+
+from numba import njit
+
+from .. import codes as C
+from ..impact import plastic_impact
+from .modes import IMP_INCONSISTENT, IMP_SEPARATE, IMP_SLIDE, IMP_STICK
+
+
+@njit(cache=True)
+def coulomb_impact(vx, vy, w, rx, ry, rho2, mu):
+    """Plastic single-vertex impact with Coulomb friction (reset ``impact``).
+
+    Contact frame t = x̂, n = ŷ; contact velocity u = (v_x − ω r_y, v_y + ω r_x);
+    an impulse P at the contact changes it by K P with the inverse-inertia matrix
+    K = [[1 + r_y²/ρ², −r_x r_y/ρ²], [−r_x r_y/ρ², 1 + r_x²/ρ²]] (unit mass).
+
+    1. The no-slip impulse J = −K⁻¹u (Eq. 4). If J_n ≥ 0 and |J_t| ≤ μ J_n it is
+       applied (sticking impact, computed by :func:`plastic_impact` exactly as model
+       "paper").
+    2. Otherwise Routh's process, compression only (zero Poisson restitution),
+       parametrised by the normal impulse p: while sliding with sense σ,
+       dP = (−μσ, 1) dp; when u_t reaches 0 the part sticks if |K_tn/K_tt| ≤ μ
+       (dP = (−K_tn/K_tt, 1) dp), else slides with σ = sgn K_tn; it ends when u_n = 0.
+       μ = ∞ is the limit: a purely tangential impulse until u_t = 0 or u_n = 0.
+       If the normal velocity cannot be stopped (du_n/dp ≤ 0 while sliding) there is
+       no consistent impulse (``IMP_INCONSISTENT``).
+
+    ``(rx, ry)`` CM → contact vertex (m), ``rho2`` ρ² (m²).
+    Returns ``(vx⁺, vy⁺, ω⁺, P_t, P_n, kind, jt0, jn0)``; kind is IMP_STICK,
+    IMP_SLIDE (contact slides, u_n = 0), IMP_SEPARATE (u_n > 0, the vertex
+    leaves) or IMP_INCONSISTENT; (jt0, jn0) is the no-slip impulse of step 1.
+    """
+    ut = vx - w * ry
+    un = vy + w * rx
+    Ktt = 1.0 + ry * ry / rho2
+    Knn = 1.0 + rx * rx / rho2
+    Ktn = -rx * ry / rho2
+    det = Ktt * Knn - Ktn * Ktn
+    jt0 = -(Knn * ut - Ktn * un) / det
+    jn0 = -(-Ktn * ut + Ktt * un) / det
+    if un >= 0.0:
+        return vx, vy, w, 0.0, 0.0, IMP_SEPARATE, jt0, jn0
+    if jn0 >= 0.0 and abs(jt0) <= mu * jn0:
+        vxp, vyp, wp = plastic_impact(vx, vy, w, rx, ry, rho2)
+        return vxp, vyp, wp, vxp - vx, vyp - vy, IMP_STICK, jt0, jn0
+    scale = abs(ut) + abs(un)
+    Pt = 0.0
+    Pn = 0.0
+    kind = IMP_SLIDE
+    for _ in range(4):
+        if un >= 0.0:
+            break
+        if abs(ut) <= 1e-14 * scale:
+            ut = 0.0
+            lam = -Ktn / Ktt
+            if abs(lam) <= mu:
+                dp = -un / (Knn + Ktn * lam)
+                Pt += lam * dp
+                Pn += dp
+                un = 0.0
+                kind = IMP_STICK
+                break
+            sig = 1.0 if Ktn > 0.0 else -1.0
+        else:
+            sig = 1.0 if ut > 0.0 else -1.0
+        if math.isinf(mu):
+            # limit mu -> inf: tangential impulse only, until u_t = 0 or u_n = 0
+            pt_stop = -ut / Ktt
+            un_stop = un + Ktn * pt_stop
+            if un_stop >= 0.0 and Ktn != 0.0:
+                pt = -un / Ktn
+                Pt += pt
+                ut += Ktt * pt
+                un = 0.0
+                kind = IMP_SLIDE if ut != 0.0 else IMP_STICK
+                break
+            Pt += pt_stop
+            ut = 0.0
+            un = un_stop
+            continue
+        at = Ktn - mu * sig * Ktt  # du_t/dp while sliding with sense sig
+        an = Knn - mu * sig * Ktn  # du_n/dp
+        p_n = -un / an if an > 0.0 else math.inf
+        p_t = -ut / at if (sig * at < 0.0 and ut != 0.0) else math.inf
+        if math.isinf(p_n) and math.isinf(p_t):
+            return vx, vy, w, 0.0, 0.0, IMP_INCONSISTENT, jt0, jn0
+        if p_n <= p_t:
+            Pt += -mu * sig * p_n
+            Pn += p_n
+            ut += at * p_n
+            un = 0.0
+            kind = IMP_SLIDE
+            break
+        Pt += -mu * sig * p_t
+        Pn += p_t
+        un += an * p_t
+        ut = 0.0
+    if un > 0.0:
+        kind = IMP_SEPARATE
+    vxp = vx + Pt
+    vyp = vy + Pn
+    wp = w + (rx * Pn - ry * Pt) / rho2
+    return vxp, vyp, wp, Pt, Pn, kind, jt0, jn0
+
+
+@njit(cache=True)
+def record_impact(pt, pn, k_before, k_after, rec):
+    """Count an impact with impulse (P_t, P_n) (m/s) in ``rec``: N_IMPACTS, MU_MAX, K_MAX_IMPACT_GAIN."""
+    rec[C.N_IMPACTS] += 1.0
+    if pn > 0.0:
+        r = abs(pt) / pn
+        if r > rec[C.MU_MAX]:
+            rec[C.MU_MAX] = r
+    elif pt != 0.0:
+        rec[C.MU_MAX] = math.inf
+    gain = k_after - k_before
+    if gain > rec[C.K_MAX_IMPACT_GAIN]:
+        rec[C.K_MAX_IMPACT_GAIN] = gain
+
+
+@njit(cache=True)
+def record_first_contact(rec, t, j, px, vx, vy, w, k_pre, dy, g):
+    """First-contact fields of ``rec``: time (s), vertex, x (m), velocities before impact, energies (J/kg)."""
+    rec[C.T_FLIGHT] = t
+    rec[C.CONTACT_VERTEX] = j
+    rec[C.CONTACT_X] = px
+    rec[C.VX_PRE] = vx
+    rec[C.VY_PRE] = vy
+    rec[C.W_PRE] = w
+    rec[C.K_PRE] = k_pre
+    rec[C.U_IMPACT] = g * dy
+
+
+@njit(cache=True)
+def record_first_impact(rec, vx, vy, w, pt, pn, jt0, jn0, k_post):
+    """First-impact fields of ``rec``: velocities after it, impulse (m/s), the friction ratio the no-slip impulse needs."""
+    rec[C.VX_POST] = vx
+    rec[C.VY_POST] = vy
+    rec[C.W_POST] = w
+    rec[C.JX] = pt
+    rec[C.JY] = pn
+    if jn0 > 0.0:
+        rec[C.MU_IMPACT] = abs(jt0) / jn0
+    else:
+        rec[C.MU_IMPACT] = math.inf if jt0 != 0.0 else 0.0
+    rec[C.K_POST] = k_post

@@ -1,0 +1,195 @@
+"""Reset ``land_side`` of model "rigid_body": a second vertex B touches while A is on the line.
+
+Then, in order: the impulse at B alone (A free) if it makes A lift; the Zeno rule
+``rocking_rest`` (decided on purpose, as :mod:`~throwmap.kernels.roll`); else both
+vertices stop normal motion and friction removes what it can of the horizontal
+velocity; what remains slides the part flat (mode FLAT_SLIDE, deceleration μ g,
+closed form) to rest on a stable side, or it tips from rest about the vertex its
+CM overhangs (unstable side).
+"""
+
+import math
+
+from numba import njit
+
+from .. import codes as C
+from ..roll import _theta_a, _theta_b
+from .flight import departure_window, flight_frame, leave_arm
+from .impact import coulomb_impact, record_impact
+from .modes import (HALF_PI, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST, MODE_SELECT,
+                    MODE_STICK, N_ARC, TWO_PI)
+from .stick import _n_min_range, _n_stick
+from .trajectory import _put, _put_final
+
+
+@njit(cache=True)
+def arc_ok(th_from, E, lj, I, g, mu, towards_peak):
+    """Whether a sticking swing from θ at energy E up to its turning point keeps N > 0, |F| ≤ μN."""
+    k = lj * lj / I
+    e = E / (g * lj)
+    st = min(e, 1.0)
+    if towards_peak > 0:
+        tt = math.asin(st) if th_from < HALF_PI else HALF_PI
+        if tt < th_from:
+            tt = th_from
+    else:
+        tt = math.pi - math.asin(st) if th_from > HALF_PI else HALF_PI
+        if tt > th_from:
+            tt = th_from
+    lo = min(th_from, tt)
+    hi = max(th_from, tt)
+    if _n_min_range(lo, hi, e, k) <= 0.0:
+        return False
+    if math.isinf(mu):
+        return True
+    for i in range(N_ARC):
+        th = lo + (hi - lo) * i / (N_ARC - 1)
+        s = math.sin(th)
+        nf = _n_stick(s, e, k)
+        if abs(k * math.cos(th) * (3.0 * s - 2.0 * e)) > mu * nf:
+            return False
+    return True
+
+
+@njit(cache=True)
+def rest(x, k, t, h, g, d, uL, beta, length, phi, traj, ts, rec):
+    rec[C.E_FINAL] = g * d[k]
+    rec[C.T_REST] = t
+    m = round((phi - beta[k]) / TWO_PI)
+    _put_final(traj, ts, t, x, h + d[k], beta[k] + TWO_PI * m)
+    if x + uL[k] <= 0.0:
+        return x, k, C.BEHIND_JOINT
+    if x > length:
+        return x, k, C.OFF_END
+    return x, k, C.OK
+
+
+@njit(cache=True)
+def rocking_rest(th_new, th_A, k_after, lA, lB, rho2, dk, g, mu, land_dir):
+    """Guard ``rocking_rest`` (Zeno) after a sticking landing on a stable side, kinetic energy ``k_after`` (J/kg).
+
+    Rest when K is below both topple barriers g(ℓ_A − d), g(ℓ_B − d) and the next
+    swings at that energy about B (from ``th_new``) and back about A (from ``th_A``)
+    keep N > 0 and |F| ≤ μN (:func:`arc_ok`).
+    """
+    if not k_after < min(g * (lA - dk), g * (lB - dk)):
+        return False
+    E_B = k_after + g * dk
+    if not arc_ok(th_new, E_B, lB, rho2 + lB * lB, g, mu, land_dir):
+        return False
+    return arc_ok(th_A, E_B, lA, rho2 + lA * lA, g, mu, -land_dir)
+
+
+@njit(cache=True)
+def flat_slide(x_cm, vx, t, mu, g, y, phi, traj, ts, rec):
+    """Mode FLAT_SLIDE: a side flat on the line slides from speed ``vx`` (m/s) at deceleration μ g to rest.
+
+    Closed form (tipping over the leading edge is not checked). Returns ``(x_cm, t)`` at rest.
+    """
+    rec[C.N_SLIPS] += 1.0
+    sgn = 1.0 if vx > 0.0 else -1.0
+    dec = mu * g
+    t_slide = abs(vx) / dec
+    dist = 0.5 * vx * vx / dec
+    if traj.shape[0] > 0:
+        while ts[1] <= t + t_slide:
+            tq = ts[1] - t
+            _put(traj, ts, ts[1], x_cm + vx * tq - 0.5 * sgn * dec * tq * tq, y, phi)
+            ts[1] += ts[2]
+    rec[C.SLIP_DISTANCE] += dist
+    return x_cm + sgn * dist, t + t_slide
+
+
+@njit(cache=True)
+def tip_from_rest(k, x_cm, n, d, uL, uR):
+    """Flat on an unstable side k: the pivot the part tips over from rest (the vertex its CM overhangs).
+
+    Returns ``(j, x_j, θ)``: the pivot vertex, its world x (m) and the angle of pivot→CM.
+    """
+    if uL[k] >= 0.0:
+        j = (k + 1) % n
+        return j, x_cm + uL[k], _theta_a(j, n, d, uL)
+    return k, x_cm + uR[k], _theta_b(k, d, uR)
+
+
+@njit(cache=True)
+def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, rho2, mu, w, beta, d, uL, uR, ell,
+              stable, ta, tb, ru, rv, c0, traj, ts, rec):
+    """Reset ``land_side``: pivoting on A = w_jp, θ reached θb (``land_dir`` +1) or θa (−1) and B touches.
+
+    Returns ``(mode, status, x, y, v_x, v_y, ω, φ, t, jp, px, θ, θ̇, v_A, phi_off, excl_j, excl_t, last_side)``:
+    mode MODE_REST (``status`` decided, x the CM and ``last_side`` the side),
+    MODE_FLIGHT (B bounced off: the flight state and frame ``ru``/``rv``/``c0``),
+    MODE_SELECT (pivot on B) or MODE_STICK (tip from rest on an unstable side).
+    """
+    n = d.shape[0]
+    if land_dir > 0:  # landed on side jp; A is its right vertex, B = w_{jp+1} its left
+        k = jp
+        uA = uR[k]
+        uB = uL[k]
+        jB = (jp + 1) % n
+    else:  # landed on side jp − 1; A is its left vertex, B its right
+        k = (jp - 1) % n
+        uA = uL[k]
+        uB = uR[k]
+        jB = k
+    dk = d[k]
+    if k != last_side:
+        rec[C.N_FLIPS] += 1.0
+        last_side = k
+    x_cm = px - uA
+    vxm = va - thdot * dk
+    vym = -thdot * uA
+    k_before = 0.5 * (vxm * vxm + vym * vym + rho2 * thdot * thdot)
+    pxB = x_cm + uB
+    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vxm, vym, thdot, uB, -dk, rho2, mu)
+    lifts = kind != IMP_INCONSISTENT and (vyp + wp * uA) > 0.0
+    status = leave_arm(pxB, length)
+    if status != C.OK:
+        rec[C.N_IMPACTS] += 1.0
+        return (MODE_REST, status, x_cm, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, thdot, va, 0.0, -1, 0.0,
+                last_side)
+    if lifts:
+        # ------------------------------------------------------------------ the impulse at B alone: A lifts
+        if jn0 < 0.0:
+            rec[C.N_PULL] += 1.0
+        k_after = 0.5 * (vxp * vxp + vyp * vyp + rho2 * wp * wp)
+        record_impact(pt, pn, k_before, k_after, rec)
+        if kind != IMP_STICK:
+            rec[C.N_SLIPS] += 1.0
+        th_new = _theta_a(jB, n, d, uL) if land_dir > 0 else _theta_b(jB, d, uR)
+        if kind == IMP_STICK and stable[k]:
+            th_A = tb if land_dir > 0 else ta
+            if rocking_rest(th_new, th_A, k_after, ell[jp], ell[jB], rho2, dk, g, mu, land_dir):
+                x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, phi, traj, ts, rec)
+                return (MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0,
+                        last_side)
+        phi_off = phi - th_new
+        if kind == IMP_SEPARATE:
+            # B bounced: flight again, B excluded from touch while it provably stays above the line
+            un = vyp + wp * uB
+            excl_t = departure_window(un if un > 0.0 else 0.0, uB, -dk, wp, g, ell[jB]) if un <= 1e-12 else 0.0
+            flight_frame(phi, h + dk, h, w, ru, rv, c0, jB)
+            return (MODE_FLIGHT, C.OK, x_cm, h + dk, vxp, vyp, wp, phi, t, jB, pxB, th_new, wp, 0.0, phi_off, jB,
+                    excl_t, last_side)
+        va_B = 0.0 if kind == IMP_STICK else vxp + wp * dk  # slip velocity of B
+        return (MODE_SELECT, C.OK, x_cm, h + dk, vxp, vyp, wp, phi, t, jB, pxB, th_new, wp, va_B, phi_off, -1, 0.0,
+                last_side)
+    # ---------------------------------------------------------------------- both vertices stop: v_y = ω = 0
+    jn = -vym if vym < 0.0 else 0.0
+    jt = -vxm
+    if abs(jt) > mu * jn:
+        jt = -mu * jn if vxm > 0.0 else mu * jn
+    vx_after = vxm + jt
+    record_impact(jt, jn, k_before, 0.5 * vx_after * vx_after, rec)
+    phi = beta[k] + TWO_PI * round((phi - beta[k]) / TWO_PI)
+    if vx_after != 0.0:
+        x_cm, t = flat_slide(x_cm, vx_after, t, mu, g, h + dk, phi, traj, ts, rec)
+    if stable[k]:
+        x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, phi, traj, ts, rec)
+        return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
+    # flat on an unstable side: tips over the vertex its CM overhangs, from rest
+    jt_, px_t, theta = tip_from_rest(k, x_cm, n, d, uL, uR)
+    status = leave_arm(px_t, length)
+    mode = MODE_STICK if status == C.OK else MODE_REST
+    return mode, status, x_cm, h + dk, 0.0, 0.0, 0.0, phi, t, jt_, px_t, theta, 0.0, 0.0, phi - theta, -1, 0.0, last_side

@@ -1,0 +1,215 @@
+"""Mode PIVOT_SLIDE of model "rigid_body" and the contact-mode selection (resets slip_start / stick_start / lift).
+
+One vertex A on the line sliding with slip velocity v_A ≠ 0: 2 DOF (x_A, θ) with
+friction −μσN, σ = sgn v_A (:func:`slide_rhs`), integrated with classical RK4,
+step Δt = DTH/(|θ̇| + Ω); guards ``stick`` (v_A = 0), ``land`` (θa, θb),
+``lift_off`` (N = 0), ``painleve`` (D ≤ 0) and ``leave_arm`` are checked at step
+ends and located by bisection on the step length. μ = ∞ slides with ``MU_SKID``.
+"""
+
+import math
+
+from numba import njit
+
+from .. import codes as C
+from .flight import departure_window
+from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_OFF_END,
+                    EV_STEP_CAP, EV_STICK, MODE_FLIGHT, MODE_SLIDE, MODE_STICK, N_BISECT)
+from .stick import stick_forces
+from .trajectory import _put
+
+
+@njit(cache=True)
+def slide_rhs(th, w, lj, rho2, g, musig):
+    """PIVOT_SLIDE dynamics with friction −μσN (musig = μσ).
+
+    With c = cos θ, s = sin θ and A → CM = ℓ(c, s):
+    ÿ_A = 0 gives N D = g − ℓ s θ̇², D = 1 + ℓ² c (c + μσ s)/ρ²;
+    ρ² θ̈ = −ℓ N (c + μσ s);  ẍ_A = −μσ N + ℓ (s θ̈ + c θ̇²).
+    Returns ``(θ̈, ẍ_A, N, D)`` (N per unit mass, m/s²).
+    """
+    c = math.cos(th)
+    s = math.sin(th)
+    q = c + musig * s
+    D = 1.0 + lj * lj * c * q / rho2
+    N = (g - lj * s * w * w) / D
+    thdd = -lj * q * N / rho2
+    xdd = -musig * N + lj * (s * thdd + c * w * w)
+    return thdd, xdd, N, D
+
+
+@njit(cache=True)
+def _rk4_slide(xa, th, va, w, dt, lj, rho2, g, musig):
+    a1, b1, _n, _d = slide_rhs(th, w, lj, rho2, g, musig)
+    th2 = th + 0.5 * dt * w
+    w2 = w + 0.5 * dt * a1
+    a2, b2, _n, _d = slide_rhs(th2, w2, lj, rho2, g, musig)
+    th3 = th + 0.5 * dt * w2
+    w3 = w + 0.5 * dt * a2
+    a3, b3, _n, _d = slide_rhs(th3, w3, lj, rho2, g, musig)
+    th4 = th + dt * w3
+    w4 = w + dt * a3
+    a4, b4, _n, _d = slide_rhs(th4, w4, lj, rho2, g, musig)
+    va2 = va + 0.5 * dt * b1
+    va3 = va + 0.5 * dt * b2
+    va4 = va + dt * b3
+    xa1 = xa + dt * (va + 2.0 * va2 + 2.0 * va3 + va4) / 6.0
+    th1 = th + dt * (w + 2.0 * w2 + 2.0 * w3 + w4) / 6.0
+    va1 = va + dt * (b1 + 2.0 * b2 + 2.0 * b3 + b4) / 6.0
+    w1 = w + dt * (a1 + 2.0 * a2 + 2.0 * a3 + a4) / 6.0
+    return xa1, th1, va1, w1
+
+
+@njit(cache=True)
+def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length):
+    _a, _b, N, D = slide_rhs(th, w, lj, rho2, g, musig)
+    gmin = sig * va
+    which = EV_STICK
+    if th - ta < gmin:
+        gmin = th - ta
+        which = EV_LAND_A
+    if tb - th < gmin:
+        gmin = tb - th
+        which = EV_LAND_B
+    if D <= 0.0:
+        return -1.0, EV_INCONSISTENT
+    if N / g < gmin:
+        gmin = N / g
+        which = EV_LIFT_OFF
+    if xa < gmin:
+        gmin = xa
+        which = EV_BEHIND_JOINT
+    if length - xa < gmin:
+        gmin = length - xa
+        which = EV_OFF_END
+    return gmin, which
+
+
+@njit(cache=True)
+def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, t, max_steps, h, phi_off, traj, ts,
+                rec):
+    """Mode PIVOT_SLIDE on vertex A at (x_A, h), slip sense σ = sgn v_A, until a guard fires.
+
+    Guards ``stick`` (σ v_A = 0), ``land`` (θa, θb), ``lift_off`` (N = 0),
+    ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ 0 or > length). RK4 with bisection
+    event location. Updates N_MIN, MU_MAX, SLIP_DISTANCE. Returns
+    ``(event, x_A, θ, v_A, θ̇, t)``.
+    """
+    musig = mu * sig
+    om = math.sqrt(g / lj)
+    x_start = xa
+    if mu > rec[C.MU_MAX]:
+        rec[C.MU_MAX] = mu
+    sample = traj.shape[0] > 0
+    for _ in range(max_steps):
+        dt = DTH / (abs(thdot) + om)
+        x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig)
+        gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length)
+        step = dt
+        if gm <= 0.0:
+            lo = 0.0
+            hi = dt
+            for _ in range(N_BISECT):
+                mid = 0.5 * (lo + hi)
+                xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig)
+                gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length)
+                if gmid <= 0.0:
+                    hi = mid
+                else:
+                    lo = mid
+                if hi - lo <= 1e-16 * (t + hi):
+                    break
+            step = hi
+            x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, hi, lj, rho2, g, musig)
+            gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length)
+        if sample:
+            while ts[1] <= t + step:
+                xq, thq, _v, _w = _rk4_slide(xa, theta, va, thdot, ts[1] - t, lj, rho2, g, musig)
+                _put(traj, ts, ts[1], xq + lj * math.cos(thq), h + lj * math.sin(thq), thq + phi_off)
+                ts[1] += ts[2]
+        _a, _b, N, _D = slide_rhs(th1, w1, lj, rho2, g, musig)
+        if N / g < rec[C.N_MIN]:
+            rec[C.N_MIN] = N / g
+        xa, theta, va, thdot = x1, th1, v1, w1
+        t += step
+        if gm <= 0.0:
+            if which == EV_STICK:
+                va = 0.0
+            elif which == EV_LAND_A:
+                theta = ta
+            elif which == EV_LAND_B:
+                theta = tb
+            elif which == EV_LIFT_OFF:
+                if rec[C.N_MIN] > 0.0:
+                    rec[C.N_MIN] = 0.0
+            rec[C.SLIP_DISTANCE] += abs(xa - x_start)
+            if sample:
+                _put(traj, ts, t, xa + lj * math.cos(theta), h + lj * math.sin(theta), theta + phi_off)
+            return which, xa, theta, va, thdot, t
+    rec[C.SLIP_DISTANCE] += abs(xa - x_start)
+    return EV_STEP_CAP, xa, theta, va, thdot, t
+
+
+@njit(cache=True)
+def slide_sense(theta, thdot, va, f_stick, lj, rho2, g, mu):
+    """Reset ``slip_start``: the slip sense σ (±1) of a consistent sliding motion, 0 if none.
+
+    v_A ≠ 0 fixes σ = sgn v_A (needs D > 0). From v_A = 0 the slip starts against
+    the friction that sticking would need (σ = −sgn F); it must satisfy σ ẍ_A > 0
+    and D > 0, else the other sense is tried.
+    """
+    if va != 0.0:
+        sig = 1.0 if va > 0.0 else -1.0
+        _a, _x, _n, D = slide_rhs(theta, thdot, lj, rho2, g, mu * sig)
+        return sig if D > 0.0 else 0.0
+    sig = -1.0 if f_stick > 0.0 else 1.0
+    for _ in range(2):
+        _a, xdd, _n, D = slide_rhs(theta, thdot, lj, rho2, g, mu * sig)
+        if D > 0.0 and sig * xdd > 0.0:
+            return sig
+        sig = -sig
+    return 0.0
+
+
+@njit(cache=True)
+def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip):
+    """Which mode continues from a one-vertex contact state (the single-contact Coulomb LCP).
+
+    In order: ``PIVOT_STICK`` (v_A = 0, N > 0, |F| ≤ μN; not offered right after a
+    ``slip``/``lift_off`` guard fired); ``FLIGHT`` if the free motion separates
+    (:func:`departure_window` > 0); ``PIVOT_SLIDE`` with a consistent sense
+    (D > 0, N > 0, and σ ẍ_A > 0 when starting from v_A = 0 — right after ``slip``
+    ẍ_A = 0 exactly, so σ = −sgn F is taken); else no consistent motion.
+    ``mu_s`` is the coefficient used for sliding (μ, or MU_SKID for μ = ∞).
+    Returns ``(mode, σ)`` with mode −1 for INCONSISTENT.
+    """
+    I = rho2 + lj * lj
+    c = math.cos(theta)
+    s = math.sin(theta)
+    if va != 0.0:
+        sig = 1.0 if va > 0.0 else -1.0
+        _a, _x, N, D = slide_rhs(theta, thdot, lj, rho2, g, mu_s * sig)
+        if D > 0.0 and N > 0.0:
+            return MODE_SLIDE, sig
+        if departure_window(0.0, -lj * c, -lj * s, thdot, g, lj) > 0.0:
+            return MODE_FLIGHT, 0.0
+        return -1, 0.0
+    nf, ff = stick_forces(theta, thdot, lj, I, g)
+    if not from_slip and nf > 0.0 and abs(ff) <= mu * nf:
+        return MODE_STICK, 0.0
+    if departure_window(0.0, -lj * c, -lj * s, thdot, g, lj) > 0.0:
+        return MODE_FLIGHT, 0.0
+    sig = -1.0 if ff > 0.0 else 1.0
+    for _ in range(2):
+        _a, xdd, N, D = slide_rhs(theta, thdot, lj, rho2, g, mu_s * sig)
+        if D > 0.0 and N > 0.0 and (sig * xdd > 0.0 or from_slip):
+            return MODE_SLIDE, sig
+        if from_slip:
+            break
+        sig = -sig
+    if from_slip:
+        sig = -sig
+        _a, xdd, N, D = slide_rhs(theta, thdot, lj, rho2, g, mu_s * sig)
+        if D > 0.0 and N > 0.0 and sig * xdd > 0.0:
+            return MODE_SLIDE, sig
+    return -1, 0.0
