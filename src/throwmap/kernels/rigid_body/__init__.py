@@ -113,50 +113,18 @@ Modules (the automaton's pieces)
 ``batch``        many throws in parallel
 """
 
-from __future__ import annotations
-
-import hashlib
-from pathlib import Path
-
-
-def _invalidate_stale_numba_cache() -> None:
-    """Drop this package's Numba cache when any kernel source it may call changed (see :mod:`throwmap.kernels`)."""
-    here = Path(__file__).parent
-    digest = hashlib.sha256()
-    for src in sorted(here.glob("*.py")) + sorted(here.parent.glob("*.py")):
-        digest.update(src.name.encode())
-        digest.update(src.read_bytes())
-    stamp_value = digest.hexdigest()
-    cache = here / "__pycache__"
-    stamp = cache / "rigid_body.sha256"
-    try:
-        if stamp.read_text() == stamp_value:
-            return
-    except OSError:
-        pass
-    try:
-        cache.mkdir(exist_ok=True)
-        for f in list(cache.glob("*.nbi")) + list(cache.glob("*.nbc")):
-            f.unlink(missing_ok=True)
-        stamp.write_text(stamp_value)
-    except OSError:  # read-only install: numba falls back to its own cache locator
-        pass
-
-
-_invalidate_stale_numba_cache()
-
-from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4  # noqa: E402
-from .batch import throw_many_rigid_body, throw_many_rigid_body_rk4  # noqa: E402
-from .flight import departure_window, first_contact_state  # noqa: E402
-from .impact import coulomb_impact  # noqa: E402
-from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE,  # noqa: E402
+from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4
+from .batch import throw_many_rigid_body, throw_many_rigid_body_rk4
+from .flight import departure_window, first_contact_state
+from .impact import coulomb_impact
+from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE,
                     EV_OFF_END, EV_SLIP, EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_SLIDE, IMP_STICK,
                     MODE_FLIGHT, MODE_REST, MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID, N_ARC, N_BISECT)
-from .slide import pivot_slide, select_contact_mode, slide_rhs, slide_sense  # noqa: E402
-from .stick import pivot_stick, stick_forces  # noqa: E402
-from .stick_exact import pivot_stick_exact  # noqa: E402
-from .swing import swing_time  # noqa: E402
-from .trajectory import count_samples  # noqa: E402
+from .slide import pivot_slide, select_contact_mode, slide_rhs, slide_sense
+from .stick import pivot_stick, stick_forces
+from .stick_exact import pivot_stick_exact
+from .swing import swing_time
+from .trajectory import count_samples
 
 __all__ = ["count_samples", "coulomb_impact", "departure_window", "first_contact_state", "pivot_slide", "pivot_stick",
            "pivot_stick_exact", "run_throw", "select_contact_mode", "slide_rhs", "slide_sense",
