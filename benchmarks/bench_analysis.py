@@ -30,7 +30,7 @@ import time
 
 
 import throwmap as tm
-from throwmap.analysis import ConfigMap, ThrowMap, basins, critical_points, limit_set
+from throwmap.analysis import ConfigMap, RecurrenceCaps, ThrowMap, basins, critical_points, limit_set
 
 H = -0.01  # m, arm height (paper's regime for the triangle)
 OMEGA = 4.0  # rad/s: one band attractor on all three sides
@@ -87,17 +87,18 @@ def bench_critical(part, arm, model: str, repeat: int) -> dict:
 
 
 def bench_limit(part, arm, model: str, repeat: int) -> dict:
+    caps = RecurrenceCaps()  # the defaults, recorded with the figures
     limit_set(part, arm, OMEGA, model, n_starts=4)  # warm-up
     counter = CountingMap(ThrowMap(part, arm, OMEGA, model))
 
     def run():
         counter.throws = 0
-        return limit_set(counter)
+        return limit_set(counter, caps=caps)
 
     med, times, ls = _timed(run, repeat)
     return {"median_s": med, "min_s": min(times), "repeat": repeat, "throws": counter.throws,
             "throws_per_s": counter.throws / med, "kind": ls.kind, "n_attractors": len(ls.attractors),
-            "n_starts": ls.n_starts, "transient_used": ls.caps["transient_used"]}
+            "n_starts": ls.n_starts, "transient_used": ls.transient_used, "caps": ls.recurrence_caps.to_dict()}
 
 
 def bench_basins(part, arm, model: str, grid: int, n_check: int, seed: int) -> dict:

@@ -24,7 +24,7 @@ import numpy as np
 from ..throws.outcome import Status
 
 __all__ = ["Attractor", "LABEL_ESCAPE", "FATE_UNRESOLVED", "fate_label", "fate_code", "merge_intervals",
-           "escape_fractions", "attractor_table"]
+           "escape_fractions", "attractor_table", "nan_to_none", "none_to_nan"]
 
 LABEL_ESCAPE = -1
 """Label of a configuration whose orbit does not end on an attractor on the arm."""
@@ -164,7 +164,7 @@ class Attractor:
             "id": self.id, "kind": self.kind, "period": self.period,
             "points": [{"side": int(s), "x_m": float(x)} for s, x in self.points],
             "bands": [{"side": int(s), "lo_m": float(lo), "hi_m": float(hi)} for s, lo, hi in self.bands],
-            "multiplier": _num(self.multiplier), "lyapunov": _num(self.lyapunov),
+            "multiplier": nan_to_none(self.multiplier), "lyapunov": nan_to_none(self.lyapunov),
             "stable": self.stable, "fraction": float(self.fraction),
             "side_visits": [{"side": int(s), "share": float(v)} for s, v in self.side_visits],
         }
@@ -175,7 +175,7 @@ class Attractor:
             id=int(d["id"]), kind=str(d["kind"]), period=int(d["period"]),
             points=tuple((int(p["side"]), float(p["x_m"])) for p in d["points"]),
             bands=tuple((int(b["side"]), float(b["lo_m"]), float(b["hi_m"])) for b in d["bands"]),
-            multiplier=_unnum(d["multiplier"]), lyapunov=_unnum(d["lyapunov"]), fraction=float(d["fraction"]),
+            multiplier=none_to_nan(d["multiplier"]), lyapunov=none_to_nan(d["lyapunov"]), fraction=float(d["fraction"]),
             side_visits=tuple((int(v["side"]), float(v["share"])) for v in d["side_visits"]),
         )
 
@@ -197,10 +197,11 @@ def attractor_table(attractors, escapes: dict, share: str = "share %") -> str:
     return "\n".join(rows)
 
 
-def _num(v: float):
+def nan_to_none(v: float):
     """JSON has no nan: None stands for it."""
     return None if v is None or not math.isfinite(v) else float(v)
 
 
-def _unnum(v) -> float:
+def none_to_nan(v) -> float:
+    """The inverse of :func:`nan_to_none`."""
     return math.nan if v is None else float(v)

@@ -38,15 +38,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidStateError
 from ..kernels import codes as C
-from .attractors import fate_label
+from .attractors import fate_label, nan_to_none, none_to_nan
+from .caps import check_int, check_length
 from .maps import DEFAULT_MODEL, ConfigMap, as_map
 
 __all__ = ["CriticalPoints", "critical_points"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, slots=True, eq=False)
 class CriticalPoints:
     """r_i, l_i and what happens beyond r_i, per stable side (dicts keyed by side; metres).
 
@@ -113,7 +113,7 @@ class CriticalPoints:
         return "no: " + ", ".join(f"{w} {100 * a:.2f}–{100 * b:.2f} cm" for a, b, w in runs[:3])
 
     def to_dict(self) -> dict:
-        f = _num
+        f = nan_to_none
         return {
             "r_m": {str(s): f(v) for s, v in self.r.items()},
             "l_m": {str(s): f(v) for s, v in self.l.items()},
@@ -128,7 +128,7 @@ class CriticalPoints:
 
     @classmethod
     def from_dict(cls, d: dict) -> "CriticalPoints":
-        u = _unnum
+        u = none_to_nan
         return cls(
             r={int(s): u(v) for s, v in d["r_m"].items()},
             l={int(s): u(v) for s, v in d["l_m"].items()},
@@ -140,14 +140,6 @@ class CriticalPoints:
             l_method=str(d["l_method"]), x_max=float(d["x_max_m"]), xtol=float(d["xtol_m"]),
             n_throws=int(d["n_throws"]), map_info=dict(d["map"]),
         )
-
-
-def _num(v):
-    return None if v is None or not math.isfinite(v) else float(v)
-
-
-def _unnum(v):
-    return math.nan if v is None else float(v)
 
 
 def _what(side0, side1, status) -> str:
@@ -345,10 +337,8 @@ def critical_points(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, x
     cmap: ConfigMap = as_map(part, arm, omega, model, x_max=x_max, **throw_options)
     for name, v, lo in (("n_grid", n_grid, 2), ("n_split", n_split, 1), ("hull_samples", hull_samples, 2),
                         ("hull_max_iter", hull_max_iter, 1)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
-            raise InvalidStateError(name, f"must be an integer ≥ {lo}, got {v!r}")
-    if isinstance(xtol, bool) or not isinstance(xtol, (int, float)) or not (math.isfinite(xtol) and xtol > 0):
-        raise InvalidStateError("xtol", f"must be a positive length in m, got {xtol!r}")
+        check_int(name, v, lo)
+    check_length("xtol", xtol)
     T = _Counter(cmap)
     r, jog_start, bracket, nxt, flips_beyond, non_flips = _r_points(T, cmap, int(n_grid), int(n_split), float(xtol))
     if limit is not None:

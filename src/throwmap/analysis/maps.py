@@ -29,12 +29,11 @@ import numpy as np
 from ..system.arm import Arm
 from ..errors import InvalidStateError
 from ..kernels import codes as C
+from ..models import DEFAULT_MODEL, check_model  # DEFAULT_MODEL re-exported here for the analysis modules
 from ..system.part import Part
+from ..throws.throw import throw_batch
 
 __all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid"]
-
-DEFAULT_MODEL = "rigid_body"
-"""The most faithful validated analytic model (issue 3: 99 % side agreement with pymunk)."""
 
 DEFAULT_X_MAX = 0.6
 """Outer end of the analysed domain on an unbounded arm, m (the paper's arms span ≈ 60 cm)."""
@@ -101,7 +100,8 @@ class ThrowMap(ConfigMap):
     ``omegas`` is one release rate (rad/s) or a sequence; one :meth:`step` applies
     T^{ω_k} ∘ … ∘ T^{ω_1} (``throws_per_step = k``) and stops a configuration at
     its first failed throw (its status is that throw's). ``model`` is any of
-    :data:`throwmap.throws.throw.MODELS` (default ``"rigid_body"``); ``throw_options`` go
+    the registered models (:func:`throwmap.models.model_names`; default
+    :data:`throwmap.models.DEFAULT_MODEL`, ``"rigid_body"``); ``throw_options`` go
     to :func:`throwmap.throw_batch` (e.g. ``fixtures``, ``settings`` for the engine).
     The domain is every stable side, ``x_lo = part.x_min(side)`` (exclusive) to
     ``x_max`` (default: the arm length, else :data:`DEFAULT_X_MAX`).
@@ -115,8 +115,6 @@ class ThrowMap(ConfigMap):
     throw_options: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        from ..throws.throw import check_model
-
         check_model(self.model)
         om = np.atleast_1d(np.asarray(self.omegas, dtype=float))
         if om.ndim != 1 or om.size == 0:
@@ -138,8 +136,6 @@ class ThrowMap(ConfigMap):
         object.__setattr__(self, "label", f"{self.part.name or 'part'}, ω = {w} rad/s, model {self.model}")
 
     def step(self, x, side):
-        from ..throws.throw import throw_batch
-
         x = x.copy()
         side = side.copy()
         status = np.zeros(x.size, dtype=np.int64)
