@@ -6,7 +6,11 @@ Measures, after warm-up (JIT caches loaded, first calls made):
     the canonical triangle (random x on random stable sides, ω ∈ [3, 6] rad/s);
 (b) ``throw_batch`` throughput on ``--n`` throws from the same distribution, for
     model "paper" and "small_angle" (best of ``--repeat``);
-(c) the latency of one ``throw()`` call, median over ``--n-single`` calls.
+(c) the latency of one ``throw()`` call, median over ``--n-single`` calls;
+(d) the per-throw cost of the "paper" kernel by phase, on one thread: kernels that
+    stop after the release setup, after the first contact (Eq. 3), after the impact
+    (Eq. 4), and the whole throw (pivot/landing cascade); with the mean number of
+    first-contact steps; and the batch kernel alone (``throw_many``, no API checks).
 
 Prints machine information and a table (throws/s, µs/throw) with the two goals:
 batch/reference ≥ 100× and a single ``throw()`` ≤ 30 µs. ``--json PATH`` also
@@ -25,9 +29,18 @@ import statistics
 import sys
 import time
 
+import math
+
 import numpy as np
+from numba import njit
 
 import throwmap as tm
+from throwmap.kernels import codes as C
+from throwmap.kernels.flight import gap, gap_constants, release_state, touch_time
+from throwmap.kernels.impact import plastic_impact
+from throwmap.kernels.paper import _throw, throw_many
+from throwmap.kernels.roll import side_angles
+from throwmap.models.paper import PaperOptions
 from throwmap.testing.reference import reference_throw
 
 GOAL_RATIO = 100.0
@@ -108,6 +121,122 @@ def bench_single(part, arm, x, sides, omega, n_calls):
     return statistics.median(times)
 
 
+@njit(cache=True)
+def _phases(x, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+            n_samples, stop, count_steps):
+    """Run the "paper" kernel's phases on every start, stopping after phase ``stop`` (0 release, 1 first
+    contact, 2 impact, 3 whole throw); returns a checksum and the total number of first-contact steps."""
+    nv = w.shape[0]
+    work = np.empty((4, nv))
+    rec = np.empty(C.NREC)
+    ta_j, tb_j = side_angles(d, uL, uR)
+    traj = np.empty((0, 4))
+    tags = np.empty(0, np.int64)
+    ts = np.zeros(8)
+    acc = 0.0
+    steps = 0
+    for i in range(x.shape[0]):
+        if stop == 3:
+            acc += _throw(x[i], side[i], omega[i], h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol,
+                          max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec, traj, tags, ts)[0]
+            continue
+        x0 = x[i]
+        om = omega[i]
+        dk = d[side[i]]
+        vx, vy0, _ = release_state(x0, dk, h, om)
+        pu = work[0]
+        pv = work[1]
+        c0 = work[2]
+        b = work[3]
+        cb = math.cos(beta[side[i]])
+        sb = math.sin(beta[side[i]])
+        for j in range(nv):
+            pu[j] = cb * w[j, 0] - sb * w[j, 1]
+            pv[j] = sb * w[j, 0] + cb * w[j, 1]
+            b[j] = om * (x0 + pu[j])
+        gap_constants(dk, pv, ell, c0)
+        if stop == 0:
+            acc += c0[0] + b[0]
+            continue
+        t, jc = touch_time(c0, b, pu, pv, vy0, om, g, ell, -1, 0.0, tol, max_iter)
+        if count_steps:
+            steps += flight_steps(c0, b, pu, pv, vy0, om, g, ell, tol, max_iter)
+        if stop == 1:
+            acc += t
+            continue
+        cp = math.cos(om * t)
+        sp = math.sin(om * t)
+        rx = cp * pu[jc] - sp * pv[jc]
+        ry = sp * pu[jc] + cp * pv[jc]
+        vxp, vyp, wp = plastic_impact(vx, vy0 - g * t, om, rx, ry, rho2)
+        acc += wp + math.atan2(-ry, -rx)
+    return acc, steps
+
+
+@njit(cache=True)
+def flight_steps(c0, b, ru, rv, vy, w, g, ell, tol, max_iter):
+    """Lower-bound steps :func:`~throwmap.kernels.flight.touch_time` takes (same stopping rule, no polish)."""
+    n = ru.shape[0]
+    t = 0.0
+    for it in range(max_iter):
+        wt = w * t
+        s = math.sin(wt)
+        c = math.cos(wt)
+        step = math.inf
+        hit = False
+        for j in range(n):
+            gj, dg = gap(t, j, c0, b, ru, rv, vy, w, g)
+            if gj <= tol and (t > 0.0 or dg <= 0.0):
+                hit = True
+                continue
+            M = g + w * w * ell[j]
+            gp = max(gj, 0.0)
+            disc = math.sqrt(dg * dg + 2.0 * M * gp)
+            sj = (dg + disc) / M if dg >= 0.0 else 2.0 * gp / (disc - dg)
+            step = min(step, sj)
+        if hit:
+            return it + 0 * (s + c)
+        t += step
+    return max_iter
+
+
+def bench_phases(part, arm, x, sides, omega, repeat):
+    """ns per throw (one thread) after each phase of the "paper" kernel, and mean first-contact steps."""
+    o = PaperOptions()
+    args = (np.ascontiguousarray(x), np.ascontiguousarray(sides, dtype=np.int64), np.ascontiguousarray(omega),
+            arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
+            part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples)
+    out = {}
+    for stop, name in enumerate(("release", "first_contact", "impact", "whole_throw")):
+        _phases(*(a[:16] if isinstance(a, np.ndarray) and a.shape == np.shape(x) else a for a in args), stop, False)
+        best = float("inf")
+        for _ in range(repeat):
+            t0 = time.process_time()
+            _phases(*args, stop, False)
+            best = min(best, time.process_time() - t0)
+        out[name] = 1e9 * best / len(x)
+    out["first_contact_steps_mean"] = _phases(*args, 1, True)[1] / len(x)
+    return out
+
+
+def bench_kernel(part, arm, x, sides, omega, repeat):
+    """Best wall time of the batch kernel ``throw_many`` alone (outputs preallocated)."""
+    o = PaperOptions()
+    m = len(x)
+    s = np.ascontiguousarray(sides, dtype=np.int64)
+    valid = np.ones(m, dtype=bool)
+    outs = (np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
+    geo = (arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL, part.uR,
+           part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples)
+    throw_many(x[:16], s[:16], omega[:16], valid[:16], *geo, *(a[:16] for a in outs))
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        throw_many(x, s, omega, valid, *geo, *outs)
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
 def agreement(ref_out, batch, n_ref, tol=1e-6):
     """How many reference throws the batch reproduces (same side and status, |Δx| < tol)."""
     ok = 0
@@ -134,6 +263,9 @@ def run(n=1_000_000, n_reference=200, n_single=10_000, repeat=3, seed=0) -> dict
     t_paper, res_paper = bench_batch(part, arm, x_b, sides_b, omega_b, "paper", repeat)
     t_small, _ = bench_batch(part, arm, x_b, sides_b, omega_b, "small_angle", repeat)
     s_single = bench_single(part, arm, x, sides, omega, n_single)
+    t_kernel = bench_kernel(part, arm, x_b, sides_b, omega_b, repeat)
+    n_ph = min(n, 200_000)
+    phases = bench_phases(part, arm, x_b[:n_ph], sides_b[:n_ph], omega_b[:n_ph], repeat)
     agree, compared = agreement(ref_out, res_paper, min(n_reference, n))
 
     ref_rate = 1.0 / s_ref
@@ -153,6 +285,8 @@ def run(n=1_000_000, n_reference=200, n_single=10_000, repeat=3, seed=0) -> dict
         "reference_us_per_throw": 1e6 * s_ref,
         "batch_paper_throws_per_s": paper_rate,
         "batch_paper_us_per_throw": 1e6 * t_paper / n,
+        "kernel_paper_throws_per_s": n / t_kernel,
+        "phases_ns_per_throw_one_thread": phases,
         "batch_small_angle_throws_per_s": small_rate,
         "batch_small_angle_us_per_throw": 1e6 * t_small / n,
         "single_throw_us": 1e6 * s_single,
@@ -165,6 +299,16 @@ def run(n=1_000_000, n_reference=200, n_single=10_000, repeat=3, seed=0) -> dict
         "meets_single_goal": 1e6 * s_single <= GOAL_SINGLE_US,
         "reference_agreement": {"agree": agree, "compared": compared},
     }
+
+
+def _phase_line(ph: dict) -> str:
+    rel = ph["release"]
+    fc = ph["first_contact"] - rel
+    imp = ph["impact"] - ph["first_contact"]
+    casc = ph["whole_throw"] - ph["impact"]
+    return (f"paper kernel per throw, one thread: {ph['whole_throw']:.0f} ns = release {rel:.0f} + first contact "
+            f"{fc:.0f} ({ph['first_contact_steps_mean']:.2f} steps + polish) + impact {imp:.0f} + "
+            f"pivot/landing cascade and records {casc:.0f}")
 
 
 def format_report(res: dict) -> str:
@@ -182,6 +326,8 @@ def format_report(res: dict) -> str:
         f"{res['reference_us_per_throw']:>12.1f}",
         f"{'throw_batch, model paper':<34}{res['n_batch']:>10d}{res['batch_paper_throws_per_s']:>14.4g}"
         f"{res['batch_paper_us_per_throw']:>12.3f}",
+        f"{'throw_many kernel alone, paper':<34}{res['n_batch']:>10d}{res['kernel_paper_throws_per_s']:>14.4g}"
+        f"{1e6 / res['kernel_paper_throws_per_s']:>12.3f}",
         f"{'throw_batch, model small_angle':<34}{res['n_batch']:>10d}{res['batch_small_angle_throws_per_s']:>14.4g}"
         f"{res['batch_small_angle_us_per_throw']:>12.3f}",
         f"{'throw() single call (median)':<34}{res['n_single']:>10d}{res['single_throws_per_s']:>14.4g}"
@@ -191,6 +337,7 @@ def format_report(res: dict) -> str:
         f"(goal ≥ {res['goal_ratio']:g}×: {'met' if res['meets_ratio_goal'] else 'NOT met'})",
         f"single throw(): {res['single_throw_us']:.2f} µs  "
         f"(goal ≤ {res['goal_single_us']:g} µs: {'met' if res['meets_single_goal'] else 'NOT met'})",
+        _phase_line(res["phases_ns_per_throw_one_thread"]),
         f"batch reproduces the reference on {res['reference_agreement']['agree']}"
         f"/{res['reference_agreement']['compared']} sampled throws (|Δx| < 1e-6 m, same side and status)",
     ]

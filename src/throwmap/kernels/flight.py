@@ -30,7 +30,7 @@ SNAP = 1e-15
 """Relative size (of ℓ_j) below which a gap constant c0_j is snapped to exactly 0."""
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def release_state(x0, d, h, omega):
     """CM velocity (m/s) and spin (rad/s) just after release from rest at ``x0`` on a side at ``d`` (Eq. 1).
 
@@ -54,7 +54,7 @@ def rest_offsets(w, beta_k):
     return u, v
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def gap_constants(dy, rv, ell, c0):
     """Fill ``c0`` with the gaps c0_j = dy + v_j (m) of the vertices above the line at t = 0.
 
@@ -68,7 +68,7 @@ def gap_constants(dy, rv, ell, c0):
         c0[j] = c
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def gap(t, j, c0, b, ru, rv, vy, w, g):
     """Gap G_j(t) (m) of vertex j above the line at flight time ``t`` (s), and its rate (m/s).
 
@@ -76,18 +76,23 @@ def gap(t, j, c0, b, ru, rv, vy, w, g):
     """
     wt = w * t
     hs = math.sin(0.5 * wt)
-    s = math.sin(wt)
-    c = math.cos(wt)
-    gj = c0[j] + b[j] * t - 0.5 * g * t * t - 2.0 * rv[j] * hs * hs + ru[j] * (s - wt)
-    dg = vy - g * t + w * (ru[j] * c - rv[j] * s)
+    hc = math.cos(0.5 * wt)
+    s = 2.0 * hs * hc  # sin ωt
+    cm1 = -2.0 * hs * hs  # cos ωt − 1
+    gj = c0[j] + b[j] * t - 0.5 * g * t * t + rv[j] * cm1 + ru[j] * (s - wt)
+    dg = vy - g * t + w * (ru[j] * (1.0 + cm1) - rv[j] * s)
     return gj, dg
 
 
-@njit(cache=True)
-def _polish(t, j, c0, b, ru, rv, vy, w, g):
-    """A few Newton steps on G_j from the safe side; each step is capped at 0.05 t."""
-    for _ in range(3):
-        gj, dg = gap(t, j, c0, b, ru, rv, vy, w, g)
+@njit(cache=True, inline="always")
+def _polish(t, gj, dg, j, c0, b, ru, rv, vy, w, g):
+    """A few Newton steps on G_j from the safe side, starting from its value ``gj`` and rate ``dg`` at t.
+
+    Each step is capped at 0.05 t.
+    """
+    for it in range(3):
+        if it > 0:
+            gj, dg = gap(t, j, c0, b, ru, rv, vy, w, g)
         if dg >= 0.0:
             break
         st = -gj / dg
@@ -99,7 +104,7 @@ def _polish(t, j, c0, b, ru, rv, vy, w, g):
     return t
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _lower_bound_step(gj, dg, M):
     """Smallest positive root s of gj + dg s − ½ M s² (gj clipped at 0): a step that cannot pass a root."""
     gp = gj if gj > 0.0 else 0.0
@@ -109,7 +114,7 @@ def _lower_bound_step(gj, dg, M):
     return 2.0 * gp / (disc - dg)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def touch_time(c0, b, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
     """Guard ``touch``: earliest t ≥ 0 (s) at which any vertex reaches the line y = h (Eq. 3).
 
@@ -138,16 +143,22 @@ def touch_time(c0, b, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
     t = 0.0
     for _ in range(max_iter):
         wt = w * t
-        s = math.sin(wt)
-        c = math.cos(wt)
-        hs = math.sin(0.5 * wt)
+        if t > 0.0:
+            hs = math.sin(0.5 * wt)  # half-angle: two trig calls per step
+            hc = math.cos(0.5 * wt)
+        else:
+            hs = 0.0
+            hc = 1.0
+        s = 2.0 * hs * hc  # sin ωt
         cm1 = -2.0 * hs * hs  # cos ωt − 1 without cancellation
+        c = 1.0 + cm1
         smw = s - wt  # sin ωt − ωt
         base = -0.5 * g * t * t
         dbase = vy - g * t
         step = math.inf
         jmin = -1
         gmin = math.inf
+        dgmin = 0.0
         for j in range(n):
             gj = c0[j] + b[j] * t + base + rv[j] * cm1 + ru[j] * smw
             dg = dbase + w * (ru[j] * c - rv[j] * s)
@@ -164,6 +175,7 @@ def touch_time(c0, b, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
             if gj <= tol and (t > 0.0 or dg <= 0.0):
                 if gj < gmin:
                     gmin = gj
+                    dgmin = dg
                     jmin = j
                 continue
             sj = _lower_bound_step(gj, dg, M)
@@ -171,7 +183,7 @@ def touch_time(c0, b, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
                 step = sj
         if jmin >= 0:
             if t > 0.0 and gmin > 0.0:
-                t = _polish(t, jmin, c0, b, ru, rv, vy, w, g)
+                t = _polish(t, gmin, dgmin, jmin, c0, b, ru, rv, vy, w, g)
             return t, jmin
         t += step
     return t, -1

@@ -1,9 +1,14 @@
 """Model "paper": the exact throw map within the paper's assumptions (Sec. III, Eqs. 1–4).
 
-No small-angle approximation: flight (Eq. 1, g > 0 along −y), first contact of
-any vertex (Eq. 3, :func:`~throwmap.kernels.flight.first_contact`), plastic
-no-slip impact with r at the impact orientation (Eq. 4), then the exact
-pivot/landing/rocking sequence of :mod:`throwmap.kernels.roll`.
+No small-angle approximation: release (Eq. 1, :func:`~throwmap.kernels.flight.release_state`),
+flight and first contact of any vertex (Eq. 3, :func:`~throwmap.kernels.flight.touch_time`),
+plastic no-slip impact with r at the impact orientation (Eq. 4,
+:func:`~throwmap.kernels.impact.plastic_impact`), then the exact pivot/landing/rocking
+sequence of :mod:`throwmap.kernels.roll`.
+
+Entry points: :func:`throw_one` (one throw), :func:`throw_one_traj` (one throw with
+its trajectory rows, :mod:`~throwmap.kernels.record`) and :func:`throw_many` (a
+batch, in parallel; no trajectory cost: its buffers have zero rows).
 """
 
 import math
@@ -12,19 +17,19 @@ import numpy as np
 from numba import njit, prange
 
 from . import codes as C
-from .flight import gap_constants, release_state, rest_offsets, touch_time
+from . import record as R
+from .flight import gap_constants, release_state, touch_time
 from .impact import plastic_impact
-from .roll import roll_to_rest
+from .roll import pivot_cascade, side_angles
+
+CHUNK = 256
+"""Throws per work unit of :func:`throw_many` (one scratch allocation per chunk)."""
 
 
-@njit(cache=True)
-def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
-              n_samples, rec):
-    """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s).
-
-    Fills ``rec`` (see :mod:`~throwmap.kernels.codes`) and returns ``(x, side, status)``.
-    The caller has checked the start (stable side, x0 + u_L > 0, omega ≥ 0).
-    """
+@njit(cache=True, inline="always")
+def _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+           n_samples, ta_j, tb_j, work, rec, traj, tags, ts):
+    """One throw; ``work`` is (4, n) scratch, ``traj``/``tags``/``ts`` the trajectory writer (0 rows: none)."""
     n = w.shape[0]
     for i in range(C.NREC):
         rec[i] = 0.0
@@ -33,6 +38,10 @@ def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stab
     rec[C.K_MAX_IMPACT_GAIN] = -math.inf
     rec[C.CONTACT_VERTEX] = -1.0
     dk = d[side]
+    record = traj.shape[0] > 0
+    phi0 = beta[side]
+    if record:
+        R.put(traj, tags, ts, 0.0, x0, h + dk, phi0, n + side)
     # release energy per unit mass (Eq. 1): |ω × r|² + ρ²ω², potential from the arm line
     rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + g * dk
     if omega == 0.0:
@@ -41,16 +50,23 @@ def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stab
         return x0, side, C.OK
     # reset release (Eq. 1); vertices relative to the CM at the rest orientation on `side`
     vx, vy0, _ = release_state(x0, dk, h, omega)
-    pu, pv = rest_offsets(w, beta[side])
-    c0 = np.empty(n)
-    b = np.empty(n)
-    gap_constants(dk, pv, ell, c0)
+    pu = work[0]
+    pv = work[1]
+    c0 = work[2]
+    b = work[3]
+    cb = math.cos(phi0)
+    sb = math.sin(phi0)
     for j in range(n):
+        pu[j] = cb * w[j, 0] - sb * w[j, 1]
+        pv[j] = sb * w[j, 0] + cb * w[j, 1]
         b[j] = omega * (x0 + pu[j])  # the gaps' initial rates, cancellation-free
+    gap_constants(dk, pv, ell, c0)
     t, jc = touch_time(c0, b, pu, pv, vy0, omega, g, ell, -1, 0.0, tol, max_iter)
     rec[C.T_FLIGHT] = t
     rec[C.CONTACT_VERTEX] = jc
     if jc < 0:
+        if record:
+            R.release_flight_rows(traj, tags, ts, R.ESCAPE_FALL_TIME, x0, dk, h, omega, g, phi0, R.FLIGHT)
         return x0, side, C.NO_CONTACT
     # state just before impact (Eq. 1)
     phi = omega * t
@@ -62,6 +78,8 @@ def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stab
     rx = cp * pu[jc] - sp * pv[jc]
     ry = sp * pu[jc] + cp * pv[jc]
     px = xc + rx
+    if record:
+        R.release_flight_rows(traj, tags, ts, t, x0, dk, h, omega, g, phi0, jc)
     rec[C.CONTACT_X] = px
     rec[C.VX_PRE] = vx
     rec[C.VY_PRE] = vy
@@ -89,13 +107,14 @@ def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stab
     rec[C.K_POST] = k_post
     rec[C.K_MAX_IMPACT_GAIN] = k_post - k_pre
     rec[C.N_IMPACTS] = 1.0
-    if px <= 0.0:
-        return xc, side, C.BEHIND_JOINT
-    if px > length:
-        return xc, side, C.OFF_END
+    if px <= 0.0 or px > length:
+        if record:  # nothing to land on there: the part falls on past the arm line
+            R.flight_rows(traj, tags, ts, t, t + R.ESCAPE_FALL_TIME, xc, yc, phi0 + omega * t, vx, vy, omega, g,
+                          R.FLIGHT)
+        return xc, side, (C.BEHIND_JOINT if px <= 0.0 else C.OFF_END)
     theta = math.atan2(-ry, -rx)
-    x, k, status = roll_to_rest(jc, theta, wp, px, side, rho2, d, uL, uR, ell, stable, g, length, max_impacts,
-                                n_samples, rec)
+    x, k, status = pivot_cascade(jc, theta, wp, px, side, rho2, d, uL, uR, ell, stable, ta_j, tb_j, g, length,
+                                 max_impacts, n_samples, rec, traj, tags, ts, h, w, beta)
     rec[C.E_FINAL] = g * d[k]
     if status == C.OK:
         if x + uL[k] <= 0.0:
@@ -105,20 +124,61 @@ def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stab
     return x, k, status
 
 
+@njit(cache=True)
+def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+              n_samples, rec):
+    """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s).
+
+    Fills ``rec`` (see :mod:`~throwmap.kernels.codes`) and returns ``(x, side, status)``.
+    The caller has checked the start (stable side, x0 + u_L > 0, omega ≥ 0).
+    """
+    ta_j, tb_j = side_angles(d, uL, uR)
+    work = np.empty((4, w.shape[0]))
+    return _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+                  n_samples, ta_j, tb_j, work, rec, np.empty((0, 4)), np.empty(0, np.int64), np.zeros(R.NTS))
+
+
+@njit(cache=True)
+def throw_one_traj(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+                   max_impacts, n_samples, rec, traj, tags, dt):
+    """:func:`throw_one` also recording its trajectory every ``dt`` s and at every event.
+
+    ``traj`` (M, 4) gets rows (t, x_cm, y_cm, φ) and ``tags`` (M,) their contacts
+    (:mod:`~throwmap.kernels.record`): the resting start at t = 0, the flight, the
+    first contact, every pivot swing and landing, ending at the rest pose (or the
+    escape). Returns ``(x, side, status, rows, dropped)``: ``dropped`` rows did
+    not fit (call again with M ≥ rows + dropped).
+    """
+    ta_j, tb_j = side_angles(d, uL, uR)
+    work = np.empty((4, w.shape[0]))
+    ts = R.new_state(dt)
+    x, k, st = _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+                      max_impacts, n_samples, ta_j, tb_j, work, rec, traj, tags, ts)
+    return x, k, st, int(ts[R.COUNT]), int(ts[R.DROPPED])
+
+
 @njit(cache=True, parallel=True)
 def throw_many(x0, side, omega, valid, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                max_impacts, n_samples, x_out, side_out, status_out, rec_out):
     """Batch of independent throws (flat arrays); invalid starts get ``INVALID_START``."""
-    for i in prange(x0.shape[0]):
-        if not valid[i]:
-            x_out[i] = x0[i]
-            side_out[i] = side[i]
-            status_out[i] = C.INVALID_START
-            for q in range(C.NREC):
-                rec_out[i, q] = math.nan
-            continue
-        x, k, st = throw_one(x0[i], side[i], omega[i], h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol,
-                             max_iter, max_impacts, n_samples, rec_out[i])
-        x_out[i] = x
-        side_out[i] = k
-        status_out[i] = st
+    m = x0.shape[0]
+    ta_j, tb_j = side_angles(d, uL, uR)
+    n_chunks = (m + CHUNK - 1) // CHUNK
+    for c in prange(n_chunks):
+        work = np.empty((4, w.shape[0]))
+        traj = np.empty((0, 4))
+        tags = np.empty(0, np.int64)
+        ts = np.zeros(R.NTS)
+        for i in range(c * CHUNK, min(m, (c + 1) * CHUNK)):
+            if not valid[i]:
+                x_out[i] = x0[i]
+                side_out[i] = side[i]
+                status_out[i] = C.INVALID_START
+                for q in range(C.NREC):
+                    rec_out[i, q] = math.nan
+                continue
+            x, k, st = _throw(x0[i], side[i], omega[i], h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol,
+                              max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec_out[i], traj, tags, ts)
+            x_out[i] = x
+            side_out[i] = k
+            status_out[i] = st

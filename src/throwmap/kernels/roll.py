@@ -42,9 +42,11 @@ dynamics of this model.
 
 import math
 
+import numpy as np
 from numba import njit
 
 from . import codes as C
+from .record import continue_angle, put, swing_rows
 
 HALF_PI = 0.5 * math.pi
 
@@ -66,9 +68,16 @@ _theta_a = theta_a  # names rigid_body imports
 _theta_b = theta_b
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _check_arc(th1, th2, E, ell, I, g, n_samples, rec):
-    """Record the normal/friction demand of a pivot swing over θ ∈ [th1, th2]."""
+    """Record the normal/friction demand of a pivot swing over θ ∈ [th1, th2] ⊂ (0, π).
+
+    N_MIN gets the exact minimum of N over the arc. MU_MAX gets the largest
+    |F|/N (where N > 0) at ``n_samples`` equally spaced angles, skipped when the
+    bound k √(1 − s_lo²) max|3s − 2e| / min N over the arc cannot beat the record;
+    the angles' sines and cosines follow a rotation recurrence (two trig calls per
+    arc; rounding ~n_samples ulp).
+    """
     if th2 < th1:
         th1, th2 = th2, th1
     s1 = math.sin(th1)
@@ -81,18 +90,26 @@ def _check_arc(th1, th2, E, ell, I, g, n_samples, rec):
     n_min = 1.0 - k + 3.0 * k * s_star * s_star - 2.0 * k * e * s_star
     if n_min < rec[C.N_MIN]:
         rec[C.N_MIN] = n_min
+    if n_min > 0.0:
+        f_max = k * math.sqrt(max(1.0 - s_lo * s_lo, 0.0)) * max(abs(3.0 * s_lo - 2.0 * e), abs(3.0 * s_hi - 2.0 * e))
+        if f_max <= n_min * rec[C.MU_MAX] * (1.0 - 1e-12):
+            return  # no sample can raise the record
+    dth = (th2 - th1) / (n_samples - 1)
+    cd = math.cos(dth)
+    sd = math.sin(dth)
+    s = s1
+    c = math.cos(th1)
     for i in range(n_samples):
-        th = th1 + (th2 - th1) * i / (n_samples - 1)
-        s = math.sin(th)
         N = 1.0 - k + 3.0 * k * s * s - 2.0 * k * e * s
         if N > 0.0:
-            F = k * math.cos(th) * (3.0 * s - 2.0 * e)
+            F = k * c * (3.0 * s - 2.0 * e)
             r = abs(F) / N
             if r > rec[C.MU_MAX]:
                 rec[C.MU_MAX] = r
+        s, c = s * cd + c * sd, c * cd - s * sd
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _record_impulse(jx, jy, rec):
     if jy < 0.0:
         rec[C.N_PULL] += 1.0
@@ -102,7 +119,7 @@ def _record_impulse(jx, jy, rec):
             rec[C.MU_MAX] = r
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def swing_sense(theta, thdot):
     """Sense (+1 CCW, −1 CW) of a swing at θ̇; from rest, the sense gravity pulls (down, away from the peak)."""
     if thdot > 0.0:
@@ -112,7 +129,7 @@ def swing_sense(theta, thdot):
     return 1 if math.cos(theta) < 0.0 else -1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def reach_end(theta, dirn, ta, tb, E, g, lj):
     """Guard ``reach_end``: the swing from θ in sense ``dirn`` at energy E (J/kg) reaches the end ahead.
 
@@ -134,14 +151,14 @@ def reach_end(theta, dirn, ta, tb, E, g, lj):
     return E > barrier
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def turn_back(E, g, lj, dirn):
     """Guard ``turn_back``: the angle (rad) at which a swing in sense ``dirn`` below its barrier stops (θ̇ = 0)."""
     s_turn = min(E / (g * lj), 1.0)
     return math.asin(s_turn) if dirn > 0 else math.pi - math.asin(s_turn)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec):
     """One swing about a pivot vertex (compound pendulum), from θ at rate θ̇ (rad/s) to a landing.
 
@@ -171,7 +188,7 @@ def pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec):
     return E, end, land_dir, th_turn, (speed if land_dir > 0 else -speed)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def land_side(j, land_dir, thdot, rho2, n, d, uL, uR, rec):
     """Reset ``land_side``: side k slams flat while pivoting on w_j at θ̇ (plastic impact about its other vertex B).
 
@@ -212,7 +229,7 @@ def land_side(j, land_dir, thdot, rho2, n, d, uL, uR, rec):
     return k, uA, uB, jB, w_new, lifts
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rocking_rest(k_after, lA, lB, dk, g):
     """Guard ``rocking_rest`` (Zeno, decided on purpose): kinetic energy (J/kg) below both topple barriers g(ℓ − d)."""
     return k_after < min(g * (lA - dk), g * (lB - dk))
@@ -231,35 +248,73 @@ def tip_over(k, x_cm, n, d, uL, uR):
 
 
 @njit(cache=True)
+def side_angles(d, uL, uR):
+    """Tables ``(ta, tb)`` of θa_j and θb_j (rad) for every vertex j (:func:`theta_a`, :func:`theta_b`)."""
+    n = d.shape[0]
+    ta = np.empty(n)
+    tb = np.empty(n)
+    for j in range(n):
+        ta[j] = theta_a(j, n, d, uL)
+        tb[j] = theta_b(j, d, uR)
+    return ta, tb
+
+
+@njit(cache=True)
 def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, length, max_impacts, n_samples, rec):
+    """Pivot on vertex ``w_j`` from angle ``theta`` at rate ``thdot`` (rad/s, CCW +) until rest.
+
+    ``px`` is the pivot's world x (m), ``side0`` the side thrown from, ``length``
+    the arm length (inf: unbounded). Returns ``(x, side, status)``; ``rec``
+    counters are updated in place. :func:`pivot_cascade` without its tables and
+    trajectory.
+    """
+    ta_j, tb_j = side_angles(d, uL, uR)
+    return pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j, tb_j, g, length,
+                         max_impacts, n_samples, rec, np.empty((0, 4)), np.empty(0, np.int64), np.zeros(5), 0.0,
+                         np.empty((0, 2)), d)
+
+
+@njit(cache=True, inline="always")
+def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j, tb_j, g, length, max_impacts,
+                  n_samples, rec, traj, tags, ts, h, w, beta):
     """Pivot on vertex ``w_j`` from angle ``theta`` at rate ``thdot`` (rad/s, CCW +) until rest.
 
     ``px`` is the pivot's world x (m), ``side0`` the side thrown from (flips are
     counted as landings on a side other than the last one landed on), ``length``
-    the arm length (inf: unbounded).
-    Per-side/vertex arrays as in :func:`throwmap.system.geometry.side_table`.
+    the arm length (inf: unbounded), ``ta_j``/``tb_j`` the tables of
+    :func:`side_angles`. Per-side/vertex arrays as in
+    :func:`throwmap.system.geometry.side_table`.
     Returns ``(x, side, status)``; ``rec`` counters are updated in place.
+    With a non-empty ``traj`` the swings and landings are recorded
+    (:mod:`~throwmap.kernels.record`; ``h`` the arm height, ``w`` the vertices and
+    ``beta`` the resting orientations give the poses).
     """
     n = d.shape[0]
     last_side = side0
+    record = traj.shape[0] > 0
     while True:
         # ---------------------------------------------------------- pivot phase on w_j
         lj = ell[j]
         I = rho2 + lj * lj
-        ta = theta_a(j, n, d, uL)
-        tb = theta_b(j, d, uR)
+        ta = ta_j[j]
+        tb = tb_j[j]
         if theta < ta:
             theta = ta
         elif theta > tb:
             theta = tb
+        theta0 = theta
         E, end, land_dir, th_turn, thdot = pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec)
         # ---------------------------------------------------------- reset land_side
         k = j if land_dir > 0 else (j - 1) % n
+        uA = uR[k] if land_dir > 0 else uL[k]
+        if record:
+            t_end, phi_end = swing_rows(traj, tags, ts, j, px, lj, math.atan2(w[j, 1], w[j, 0]), h, theta0, th_turn,
+                                        end, E, I, g)
+            put(traj, tags, ts, t_end, px - uA, h + d[k], continue_angle(beta[k], phi_end), n + k)
         if k != last_side:
             rec[C.N_FLIPS] += 1.0
             last_side = k
         rec[C.N_IMPACTS] += 1.0
-        uA = uR[k] if land_dir > 0 else uL[k]
         if rec[C.N_IMPACTS] > max_impacts:
             return px - uA, k, C.NO_REST
         k, uA, uB, jB, w_new, lifts = land_side(j, land_dir, thdot, rho2, n, d, uL, uR, rec)
@@ -277,7 +332,7 @@ def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, le
             j = jB
             px = pxB
             thdot = w_new
-            theta = theta_a(j, n, d, uL) if land_dir > 0 else theta_b(j, d, uR)
+            theta = ta_j[j] if land_dir > 0 else tb_j[j]
         elif stable[k]:
             return x_cm, k, C.OK
         else:
