@@ -26,8 +26,8 @@ Modes
 Guards (named as in the code, ``EV_*``)
 
 ``touch``        FLIGHT: the earliest time any vertex reaches y = h moving down
-                 (:func:`.flight.first_contact_state`, the safe lower-bound stepping of
-                 :func:`~throwmap.kernels.flight.first_contact` from any state).
+                 (:func:`throwmap.kernels.flight.first_contact`: safe lower-bound
+                 stepping from any flight state, shared with model "paper").
 ``leave_arm``    a contact point at x ≤ 0 (BEHIND_JOINT) or x > length (OFF_END).
 ``land``         PIVOT_*: θ reaches θa (side j−1 flat) or θb (side j flat): the
                  second vertex B of that side touches (``EV_LAND_A``/``EV_LAND_B``).
@@ -82,8 +82,9 @@ Numerics and accuracy (plainly)
   step ends only.
 * PIVOT_SLIDE is integrated with classical RK4, step Δt = DTH/(|θ̇| + Ω)
   (Ω = √(g/ℓ), DTH = 0.03 rad), global θ error ~1e-8 rad; guards are checked at
-  step ends and located by bisection on the RK4 step length (the RK4 step is
-  the interpolant), to ~1e-15 of the step.
+  step ends and located on the RK4 step length (the RK4 step is the
+  interpolant) by false position on the guard that fired, safeguarded by
+  bisection, to a bracket of 1e-16 (t + τ) (:func:`.slide._locate_guard`).
 * T_REST: when the Zeno rule decides rest, the (finite) remaining rocking time is
   not added: T_REST is the time of the deciding landing.
 * FLAT_SLIDE assumes the part does not tip over its leading edge while it
@@ -101,7 +102,7 @@ M = 0 records nothing.
 Modules (the automaton's pieces)
 --------------------------------
 ``modes``        mode, guard/event and impact codes, numerical constants
-``flight``       FLIGHT: resets release and lift, guards touch and leave_arm
+``flight``       FLIGHT: guards touch (shared first contact) and leave_arm, reset lift
 ``impact``       reset impact (Coulomb/Routh) and the impact records
 ``stick``        PIVOT_STICK forces, and the RK4 sticking phase (reference)
 ``swing``        the closed-form swing: path, guard roots, elapsed time
@@ -115,7 +116,7 @@ Modules (the automaton's pieces)
 
 from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4
 from .batch import throw_many_rigid_body, throw_many_rigid_body_rk4
-from .flight import departure_window, first_contact_state
+from .flight import departure_window
 from .impact import coulomb_impact
 from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE,
                     EV_OFF_END, EV_SLIP, EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_SLIDE, IMP_STICK,
@@ -126,7 +127,7 @@ from .stick_exact import pivot_stick_exact
 from .swing import swing_time
 from .trajectory import count_samples
 
-__all__ = ["count_samples", "coulomb_impact", "departure_window", "first_contact_state", "pivot_slide", "pivot_stick",
+__all__ = ["count_samples", "coulomb_impact", "departure_window", "pivot_slide", "pivot_stick",
            "pivot_stick_exact", "run_throw", "select_contact_mode", "slide_rhs", "slide_sense",
            "stick_forces", "swing_time", "throw_many_rigid_body", "throw_many_rigid_body_rk4",
            "throw_one_rigid_body", "throw_one_rigid_body_rk4"]

@@ -17,8 +17,9 @@ import numpy as np
 from numba import njit
 
 from .. import codes as C
-from ..roll import _theta_a, _theta_b
-from .flight import departure_window, flight_frame, fly, leave_arm, lift, release
+from ..roll import theta_a, theta_b
+from ..flight import gap_constants, release_state, rest_offsets
+from .flight import departure_window, flight_frame, fly, leave_arm, lift
 from .impact import coulomb_impact, record_first_contact, record_first_impact, record_impact
 from .landing import land_side, rest
 from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_B, EV_LIFT_OFF, EV_NONE, EV_OFF_END, EV_SLIP,
@@ -58,10 +59,14 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, 
     if omega == 0.0:
         rec[C.N_MIN] = 1.0
         return rest(x0, side, 0.0, h, g, d, uL, beta, length, beta[side], traj, ts, rec)
-    ru = np.empty(n)
-    rv = np.empty(n)
+    # ------------------------------------------------------------------ reset release (Eq. 1)
+    vx, vy, om = release_state(x0, dk, h, omega)
+    x = x0
+    y = h + dk
+    phi = beta[side]
+    ru, rv = rest_offsets(w, phi)  # flight frame: vertex offsets and their gaps (support vertices: exactly 0)
     c0 = np.empty(n)
-    x, y, phi, vx, vy, om = release(x0, dk, beta[side], omega, h, w, ell, ru, rv, c0)
+    gap_constants(dk, rv, ell, c0)
     t = 0.0
     excl_j = -1  # a vertex that just left the line, and how long it provably stays above it
     excl_t = 0.0
@@ -129,8 +134,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, 
         # ============================================================== contact modes on vertex jp
         lj = ell[jp]
         I = rho2 + lj * lj
-        ta = _theta_a(jp, n, d, uL)
-        tb = _theta_b(jp, d, uR)
+        ta = theta_a(jp, n, d, uL)
+        tb = theta_b(jp, d, uR)
         theta = min(max(theta, ta), tb)
         if mode == MODE_SELECT:
             mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, False)

@@ -1,9 +1,10 @@
-"""Mode FLIGHT of model "rigid_body": reset ``release`` (Eq. 1), guards ``touch`` and ``leave_arm``.
+"""Mode FLIGHT of model "rigid_body": guards ``touch`` and ``leave_arm``, reset ``lift``.
 
-Ballistic motion from an arbitrary state (paper Sec. III-B, Eqs. 1–3): with
-(ru_j, rv_j) = R(φ0) w_j and c0_j = y0 − h + rv_j, vertex j's gap above the line
-after a flight time t is G_j(t) = c0_j + (v_y + ω ru_j) t − ½ g t² − 2 rv_j sin²(ωt/2)
-+ ru_j (sin ωt − ωt) (:func:`first_contact_state`).
+Ballistic motion from an arbitrary state (paper Sec. III-B, Eqs. 1–3), with the
+shared kernels of :mod:`~throwmap.kernels.flight`: reset ``release`` (Eq. 1) is
+:func:`~throwmap.kernels.flight.release_state`, guard ``touch`` is
+:func:`~throwmap.kernels.flight.first_contact` from the flight frame
+(ru_j, rv_j) = R(φ0) w_j, c0_j = y0 − h + rv_j (:func:`flight_frame`).
 """
 
 import math
@@ -11,26 +12,8 @@ import math
 from numba import njit
 
 from .. import codes as C
+from ..flight import first_contact
 from .trajectory import _put
-
-
-@njit(cache=True)
-def release(x0, dk, beta_k, omega, h, w, ell, ru, rv, c0):
-    """Reset ``release`` (Eq. 1): rest on a side at height ``dk`` (m) and x0, the arm turning at ω (rad/s).
-
-    CM velocity ω × (x0, h + d) = (−(h + d) ω, x0 ω), spin ω. Fills the flight frame
-    (``ru``, ``rv``, ``c0``; the support vertices' gaps snapped to exactly 0) and
-    returns ``(x, y, φ, v_x, v_y, ω)``.
-    """
-    cb = math.cos(beta_k)
-    sb = math.sin(beta_k)
-    for j in range(w.shape[0]):
-        ru[j] = cb * w[j, 0] - sb * w[j, 1]
-        rv[j] = sb * w[j, 0] + cb * w[j, 1]
-        c0[j] = dk + rv[j]
-        if abs(c0[j]) <= 1e-15 * ell[j]:
-            c0[j] = 0.0
-    return x0, h + dk, beta_k, -(h + dk) * omega, x0 * omega, omega
 
 
 @njit(cache=True)
@@ -59,10 +42,11 @@ def leave_arm(px, length):
 def fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol, max_iter, traj, ts):
     """Mode FLIGHT until guard ``touch``; samples the trajectory on the way.
 
-    Returns ``(j, t, x, y, v_y, φ, r_x, r_y)`` at contact: vertex j (−1 if the
+    ``excl_j`` (−1: none) is a vertex that just left the line, known to stay above
+    it for ``excl_t`` s. Returns ``(j, t, x, y, v_y, φ, r_x, r_y)`` at contact: vertex j (−1 if the
     search hit ``max_iter``) and its offset (r_x, r_y) from the CM (m).
     """
-    tc, jc = first_contact_state(c0, ru, rv, vy, om, g, ell, excl_j, excl_t, tol, max_iter)
+    tc, jc = first_contact(c0, ru, rv, vy, om, g, ell, excl_j, excl_t, tol, max_iter)
     if jc < 0:
         return jc, t, x, y, vy, phi, 0.0, 0.0
     if traj.shape[0] > 0:
@@ -82,91 +66,6 @@ def fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol, max_i
     if traj.shape[0] > 0:
         _put(traj, ts, t, x, y, phi)
     return jc, t, x, y, vy, phi, rx, ry
-
-
-@njit(cache=True)
-def _gap_state(t, j, c0, ru, rv, vy, w, g):
-    """Gap of vertex j above the line at flight time t (cancellation-free) and its rate."""
-    wt = w * t
-    hs = math.sin(0.5 * wt)
-    s = math.sin(wt)
-    c = math.cos(wt)
-    gap = c0[j] + (vy + w * ru[j]) * t - 0.5 * g * t * t - 2.0 * rv[j] * hs * hs + ru[j] * (s - wt)
-    dg = vy - g * t + w * (ru[j] * c - rv[j] * s)
-    return gap, dg
-
-
-@njit(cache=True)
-def first_contact_state(c0, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
-    """Guard ``touch``: earliest t ≥ 0 at which a vertex reaches y = h, from any flight state.
-
-    Vertex j's gap is G_j(t) = c0_j + (v_y + ω ru_j) t − ½ g t² − 2 rv_j sin²(ωt/2)
-    + ru_j (sin ωt − ωt), with (ru_j, rv_j) = R(φ0) w_j and c0_j = y0 − h + rv_j its gap
-    at t = 0 (exactly 0 for a vertex on the line). As in
-    :func:`~throwmap.kernels.flight.first_contact`, G_j'' ≥ −(g + ω² ℓ_j) makes each
-    step the smallest positive root of a quadratic lower bound, so no crossing is
-    missed; a Newton polish removes the stopping error. Vertex ``excl_j`` (one that
-    just left the line) is known to stay above it for t < ``excl_t``.
-    Returns ``(t, j)``, j = −1 when ``max_iter`` steps did not reach contact.
-    """
-    n = ru.shape[0]
-    t = 0.0
-    for _ in range(max_iter):
-        wt = w * t
-        s = math.sin(wt)
-        c = math.cos(wt)
-        hs = math.sin(0.5 * wt)
-        cm1 = -2.0 * hs * hs
-        smw = s - wt
-        base = -0.5 * g * t * t
-        dbase = vy - g * t
-        step = math.inf
-        jmin = -1
-        gmin = math.inf
-        for j in range(n):
-            gap = c0[j] + (vy + w * ru[j]) * t + base + rv[j] * cm1 + ru[j] * smw
-            dg = dbase + w * (ru[j] * c - rv[j] * s)
-            if j == excl_j and t < excl_t:
-                sj = excl_t - t
-                gp = gap if gap > 0.0 else 0.0
-                M = g + w * w * ell[j]
-                disc = math.sqrt(dg * dg + 2.0 * M * gp)
-                if gp > 0.0 or dg > 0.0:
-                    sq = (dg + disc) / M if dg >= 0.0 else 2.0 * gp / (disc - dg)
-                    if sq > sj:
-                        sj = sq
-                if sj < step:
-                    step = sj
-                continue
-            if gap <= tol and (t > 0.0 or dg <= 0.0):
-                if gap < gmin:
-                    gmin = gap
-                    jmin = j
-                continue
-            gp = gap if gap > 0.0 else 0.0
-            M = g + w * w * ell[j]
-            disc = math.sqrt(dg * dg + 2.0 * M * gp)
-            if dg >= 0.0:
-                sj = (dg + disc) / M
-            else:
-                sj = 2.0 * gp / (disc - dg)
-            if sj < step:
-                step = sj
-        if jmin >= 0:
-            if t > 0.0 and gmin > 0.0:
-                for _ in range(3):
-                    gap, dg = _gap_state(t, jmin, c0, ru, rv, vy, w, g)
-                    if dg >= 0.0:
-                        break
-                    st = -gap / dg
-                    if abs(st) > 0.05 * t:
-                        break
-                    t += st
-                    if abs(st) <= 1e-15 * t:
-                        break
-            return t, jmin
-        t += step
-    return t, -1
 
 
 @njit(cache=True)

@@ -13,7 +13,7 @@ import math
 from numba import njit
 
 from .. import codes as C
-from ..roll import _theta_a, _theta_b
+from ..roll import theta_a, theta_b
 from .flight import departure_window, flight_frame, leave_arm
 from .impact import coulomb_impact, record_impact
 from .modes import (HALF_PI, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST, MODE_SELECT,
@@ -108,8 +108,8 @@ def tip_from_rest(k, x_cm, n, d, uL, uR):
     """
     if uL[k] >= 0.0:
         j = (k + 1) % n
-        return j, x_cm + uL[k], _theta_a(j, n, d, uL)
-    return k, x_cm + uR[k], _theta_b(k, d, uR)
+        return j, x_cm + uL[k], theta_a(j, n, d, uL)
+    return k, x_cm + uR[k], theta_b(k, d, uR)
 
 
 @njit(cache=True)
@@ -157,7 +157,7 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, rho2
         record_impact(pt, pn, k_before, k_after, rec)
         if kind != IMP_STICK:
             rec[C.N_SLIPS] += 1.0
-        th_new = _theta_a(jB, n, d, uL) if land_dir > 0 else _theta_b(jB, d, uR)
+        th_new = theta_a(jB, n, d, uL) if land_dir > 0 else theta_b(jB, d, uR)
         if kind == IMP_STICK and stable[k]:
             th_A = tb if land_dir > 0 else ta
             if rocking_rest(th_new, th_A, k_after, ell[jp], ell[jB], rho2, dk, g, mu, land_dir):

@@ -4,7 +4,7 @@ One vertex A on the line sliding with slip velocity v_A ≠ 0: 2 DOF (x_A, θ) w
 friction −μσN, σ = sgn v_A (:func:`slide_rhs`), integrated with classical RK4,
 step Δt = DTH/(|θ̇| + Ω); guards ``stick`` (v_A = 0), ``land`` (θa, θb),
 ``lift_off`` (N = 0), ``painleve`` (D ≤ 0) and ``leave_arm`` are checked at step
-ends and located by bisection on the step length. μ = ∞ slides with ``MU_SKID``.
+ends and located on the step length (:func:`_locate_guard`). μ = ∞ slides with ``MU_SKID``.
 """
 
 import math
@@ -86,13 +86,75 @@ def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length):
 
 
 @njit(cache=True)
+def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length):
+    """The value of one guard of :func:`_slide_guards` (a smooth function of the state)."""
+    if which == EV_STICK:
+        return sig * va
+    if which == EV_LAND_A:
+        return th - ta
+    if which == EV_LAND_B:
+        return tb - th
+    if which == EV_LIFT_OFF:
+        _a, _b, N, _D = slide_rhs(th, w, lj, rho2, g, musig)
+        return N / g
+    if which == EV_BEHIND_JOINT:
+        return xa
+    if which == EV_OFF_END:
+        return length - xa
+    return math.nan
+
+
+@njit(cache=True)
+def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length):
+    """Smallest RK4 step length τ ∈ (0, dt] at which the guard function (:func:`_slide_guards`) is ≤ 0.
+
+    Bracket [lo, hi] with min-guard G(lo) > 0 ≥ G(hi). Each trial point is a
+    false-position step on the guard that fired at hi (its own values at both
+    ends: one smooth function), kept at least half the tolerance inside the
+    bracket, while the previous step halved the bracket; bisection otherwise
+    (a stiff step: μ ≫ 1, or the step's RK4 polynomial far from linear). The
+    sign of G itself decides each step, so the result is the bisection's
+    bracket limit; stops when the bracket is below 1e-16 (t + τ), as bisection
+    did, and returns its upper end.
+    """
+    lo = 0.0
+    hi = dt
+    x_lo, th_lo, v_lo, w_lo = xa, theta, va, thdot
+    x_hi, th_hi, v_hi, w_hi = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig)
+    falsi = True
+    for _ in range(4 * N_BISECT):
+        width = hi - lo
+        tol = 1e-16 * (t + hi)
+        if width <= tol:
+            break
+        mid = lo + 0.5 * width
+        if falsi:
+            c_lo = _guard_value(which, x_lo, th_lo, v_lo, w_lo, sig, ta, tb, lj, rho2, g, musig, length)
+            c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length)
+            if c_lo > 0.0 and c_hi <= 0.0:
+                mid = lo + width * c_lo / (c_lo - c_hi)
+                mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
+        xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig)
+        gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length)
+        if gmid <= 0.0:
+            hi = mid
+            which = wh
+            x_hi, th_hi, v_hi, w_hi = xm, thm, vm, wm
+        else:
+            lo = mid
+            x_lo, th_lo, v_lo, w_lo = xm, thm, vm, wm
+        falsi = hi - lo <= 0.5 * width
+    return hi
+
+
+@njit(cache=True)
 def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, t, max_steps, h, phi_off, traj, ts,
                 rec):
     """Mode PIVOT_SLIDE on vertex A at (x_A, h), slip sense σ = sgn v_A, until a guard fires.
 
     Guards ``stick`` (σ v_A = 0), ``land`` (θa, θb), ``lift_off`` (N = 0),
-    ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ 0 or > length). RK4 with bisection
-    event location. Updates N_MIN, MU_MAX, SLIP_DISTANCE. Returns
+    ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ 0 or > length). RK4, the guard
+    located inside a step by :func:`_locate_guard`. Updates N_MIN, MU_MAX, SLIP_DISTANCE. Returns
     ``(event, x_A, θ, v_A, θ̇, t)``.
     """
     musig = mu * sig
@@ -107,18 +169,7 @@ def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, t, m
         gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length)
         step = dt
         if gm <= 0.0:
-            lo = 0.0
-            hi = dt
-            for _ in range(N_BISECT):
-                mid = 0.5 * (lo + hi)
-                xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig)
-                gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length)
-                if gmid <= 0.0:
-                    hi = mid
-                else:
-                    lo = mid
-                if hi - lo <= 1e-16 * (t + hi):
-                    break
+            hi = _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length)
             step = hi
             x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, hi, lj, rho2, g, musig)
             gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length)

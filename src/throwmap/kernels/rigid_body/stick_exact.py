@@ -23,8 +23,8 @@ from numba import njit
 from .. import codes as C
 from .modes import EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_SLIP, N_ARC
 from .stick import _n_min_range, _n_stick
-from .swing import (first_quartic_root, n_roots, slip_quartic, swing_pieces, swing_sense, swing_time,
-                    theta_on_piece)
+from ..roll import swing_sense
+from .swing import first_quartic_root, n_roots, slip_quartic, swing_pieces, swing_time, theta_on_piece
 from .trajectory import put_pivot
 
 
@@ -90,7 +90,7 @@ def pivot_stick_exact(theta, thdot, ta, tb, lj, I, g, mu, t, max_steps, px, h, p
         p0 = p1 = p2 = p3 = p4 = 0.0
     n_lo, n_hi = n_roots(e, k)
     sample = traj.shape[0] > 0
-    npc, th0, th1, th2, d0, d1 = swing_pieces(theta, swing_sense(theta, thdot), ta, tb, e)
+    npc, th0, th1, th2, d0, d1 = swing_pieces(theta, swing_sense(theta, thdot), ta, tb, E, g, lj)
     for i in range(npc):
         a = th0 if i == 0 else th1
         b = th1 if i == 0 else th2

@@ -4,7 +4,7 @@ While the pivot sticks the part is a compound pendulum, I θ̈ = −g ℓ cos θ
 (:mod:`~throwmap.kernels.roll`), so E = ½ I θ̇² + g ℓ sin θ is conserved and the
 swing is decided by E and the sense of θ̇ alone: it reaches the end ahead or
 turns back where sin θ = e = E/(g ℓ) and sweeps back to the other end
-(:func:`swing_pieces`). On each piece sin θ is monotone, and the guards are
+(:func:`swing_pieces`, with the guards of :mod:`~throwmap.kernels.roll`). On each piece sin θ is monotone, and the guards are
 functions of s = sin θ alone (k = ℓ²/I, forces in units of m g):
 
 * ``lift_off``: N(s) = 1 − k + 3k s² − 2k e s = 0, a quadratic;
@@ -28,6 +28,7 @@ import math
 
 from numba import njit
 
+from ..roll import reach_end, turn_back
 from .modes import HALF_PI
 
 QUARTER_PI = 0.25 * math.pi
@@ -98,44 +99,21 @@ def swing_time(th1, th2, e, c):
 
 
 @njit(cache=True)
-def swing_sense(theta, thdot):
-    """Sense (+1 CCW, −1 CW) of a swing at θ̇ (rad/s); from rest, the sense gravity pulls (away from the peak)."""
-    if thdot > 0.0:
-        return 1
-    if thdot < 0.0:
-        return -1
-    return 1 if math.cos(theta) < 0.0 else -1
+def swing_pieces(theta, dirn, ta, tb, E, g, lj):
+    """The path of a sticking swing from θ in sense ``dirn`` at energy E (J/kg), as pieces with monotone sin θ.
 
-
-@njit(cache=True)
-def swing_pieces(theta, dirn, ta, tb, e):
-    """The path of a sticking swing from θ in sense ``dirn`` at energy e, as pieces with monotone sin θ.
-
-    As :func:`~throwmap.kernels.roll.roll_to_rest`: it reaches the end ahead (θb
-    for dirn = +1, θa for −1) if no barrier lies ahead or e is above it (split at
-    the peak π/2 if it crosses it); otherwise it turns back where sin θ = e and
-    sweeps to the other end. Returns ``(n, θ0, θ1, θ2, d0, d1)``: n = 1 or 2
+    As :func:`~throwmap.kernels.roll.roll_to_rest`: guard ``reach_end`` — it reaches
+    the end ahead (θb for dirn = +1, θa for −1), split at the peak π/2 if it
+    crosses it; otherwise guard ``turn_back`` — it turns back where sin θ = E/(g ℓ)
+    and sweeps to the other end. Returns ``(n, θ0, θ1, θ2, d0, d1)``: n = 1 or 2
     pieces θ0 → θ1 (sense d0) and θ1 → θ2 (sense d1).
     """
-    if dirn > 0:
-        end = tb
-        peak_ahead = theta < HALF_PI < tb
-    else:
-        end = ta
-        peak_ahead = ta < HALF_PI < theta
-    if peak_ahead:
-        barrier = 1.0
-    elif math.sin(end) > math.sin(theta):
-        barrier = math.sin(end)
-    else:
-        barrier = -math.inf
-    if e > barrier:  # guard reach_end
-        if peak_ahead:
+    if reach_end(theta, dirn, ta, tb, E, g, lj):
+        end = tb if dirn > 0 else ta
+        if min(theta, end) < HALF_PI < max(theta, end):
             return 2, theta, HALF_PI, end, dirn, dirn
         return 1, theta, end, end, dirn, dirn
-    s_turn = min(e, 1.0)  # guard turn_back
-    th_turn = math.asin(s_turn) if dirn > 0 else math.pi - math.asin(s_turn)
-    return 2, theta, th_turn, (ta if dirn > 0 else tb), dirn, -dirn
+    return 2, theta, turn_back(E, g, lj, dirn), (ta if dirn > 0 else tb), dirn, -dirn
 
 
 @njit(cache=True)
