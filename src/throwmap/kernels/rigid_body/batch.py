@@ -2,7 +2,9 @@
 
 Two entries with one loop each (a jitted function passed into a parallel loop
 cannot be cached): :func:`throw_many_rigid_body` (closed-form sticking phase)
-and :func:`throw_many_rigid_body_rk4` (the RK4 reference).
+and :func:`throw_many_rigid_body_rk4` (the RK4 reference). Batches smaller than
+``SERIAL_BELOW`` run on the calling thread: the analysis layer asks for many
+small batches, for which waking the thread pool costs more than the throws.
 """
 
 import math
@@ -13,6 +15,9 @@ from numba import njit, prange
 from .. import codes as C
 from .automaton import throw_one_rigid_body, throw_one_rigid_body_rk4
 
+SERIAL_BELOW = 128
+"""Batches with fewer throws than this run serially (same results, no thread-pool wake-up)."""
+
 
 @njit(cache=True)
 def _invalid(i, x0, side, x_out, side_out, status_out, rec_out):
@@ -21,6 +26,21 @@ def _invalid(i, x0, side, x_out, side_out, status_out, rec_out):
     status_out[i] = C.INVALID_START
     for q in range(C.NREC):
         rec_out[i, q] = math.nan
+
+
+@njit(cache=True)
+def _serial(x0, side, omega, valid, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_events,
+            x_out, side_out, status_out, rec_out):
+    no_traj = np.empty((0, 4))
+    for i in range(x0.shape[0]):
+        if not valid[i]:
+            _invalid(i, x0, side, x_out, side_out, status_out, rec_out)
+            continue
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, rho2, mu, w, beta, d, uL, uR, ell,
+                                        stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+        x_out[i] = x
+        side_out[i] = k
+        status_out[i] = st
 
 
 @njit(cache=True, parallel=True)
