@@ -1,4 +1,4 @@
-"""Seeing a throw: the paper model's time history (throwmap.paper_trajectory), the
+"""Seeing a throw: the paper model's time history (throwmap.throws.orbit_trajectory), the
 animation writer (throwmap.viz.animation) and ``throwmap animate`` (throwmap.cli.animate)."""
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import throwmap as tm
 from throwmap.viz.animation import animate, frame_times, sample_frames
 from throwmap.cli.animate import register
 from throwmap.errors import ThrowmapError
-from throwmap.paper_trajectory import _swing_piece, orbit_trajectory, paper_throw_trajectory, paper_trajectory
+from throwmap.throws.orbit_trajectory import orbit_trajectory, paper_throw_trajectory, paper_trajectory
 from throwmap.system.catalogue import builtin_part
 from throwmap.throws.trajectory import state_from_pose
 
@@ -51,7 +51,7 @@ def test_paper_trajectory_ends_where_the_kernel_rests(name):
     part = PARTS[name]
     kinds = set()
     for x, s, om in _starts(part, omegas=(2.0, 3.0, 4.0, 5.0, 6.0, 10.0)):
-        out = tm.throw(part, ARM, x, s, om)
+        out = tm.throw(part, ARM, x, s, om, model="paper")
         traj = paper_trajectory(part, ARM, x, s, om)
         kept = traj.meta["outcomes"][0]
         assert traj.source == "paper" and (kept.x, kept.side, kept.status) == (out.x, out.side, out.status)
@@ -82,7 +82,7 @@ def test_paper_trajectory_tips_over_unstable_sides():
     arm = tm.Arm(h=-0.005)
     unstable_landings = 0
     for x, s, om in _starts(quad, omegas=(4.0, 8.0, 14.0), n_x=8):
-        out = tm.throw(quad, arm, x, s, om)
+        out = tm.throw(quad, arm, x, s, om, model="paper")
         traj = paper_trajectory(quad, arm, x, s, om)
         landed = [int(lab.split()[-1]) for _, lab in traj.events if lab.startswith("land side")]
         unstable_landings += sum(not quad.stable[k] for k in landed)
@@ -97,11 +97,11 @@ def test_paper_trajectory_flips_and_rocks_on_the_triangle():
     """Named cases on the paper's triangle at ω = 4 (jog, flip 1→2) and a rocking throw at ω = 10."""
     tri = PARTS["triangle"]
     jog = paper_trajectory(tri, ARM, 0.2, 0, 4.0)
-    v = tm.throw(tri, ARM, 0.2, 0, 4.0).contact_vertex  # the user's vertex index
+    v = tm.throw(tri, ARM, 0.2, 0, 4.0, model="paper").contact_vertex  # the user's vertex index
     assert [lab for _, lab in jog.events] == ["release", f"impact v{v}", "land side 0", "rest"]
     flip = paper_trajectory(tri, ARM, 0.34, 1, 4.0)
     assert [lab for _, lab in flip.events][-2:] == ["flip 1→2", "rest"]
-    rock = tm.throw(tri, ARM, 0.4, 1, 10.0)
+    rock = tm.throw(tri, ARM, 0.4, 1, 10.0, model="paper")
     assert rock.ok and rock.n_impacts >= 3
     traj = paper_trajectory(tri, ARM, 0.4, 1, 10.0)
     assert sum(lab.startswith("land side") for _, lab in traj.events) == rock.n_impacts - 1
@@ -123,8 +123,17 @@ def test_flight_conserves_energy():
         assert t_impact == pytest.approx(out.t_flight, rel=1e-12)
 
 
+def _kernel_swing(th0, th1, E, lj, I, g, nodes=400):
+    """The kernel's time table of a monotone swing θ0 → θ1 (kernels.record.swing_table)."""
+    from throwmap.kernels.record import swing_table
+
+    t, th = np.empty(nodes + 1), np.empty(nodes + 1)
+    swing_table(th0, th1, E, lj, I, g, nodes, t, th, 0, 0.0)
+    return t, th
+
+
 def test_pivot_swing_time_matches_the_pendulum_ode():
-    """The energy quadrature of a swing (over the top, and turning back) agrees with I θ̈ = −g ℓ cos θ."""
+    """The kernel's energy quadrature of a swing (over the top, and turning back) agrees with I θ̈ = −g ℓ cos θ."""
     from scipy.integrate import solve_ivp
 
     g, lj = 9.81, 0.05
@@ -134,8 +143,8 @@ def test_pivot_swing_time_matches_the_pendulum_ode():
     th0, w0 = 0.3, 8.0
     E = 0.5 * I * w0**2 + g * lj * math.sin(th0)
     th_turn = math.asin(E / (g * lj))
-    t1, th1 = _swing_piece(th0, th_turn, E, lj, I, g, 400)
-    t2, _ = _swing_piece(th_turn, th0, E, lj, I, g, 400)
+    t1, th1 = _kernel_swing(th0, th_turn, E, lj, I, g)
+    t2, _ = _kernel_swing(th_turn, th0, E, lj, I, g)
     back = lambda t, y: y[0] - th0  # noqa: E731
     back.terminal, back.direction = True, -1
     sol = solve_ivp(f, [1e-9, 5.0], [th0 + w0 * 1e-9, w0], events=back, rtol=1e-11, atol=1e-13, dense_output=True)
@@ -144,11 +153,44 @@ def test_pivot_swing_time_matches_the_pendulum_ode():
     np.testing.assert_allclose(np.interp(ts, t1, th1), sol.sol(ts)[0], atol=1e-5)
     # from rest near the top, down to the end
     th0, end = 2.0, math.pi - 0.3
-    t3, _ = _swing_piece(th0, end, g * lj * math.sin(th0), lj, I, g, 400)
+    t3, _ = _kernel_swing(th0, end, g * lj * math.sin(th0), lj, I, g)
     hit = lambda t, y: y[0] - end  # noqa: E731
     hit.terminal = True
     sol = solve_ivp(f, [0.0, 5.0], [th0, 0.0], events=hit, rtol=1e-11, atol=1e-13)
     assert t3[-1] == pytest.approx(sol.t_events[0][0], abs=1e-5)
+
+
+def test_recorded_swing_ends_at_the_quadrature_time():
+    """The kernel's recorded landing time after the first impact = t_flight + ∫ dθ/|θ̇| (SciPy quad, independent)."""
+    from scipy.integrate import quad
+
+    tri = PARTS["triangle"]
+    for x, s, om in [(0.2, 0, 4.0), (0.34, 1, 4.0)]:
+        out, traj = paper_throw_trajectory(tri, ARM, x, s, om, dt=1.0 / 240.0)
+        t_land = next(te for te, lab in traj.events if lab.startswith("land side"))
+        i = int(np.flatnonzero(traj.t == out.t_flight)[0])
+        # the swing about the touching vertex, from the impact angle, at the post-impact energy
+        j = [tri.user_vertex(q) for q in range(tri.n_sides)].index(out.contact_vertex)
+        px = out.contact_x
+        x_cm, y_cm = traj.poses[i, 0, :2]
+        lj = float(tri.ell[j])
+        I = tri.radius_of_gyration**2 + lj * lj
+        th0 = math.atan2(y_cm - H, x_cm - px)
+        wp = out.v_post[2]
+        E = 0.5 * I * wp * wp + ARM.g * lj * math.sin(th0)
+        k_land = int(next(lab for _, lab in traj.events if lab.startswith("land side")).split()[-1])
+        n = tri.n_sides
+        qa = (k_land == (j - 1) % n)
+        end = math.atan2(tri.d[k_land], -(tri.uL[k_land] if qa else tri.uR[k_land]))
+        speed = lambda th: math.sqrt(max(2.0 * (E - ARM.g * lj * math.sin(th)) / I, 0.0))  # noqa: E731
+        moving_up = (wp > 0) == (th0 < math.pi / 2)
+        if E < ARM.g * lj and moving_up:  # turns back at sin θ = E/(g ℓ)
+            th_turn = math.asin(E / (ARM.g * lj)) if wp > 0 else math.pi - math.asin(E / (ARM.g * lj))
+            legs = [(th0, th_turn), (th_turn, end)]
+        else:
+            legs = [(th0, end)]
+        t_swing = sum(quad(lambda th: 1.0 / speed(th), min(a, b), max(a, b), limit=200)[0] for a, b in legs)
+        assert t_land - out.t_flight == pytest.approx(t_swing, rel=1e-5)
 
 
 def test_poses_continuous_and_contacts_per_sample():
@@ -160,7 +202,7 @@ def test_poses_continuous_and_contacts_per_sample():
     assert step[:, :2].max() < 0.02 and step[:, 2].max() < 0.1  # no jumps (φ unwrapped)
     t_impact = next(te for te, lab in traj.events if lab.startswith("impact"))
     flight = _between(traj, 0.0, t_impact)
-    assert all(traj.contacts[i].shape == (0, 2) for i in flight)
+    assert len(flight) > 0 and all(traj.contacts[i].shape == (0, 2) for i in flight)
     for i in (0, -1):  # at rest: both support vertices, on the arm line
         c = traj.contacts[i]
         assert c.shape == (2, 2)
@@ -172,7 +214,7 @@ def test_poses_continuous_and_contacts_per_sample():
 
 def test_escape_is_drawn_and_labelled():
     tri = PARTS["triangle"]
-    out = tm.throw(tri, ARM, 0.1225, 0, 10.0)
+    out = tm.throw(tri, ARM, 0.1225, 0, 10.0, model="paper")
     assert out.status == tm.Status.BEHIND_JOINT
     traj = paper_trajectory(tri, ARM, 0.1225, 0, 10.0)
     assert traj.events[-1][1] == "escape: behind_joint"
@@ -190,7 +232,7 @@ def test_paper_trajectory_refuses_bad_input():
 def test_orbit_trajectory_of_three_throws():
     tri = PARTS["triangle"]
     traj = orbit_trajectory(tri, ARM, 0.3, 1, 4.0, 3, pause=0.2)
-    orbit = tm.iterate(tri, ARM, (0.3, 1), 4.0, n=3)
+    orbit = tm.iterate(tri, ARM, (0.3, 1), 4.0, n=3, model="paper")
     outs = traj.meta["outcomes"]
     assert len(outs) == 3
     assert [(o.x, o.side, o.status) for o in outs] == [(o.x, o.side, o.status) for o in orbit.outcomes]
@@ -299,7 +341,7 @@ def test_fixtures_with_an_outline_are_drawn(tmp_path):
 
 
 def test_import_throwmap_loads_no_matplotlib():
-    code = ("import sys, throwmap, throwmap.paper_trajectory, throwmap.viz.animation, throwmap.cli.animate; "
+    code = ("import sys, throwmap, throwmap.throws.orbit_trajectory, throwmap.viz.animation, throwmap.cli.animate; "
             "assert 'matplotlib' not in sys.modules, 'matplotlib imported'")
     subprocess.run([sys.executable, "-c", code], check=True)
 

@@ -1,7 +1,7 @@
 """``throwmap animate``: draw one throw, or an orbit of throws, to a GIF or MP4.
 
 A thin shell: parse, build the part and arm, get a :class:`~throwmap.throws.trajectory.Trajectory`
-from the chosen model (:func:`throwmap.paper_trajectory.orbit_trajectory`), draw it
+from the chosen model (:func:`throwmap.throws.orbit_trajectory.orbit_trajectory`), draw it
 (:func:`throwmap.viz.animation.animate`) and say where the file went. Errors follow
 :mod:`throwmap.cli.options`: one ``error: <field>: <reason>`` line on stderr, exit 2.
 """
@@ -28,9 +28,9 @@ PROGRESS_FRAMES = 60
 
 
 def _trajectory(model, part, arm, x, side, omega, n):
-    """The trajectory of ``n`` throws (:func:`~throwmap.paper_trajectory.orbit_trajectory`); raises
+    """The trajectory of ``n`` throws (:func:`~throwmap.throws.orbit_trajectory.orbit_trajectory`); raises
     :class:`ImportError` where the model's module is not installed."""
-    from ..paper_trajectory import orbit_trajectory
+    from ..throws.orbit_trajectory import orbit_trajectory
 
     return orbit_trajectory(part, arm, x, side, omega, n, model=model)
 

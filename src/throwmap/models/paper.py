@@ -69,9 +69,9 @@ class PaperModel:
         return out
 
     def trajectory(self, part, system, x, side, omega, o: PaperOptions, dt):
-        from ..paper_trajectory import paper_throw_trajectory
+        from ..throws.trajectories import kernel_trajectory
 
-        return paper_throw_trajectory(part, system.arm, x, side, omega, dt=dt, max_impacts=o.max_impacts)
+        return kernel_trajectory(part, system.arm, x, side, omega, "paper", dt=dt, options=o)
 
 
 MODEL = register(PaperModel())

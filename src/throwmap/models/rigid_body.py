@@ -73,9 +73,9 @@ class RigidBodyModel:
         return out
 
     def trajectory(self, part, system, x, side, omega, o: RigidBodyOptions, dt):
-        from ..rigid_trajectory import rigid_trajectory
+        from ..throws.trajectories import kernel_trajectory
 
-        return rigid_trajectory(part, system.arm, x, side, omega, dt=dt)
+        return kernel_trajectory(part, system.arm, x, side, omega, "rigid_body", dt=dt, options=o)
 
 
 MODEL = register(RigidBodyModel())
