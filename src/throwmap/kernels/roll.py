@@ -49,6 +49,8 @@ from . import codes as C
 from .record import continue_angle, put, swing_rows
 
 HALF_PI = 0.5 * math.pi
+N_EXACT = 1e-2
+"""Below this normal force (units of m g) an arc sample's friction ratio uses exact trig, not the recurrence."""
 
 
 @njit(cache=True)
@@ -76,7 +78,8 @@ def _check_arc(th1, th2, E, ell, I, g, n_samples, rec):
     |F|/N (where N > 0) at ``n_samples`` equally spaced angles, skipped when the
     bound k √(1 − s_lo²) max|3s − 2e| / min N over the arc cannot beat the record;
     the angles' sines and cosines follow a rotation recurrence (two trig calls per
-    arc; rounding ~n_samples ulp).
+    arc; rounding ~n_samples ulp), except where N < ``N_EXACT`` (there |F|/N
+    amplifies that rounding, so the sample's own sine and cosine are used).
     """
     if th2 < th1:
         th1, th2 = th2, th1
@@ -101,7 +104,16 @@ def _check_arc(th1, th2, E, ell, I, g, n_samples, rec):
     c = math.cos(th1)
     for i in range(n_samples):
         N = 1.0 - k + 3.0 * k * s * s - 2.0 * k * e * s
-        if N > 0.0:
+        if N < N_EXACT:  # |F|/N is ill-conditioned here: the sample's own sine and cosine
+            th = th1 + (th2 - th1) * i / (n_samples - 1)
+            s_i = math.sin(th)
+            c_i = math.cos(th)
+            N = 1.0 - k + 3.0 * k * s_i * s_i - 2.0 * k * e * s_i
+            if N > 0.0:
+                r = abs(k * c_i * (3.0 * s_i - 2.0 * e)) / N
+                if r > rec[C.MU_MAX]:
+                    rec[C.MU_MAX] = r
+        elif N > 0.0:
             F = k * c * (3.0 * s - 2.0 * e)
             r = abs(F) / N
             if r > rec[C.MU_MAX]:
