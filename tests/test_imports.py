@@ -6,14 +6,11 @@ The graph is read from the source with :mod:`ast` (nothing is imported): every
 the named module or submodule, and the packages on the way to it (bar the importer's
 own enclosing packages, which are already being imported).
 
-Allow-lists record today's exceptions; they only ever shrink:
+Allow-lists record exceptions; all are empty and may only stay so:
 
-- :data:`KNOWN_CYCLES`: import cycles recorded while other work removes them. A cycle
-  through a package of :data:`ENFORCED` (today ``throwmap.cli``) always fails; any other
-  cycle not recorded here is reported as a warning. Once the list is empty, widen
-  :data:`ENFORCED` to the whole package.
-- :data:`KNOWN_LONG`: modules over :data:`MAX_LINES` lines.
-- :data:`KNOWN_HEAVY`: optional heavy packages that ``import throwmap`` still loads.
+- :data:`KNOWN_CYCLES`: import cycles (none; :data:`ENFORCED` is the whole package).
+- :data:`KNOWN_LONG`: modules over :data:`MAX_LINES` lines (none).
+- :data:`KNOWN_HEAVY`: optional heavy packages that ``import throwmap`` loads (none).
 """
 
 from __future__ import annotations
@@ -28,26 +25,14 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = "throwmap"
 MAX_LINES = 500
 
-ENFORCED: tuple[str, ...] = (f"{PACKAGE}.cli",)
-"""Packages in which an import cycle fails the tests now (``(PACKAGE,)``: everywhere)."""
+ENFORCED: tuple[str, ...] = (PACKAGE,)
+"""Packages in which an import cycle fails the tests: the whole package."""
 
-KNOWN_CYCLES: tuple[frozenset[str], ...] = (
-    frozenset({"throwmap.models.paper", "throwmap.paper_trajectory"}),
-    frozenset({"throwmap.models.rigid_body", "throwmap.rigid_trajectory"}),
-)
-"""Import cycles (strongly connected modules) recorded for now, while they are being removed.
-A cycle counts as recorded while it shares a module with one of these; the lead empties this."""
+KNOWN_CYCLES: tuple[frozenset[str], ...] = ()
+"""Import cycles tolerated for now: none."""
 
-KNOWN_LONG: frozenset[str] = frozenset({
-    "throwmap/analysis/basins.py",
-    "throwmap/analysis/limitset.py",
-    "throwmap/engine/mujoco_backend.py",
-    "throwmap/engine/pymunk_backend.py",
-    "throwmap/kernels/rigid_body.py",
-    "throwmap/paper_trajectory.py",
-    "throwmap/viz/analysis.py",
-})
-"""Modules (paths under ``src``) still over :data:`MAX_LINES` lines."""
+KNOWN_LONG: frozenset[str] = frozenset()
+"""Modules (paths under ``src``) allowed over :data:`MAX_LINES` lines: none."""
 
 HEAVY = ("matplotlib", "mujoco", "pymunk")
 """Optional or slow packages that ``import throwmap`` must not load."""

@@ -88,11 +88,14 @@ def test_no_vertex_below_the_arm_before_contact(canonical_part, arm, omega):
 @pytest.mark.parametrize("omega", OMEGAS)
 def test_jogs_are_outward_for_negative_h(canonical_part, arm, omega):
     part = canonical_part
+    n_jogs = 0
     for s in part.stable_sides:
         xs = np.linspace(part.x_min(s), 0.5, 301)[1:]
         res = tm.throw_batch(part, arm, xs, s, omega, model="paper")
         jog = (res.status == tm.Status.OK) & (res.side == s)
         assert np.all(res.x[jog] > xs[jog])
+        n_jogs += int(jog.sum())
+    assert n_jogs > 0  # the check above ran on something
 
 
 def test_jog_and_flip_both_occur_and_flip_moves_inward(triangle, arm):
@@ -149,7 +152,7 @@ def test_arm_length_gives_off_end(triangle):
     res = tm.throw_batch(triangle, arm, xs, 0, 4.0, model="paper")
     assert np.any(res.status == tm.Status.OFF_END)
     ok = res.status == tm.Status.OK
-    assert np.all(res.x[ok] <= 0.3)
+    assert ok.any() and np.all(res.x[ok] <= 0.3)
 
 
 def test_hard_throw_leaves_behind_joint(triangle, arm):

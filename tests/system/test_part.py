@@ -128,3 +128,16 @@ def test_unstable_sides_are_numbered_and_refused_as_start():
         tm.throw(p, tm.Arm(h=-0.001), 0.3, k, 1.0, model="paper")
     with pytest.raises(InvalidStateError, match="does not exist"):
         tm.throw(p, tm.Arm(h=-0.001), 0.3, 7, 1.0, model="paper")
+
+
+def test_inertia_of_a_part_far_from_the_origin_keeps_its_precision():
+    """Regression (found by Hypothesis): triangulating from the origin lost ρ to cancellation
+    for a thin part 1 m away (5e-9 relative); the mass properties must not depend on where
+    the vertices are given."""
+    v = np.array([(0.03125, 0.0), (0.016884447058379368, 0.026295968275246766),
+                  (0.030005321457823936, -0.008731734318716433)])
+    near = tm.Part.from_vertices(v, mass=0.05)
+    for shift in ((1.0, 1.0), (10.0, -7.0), (100.0, 100.0)):
+        far = tm.Part.from_vertices(v + np.array(shift), mass=0.05)
+        assert far.radius_of_gyration == pytest.approx(near.radius_of_gyration, rel=1e-11)
+        np.testing.assert_allclose(np.array(far.com) - shift, near.com, rtol=0, atol=1e-12)

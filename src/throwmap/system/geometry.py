@@ -105,9 +105,13 @@ def clockwise_order(vertices: np.ndarray) -> np.ndarray:
 def polygon_mass_properties(vertices: np.ndarray) -> tuple[float, np.ndarray, float]:
     """Area (m²), centroid (m) and polar second moment of area about the centroid (m⁴).
 
-    Uniform-plate formulas by triangulation from the origin (any orientation).
+    Uniform-plate formulas by triangulation from the vertices' mean point (any
+    orientation): triangulating from a far-away origin would lose the second moment
+    to cancellation in the parallel-axis shift.
     """
-    x0, y0 = vertices[:, 0], vertices[:, 1]
+    ref = vertices.mean(axis=0)
+    local = vertices - ref
+    x0, y0 = local[:, 0], local[:, 1]
     x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
     c = x0 * y1 - x1 * y0
     a = 0.5 * float(np.sum(c))
@@ -119,7 +123,7 @@ def polygon_mass_properties(vertices: np.ndarray) -> tuple[float, np.ndarray, fl
     if a < 0:
         a, j_origin = -a, -j_origin
     j_c = j_origin - a * (cx * cx + cy * cy)
-    return a, np.array([cx, cy]), j_c
+    return a, np.array([cx, cy]) + ref, j_c
 
 
 def point_in_convex_polygon(vertices: np.ndarray, p, strict: bool = False, tol: float = 1e-12) -> bool:
