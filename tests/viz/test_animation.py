@@ -231,7 +231,7 @@ def test_paper_trajectory_refuses_bad_input():
 # ---------------------------------------------------------------- orbits
 def test_orbit_trajectory_of_three_throws():
     tri = PARTS["triangle"]
-    traj = orbit_trajectory(tri, ARM, 0.3, 1, 4.0, 3, pause=0.2)
+    traj = orbit_trajectory(tri, ARM, 0.3, 1, 4.0, 3, model="paper", pause=0.2)
     orbit = tm.iterate(tri, ARM, (0.3, 1), 4.0, n=3, model="paper")
     outs = traj.meta["outcomes"]
     assert len(outs) == 3
@@ -250,7 +250,7 @@ def test_orbit_trajectory_of_three_throws():
 
 def test_orbit_trajectory_stops_at_an_escape():
     tri = PARTS["triangle"]
-    traj = orbit_trajectory(tri, tm.Arm(h=H, length=0.3), 0.27, 0, 4.0, 10)
+    traj = orbit_trajectory(tri, tm.Arm(h=H, length=0.3), 0.27, 0, 4.0, 10, model="paper")
     outs = traj.meta["outcomes"]
     assert outs[-1].status == tm.Status.OFF_END and len(outs) < 10
     assert traj.events[-1][1] == "escape: off_end"

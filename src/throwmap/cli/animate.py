@@ -16,13 +16,15 @@ from typing import Annotated
 import typer
 
 from ..errors import InvalidStateError, ThrowmapError
+from ..models import DEFAULT_MODEL
+from ..throws.orbit_trajectory import orbit_trajectory, trajectory_models
 from .options import (GOpt, HOpt, LengthOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, check_finite, guard,
                       part_and_arm)
 
 __all__ = ["register", "animate_cmd", "ANIMATE_MODELS", "PROGRESS_FRAMES"]
 
-ANIMATE_MODELS = ("paper", "rigid_body", "engine")
-"""Models ``animate`` can draw (each must provide a trajectory)."""
+ANIMATE_MODELS = trajectory_models()
+"""Models ``animate`` can draw: those that record a trajectory."""
 PROGRESS_FRAMES = 60
 """A progress bar (stderr, terminals only) is shown for animations with more frames than this."""
 
@@ -30,8 +32,6 @@ PROGRESS_FRAMES = 60
 def _trajectory(model, part, arm, x, side, omega, n):
     """The trajectory of ``n`` throws (:func:`~throwmap.throws.orbit_trajectory.orbit_trajectory`); raises
     :class:`ImportError` where the model's module is not installed."""
-    from ..throws.orbit_trajectory import orbit_trajectory
-
     return orbit_trajectory(part, arm, x, side, omega, n, model=model)
 
 
@@ -62,7 +62,8 @@ def animate_cmd(
     length: LengthOpt = None,
     mu: MuOpt = None,
     n: Annotated[int, typer.Option("-n", "--n", help="Number of throws (> 1 animates an orbit).")] = 1,
-    model: Annotated[str, typer.Option("--model", help=f"Model: {', '.join(ANIMATE_MODELS)}.")] = "engine",
+    model: Annotated[str, typer.Option("--model", help=f"Model: {', '.join(ANIMATE_MODELS)} "
+                                                       f"(default {DEFAULT_MODEL}).")] = DEFAULT_MODEL,
     out: Annotated[Path, typer.Option("--out", help="Animation file, .gif or .mp4 (mp4 needs ffmpeg).")]
     = Path("out/throw.gif"),
     fps: Annotated[int, typer.Option("--fps", help="Frames per second.")] = 30,

@@ -13,7 +13,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernels import codes as C
-from ..kernels.paper import throw_many, throw_one
+from ..kernels.paper import throw_many, throw_one, throw_one_traj
+from ..kernels.record import FLIGHT
+from ..throws.outcome import Status, ThrowOutcome
+from ..throws.trajectory import NO_CONTACT, Trajectory, contact_points, drawn_length, world_vertices
 from ._checks import int_at_least, positive_float
 from .base import BatchArrays, Features
 from .registry import register
@@ -69,9 +72,72 @@ class PaperModel:
         return out
 
     def trajectory(self, part, system, x, side, omega, o: PaperOptions, dt):
-        from ..throws.trajectories import kernel_trajectory
+        return record_trajectory(part, system.arm, x, side, omega, dt, o)
 
-        return kernel_trajectory(part, system.arm, x, side, omega, "paper", dt=dt, options=o)
+
+def record_trajectory(part, arm, x0, k0, om, dt, o: PaperOptions):
+    """The kernel's recorded motion of one throw as ``(ThrowOutcome, Trajectory)``.
+
+    Model "paper" (paper Sec. III-B–C, Eqs. 1–4): the first sample is the resting start
+    at t = 0 (the release), then the flight (Eq. 1) to the first contact (Eq. 3), the
+    pivot swings (compound pendulum, time by quadrature, see
+    :mod:`~throwmap.kernels.record`) and side landings, ending at the kernel's resting
+    configuration exactly (or the escape; after a first contact off the arm the fall is
+    drawn for :data:`~throwmap.kernels.record.ESCAPE_FALL_TIME`). The arm stays
+    horizontal (an impulsive throw). Events ``(t, label)``: ``"release"``,
+    ``"impact v<j>"`` (j the user's vertex index), ``"land side <k>"``, ``"flip <a>→<b>"``,
+    ``"rest"`` or ``"escape: <status>"``. Contacts per sample: both support vertices at
+    rest and at a landing, the pivot while swinging, none in flight.
+    """
+    rec = np.empty(C.NREC)
+    m = 2048
+    while True:
+        rows = np.full((m, 4), np.nan)
+        tags = np.full(m, FLIGHT, dtype=np.int64)
+        xn, kn, st, count, dropped = throw_one_traj(
+            x0, k0, om, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w, part.beta, part.d,
+            part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples, rec, rows, tags,
+            dt)
+        if dropped == 0:
+            break
+        m = count + dropped + 1
+    out = ThrowOutcome.from_record(part, x0, k0, om, "paper", xn, kn, st, rec)
+    rows, tags = rows[:count], tags[:count]
+    n, h = part.n_sides, arm.h
+    contacts = []
+    for r, tag in zip(rows, tags):
+        if tag == FLIGHT:
+            contacts.append(NO_CONTACT)
+        elif tag < n:  # the pivot (or the touching vertex at the first contact), on the arm line
+            contacts.append(contact_points((world_vertices(part, r[1:4])[tag, 0], h)))
+        else:  # flat on side k: both support vertices
+            k = tag - n
+            contacts.append(contact_points((r[1] + part.uR[k], h), (r[1] + part.uL[k], h)))
+    t = rows[:, 0]
+    events = [(0.0, "release")]
+    status = Status(int(st))
+    if om != 0.0 and status != Status.NO_CONTACT:
+        t_f = float(rec[C.T_FLIGHT])
+        events.append((t_f, f"impact v{part.user_vertex(int(rec[C.CONTACT_VERTEX]))}"))
+        if int(rec[C.N_IMPACTS]) == 1 and status in (Status.BEHIND_JOINT, Status.OFF_END):
+            events.append((t_f, f"escape: {status.label}"))  # first contact off the arm
+        else:
+            last = k0
+            for i in np.flatnonzero(tags[1:] >= n) + 1:
+                k = int(tags[i]) - n
+                events.append((float(t[i]), f"land side {k}"))
+                if k != last:
+                    events.append((float(t[i]), f"flip {last}→{k}"))
+                    last = k
+            events.append((float(t[-1]), "rest" if status == Status.OK else f"escape: {status.label}"))
+    else:
+        events.append((float(t[-1]), "rest" if status == Status.OK else f"escape: {status.label}"))
+    poses = rows[:, None, 1:4]
+    traj = Trajectory(t=t, arm_angle=np.zeros_like(t), poses=poses, parts=(part,), h=h,
+                      length=drawn_length(arm, poses, (part,)), fixtures=(), contacts=tuple(contacts),
+                      events=tuple(events), source="paper",
+                      meta={"outcomes": (out,), "arm": arm, "arm_unbounded": arm.length is None})
+    return out, traj
 
 
 MODEL = register(PaperModel())

@@ -14,7 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernels import codes as C
-from ..kernels.rigid_body import throw_many_rigid_body, throw_one_rigid_body
+from ..kernels.rigid_body import count_samples, throw_many_rigid_body, throw_one_rigid_body
+from ..throws.outcome import ThrowOutcome
+from ..throws.trajectory import Trajectory, world_vertices
 from ._checks import int_at_least, positive_float
 from .base import BatchArrays, Features
 from .registry import register
@@ -73,9 +75,34 @@ class RigidBodyModel:
         return out
 
     def trajectory(self, part, system, x, side, omega, o: RigidBodyOptions, dt):
-        from ..throws.trajectories import kernel_trajectory
+        return record_trajectory(part, system.arm, x, side, omega, dt, o)
 
-        return kernel_trajectory(part, system.arm, x, side, omega, "rigid_body", dt=dt, options=o)
+
+def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples: int = 200_000):
+    """The kernel's rows (t, x, y, φ) every ``dt`` s and at every event, as ``(ThrowOutcome, Trajectory)``;
+    contacts are the vertices within 1 µm of the arm line at each sample."""
+    traj = np.full((max_samples, 4), np.nan)
+    xn, kn, st, rec = run_kernel(part, arm, x0, k, om, o, traj, float(dt))
+    out = ThrowOutcome.from_record(part, x0, k, om, "rigid_body", xn, kn, st, rec)
+    m = count_samples(traj)
+    rows = traj[:m]
+    order = np.argsort(rows[:, 0], kind="stable")
+    rows = rows[order]
+    poses = rows[:, None, 1:4]
+    contacts = []
+    for p in rows:
+        v = world_vertices(part, p[1:4])
+        contacts.append(v[np.abs(v[:, 1] - arm.h) < 1e-6])
+    reach = float(np.nanmax(rows[:, 1])) + float(np.max(part.ell)) if m else x0
+    length = arm.length if arm.length is not None else max(reach, x0) + 0.05
+    events = [(0.0, "release")]
+    if out.t_flight == out.t_flight:
+        events.append((out.t_flight, f"impact v{out.contact_vertex}"))
+    if out.ok:
+        events.append((float(rows[-1, 0]) if m else 0.0, "rest"))
+    traj_obj = Trajectory(rows[:, 0], np.zeros(m), poses, (part,), arm.h, length, (), tuple(contacts),
+                          tuple(events), "rigid_body", {"outcomes": (out,)})
+    return out, traj_obj
 
 
 MODEL = register(RigidBodyModel())

@@ -1,10 +1,10 @@
 """Animatable time histories of throws: one throw, or successive throws (an orbit), as a :class:`Trajectory`.
 
-:func:`paper_trajectory` / :func:`paper_throw_trajectory` (model "paper") and
-:func:`rigid_trajectory` (model "rigid_body") check the start and call
-:func:`throwmap.throws.trajectories.kernel_trajectory` (the kernels record their own
-rows); :func:`orbit_trajectory` strings successive throws of any model that
-provides a trajectory together with a short still pause between them.
+:func:`throw_trajectory` asks the model (from the registry, :mod:`throwmap.models`) for
+the recorded motion of one throw — the analytic kernels record their own rows, the
+engines sample their simulation — and :func:`orbit_trajectory` strings successive
+throws together with a short still pause between them. Any model whose
+``features.trajectory`` is set can be drawn; the others are refused naming ``model``.
 """
 
 from __future__ import annotations
@@ -14,21 +14,23 @@ import math
 import numpy as np
 
 from ..errors import InvalidStateError
-from ..models.paper import PaperOptions
-from ..models.rigid_body import RigidBodyOptions
+from ..models import DEFAULT_MODEL, model_names
 from ..system.arm import Arm
 from ..system.part import Part
-from .outcome import Status, ThrowOutcome
 from .orbit import throw_rates
-from .throw import check_start
-from .trajectories import DEFAULT_DT, check_dt, drawn_length, kernel_trajectory
-from .trajectory import Trajectory
+from .outcome import Status, ThrowOutcome
+from .throw import check_start, prepare
+from .trajectory import DEFAULT_DT, Trajectory, check_dt, drawn_length
 
-__all__ = ["paper_trajectory", "paper_throw_trajectory", "rigid_trajectory", "orbit_trajectory",
-           "trajectory_function", "DEFAULT_DT", "TRAJECTORY_MODELS"]
+__all__ = ["throw_trajectory", "paper_trajectory", "paper_throw_trajectory", "orbit_trajectory", "trajectory_models",
+           "DEFAULT_DT"]
 
-TRAJECTORY_MODELS = ("paper", "rigid_body", "engine")
-"""Models :func:`orbit_trajectory` can render."""
+
+def trajectory_models() -> tuple[str, ...]:
+    """The registered models that can record a throw's motion."""
+    from ..models import get_model
+
+    return tuple(n for n in model_names() if get_model(n).features.trajectory)
 
 
 def _grid(t0: float, t1: float, dt: float) -> np.ndarray:
@@ -41,73 +43,43 @@ def _grid(t0: float, t1: float, dt: float) -> np.ndarray:
     return g
 
 
-def paper_throw_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, *, dt: float = DEFAULT_DT,
-                           max_impacts: int | None = None) -> tuple[ThrowOutcome, Trajectory]:
-    """Like :func:`paper_trajectory`, also returning the kernel's :class:`ThrowOutcome`."""
+def throw_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, model: str = DEFAULT_MODEL, *,
+                     dt: float = DEFAULT_DT, fixtures=(), alpha: float = 0.0, options=None,
+                     **option_kw) -> tuple[ThrowOutcome, Trajectory]:
+    """One throw of ``model`` with its motion sampled every ``dt`` s (and at every event).
+
+    Returns ``(ThrowOutcome, Trajectory)``; the outcome equals :func:`throwmap.throw` with the
+    same arguments. Keywords as :func:`throwmap.throw`; the engines sample at their own
+    ``record_dt`` (:class:`throwmap.engine.EngineSettings`) instead of ``dt``.
+    """
+    m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
+    if not m.features.trajectory:
+        raise InvalidStateError("model", f"model {m.name!r} records no trajectory "
+                                         f"(choose from {', '.join(trajectory_models())})")
     dt = check_dt(dt)
     x0, k0, om = check_start(part, arm, x, side, omega)
-    o = PaperOptions() if max_impacts is None else PaperOptions(max_impacts=max_impacts)
-    return kernel_trajectory(part, arm, x0, k0, om, "paper", dt=dt, options=o)
+    return m.trajectory(part, system, x0, k0, om, opts, dt)
+
+
+def paper_throw_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, *, dt: float = DEFAULT_DT,
+                           max_impacts: int | None = None) -> tuple[ThrowOutcome, Trajectory]:
+    """:func:`throw_trajectory` of model "paper" (``max_impacts``: None for its default)."""
+    kw = {} if max_impacts is None else {"max_impacts": max_impacts}
+    return throw_trajectory(part, arm, x, side, omega, "paper", dt=dt, **kw)
 
 
 def paper_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, *, dt: float = DEFAULT_DT,
                      max_impacts: int | None = None) -> Trajectory:
-    """Time history of one "paper"-model throw from rest at ``(x, side)`` with release rate ``omega``.
+    """Time history of one "paper"-model throw (paper Sec. III-B–C) from rest at ``(x, side)``.
 
-    Parameters
-    ----------
-    part, arm : Part, Arm
-        The arm stays horizontal (an impulsive throw); ``arm.length=None`` is drawn
-        a little longer than the part's reach.
-    x : float, m
-        Resting CM position along the arm; ``side`` the stable side it rests on.
-    omega : float, rad/s
-        Release angular velocity (≥ 0).
-    dt : float, s
-        Sample interval (phase changes are sampled exactly in addition).
-    max_impacts : int
-        Impact cap (default: :class:`~throwmap.models.paper.PaperOptions`'s).
-
-    Returns
-    -------
-    Trajectory
-        One part, ``source="paper"``; the first sample is the resting start at t = 0
-        (the release), the last the kernel's resting configuration (or the escape).
-        ``meta["outcomes"]`` holds the :class:`ThrowOutcome` of
-        ``throw(..., model="paper")``. Events and contacts as in
-        :mod:`throwmap.throws.trajectories`.
+    One part, ``source="paper"``; the first sample is the resting start at t = 0 (the
+    release), the last the kernel's resting configuration (or the escape). The arm stays
+    horizontal (an impulsive throw); an unbounded arm is drawn a little longer than the
+    part's reach. ``meta["outcomes"]`` holds the :class:`ThrowOutcome` of
+    ``throw(..., model="paper")``; events and contacts as
+    :func:`throwmap.models.paper.record_trajectory`.
     """
     return paper_throw_trajectory(part, arm, x, side, omega, dt=dt, max_impacts=max_impacts)[1]
-
-
-def rigid_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, *,
-                     dt: float = DEFAULT_DT) -> tuple[ThrowOutcome, Trajectory]:
-    """One "rigid_body" throw with its motion sampled every ``dt`` s and at every event.
-
-    Returns ``(ThrowOutcome, Trajectory)``; contacts are the vertices within 1 µm of
-    the arm line at each sample. The outcome equals ``throw(..., model="rigid_body")``.
-    """
-    x0, k, om = check_start(part, arm, x, side, omega)
-    return kernel_trajectory(part, arm, x0, k, om, "rigid_body", dt=dt, options=RigidBodyOptions())
-
-
-# ------------------------------------------------------------------ orbits
-def trajectory_function(model: str):
-    """``f(part, arm, x, side, omega) -> (ThrowOutcome, Trajectory)`` for a model name.
-
-    ``"paper"`` and ``"rigid_body"`` record their kernels' rows; ``"engine"``
-    (:func:`throwmap.engine.engine_trajectory`) is imported on demand and raises
-    :class:`ImportError` where it is not installed.
-    """
-    if model == "paper":
-        return paper_throw_trajectory
-    if model == "engine":
-        from ..engine import engine_trajectory
-
-        return engine_trajectory
-    if model == "rigid_body":
-        return rigid_trajectory
-    raise InvalidStateError("model", f"cannot animate model {model!r} (choose from {', '.join(TRAJECTORY_MODELS)})")
 
 
 def _pause(traj: Trajectory, seconds: float, dt: float) -> Trajectory:
@@ -139,15 +111,16 @@ def _dedupe(traj: Trajectory) -> Trajectory:
                       traj.fixtures, contacts, traj.events, traj.source, dict(traj.meta))
 
 
-def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int | None = None, model: str = "paper",
-                     pause: float = 0.3, *, dt: float = DEFAULT_DT, progress=None) -> Trajectory:
+def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int | None = None,
+                     model: str = DEFAULT_MODEL, pause: float = 0.3, *, dt: float = DEFAULT_DT, progress=None,
+                     **throw_kw) -> Trajectory:
     """Successive throws from ``(x, side)`` as one trajectory, with a still ``pause`` (s) between throws.
 
     ``omegas`` is one release rate (then ``n`` throws) or one per throw (as
     :func:`throwmap.iterate`). Stops after a throw that escapes (leaves the arm or
-    does not come to rest); that throw is drawn. ``model`` is ``"paper"``
-    (:func:`paper_trajectory`), ``"rigid_body"`` or ``"engine"`` (see
-    :func:`trajectory_function`). ``progress``, if given, is called with the number
+    does not come to rest); that throw is drawn. ``model`` is any model that records
+    trajectories (:func:`trajectory_models`); ``throw_kw`` go to :func:`throw_trajectory`
+    (``fixtures``, ``alpha``, model options). ``progress``, if given, is called with the number
     of throws done after each. ``meta["outcomes"]`` holds each throw's
     :class:`ThrowOutcome`; ``meta["throw_starts"]`` each release time (s).
     """
@@ -156,14 +129,12 @@ def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int |
     if not (math.isfinite(pause) and pause >= 0):
         raise InvalidStateError("pause", f"must be a finite time ≥ 0 (s), got {pause!r}")
     dt = check_dt(dt)
-    fn = trajectory_function(model)
-    kwargs = {"dt": dt} if model == "paper" else {}
     traj = None
     outcomes = []
     starts = []
     xs, ss = float(x), side
     for w in om:
-        out, piece = fn(part, arm, xs, ss, float(w), **kwargs)
+        out, piece = throw_trajectory(part, arm, xs, ss, float(w), model, dt=dt, **throw_kw)
         outcomes.append(out)
         if traj is None:
             starts.append(0.0)

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import InvalidStateError
 from ..system.part import Part
 
 __all__ = ["Trajectory", "pose_at_rest", "state_from_pose", "to_arm_frame", "world_vertices"]
@@ -136,3 +137,41 @@ class Trajectory:
             tuple(self.events) + tuple((te + shift, lab) for te, lab in other.events),
             self.source, dict(self.meta),
         )
+
+
+# ------------------------------------------------------------------ helpers for models' trajectories
+DEFAULT_DT = 1.0 / 240.0
+"""Default sample interval of recorded trajectories, s."""
+NO_CONTACT = np.zeros((0, 2))
+NO_CONTACT.setflags(write=False)
+
+
+def contact_points(*points) -> np.ndarray:
+    """Read-only (n, 2) array of contact points (m)."""
+    a = np.array(points, dtype=float).reshape(-1, 2)
+    a.setflags(write=False)
+    return a
+
+
+def check_dt(dt) -> float:
+    """A positive finite sample interval (s), or :class:`InvalidStateError` naming ``dt``."""
+    if isinstance(dt, bool):
+        raise InvalidStateError("dt", f"must be a number, got {dt!r}")
+    try:
+        v = float(dt)
+    except (TypeError, ValueError):
+        raise InvalidStateError("dt", f"must be a number, got {dt!r}") from None
+    if not (math.isfinite(v) and v > 0):
+        raise InvalidStateError("dt", f"must be a positive finite time step (s), got {dt!r}")
+    return v
+
+
+def drawn_length(arm, poses: np.ndarray, parts) -> float:
+    """The arm's length (m), or for an unbounded arm one reaching a little past every vertex."""
+    if arm.length is not None:
+        return float(arm.length)
+    reach = 0.0
+    for p, part in enumerate(parts):
+        r = float(np.max(part.ell))
+        reach = max(reach, float(np.max(poses[:, p, 0])) + r)
+    return max(1.15 * reach, reach + 0.03)
