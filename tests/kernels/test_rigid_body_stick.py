@@ -11,7 +11,7 @@ from scipy.special import elliprf
 
 from throwmap.kernels import codes as C
 from throwmap.kernels import rigid_body as RB
-from throwmap.kernels.rigid_body.swing import carlson_rf, first_quartic_root, slip_quartic, swing_time
+from throwmap.kernels.rigid_body.swing import carlson_rf, first_quartic_root, swing_time
 
 G = 9.81
 MAX_ITER = 100_000

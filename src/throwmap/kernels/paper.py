@@ -21,6 +21,7 @@ from . import record as R
 from .flight import gap_constants, release_state, touch_time
 from .impact import plastic_impact
 from .roll import pivot_cascade, side_angles
+from .rows import mark_invalid, start_record
 
 CHUNK = 256
 """Throws per work unit of :func:`throw_many` (one scratch allocation per chunk)."""
@@ -31,12 +32,7 @@ def _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable,
            n_samples, ta_j, tb_j, work, rec, traj, tags, ts):
     """One throw; ``work`` is (4, n) scratch, ``traj``/``tags``/``ts`` the trajectory writer (0 rows: none)."""
     n = w.shape[0]
-    for i in range(C.NREC):
-        rec[i] = 0.0
-    rec[C.N_MIN] = math.inf
-    rec[C.T_REST] = math.nan
-    rec[C.K_MAX_IMPACT_GAIN] = -math.inf
-    rec[C.CONTACT_VERTEX] = -1.0
+    start_record(rec)
     dk = d[side]
     record = traj.shape[0] > 0
     phi0 = beta[side]
@@ -171,11 +167,7 @@ def throw_many(x0, side, omega, valid, h, g, length, rho2, w, beta, d, uL, uR, e
         ts = np.zeros(R.NTS)
         for i in range(c * CHUNK, min(m, (c + 1) * CHUNK)):
             if not valid[i]:
-                x_out[i] = x0[i]
-                side_out[i] = side[i]
-                status_out[i] = C.INVALID_START
-                for q in range(C.NREC):
-                    rec_out[i, q] = math.nan
+                mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
                 continue
             x, k, st = _throw(x0[i], side[i], omega[i], h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol,
                               max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec_out[i], traj, tags, ts)

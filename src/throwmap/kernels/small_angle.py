@@ -46,6 +46,7 @@ from numba import njit, prange
 
 from . import codes as C
 from .flight import release_state
+from .rows import mark_invalid
 
 
 @njit(cache=True)
@@ -130,11 +131,7 @@ def throw_many_small_angle(x0, side, omega, valid, h, g, length, rho2, d, uL, uR
                            side_out, status_out, rec_out):
     for i in prange(x0.shape[0]):
         if not valid[i]:
-            x_out[i] = x0[i]
-            side_out[i] = side[i]
-            status_out[i] = C.INVALID_START
-            for q in range(C.NREC):
-                rec_out[i, q] = math.nan
+            mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
         x, k, st = throw_one_small_angle(x0[i], side[i], omega[i], h, g, length, rho2, d, uL, uR, ell, elen,
                                          stable, order, rec_out[i])

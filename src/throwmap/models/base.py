@@ -70,7 +70,8 @@ class ThrowModel(Protocol):
     ``throw_batch(part, system, x, side, omega, valid, options, progress) -> BatchArrays``
     on flat arrays (``valid`` marks admissible starts; the rest get ``INVALID_START``);
     ``trajectory(part, system, x, side, omega, options, dt) -> (ThrowOutcome, Trajectory)``
-    where ``features.trajectory``.
+    where ``features.trajectory``. Optional: ``assumptions(records, mu, status) -> str``, what
+    the model assumes and how often that failed over a batch (the validation table's last column).
     """
 
     name: str

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..errors import InvalidStateError
+from ..kernels import codes as C
 from .base import BatchArrays, Features
 from .registry import register
 
@@ -38,6 +39,12 @@ class EngineOptions:
 
     def engine_keywords(self) -> dict:
         return {"settings": self.settings, "realisation": self.realisation, "friction": self.friction}
+
+
+def engine_failures(status) -> str:
+    """``"timeouts a/n, penetration refused b/n"`` over a batch's status codes."""
+    n = max(len(status), 1)
+    return f"timeouts {int((status == C.TIMEOUT).sum())}/{n}, penetration refused {int((status == C.PENETRATION).sum())}/{n}"
 
 
 class EngineModel:
@@ -70,6 +77,10 @@ class EngineModel:
         res = engine_batch(part, system.arm, x, side, omega, valid=valid, workers=o.workers, progress=progress,
                            **self._keywords(system, o))
         return BatchArrays(res.x, res.side, res.status, res.records)
+
+    def assumptions(self, records, mu, status) -> str:
+        """Runs that did not finish: timeouts and refused penetrations (validation table)."""
+        return engine_failures(status)
 
     def trajectory(self, part, system, x, side, omega, o: EngineOptions, dt):
         from ..engine import engine_trajectory

@@ -15,6 +15,7 @@ import numpy as np
 from ..errors import InvalidStateError
 from ..kernels import codes as C
 from .base import BatchArrays, Features
+from .engine import engine_failures
 from .registry import register
 
 __all__ = ["MujocoOptions", "MujocoModel", "MODEL"]
@@ -63,6 +64,10 @@ class MujocoModel:
             if progress is not None:
                 progress(done, idx.size)
         return out
+
+    def assumptions(self, records, mu, status) -> str:
+        """Runs that did not finish: timeouts and refused penetrations (validation table)."""
+        return engine_failures(status)
 
     def trajectory(self, part, system, x, side, omega, o: MujocoOptions, dt):
         return _backend().mujoco_throw(part, system.arm, x, side, omega, o.resolved(), record=True)

@@ -71,6 +71,14 @@ class PaperModel:
                    o.n_samples, out.x, out.side, out.status, out.records)
         return out
 
+    def assumptions(self, records, mu, status) -> str:
+        """How often the paper's contact assumptions failed over a batch's records (validation table)."""
+        lift = np.nan_to_num(records[:, C.N_MIN], nan=1.0) < 0
+        slip = np.nan_to_num(records[:, C.MU_MAX], nan=0.0) > mu
+        imp = np.nan_to_num(records[:, C.MU_IMPACT], nan=0.0) > mu
+        return (f"lift-off {100 * lift.mean():.0f} %, impact outside cone {100 * imp.mean():.0f} %, "
+                f"needs μ > arm μ {100 * slip.mean():.0f} %")
+
     def trajectory(self, part, system, x, side, omega, o: PaperOptions, dt):
         return record_trajectory(part, system.arm, x, side, omega, dt, o)
 

@@ -74,6 +74,14 @@ class RigidBodyModel:
                               o.max_iter, o.max_impacts, out.x, out.side, out.status, out.records)
         return out
 
+    def assumptions(self, records, mu, status) -> str:
+        """Nothing is assumed; how often the contact lifted, slipped or had no Coulomb solution (validation table)."""
+        lo = np.nan_to_num(records[:, C.N_LIFTOFFS]) > 0
+        sl = np.nan_to_num(records[:, C.N_SLIPS]) > 0
+        inc = status == C.INCONSISTENT
+        return (f"none assumed; lift-offs in {100 * lo.mean():.0f} %, slips in {100 * sl.mean():.0f} %, "
+                f"inconsistent (Painlevé) {100 * inc.mean():.1f} %")
+
     def trajectory(self, part, system, x, side, omega, o: RigidBodyOptions, dt):
         return record_trajectory(part, system.arm, x, side, omega, dt, o)
 

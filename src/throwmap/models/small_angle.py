@@ -45,6 +45,10 @@ class SmallAngleModel:
                                out.side, out.status, out.records)
         return out
 
+    def assumptions(self, records, mu, status) -> str:
+        """What this model assumes (validation table)."""
+        return "small-angle flight and the paper's no-slip, no-lift contact"
+
     def trajectory(self, part, system, x, side, omega, o, dt):  # pragma: no cover - features.trajectory is False
         raise NotImplementedError
 

@@ -20,6 +20,7 @@ from ..kernels import codes as C
 from ..throws.outcome import Status
 from ..system.part import Part
 from ..system.catalogue import rectangle, regular_polygon, triangle_30_60_90
+from ..models import get_model
 from ..throws.throw import throw_batch
 
 __all__ = ["ValidationCase", "ValidationReport", "default_parts", "make_cases", "validate"]
@@ -176,25 +177,10 @@ def _compare(name, ref, res, assumptions: str) -> dict:
     }
 
 
-def _assumption_text(model: str, recs: np.ndarray, mu: np.ndarray, status: np.ndarray) -> str:
-    n = max(len(status), 1)
-    if model in ("paper", "small_angle", "small_angle2"):
-        if model != "paper":
-            return "small-angle flight and the paper's no-slip, no-lift contact"
-        lift = np.nan_to_num(recs[:, C.N_MIN], nan=1.0) < 0
-        slip = np.nan_to_num(recs[:, C.MU_MAX], nan=0.0) > mu
-        imp = np.nan_to_num(recs[:, C.MU_IMPACT], nan=0.0) > mu
-        return (f"lift-off {100 * lift.mean():.0f} %, impact outside cone {100 * imp.mean():.0f} %, "
-                f"needs μ > arm μ {100 * slip.mean():.0f} %")
-    if model == "rigid_body":
-        lo = np.nan_to_num(recs[:, C.N_LIFTOFFS]) > 0
-        sl = np.nan_to_num(recs[:, C.N_SLIPS]) > 0
-        inc = status == Status.INCONSISTENT
-        return (f"none assumed; lift-offs in {100 * lo.mean():.0f} %, slips in {100 * sl.mean():.0f} %, "
-                f"inconsistent (Painlevé) {100 * inc.mean():.1f} %")
-    tmo = (status == Status.TIMEOUT).sum()
-    pen = (status == Status.PENETRATION).sum()
-    return f"timeouts {tmo}/{n}, penetration refused {pen}/{n}"
+def _assumptions(model: str, res: dict) -> str:
+    """The model's own account of its assumptions over these throws (``—`` if it gives none)."""
+    report = getattr(get_model(model), "assumptions", None)
+    return report(res["recs"], res["mu"], res["status"]) if report is not None else "—"
 
 
 def realisation_departures(part: Part, arm: Arm, n: int = 40, seed: int = 0, *, workers: int | None = 0,
@@ -277,22 +263,19 @@ def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 
                 if progress is not None:
                     progress(base + k, total)
 
+            def tick2(k, tot, base=done[0] + xs.size):
+                if progress is not None:
+                    progress(base + k, total)
+
             b = throw_batch(part, arm, xs, ss, oms, model="engine", on_invalid="status", workers=workers,
                             progress=tick, **({"settings": engine_settings} if engine_settings else {}))
             done[0] += xs.size
             add("pymunk", b.x, b.side, b.status, b.records, mus)
             if "mujoco" in engines:
-                from ..engine.mujoco import MujocoSettings, mujoco_throw
-
-                mset = MujocoSettings() if mujoco_settings is None else mujoco_settings
-                mx, ms, mst, mr = [], [], [], []
-                for i in range(xs.size):
-                    o = mujoco_throw(part, arm, float(xs[i]), int(ss[i]), float(oms[i]), mset)
-                    mx.append(o.x), ms.append(o.side), mst.append(int(o.status)), mr.append(np.full(C.NREC, np.nan))
-                    done[0] += 1
-                    if progress is not None:
-                        progress(done[0], total)
-                add("mujoco", np.array(mx), np.array(ms), np.array(mst), np.array(mr), mus)
+                b = throw_batch(part, arm, xs, ss, oms, model="mujoco", on_invalid="status", progress=tick2,
+                                settings=mujoco_settings)
+                done[0] += xs.size
+                add("mujoco", b.x, b.side, b.status, np.full_like(b.records, np.nan), mus)
     results = {}
     for model, d in acc.items():
         results[model] = {"x": np.concatenate(d["x"]), "side": np.concatenate(d["side"]),
@@ -302,8 +285,8 @@ def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 
     rows = []
     for model in list(models) + (["mujoco"] if "mujoco" in engines else []):
         res = results[model]
-        rows.append(_compare(model, ref, res, _assumption_text(model, res["recs"], res["mu"], res["status"])))
-    rows.append(_compare("pymunk (self)", ref, ref, _assumption_text("pymunk", ref["recs"], ref["mu"], ref["status"])))
+        rows.append(_compare(model, ref, res, _assumptions(model, res)))
+    rows.append(_compare("pymunk (self)", ref, ref, _assumptions("engine", ref)))
     # the paper model where its own assumptions hold
     if "paper" in results:
         pr = results["paper"]["recs"]

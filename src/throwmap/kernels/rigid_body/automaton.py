@@ -19,6 +19,7 @@ from numba import njit
 from .. import codes as C
 from ..roll import theta_a, theta_b
 from ..flight import gap_constants, release_state, rest_offsets
+from ..rows import start_record
 from .flight import departure_window, flight_frame, fly, leave_arm, lift
 from .impact import coulomb_impact, record_first_contact, record_first_impact, record_impact
 from .landing import land_side, rest
@@ -31,23 +32,12 @@ from .stick_exact import pivot_stick_exact
 from .trajectory import _put, clear
 
 
-@njit(cache=True)
-def _start_record(rec):
-    for i in range(C.NREC):
-        rec[i] = 0.0
-    rec[C.N_MIN] = math.inf
-    rec[C.T_REST] = math.nan
-    rec[C.K_MAX_IMPACT_GAIN] = -math.inf
-    rec[C.CONTACT_VERTEX] = -1.0
-    rec[C.PENETRATION_MAX] = 0.0
-
-
 @njit(cache=True, inline='always')
 def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
               max_events, rec, traj, traj_dt):
     """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`."""
     n = w.shape[0]
-    _start_record(rec)
+    start_record(rec)
     ts = np.zeros(3)
     clear(traj, ts, traj_dt)
     sample = traj.shape[0] > 0

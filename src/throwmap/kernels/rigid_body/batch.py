@@ -7,25 +7,15 @@ and :func:`throw_many_rigid_body_rk4` (the RK4 reference). Batches smaller than
 small batches, for which waking the thread pool costs more than the throws.
 """
 
-import math
 
 import numpy as np
 from numba import njit, prange
 
-from .. import codes as C
+from ..rows import mark_invalid
 from .automaton import throw_one_rigid_body, throw_one_rigid_body_rk4
 
 SERIAL_BELOW = 128
 """Batches with fewer throws than this run serially (same results, no thread-pool wake-up)."""
-
-
-@njit(cache=True)
-def _invalid(i, x0, side, x_out, side_out, status_out, rec_out):
-    x_out[i] = x0[i]
-    side_out[i] = side[i]
-    status_out[i] = C.INVALID_START
-    for q in range(C.NREC):
-        rec_out[i, q] = math.nan
 
 
 @njit(cache=True)
@@ -34,7 +24,7 @@ def _serial(x0, side, omega, valid, h, g, length, rho2, mu, w, beta, d, uL, uR, 
     no_traj = np.empty((0, 4))
     for i in range(x0.shape[0]):
         if not valid[i]:
-            _invalid(i, x0, side, x_out, side_out, status_out, rec_out)
+            mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
         x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, rho2, mu, w, beta, d, uL, uR, ell,
                                         stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
@@ -54,7 +44,7 @@ def throw_many_rigid_body(x0, side, omega, valid, h, g, length, rho2, mu, w, bet
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
         if not valid[i]:
-            _invalid(i, x0, side, x_out, side_out, status_out, rec_out)
+            mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
         x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, rho2, mu, w, beta, d, uL, uR, ell,
                                         stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
@@ -70,7 +60,7 @@ def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, rho2, mu, w,
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
         if not valid[i]:
-            _invalid(i, x0, side, x_out, side_out, status_out, rec_out)
+            mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
         x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, rho2, mu, w, beta, d, uL, uR,
                                             ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
