@@ -1,1 +1,2 @@
-"""throwmap.io."""
+"""Files: part/arm config files in TOML or JSON (:mod:`.config`), atomic writes and strict
+JSON (:mod:`.files`)."""

@@ -16,6 +16,7 @@ It registers itself once with :func:`throwmap.models.registry.register`.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
@@ -86,11 +87,19 @@ class ThrowModel(Protocol):
     def trajectory(self, part, system, x: float, side: int, omega: float, options, dt: float) -> Any: ...
 
 
+@functools.lru_cache(maxsize=None)
+def _default_options(typ: type):
+    """The defaults of an options dataclass, made once (they are frozen)."""
+    return typ()
+
+
 def build_options(model: ThrowModel, options=None, overrides: dict | None = None):
     """The model's options value: ``options`` (an instance of its options type, or None
     for the defaults) with keyword ``overrides`` applied. Unknown keywords are refused
     with the field named and the model's keywords listed."""
     typ = model.options_type
+    if options is None and not overrides:
+        return _default_options(typ)
     if options is None:
         opts = typ()
     elif isinstance(options, typ):

@@ -10,6 +10,7 @@ and hands flat arrays to the model found in the registry (:mod:`throwmap.models`
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -36,6 +37,17 @@ def _only(key: str, able: list, model: str) -> InvalidStateError:
     return InvalidStateError(key, f"only the {names} model{'s' if len(able) > 1 else ''} {verb} {key!r} (model is {model!r})")
 
 
+@functools.lru_cache(maxsize=256)
+def _plain_system(arm: Arm) -> System:
+    """The paper's plain arm as a System, made once per arm (values are frozen)."""
+    return System(arm)
+
+
+def _is_plain(fixtures, alpha) -> bool:
+    return (fixtures is None or (isinstance(fixtures, tuple) and not fixtures)) and type(alpha) in (int, float) \
+        and alpha == 0.0
+
+
 def prepare(model, arm: Arm, fixtures=(), alpha: float = 0.0, options=None, option_kw=None):
     """The model, the :class:`System` and the options value for a call, validated.
 
@@ -44,7 +56,7 @@ def prepare(model, arm: Arm, fixtures=(), alpha: float = 0.0, options=None, opti
     model, and any unknown keyword.
     """
     m = get_model(model)
-    system = System(arm, fixtures, alpha)
+    system = _plain_system(arm) if _is_plain(fixtures, alpha) and isinstance(arm, Arm) else System(arm, fixtures, alpha)
     for key, value in (("fixtures", system.fixtures), ("alpha", system.alpha)):
         feature = _FEATURE_OF[key]
         if value and not getattr(m.features, feature):

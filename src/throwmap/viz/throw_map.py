@@ -137,13 +137,13 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
             _draw_limit_set(ax, limit, s, k, colors, n_col, key)
         for dest in np.unique(d[ok]):
             m = ok & (d == dest)
-            ax.scatter(x[m] * k, y[m] * k, s=3, color=colors[int(dest)], zorder=3, rasterized=True,
-                       gid=f"branch-{int(dest)}")
+            ax.scatter(x[m] * k, y[m] * k, s=3, color=colors[int(dest)], zorder=1 if compact else 3,
+                       rasterized=not compact, gid=f"branch-{int(dest)}")
             what = f"→ side {int(dest)} ({'jog' if dest == s else 'flip'})" if compact else f"lands on side {int(dest)}"
             key(what, ls="none", marker="o", ms=5 if compact else 4, color=colors[int(dest)])
         if np.any(~ok):
-            ax.scatter(x[~ok] * k, np.full(int(np.sum(~ok)), lim[0]), marker="x", s=8, color="k", zorder=3,
-                       clip_on=False, gid="escapes")
+            ax.scatter(x[~ok] * k, np.full(int(np.sum(~ok)), lim[0]), marker="x", s=8, color="k",
+                       zorder=1 if compact else 3, clip_on=compact, gid="escapes")  # compact: the Fig. 2 look
             key("escapes (off the arm / no rest)", ls="none", marker="x", ms=5, color="k")
         ax.plot(lim, lim, "--", color="0.5", lw=0.8, zorder=2)
         key("T(x) = x", ls="--", color="0.5", lw=0.8)
