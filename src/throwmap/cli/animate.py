@@ -16,7 +16,7 @@ from typing import Annotated
 import typer
 
 from ..errors import InvalidStateError, ThrowmapError
-from ..models import DEFAULT_MODEL
+from ..models import DEFAULT_MODEL, model_names
 from ..throws.orbit_trajectory import orbit_trajectory, trajectory_models
 from .options import (GOpt, HOpt, LengthOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, check_finite, guard,
                       part_and_arm)
@@ -73,7 +73,8 @@ def animate_cmd(
     """Draw a throw (or -n throws: an orbit) as an animation."""
     with guard():
         if model not in ANIMATE_MODELS:
-            raise InvalidStateError("model", f"unknown model {model!r} (choose from {', '.join(ANIMATE_MODELS)})")
+            what = f"model {model!r} records no trajectory" if model in model_names() else f"unknown model {model!r}"
+            raise InvalidStateError("model", f"{what} (choose from {', '.join(ANIMATE_MODELS)})")
         if n < 1:
             raise InvalidStateError("n", f"must be a positive integer, got {n}")
         if fps < 1:

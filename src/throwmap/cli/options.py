@@ -48,7 +48,7 @@ HOpt = Annotated[float | None, typer.Option("--h", help="Arm surface height h, m
 GOpt = Annotated[float | None, typer.Option("--g", help=f"Gravity, m/s² (default: the file's, or {G}).")]
 LengthOpt = Annotated[float | None, typer.Option("--length", help="Arm length, m (default: the file's, or unbounded).")]
 MuOpt = Annotated[float | None, typer.Option("--mu", help="Arm–part Coulomb friction μ (default: the file's, or inf = no slip; "
-                                               "used by rigid_body and engine).")]
+                                               "used by rigid_body, engine and mujoco).")]
 XOpt = Annotated[float, typer.Option("--x", help="Resting CM position along the arm, m.")]
 SideOpt = Annotated[int, typer.Option("--side", help="Side the part rests on (index, see conventions).")]
 OmegaOpt = Annotated[float, typer.Option("--omega", help="Release angular velocity ω, rad/s (≥ 0).")]

@@ -8,6 +8,7 @@ line saying what to install.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -48,7 +49,8 @@ class MujocoModel:
     features = Features(trajectory=True, friction=True, parallel=False)
 
     def outcome(self, part, system, x, side, omega, o: MujocoOptions):
-        return _backend().mujoco_throw(part, system.arm, x, side, omega, o.resolved())
+        out = _backend().mujoco_throw(part, system.arm, x, side, omega, o.resolved())
+        return dataclasses.replace(out, model=self.name)
 
     def throw_one(self, part, system, x, side, omega, o: MujocoOptions):
         out = self.outcome(part, system, x, side, omega, o)
@@ -70,7 +72,8 @@ class MujocoModel:
         return engine_failures(status)
 
     def trajectory(self, part, system, x, side, omega, o: MujocoOptions, dt):
-        return _backend().mujoco_throw(part, system.arm, x, side, omega, o.resolved(), record=True)
+        out, traj = _backend().mujoco_throw(part, system.arm, x, side, omega, o.resolved(), record=True)
+        return dataclasses.replace(out, model=self.name), traj
 
 
 MODEL = register(MujocoModel())

@@ -72,7 +72,7 @@ def prepare(model, arm: Arm, fixtures=(), alpha: float = 0.0, options=None, opti
 
 
 def _check_scalar(value, field: str) -> float:
-    if isinstance(value, bool):
+    if isinstance(value, (bool, str, bytes)):
         raise InvalidStateError(field, f"must be a number, got {value!r}")
     try:
         v = float(value)
@@ -85,6 +85,10 @@ def _check_scalar(value, field: str) -> float:
 
 def check_start(part: Part, arm: Arm, x: float, side: int, omega: float) -> tuple[float, int, float]:
     """Validate a throw's start; returns ``(x, side, omega)`` as Python scalars."""
+    if not isinstance(part, Part):
+        raise InvalidStateError("part", f"must be a Part (e.g. throwmap.triangle_30_60_90()), got {type(part).__name__}")
+    if not isinstance(arm, Arm):
+        raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
     k = part.check_side(side)
     x = _check_scalar(x, "x")
     omega = _check_scalar(omega, "omega")
@@ -163,7 +167,19 @@ def throw_batch(
     m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     if on_invalid not in ("raise", "status"):
         raise InvalidStateError("on_invalid", f"must be 'raise' or 'status', got {on_invalid!r}")
-    xb, sb, ob = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(side), np.asarray(omega, dtype=float))
+    if not isinstance(part, Part):
+        raise InvalidStateError("part", f"must be a Part (e.g. throwmap.triangle_30_60_90()), got {type(part).__name__}")
+    arrays = []
+    for name, value, dtype in (("x", x, float), ("side", side, None), ("omega", omega, float)):
+        a = np.asarray(value)
+        if a.dtype.kind not in "biuf":
+            raise InvalidStateError(name, f"must be numbers, got {a.dtype} values")
+        arrays.append(a.astype(dtype) if dtype is not None else a)
+    try:
+        xb, sb, ob = np.broadcast_arrays(*arrays)
+    except ValueError:
+        raise InvalidStateError("x", f"x, side and omega must broadcast together, got shapes "
+                                     f"{', '.join(str(a.shape) for a in arrays)}") from None
     shape = xb.shape
     xf = np.array(xb, dtype=float).ravel()
     of = np.array(ob, dtype=float).ravel()
