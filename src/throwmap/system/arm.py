@@ -31,12 +31,19 @@ class Arm:
         contact never slips, the paper's assumption). Used by the "rigid_body"
         model and the engines; "paper" and the small-angle models assume no slip
         and only report the friction ratio a throw needs.
+    back : float
+        Extent of the arm's surface behind the joint, m (≥ 0, finite): the surface
+        spans −back ≤ x along the arm, and a contact at x < −back is
+        ``behind_joint``. With the default 0 any contact at x ≤ 0 is
+        ``behind_joint`` (a contact exactly at the joint included), as in the
+        paper, where the part must stay on the arm's outer side.
     """
 
     h: float
     g: float = G
     length: float | None = None
     mu: float = math.inf
+    back: float = 0.0
 
     def __post_init__(self):
         for name in ("h", "g"):
@@ -55,6 +62,12 @@ class Arm:
         if isinstance(mu, bool) or not isinstance(mu, (int, float)) or math.isnan(mu) or mu < 0:
             raise InvalidArmError("arm.mu", f"must be a number ≥ 0 (inf: no slip), got {mu!r}")
         object.__setattr__(self, "mu", float(mu))
+        back = self.back
+        if isinstance(back, bool) or not isinstance(back, (int, float)):
+            raise InvalidArmError("arm.back", f"must be a number, got {back!r}")
+        if not math.isfinite(back) or back < 0:
+            raise InvalidArmError("arm.back", f"must be a finite number ≥ 0, got {back!r}")
+        object.__setattr__(self, "back", float(back))
         object.__setattr__(self, "h", float(self.h))
         object.__setattr__(self, "g", float(self.g))
         if self.length is not None:
