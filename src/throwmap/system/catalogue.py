@@ -2,12 +2,26 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from ..errors import InvalidPartError
 from .part import Part
 
-__all__ = ["triangle_30_60_90", "regular_polygon", "rectangle", "BUILTIN_PARTS", "builtin_part"]
+__all__ = ["triangle_30_60_90", "regular_polygon", "rectangle", "BUILTIN_PARTS", "builtin_part", "lead_name"]
+
+
+def lead_name(name: str, point_masses) -> str:
+    """``name`` with its lead weights appended, so a weighted part is never labelled as the plain one.
+
+    ``point_masses`` is a part's validated ``((m, (x, y)), …)`` (kg, m, body frame);
+    e.g. ``"triangle_30_60_90(hypotenuse=0.17)+lead(30 g at (10, 1) cm)"``. No weights:
+    ``name`` unchanged.
+    """
+    if not point_masses:
+        return name
+    items = "; ".join(f"{1000 * m:.4g} g at ({100 * x:.4g}, {100 * y:.4g}) cm" for m, (x, y) in point_masses)
+    return f"{name}+lead({items})"
 
 
 def triangle_30_60_90(hypotenuse: float = 0.17, mass: float = 0.05, mirror: bool = False, point_masses=()) -> Part:
@@ -18,6 +32,8 @@ def triangle_30_60_90(hypotenuse: float = 0.17, mass: float = 0.05, mirror: bool
     Vertices are listed so that side 0 is the hypotenuse, side 1 the long leg
     and side 2 the short leg (clockwise, see conventions). The paper's 17 cm
     part has its CM 2.83 cm from the long leg and 4.91 cm from the short leg.
+    ``point_masses`` ``[(m, (x, y)), …]`` (kg, m, body frame) are lead weights; the
+    name then says so (:func:`lead_name`), e.g. ``triangle_30_60_90(hypotenuse=0.17)+lead(30 g at (10, 1) cm)``.
     """
     if not (math.isfinite(hypotenuse) and hypotenuse > 0):
         raise InvalidPartError("hypotenuse", f"must be a positive finite length, got {hypotenuse}")
@@ -29,7 +45,10 @@ def triangle_30_60_90(hypotenuse: float = 0.17, mass: float = 0.05, mirror: bool
     C = (0.0, 0.0)  # right angle
     verts = [A, B, C] if not mirror else [B, A, C]
     name = f"triangle_30_60_90(hypotenuse={hypotenuse:g}{', mirror' if mirror else ''})"
-    return Part.from_vertices(verts, mass=mass, point_masses=point_masses, name=name)
+    part = Part.from_vertices(verts, mass=mass, point_masses=point_masses, name=name)
+    if part.point_masses:  # validated by from_vertices: name the weights
+        part = dataclasses.replace(part, name=lead_name(name, part.point_masses))
+    return part
 
 
 def regular_polygon(n: int, circumradius: float = 0.05, mass: float = 0.05, rotation: float = 0.0) -> Part:
