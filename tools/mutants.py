@@ -1,0 +1,370 @@
+"""Hand-made mutation pass over the kernels and the analysis (issue 10, item 3).
+
+Each mutant is one plausible one-line slip: a file under ``src/throwmap``, an exact
+snippet that must occur there exactly once, its replacement and a short
+description. The mutants are applied one at a time to the checkout this script
+lives in (run it in a scratch git worktree, never in a tree others are editing),
+each followed by its targeted test subset (``pytest -x``, a per-mutant timeout),
+and the file is restored afterwards (also on Ctrl-C). A mutant is *killed* when
+the subset fails (or times out), *survives* when it passes.
+
+Numba: every run gets a fresh ``NUMBA_CACHE_DIR`` for a kernel mutant (the
+package-wide digest of :mod:`throwmap.kernels.numba_cache` would also refuse a
+stale entry; the fresh directory makes that independent of it), analysis mutants
+share one directory warmed by the baseline. Python byte code goes to a private
+``PYTHONPYCACHEPREFIX`` and is not written, so a restored source never meets a
+mutant's ``.pyc``. Each run is ``nice -n 10``, one at a time.
+
+Mutants marked ``equivalent`` (no observable behaviour change, reason given)
+are listed but not run and not counted.
+
+Usage::
+
+    git worktree add --detach /tmp/mut main
+    cd /tmp/mut && PYTHONPATH=src python tools/mutants.py            # all mutants
+    python tools/mutants.py --only K03 A07 --timeout 300            # a few
+    python tools/mutants.py --list                                   # the catalogue
+    python tools/mutants.py --json out.json --markdown out.md        # save the table
+
+The score is killed / (killed + survived) over the non-equivalent mutants.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SRC = ROOT / "src" / "throwmap"
+
+KERNEL_TESTS = ("tests/kernels/test_throw_physics.py", "tests/kernels/test_paper_record.py",
+                "tests/kernels/test_small_angle.py", "tests/kernels/test_rigid_body.py",
+                "tests/kernels/test_rigid_body_stick.py", "tests/models", "tests/kernels/test_mutation_kills.py")
+ANALYSIS_TESTS = ("tests/analysis", )
+PYTEST_ARGS = ("-x", "-q", "-p", "no:cacheprovider")
+
+
+@dataclass(frozen=True)
+class Mutant:
+    """One slip: ``old`` (exactly once in ``path``, relative to src/throwmap) becomes ``new``."""
+
+    id: str
+    path: str
+    old: str
+    new: str
+    what: str
+    equivalent: str = ""  # non-empty: why no test can see it (not run, not counted)
+
+    @property
+    def tests(self) -> tuple[str, ...]:
+        return KERNEL_TESTS if self.path.startswith("kernels/") else ANALYSIS_TESTS
+
+
+def M(id, path, old, new, what, equivalent=""):
+    return Mutant(id, path, old, new, what, equivalent)
+
+
+MUTANTS: tuple[Mutant, ...] = (
+    # ------------------------------------------------------------------ kernels/flight.py
+    M("K01", "kernels/flight.py", "return -(h + d) * omega, x0 * omega, omega",
+      "return -(h - d) * omega, x0 * omega, omega", "release v_x: h + d → h − d"),
+    M("K02", "kernels/flight.py", "v[j] = sb * w[j, 0] + cb * w[j, 1]", "v[j] = sb * w[j, 0] - cb * w[j, 1]",
+      "rest_offsets: rotation sign of v"),
+    M("K03", "kernels/flight.py", "dg = vy - g * t + w * (ru[j] * (1.0 + cm1) - rv[j] * s)",
+      "dg = vy - g * t + w * (ru[j] * (1.0 + cm1) + rv[j] * s)", "gap rate (Newton polish): sign of the v_j term"),
+    M("K04", "kernels/flight.py", "    for it in range(3):\n        if it > 0:",
+      "    for it in range(0):\n        if it > 0:", "no Newton polish after the guarded search"),
+    M("K05", "kernels/flight.py", "disc = math.sqrt(dg * dg + 2.0 * M * gp)", "disc = math.sqrt(dg * dg + 0.5 * M * gp)",
+      "lower-bound step: 2M → M/2 (steps may pass a root)"),
+    M("K06", "kernels/flight.py", "M = g + w * w * ell[j]", "M = g + w * ell[j]",
+      "curvature bound ω²ℓ → ωℓ (units)"),
+    M("K07", "kernels/flight.py", "if gj <= tol and (t > 0.0 or dg <= 0.0):",
+      "if gj <= tol and (t >= 0.0 or dg <= 0.0):", "a vertex on the line leaving it at t = 0 counts as contact"),
+    M("K08", "kernels/flight.py", "b[j] = vy + w * ru[j]", "b[j] = vy - w * ru[j]", "first_contact: gap rate sign"),
+    M("K09", "kernels/flight.py", "c = dy + rv[j]", "c = dy - rv[j]", "gap constants: dy − v_j"),
+    # ------------------------------------------------------------------ kernels/impact.py
+    M("K10", "kernels/impact.py", "wp = H / (rho2 + rx * rx + ry * ry)", "wp = H / (rho2 + rx * rx)",
+      "Eq. 4: |r|² → r_x²"),
+    M("K11", "kernels/impact.py", "H = rho2 * w + ry * vx - rx * vy", "H = rho2 * w - ry * vx - rx * vy",
+      "Eq. 4: sign of r_y v_x"),
+    M("K12", "kernels/impact.py", "return ry * wp, -rx * wp, wp", "return -ry * wp, -rx * wp, wp",
+      "post-impact v_x sign"),
+    # ------------------------------------------------------------------ kernels/paper.py
+    M("K13", "kernels/paper.py", "(x0 * x0 + (h + dk) * (h + dk) + rho2) + g * dk",
+      "(x0 * x0 + (h + dk) * (h + dk)) + g * dk", "release energy drops the spin term ρ²ω²"),
+    M("K14", "kernels/paper.py", "yc = h + dk + vy0 * t - 0.5 * g * t * t", "yc = h + dk + vy0 * t + 0.5 * g * t * t",
+      "CM height at impact: sign of gravity"),
+    M("K15", "kernels/paper.py", "        if x + uL[k] <= 0.0:\n            status = C.BEHIND_JOINT",
+      "        if x - uL[k] <= 0.0:\n            status = C.BEHIND_JOINT", "final behind-joint test: x − u_L"),
+    M("K16", "kernels/paper.py", "rec[C.MU_IMPACT] = abs(jx) / jy", "rec[C.MU_IMPACT] = jx / jy",
+      "impact friction ratio without abs"),
+    M("K17", "kernels/paper.py", "b[j] = omega * (x0 + pu[j])", "b[j] = omega * (x0 - pu[j])",
+      "gap rates at release: x0 − u_j"),
+    # ------------------------------------------------------------------ kernels/roll.py
+    M("K18", "kernels/roll.py", "    k = (j - 1) % n\n    return math.atan2(d[k], -uL[k])",
+      "    k = j % n\n    return math.atan2(d[k], -uL[k])", "θa_j uses side j, not j − 1"),
+    M("K19", "kernels/roll.py", "s_star = min(max(e / 3.0, s_lo), s_hi)", "s_star = min(max(e / 2.0, s_lo), s_hi)",
+      "minimum of N at s = e/2 instead of e/3"),
+    M("K20", "kernels/roll.py", "f_max = k * math.sqrt(max(1.0 - s_lo * s_lo, 0.0))",
+      "f_max = k * math.sqrt(max(1.0 - s_hi * s_hi, 0.0))", "friction bound uses the smallest cos (skips samples)"),
+    M("K21", "kernels/roll.py", "s, c = s * cd + c * sd, c * cd - s * sd", "s, c = s * cd - c * sd, c * cd - s * sd",
+      "arc-sample rotation recurrence: sign"),
+    M("K22", "kernels/roll.py", "elif math.sin(end) > math.sin(theta):", "elif math.sin(end) < math.sin(theta):",
+      "reach_end: barrier when the end lies lower"),
+    M("K23", "kernels/roll.py", "return math.asin(s_turn) if dirn > 0 else math.pi - math.asin(s_turn)",
+      "return math.asin(s_turn) if dirn < 0 else math.pi - math.asin(s_turn)", "turning angle on the wrong branch"),
+    M("K24", "kernels/roll.py", "w2 = 2.0 * (E - g * lj * math.sin(end)) / I",
+      "w2 = 1.0 * (E - g * lj * math.sin(end)) / I", "landing speed: factor 2 dropped"),
+    M("K25", "kernels/roll.py", "w_new = thdot * (rho2 + uA * uB + dk * dk) / IB",
+      "w_new = thdot * (rho2 + uA * uB + dk * dk) / IA", "side landing: divide by I_A, not I_B"),
+    M("K26", "kernels/roll.py", "lifts = (w_new > 0.0) if land_dir > 0 else (w_new < 0.0)",
+      "lifts = (w_new > 0.0) if land_dir > 0 else (w_new > 0.0)", "lift test ignores the landing sense"),
+    M("K27", "kernels/roll.py", "return k_after < min(g * (lA - dk), g * (lB - dk))",
+      "return k_after < max(g * (lA - dk), g * (lB - dk))", "rocking rest below either barrier (max for min)"),
+    M("K28", "kernels/roll.py", "        return j, x_cm + uL[k], theta_a(j, n, d, uL)",
+      "        return j, x_cm - uL[k], theta_a(j, n, d, uL)", "tip_over pivot x: x − u_L"),
+    M("K29", "kernels/roll.py", "theta = ta_j[j] if land_dir > 0 else tb_j[j]",
+      "theta = tb_j[j] if land_dir > 0 else ta_j[j]", "pivot on B starts at the wrong end angle"),
+    M("K30", "kernels/roll.py", "if rec[C.N_IMPACTS] > max_impacts:", "if rec[C.N_IMPACTS] >= max_impacts:",
+      "impact cap off by one"),
+    # ------------------------------------------------------------------ kernels/small_angle.py
+    M("K31", "kernels/small_angle.py", "t = 2.0 * omega * (x0 + u) / g  # 1.", "t = 2.0 * omega * (x0 - u) / g  # 1.",
+      "first-order flight time: R − u_L"),
+    M("K32", "kernels/small_angle.py", "geff = g - dk * omega * omega", "geff = g + dk * omega * omega",
+      "second order: effective gravity sign"),
+    M("K33", "kernels/small_angle.py", "cph = 1.0 if order == 1 else 1.0 - 0.5 * phi * phi",
+      "cph = 1.0 if order == 1 else 1.0 + 0.5 * phi * phi", "second order: cos φ ≈ 1 + φ²/2"),
+    M("K34", "kernels/small_angle.py", "if wp > 0.0 and K + U - U_crit > 0.0:", "if wp > 0.0 or K + U - U_crit > 0.0:",
+      "flip test: and → or"),
+    M("K35", "kernels/small_angle.py", "x = p - uR[k]", "x = p + uR[k]", "flip rest position: p + u_R"),
+    M("K36", "kernels/small_angle.py", "U_crit = g * math.sqrt(u * u + dk * dk)", "U_crit = g * (u * u + dk * dk)",
+      "critical energy without the square root (units)"),
+    M("K37", "kernels/small_angle.py", "p -= elen[k]", "p += elen[k]", "rolling over unstable sides: sign"),
+    # ------------------------------------------------------------------ kernels/rigid_body/
+    M("K38", "kernels/rigid_body/impact.py", "Knn = 1.0 + rx * rx / rho2", "Knn = 1.0 + ry * ry / rho2",
+      "inverse-inertia K_nn uses r_y"),
+    M("K39", "kernels/rigid_body/impact.py", "if jn0 >= 0.0 and abs(jt0) <= mu * jn0:",
+      "if jn0 >= 0.0 and jt0 <= mu * jn0:", "sticking-impact cone test without abs"),
+    M("K40", "kernels/rigid_body/impact.py", "at = Ktn - mu * sig * Ktt", "at = Ktn + mu * sig * Ktt",
+      "Routh: du_t/dp sign of friction"),
+    M("K41", "kernels/rigid_body/impact.py", "if p_n <= p_t:", "if p_n >= p_t:",
+      "Routh: which event ends the slide phase"),
+    M("K42", "kernels/rigid_body/impact.py", "wp = w + (rx * Pn - ry * Pt) / rho2", "wp = w + (rx * Pn + ry * Pt) / rho2",
+      "spin change from the impulse: sign of r_y P_t"),
+    M("K43", "kernels/rigid_body/impact.py", "pt_stop = -ut / Ktt", "pt_stop = -ut / Knn",
+      "μ = ∞ limit: K_nn for K_tt"),
+    M("K44", "kernels/rigid_body/impact.py", "            if abs(lam) <= mu:", "            if lam <= mu:",
+      "stick after slip stops: test without abs"),
+    M("K45", "kernels/rigid_body/impact.py", "        r = abs(pt) / pn", "        r = pt / pn",
+      "record_impact friction ratio without abs"),
+    M("K46", "kernels/rigid_body/landing.py", "dist = 0.5 * vx * vx / dec", "dist = vx * vx / dec",
+      "flat slide distance v²/(μg), not v²/(2μg)"),
+    M("K47", "kernels/rigid_body/landing.py", "jt = -mu * jn if vxm > 0.0 else mu * jn",
+      "jt = mu * jn if vxm > 0.0 else -mu * jn", "flat landing: friction along the slip"),
+    M("K48", "kernels/rigid_body/landing.py", "vxm = va - thdot * dk", "vxm = va + thdot * dk",
+      "side landing: CM v_x sign of ω d"),
+    M("K49", "kernels/rigid_body/landing.py", "return arc_ok(th_A, E_B, lA, rho2 + lA * lA, g, mu, -land_dir)",
+      "return arc_ok(th_A, E_B, lA, rho2 + lA * lA, g, mu, land_dir)", "rocking-rest swing back about A: sense"),
+    M("K50", "kernels/rigid_body/slide.py", "    sig = -1.0 if f_stick > 0.0 else 1.0\n    for _ in range(2):",
+      "    sig = 1.0 if f_stick > 0.0 else -1.0\n    for _ in range(2):", "slip start: first sense tried along F"),
+    M("K51", "kernels/rigid_body/slide.py", "if not from_slip and nf > 0.0 and abs(ff) <= mu * nf:",
+      "if not from_slip and nf > 0.0 and ff <= mu * nf:", "stick test of the contact LCP without abs"),
+    M("K52", "kernels/rigid_body/stick.py", "if abs(f0) > mu * n0:", "if f0 > mu * n0:",
+      "sticking phase slip test without abs"),
+    M("K53", "kernels/rigid_body/swing.py", "if max(abs(dx), abs(dy), abs(dz)) < 1e-3:",
+      "if max(abs(dx), abs(dy), abs(dz)) < 1e-1:", "Carlson R_F: series started too early"),
+    M("K54", "kernels/rigid_body/swing.py", "qq = -0.5 * (q1 + r) if q1 >= 0.0 else -0.5 * (q1 - r)",
+      "qq = -0.5 * (q1 - r) if q1 >= 0.0 else -0.5 * (q1 + r)", "stable quadratic formula: wrong branch"),
+    # ------------------------------------------------------------------ analysis/recurrence.py
+    M("A01", "analysis/recurrence.py", "for p in range(1, max_period + 1):", "for p in range(1, max_period):",
+      "longest period never tested"),
+    M("A02", "analysis/recurrence.py", "if abs(b.min() - a.min()) > gap or abs(b.max() - a.max()) > gap:",
+      "if abs(b.min() - a.min()) > gap and abs(b.max() - a.max()) > gap:", "stationarity: or → and"),
+    M("A03", "analysis/recurrence.py", "return bool(np.any((b < 0.5 * a) & (a > tol)))",
+      "return bool(np.any((b < 0.5 * a) | (a > tol)))", "converging test: & → |"),
+    M("A04", "analysis/recurrence.py", "all(a[0] == b[0] and abs(a[1] - b[1]) <= 10 * tol",
+      "all(a[0] == b[0] or abs(a[1] - b[1]) <= 10 * tol", "same cycle points: and → or"),
+    M("A05", "analysis/recurrence.py", "max(q[1] for q in pts) - min(q[1] for q in pts) <= 10 * tol:",
+      "max(q[1] for q in pts) - min(q[1] for q in pts) <= 1e4 * tol:", "collapse a cycle to a point at 1e4 tol"),
+    M("A06", "analysis/recurrence.py", "p[0] == q[0] and p[1] <= q[2] + gap and q[1] <= p[2] + gap",
+      "p[0] == q[0] and p[1] <= q[2] + gap or q[1] <= p[2] + gap", "band overlap: and → or"),
+    M("A07", "analysis/recurrence.py", "lyap = float(np.mean(np.log(np.abs(sl)))) if finite",
+      "lyap = float(np.mean(np.log(sl))) if finite", "cycle Lyapunov exponent without abs"),
+    M("A08", "analysis/recurrence.py", "fate_step[alive[bad]] = t + 1", "fate_step[alive[bad]] = t",
+      "escape step off by one"),
+    # ------------------------------------------------------------------ analysis/attractors.py
+    M("A09", "analysis/attractors.py", "return bool(abs(self.multiplier) < 1.0)", "return bool(self.multiplier < 1.0)",
+      "stability without abs"),
+    M("A10", "analysis/attractors.py", "out |= (side == s) & (x >= lo - tol) & (x <= hi + tol)",
+      "out |= (side == s) & (x >= lo + tol) & (x <= hi + tol)", "contains: lower end shrinks by tol"),
+    M("A11", "analysis/attractors.py", "cut = np.flatnonzero(np.diff(xs) > gap)", "cut = np.flatnonzero(np.diff(xs) >= 0)",
+      "band split at every point"),
+    # ------------------------------------------------------------------ analysis/sets.py
+    M("A12", "analysis/sets.py", "out |= (side == s) & (x >= lo - tol) & (x <= hi + tol)",
+      "out |= (side == s) & (x > lo - tol) & (x <= hi + tol)", "contains: open at the lower end"),
+    M("A13", "analysis/sets.py", "or hi < lo:", "or hi <= lo:", "a one-point interval refused"),
+    # ------------------------------------------------------------------ analysis/critical.py
+    M("A14", "analysis/critical.py", "open_ = [s for s in todo if todo[s][1] - todo[s][0] > xtol]",
+      "open_ = [s for s in todo if todo[s][1] - todo[s][0] > 1e3 * xtol]", "r bracket refined to 1000 xtol only"),
+    M("A15", "analysis/critical.py", "outward = np.all(xn[jog] > X[jog])", "outward = np.any(xn[jog] > X[jog])",
+      "hull: outward if any jog moves out"),
+    M("A16", "analysis/critical.py", "abs(new[s][0] - iv[s][0]) <= xtol and abs(new[s][1] - iv[s][1]) <= 2 * spacing",
+      "abs(new[s][0] - iv[s][0]) <= xtol or abs(new[s][1] - iv[s][1]) <= 2 * spacing", "hull converged: and → or"),
+    M("A17", "analysis/critical.py", "box[j] = [i_src, float(grid[max(k - 1, 0)])", "box[j] = [i_src, float(grid[max(k, 0)])",
+      "next-point bracket: lower end off by one"),
+    # ------------------------------------------------------------------ analysis/cellmap.py
+    M("A18", "analysis/cellmap.py", "throws[active[bad]] = t + 1", "throws[active[bad]] = t",
+      "escape throw count off by one"),
+    M("A19", "analysis/cellmap.py", "return all(p[0] == q[0] and abs(p[1] - q[1]) <= tol",
+      "return all(p[0] == q[0] and p[1] - q[1] <= tol", "same attractor without abs"),
+    M("A20", "analysis/cellmap.py", "j = np.where(np.abs(xs[j - 1] - xo[m]) <= np.abs(xs[j] - xo[m]), j - 1, j)",
+      "j = np.where(np.abs(xs[j - 1] - xo[m]) <= np.abs(xs[j] - xo[m]), j, j - 1)", "nearest cell: the farther one"),
+    M("A21", "analysis/cellmap.py", "throws[i] = throws[j] + 1", "throws[i] = throws[j]", "cell throw count: + 1 dropped"),
+    M("A22", "analysis/cellmap.py", "tol = {k: max(reach_tol, 0.5 * v) for k, v in spacing.items()}",
+      "tol = {k: max(reach_tol, 5.0 * v) for k, v in spacing.items()}", "on-attractor radius 5 cells"),
+    # ------------------------------------------------------------------ analysis/basins.py
+    M("A23", "analysis/basins.py", "unique = check_ok and exc <= trap_tol", "unique = check_ok or exc <= trap_tol",
+      "certificate: and → or"),
+    M("A24", "analysis/basins.py", "j = np.where(np.abs(xs[j - 1] - x[m]) <= np.abs(xs[j] - x[m]), j - 1, j)",
+      "j = np.where(np.abs(xs[j - 1] - x[m]) <= np.abs(xs[j] - x[m]), j, j - 1)", "nearest grid point: the farther one"),
+    # ------------------------------------------------------------------ analysis/funnels.py
+    M("A25", "analysis/funnels.py", "if share >= containment:", "if share > containment:",
+      "funnel edge needs more than the containment share"),
+    M("A26", "analysis/funnels.py", "if np.all(goal.contains(xs, ss, 1e-12)):", "if np.any(goal.contains(xs, ss, 1e-12)):",
+      "spout inside the goal if any sample is"),
+)
+
+
+def apply(m: Mutant) -> tuple[Path, str]:
+    """Write the mutant; returns the file and its original text. Raises if the snippet is not there exactly once."""
+    f = SRC / m.path
+    text = f.read_text()
+    n = text.count(m.old)
+    if n != 1:
+        raise ValueError(f"{m.id}: snippet occurs {n} times in {m.path}")
+    f.write_text(text.replace(m.old, m.new))
+    return f, text
+
+
+def _env(cache: str, pyc: str) -> dict:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT / "src") + os.pathsep + env.get("PYTHONPATH", "")
+    env["NUMBA_CACHE_DIR"] = cache
+    env["PYTHONPYCACHEPREFIX"] = pyc
+    env["PYTHONDONTWRITEBYTECODE"] = "1"
+    env.setdefault("CI", "1")  # fixed Hypothesis examples (tests/conftest.py)
+    env.setdefault("MPLBACKEND", "Agg")
+    return env
+
+
+def run_tests(tests, cache: str, pyc: str, timeout: float) -> tuple[str, str, float]:
+    """Run ``tests`` (pytest -x); returns (result, detail, seconds): result killed/survived/timeout/error."""
+    paths = [t for t in tests if (ROOT / t).exists()]
+    cmd = ["nice", "-n", "10", sys.executable, "-m", "pytest", *PYTEST_ARGS, *paths]
+    t0 = time.monotonic()
+    try:
+        p = subprocess.run(cmd, cwd=ROOT, env=_env(cache, pyc), capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return "timeout", f"> {timeout:g} s", time.monotonic() - t0
+    dt = time.monotonic() - t0
+    out = p.stdout + p.stderr
+    if p.returncode == 0:
+        return "survived", "", dt
+    hit = re.search(r"^(FAILED|ERROR) (\S+)", out, re.M)
+    if p.returncode == 1 and hit:
+        return "killed", hit.group(2), dt
+    return "error", f"pytest rc {p.returncode}: " + (out.strip().splitlines() or [""])[-1][:120], dt
+
+
+def run(mutants, timeout: float, log=print) -> list[dict]:
+    """Baseline (each test subset must pass unmutated), then every non-equivalent mutant; returns rows."""
+    work = Path(tempfile.mkdtemp(prefix="throwmap-mutants-"))
+    warm = str(work / "numba-warm")
+    pyc = str(work / "pyc")
+    rows = []
+    try:
+        for tests in sorted({m.tests for m in mutants if not m.equivalent}):
+            res, detail, dt = run_tests(tests, warm, pyc, 4 * timeout)
+            log(f"baseline {' '.join(tests)}: {res} {detail} ({dt:.0f} s)")
+            if res != "survived":
+                raise SystemExit(f"baseline fails: {detail}")
+        for m in mutants:
+            row = dict(id=m.id, file=m.path, what=m.what)
+            if m.equivalent:
+                row.update(result="equivalent", detail=m.equivalent, seconds=0.0)
+                rows.append(row)
+                log(f"{m.id} equivalent: {m.equivalent}")
+                continue
+            kernel = m.path.startswith("kernels/")
+            cache = str(work / f"numba-{m.id}") if kernel else warm
+            f, text = apply(m)
+            try:
+                res, detail, dt = run_tests(m.tests, cache, pyc, timeout)
+            finally:
+                f.write_text(text)
+                if kernel:
+                    shutil.rmtree(cache, ignore_errors=True)
+            row.update(result=res, detail=detail, seconds=round(dt, 1))
+            rows.append(row)
+            log(f"{m.id} {res:9s} {dt:6.1f} s  {m.what}  {detail}")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    return rows
+
+
+def score(rows) -> tuple[int, int, float]:
+    """(caught, non-equivalent run, share caught); a timeout or a test error counts as caught."""
+    counted = [r for r in rows if r["result"] != "equivalent"]
+    caught = sum(r["result"] != "survived" for r in counted)
+    return caught, len(counted), (caught / len(counted) if counted else float("nan"))
+
+
+def markdown(rows) -> str:
+    lines = ["| mutant | file | slip | result | caught by | s |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['id']} | {r['file']} | {r['what']} | {r['result']} | {r['detail']} | {r['seconds']:.0f} |")
+    c, n, s = score(rows)
+    lines.append("")
+    lines.append(f"Score: {c}/{n} non-equivalent mutants caught ({100 * s:.1f} %).")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", nargs="*", help="mutant ids to run (default: all)")
+    ap.add_argument("--timeout", type=float, default=400.0, help="seconds per mutant (default 400)")
+    ap.add_argument("--list", action="store_true", help="print the catalogue and exit")
+    ap.add_argument("--check", action="store_true", help="check every snippet occurs exactly once, run nothing")
+    ap.add_argument("--json", help="write the rows to this JSON file")
+    ap.add_argument("--markdown", help="write the table to this Markdown file")
+    a = ap.parse_args(argv)
+    chosen = [m for m in MUTANTS if not a.only or m.id in a.only]
+    if a.list or a.check:
+        bad = 0
+        for m in chosen:
+            n = (SRC / m.path).read_text().count(m.old)
+            bad += n != 1
+            flag = "" if n == 1 else f"  !! snippet occurs {n} times"
+            print(f"{m.id}  {m.path:34s} {m.what}{'  [equivalent: ' + m.equivalent + ']' if m.equivalent else ''}{flag}")
+        return 1 if bad else 0
+    rows = run(chosen, a.timeout, log=lambda s: print(s, flush=True))
+    table = markdown(rows)
+    print(table)
+    if a.json:
+        Path(a.json).write_text(json.dumps(rows, indent=1, ensure_ascii=False))
+    if a.markdown:
+        Path(a.markdown).write_text(table + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
