@@ -21,10 +21,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import InvalidStateError
 from ..throws.outcome import Status
 
 __all__ = ["Attractor", "LABEL_ESCAPE", "FATE_UNRESOLVED", "fate_label", "fate_code", "merge_intervals",
-           "escape_fractions", "attractor_table", "nan_to_none", "none_to_nan"]
+           "escape_fractions", "attractor_table", "nan_to_none", "none_to_nan", "check_cycles", "domain_text",
+           "domain_of", "range_short", "map_short", "attractor_counts"]
 
 LABEL_ESCAPE = -1
 """Label of a configuration whose orbit does not end on an attractor on the arm."""
@@ -106,6 +108,11 @@ class Attractor:
         Share of the analysed starting configurations that end on it.
     side_visits : tuple of (side, share)
         Share of the attractor's recorded configurations on each side.
+    residual : float
+        For a fixed point or cycle, max |T^k(x_0) − x_k| over k = 1 … p (the last is
+        |T^p(x_0) − x_0|), m, measured by applying the map p times from the first point
+        (:func:`~throwmap.analysis.cycles.cycle_residual`; inf if an image lands on
+        another side or escapes); nan for a band or when not measured.
     """
 
     id: int
@@ -117,10 +124,31 @@ class Attractor:
     lyapunov: float
     fraction: float
     side_visits: tuple
+    residual: float = math.nan
 
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"kind must be one of {KINDS}, got {self.kind!r}")
+
+    def __repr__(self) -> str:
+        """``Attractor(#1 band, sides (0, 1, 2), x∈[0.1728, 0.5296] m, Lyapunov +0.200/step, 100.0 %)``."""
+        if self.kind == "band":
+            lo = min(b[1] for b in self.bands)
+            hi = max(b[2] for b in self.bands)
+            what = (f"band, sides {self.sides}, x∈[{lo:.4g}, {hi:.4g}] m in {len(self.bands)} interval(s), "
+                    f"Lyapunov {self.lyapunov:+.3f}/step")
+        else:
+            pts = ", ".join(f"({x:.5g} m, side {s})" for s, x in self.points[:3])
+            more = f", … {self.period} points" if self.period > 3 else ""
+            name = "fixed point" if self.kind == "fixed_point" else f"period-{self.period} cycle"
+            what = f"{name} {pts}{more}, multiplier {self.multiplier:+.3g}"
+        return f"Attractor(#{self.id} {what}, {100 * self.fraction:.1f} %)"
+
+    def with_fraction(self, fraction: float, ident: int | None = None) -> "Attractor":
+        """A copy with another share (and id)."""
+        return Attractor(id=self.id if ident is None else ident, kind=self.kind, period=self.period,
+                         points=self.points, bands=self.bands, multiplier=self.multiplier, lyapunov=self.lyapunov,
+                         fraction=float(fraction), side_visits=self.side_visits, residual=self.residual)
 
     @property
     def stable(self) -> bool | None:
@@ -167,6 +195,8 @@ class Attractor:
             "multiplier": nan_to_none(self.multiplier), "lyapunov": nan_to_none(self.lyapunov),
             "stable": self.stable, "fraction": float(self.fraction),
             "side_visits": [{"side": int(s), "share": float(v)} for s, v in self.side_visits],
+            "residual_m": None if math.isnan(self.residual) else (
+                float(self.residual) if math.isfinite(self.residual) else "inf"),
         }
 
     @classmethod
@@ -177,7 +207,73 @@ class Attractor:
             bands=tuple((int(b["side"]), float(b["lo_m"]), float(b["hi_m"])) for b in d["bands"]),
             multiplier=none_to_nan(d["multiplier"]), lyapunov=none_to_nan(d["lyapunov"]), fraction=float(d["fraction"]),
             side_visits=tuple((int(v["side"]), float(v["share"])) for v in d["side_visits"]),
+            residual=none_to_nan(d.get("residual_m")) if d.get("residual_m") != "inf" else math.inf,
         )
+
+
+def check_cycles(attractors, tol: float) -> None:
+    """Refuse a fixed point or cycle whose measured residual |T^p(x) − x| exceeds ``tol`` (m), or was never measured.
+
+    Raises :class:`~throwmap.errors.InvalidStateError` naming the attractor: a result
+    never holds a cycle that the map does not close.
+    """
+    for a in attractors:
+        if a.kind != "band" and not a.residual <= tol:
+            raise InvalidStateError("attractors", f"#{a.id} {a.kind.replace('_', ' ')}: |T^p(x) − x| = "
+                                                  f"{a.residual:.3g} m is not within tol = {tol:.3g} m on the same "
+                                                  "side: not a cycle of the map")
+
+
+def domain_text(domain: dict, valid_from_joint: bool = False) -> str:
+    """The range of starts a result covers, e.g. ``"every valid start with x ≤ 0.600 m"``.
+
+    ``domain`` is ``{side: (x_lo, x_hi)}`` (m; x_lo excluded). ``valid_from_joint``: the
+    lower ends are the part's first valid x per side, so the range is every valid start
+    up to x_hi; otherwise both ends are given.
+    """
+    if not domain:
+        return "the analysed starts"
+    his = {round(float(v[1]), 12) for v in domain.values()}
+    los = {round(float(v[0]), 12) for v in domain.values()}
+    if valid_from_joint and len(his) == 1:
+        return f"every valid start with x ≤ {his.pop():.3f} m"
+    if len(his) == 1 and len(los) == 1:
+        return f"starts {los.pop():.4g} < x ≤ {his.pop():.4g} m"
+    return "starts " + ", ".join(f"{float(lo):.4g} < x ≤ {float(hi):.4g} m on side {k}"
+                                 for k, (lo, hi) in sorted(domain.items(), key=lambda kv: int(kv[0])))
+
+
+def domain_of(map_info: dict) -> tuple[dict, bool]:
+    """``({side: (lo, hi)}, valid_from_joint)`` from a result's ``map_info`` (empty if it does not say)."""
+    d = map_info.get("domain_m") or {}
+    return ({int(k): (float(v[0]), float(v[1])) for k, v in d.items()}, map_info.get("kind") == "throw")
+
+
+def range_short(map_info: dict) -> str:
+    """``x∈(0, 0.6] m`` for a repr: the lowest x_lo and the highest x_hi."""
+    dom, _ = domain_of(map_info)
+    if not dom:
+        return "x range not recorded"
+    return f"x∈({min(v[0] for v in dom.values()):.4g}, {max(v[1] for v in dom.values()):.4g}] m"
+
+
+def map_short(map_info: dict) -> str:
+    """``model='paper', omega=4 rad/s`` (a throw map) or ``map='name'``, for a repr."""
+    if map_info.get("kind") == "throw":
+        w = ", ".join(f"{v:g}" for v in map_info.get("omegas_rad_s", ()))
+        return f"model={map_info.get('model')!r}, omega={w} rad/s"
+    return f"map={map_info.get('name', map_info.get('label', 'map'))!r}"
+
+
+def attractor_counts(attractors) -> str:
+    """``"1 band, 2 cycles"``; ``"no attractor"`` when empty."""
+    names = {"fixed_point": "fixed point", "cycle": "cycle", "band": "band"}
+    out = []
+    for k in KINDS:
+        n = sum(1 for a in attractors if a.kind == k)
+        if n:
+            out.append(f"{n} {names[k]}{'s' if n > 1 else ''}")
+    return ", ".join(out) if out else "no attractor"
 
 
 def attractor_table(attractors, escapes: dict, share: str = "share %") -> str:

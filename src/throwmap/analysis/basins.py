@@ -332,10 +332,7 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
                                  rest.size)
     # basin fractions on the attractors
     n = max(1, x.size)
-    attractors = tuple(
-        Attractor(id=a.id, kind=a.kind, period=a.period, points=a.points, bands=a.bands, multiplier=a.multiplier,
-                  lyapunov=a.lyapunov, fraction=float(np.sum(labels == a.id)) / n, side_visits=a.side_visits)
-        for a in attractors)
+    attractors = tuple(a.with_fraction(float(np.sum(labels == a.id)) / n) for a in attractors)
     cert = _certificate(cmap, x, labels, fates, throws, spacing, attractors, check, trap_samples, trap_tol)
     info = cmap.describe()
     info["label"] = cmap.label

@@ -104,9 +104,7 @@ def exact_with_discovery(cmap, x0, s0, attractors, caps: RecurrenceCaps, reach_t
         added = list(attractors)
         for a in new:
             if not any(_same_attractor(a, b, caps.band_gap) for b in added):
-                added.append(Attractor(id=len(added) + 1, kind=a.kind, period=a.period, points=a.points,
-                                       bands=a.bands, multiplier=a.multiplier, lyapunov=a.lyapunov, fraction=0.0,
-                                       side_visits=a.side_visits))
+                added.append(a.with_fraction(0.0, ident=len(added) + 1))
         if len(added) > len(attractors):
             attractors = tuple(added)
             l2, f2, t2 = map_to_attractors(cmap, np.asarray(x0)[unres], np.asarray(s0)[unres], attractors,

@@ -24,7 +24,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidStateError
-from .attractors import Attractor, attractor_table, escape_fractions
+from .attractors import (Attractor, attractor_counts, attractor_table, check_cycles, domain_of, domain_text,
+                         escape_fractions, map_short, range_short)
 from .caps import DEFAULT_CAPS, RecurrenceCaps, check_caps, resolve_caps, split_options
 from .maps import DEFAULT_MODEL, ConfigMap, as_map
 from .recurrence import check_starts, find_attractors, start_grid
@@ -51,6 +52,32 @@ class LimitSet:
     labels: np.ndarray
     caps: dict
     map_info: dict
+
+    def __post_init__(self):
+        check_cycles(self.attractors, float(self.caps.get("tol", DEFAULT_CAPS["tol"])))
+
+    def __repr__(self) -> str:
+        esc = ", ".join(f"{k} {100 * v:.1f} %" for k, v in self.escapes.items()) or "none"
+        return (f"LimitSet({map_short(self.map_info)}, {self._range_short()}, {self.n_starts} starts: "
+                f"{attractor_counts(self.attractors)}; escapes {esc})")
+
+    def _range_short(self) -> str:
+        if self.map_info.get("starts") == "given" and self.starts_x.size:
+            return f"starts x∈[{self.starts_x.min():.4g}, {self.starts_x.max():.4g}] m"
+        return range_short(self.map_info)
+
+    @property
+    def range_text(self) -> str:
+        """The starts this result covers, in words (e.g. ``"every valid start with x ≤ 0.600 m"``).
+
+        On an unbounded arm the search stops at ``x_max`` (default 0.6 m); beyond it the
+        map may have other attractors, so "unique" and "every orbit escapes" hold for
+        this range only.
+        """
+        if self.map_info.get("starts") == "given":
+            return f"{self.n_starts} given starts"
+        dom, valid = domain_of(self.map_info)
+        return domain_text(dom, valid)
 
     @property
     def n_starts(self) -> int:
@@ -98,7 +125,10 @@ class LimitSet:
     def summary(self) -> str:
         """A few lines: kind, each attractor, escapes."""
         lines = [f"limit set of {self.map_info.get('label', 'map')}: {self.kind}, {len(self.attractors)} "
-                 f"attractor(s) from {self.n_starts} starts"]
+                 f"attractor(s) from {self.n_starts} starts ({self.range_text}; not searched beyond)"]
+        if not self.attractors and self.escapes:
+            lines.append(f"  no orbit from {self.range_text} ends on an attractor (see the escapes below); "
+                         "others may lie beyond this range")
         for a in self.attractors:
             lines.append(f"  {a.describe()}  [{100 * a.fraction:.1f} % of starts]")
         for k, v in self.escapes.items():
@@ -111,7 +141,7 @@ class LimitSet:
 
     def to_dict(self) -> dict:
         return {
-            "kind": self.kind, "unique": self.unique,
+            "kind": self.kind, "unique": self.unique, "range": self.range_text,
             "attractors": [a.to_dict() for a in self.attractors],
             "escapes": dict(self.escapes),
             "starts": {"x_m": self.starts_x.tolist(), "side": self.starts_side.tolist(),
@@ -182,6 +212,7 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
     found = find_attractors(cmap, x0, s0, rc, progress)
     info = cmap.describe()
     info["label"] = cmap.label
+    info["starts"] = "grid" if starts is None else "given"
     return LimitSet(attractors=found.attractors, escapes=escape_fractions(found.fates, found.labels), starts_x=x0,
                     starts_side=s0, labels=found.labels, caps={**rc.to_dict(), "transient_used": found.transient_used},
                     map_info=info)

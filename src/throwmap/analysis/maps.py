@@ -36,7 +36,11 @@ from ..throws.throw import throw_batch
 __all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid"]
 
 DEFAULT_X_MAX = 0.6
-"""Outer end of the analysed domain on an unbounded arm, m (the paper's arms span ≈ 60 cm)."""
+"""Outer end of the analysed domain on an unbounded arm, m (the paper's arms span ≈ 60 cm).
+
+Every result says the range it covers (certificates, summaries, reprs): beyond it a
+map can have other attractors (the canonical triangle at ω = 5.6 rad/s, μ = 1 has a
+fixed point near 1.17 m although every orbit from x ≤ 0.6 m leaves behind the joint)."""
 
 
 class ConfigMap:
@@ -156,7 +160,13 @@ class ThrowMap(ConfigMap):
     def describe(self) -> dict:
         return {"kind": "throw", "part": self.part.name, "h_m": self.arm.h, "g_m_s2": self.arm.g,
                 "arm_length_m": self.arm.length, "mu": self.arm.mu if math.isfinite(self.arm.mu) else None, "omegas_rad_s": list(self.omegas),
-                "model": self.model, "x_max_m": self.x_max}
+                "model": self.model, "x_max_m": self.x_max,
+                "domain_m": {str(s): [self.x_lo[s], self.x_hi[s]] for s in self.sides}}
+
+    def __repr__(self) -> str:
+        w = ", ".join(f"{v:g}" for v in self.omegas)
+        return (f"ThrowMap(part={self.part.name or 'part'!r}, h={self.arm.h:g} m, model={self.model!r}, "
+                f"omega={w} rad/s, sides {self.sides}, x ≤ {self.x_max:.4g} m)")
 
 
 @dataclass(frozen=True, eq=False)
@@ -200,6 +210,10 @@ class FunctionMap(ConfigMap):
     def describe(self) -> dict:
         return {"kind": "function", "name": self.name,
                 "domain_m": {str(s): [self.x_lo[s], self.x_hi[s]] for s in self.sides}}
+
+    def __repr__(self) -> str:
+        dom = ", ".join(f"side {s}: ({self.x_lo[s]:.4g}, {self.x_hi[s]:.4g}] m" for s in self.sides[:4])
+        return f"FunctionMap({self.name!r}, {dom}{', …' if len(self.sides) > 4 else ''})"
 
 
 def as_map(part_or_map, arm: Arm | None = None, omega=None, model: str = DEFAULT_MODEL, *, x_max=None,

@@ -7,7 +7,13 @@ In the manner of Attractors.jl, each orbit is thrown ``transient`` times, then
 * An orbit that fails a throw is an escape, with that throw's status as its fate.
 * An orbit whose recorded tail repeats with period p ≤ ``max_period`` — every
   recorded state equals the one p throws later on the same side to within ``tol`` —
-  is a cycle (p = 1: a fixed point). Cycles with the same points are one attractor.
+  is a cycle (p = 1: a fixed point), once the map confirms it: applied p times from
+  the cycle's first point it must come back to within ``tol`` on the same side
+  (:mod:`throwmap.analysis.cycles`; the residual is kept on the attractor). Cycles
+  with the same points are one attractor.
+* A tail that moves one way only on every side (a drift, or an approach that has not
+  settled) lies on no attractor found: label −1, fate ``"unresolved"``; so is a group
+  of wandering tails whose span still moves when ``max_transient`` runs out.
 * Any other orbit is a band. Band orbits that share a cell of ``cell`` metres on a
   side are one attractor (union–find); its intervals are the recorded x per side,
   split where consecutive points are more than ``band_gap`` apart, and filled by
@@ -33,11 +39,13 @@ import numpy as np
 from ..errors import InvalidStateError
 from ..kernels import codes as C
 from ..rng import as_generator
-from .attractors import LABEL_ESCAPE, Attractor, merge_intervals
+from .attractors import FATE_UNRESOLVED, LABEL_ESCAPE, Attractor, merge_intervals
 from .caps import RecurrenceCaps, resolve_caps
+from .cycles import closing as _closing
+from .cycles import cycle_residual, verified_cycles
 from .maps import ConfigMap
 
-__all__ = ["Recurrence", "find_attractors", "run_orbits", "start_grid", "check_starts"]
+__all__ = ["Recurrence", "find_attractors", "run_orbits", "start_grid", "check_starts", "cycle_residual"]
 
 
 def run_orbits(cmap: ConfigMap, x0, s0, n_skip: int, n_record: int, progress=None):
@@ -132,11 +140,35 @@ def _leaky(cmap: ConfigMap, X, S, gap: float, n: int = 200) -> bool:
     return bool(np.any(st != C.OK))
 
 
+def _drifting(X, S, idx) -> np.ndarray:
+    """Whether each tail moves one way only on every side it visits (≥ 3 times): a drift, not a band.
+
+    A band orbit comes back (its same-side steps change sign); a tail that only moves
+    on — a drift, or a monotone approach still unsettled — lies on no attractor found.
+    """
+    out = np.zeros(idx.size, dtype=bool)
+    for j, i in enumerate(idx):
+        seen = False
+        drift = True
+        for k in np.unique(S[i][S[i] >= 0]):
+            d = np.diff(X[i][S[i] == k])
+            if d.size < 2:
+                continue
+            seen = True
+            if not (np.all(d > 0) or np.all(d < 0)):
+                drift = False
+                break
+        out[j] = seen and drift
+    return out
+
+
 def _settle(cmap: ConfigMap, x0, s0, caps: RecurrenceCaps, progress=None):
     """Orbits until the wandering tails are stationary, converged and trapped (or ``max_transient`` is spent).
 
-    Returns ``(X, S, fate, per, alive, used)``: the recorded tails, fates, each tail's
-    period (0: none), the starts still on the arm, and the throws discarded in all.
+    Returns ``(X, S, fate, per, alive, used, settled)``: the recorded tails, fates, each
+    tail's period (0: none; only tails that close under one more throw count), the starts
+    still on the arm, the throws discarded in all, and whether the tails settled before
+    ``max_transient`` ran out.
     """
     X, S, fate, fstep = run_orbits(cmap, x0, s0, caps.transient, caps.n_record, progress)
     m = X.shape[0]
@@ -147,20 +179,21 @@ def _settle(cmap: ConfigMap, x0, s0, caps: RecurrenceCaps, progress=None):
         per = np.zeros(m, dtype=np.int64)
         if alive.size:
             per[alive] = _periods(X[alive], S[alive], caps.max_period, caps.tol)
+            cyc = alive[per[alive] > 0]
+            per[cyc[~_closing(cmap, X, S, cyc, per, caps.tol)]] = 0
         wander = alive[per[alive] == 0]
         if wander.size == 0 or (not late and _stationary(X[wander], S[wander], caps.band_gap)
                                 and not _converging(X[wander], caps.tol)
                                 and not _leaky(cmap, X[wander], S[wander], caps.band_gap)):
-            break
+            return X, S, fate, per, alive, used, True
         if used + caps.n_record + caps.transient > caps.max_transient:
-            break
+            return X, S, fate, per, alive, used, False
         # not yet stationary, still converging, or leaking orbits (a chaotic saddle, not an
         # attractor): go on from where the orbits are, discarding what was recorded
         Xn, Sn, fn, fs = run_orbits(cmap, X[alive, -1], S[alive, -1], caps.transient, caps.n_record)
         X[alive], S[alive], fate[alive] = Xn, Sn, fn
         late = bool(np.any(fs > caps.transient))
         used += caps.n_record + caps.transient
-    return X, S, fate, per, alive, used
 
 
 # --- grouping tails into attractors --------------------------------------------------------------------------
@@ -180,45 +213,6 @@ class _UnionFind:
         ra, rb = self.find(a), self.find(b)
         if ra != rb:
             self.p[max(ra, rb)] = min(ra, rb)
-
-
-def _canonical_cycle(xs, ss):
-    """Rotate a cycle to start at its smallest (side, x)."""
-    k = min(range(len(xs)), key=lambda i: (ss[i], xs[i]))
-    return tuple((int(ss[(k + i) % len(xs)]), float(xs[(k + i) % len(xs)])) for i in range(len(xs)))
-
-
-def _same_points(c, pts, tol: float) -> bool:
-    return len(c) == len(pts) and all(a[0] == b[0] and abs(a[1] - b[1]) <= 10 * tol for a, b in zip(c, pts))
-
-
-def _cycles(X, S, idx, per, tol: float) -> list:
-    """Periodic tails grouped by their points: ``[(canonical points, member starts), ...]``.
-
-    A "cycle" whose points coincide is a fixed point not yet settled to ``tol``; cycles
-    that coincide after that are one.
-    """
-    cycles: list[tuple] = []
-    for i in idx:
-        p = per[i]
-        pts = _canonical_cycle(X[i, -p:], S[i, -p:])
-        for c in cycles:
-            if _same_points(c[0], pts, tol):
-                c[1].append(i)
-                break
-        else:
-            cycles.append((pts, [i]))
-    merged: list[tuple] = []
-    for pts, members in cycles:
-        if len({q[0] for q in pts}) == 1 and max(q[1] for q in pts) - min(q[1] for q in pts) <= 10 * tol:
-            pts = (pts[0],)
-        for c in merged:
-            if _same_points(c[0], pts, tol):
-                c[1].extend(members)
-                break
-        else:
-            merged.append((pts, list(members)))
-    return merged
 
 
 def _band_groups(X, S, band_idx, caps: RecurrenceCaps) -> list:
@@ -309,7 +303,7 @@ def _slopes(cmap: ConfigMap, x, s, h: float) -> np.ndarray:
     return slope
 
 
-def _describe_cycle(cmap: ConfigMap, pts, members, caps: RecurrenceCaps) -> dict:
+def _describe_cycle(cmap: ConfigMap, pts, members, residual: float, caps: RecurrenceCaps) -> dict:
     """A fixed point or cycle: multiplier Π dT/dx and Lyapunov exponent mean log|dT/dx| along it."""
     p = len(pts)
     xs = np.array([q[1] for q in pts])
@@ -321,7 +315,7 @@ def _describe_cycle(cmap: ConfigMap, pts, members, caps: RecurrenceCaps) -> dict
     visits = tuple((int(k), float(np.mean(ss == k))) for k in np.unique(ss))
     return dict(kind="fixed_point" if p == 1 else "cycle", period=p, points=pts,
                 bands=tuple(sorted((s, x, x) for s, x in pts)), multiplier=mult, lyapunov=lyap,
-                members=members, side_visits=visits, key=(0, pts[0][0], pts[0][1]))
+                members=members, side_visits=visits, key=(0, pts[0][0], pts[0][1]), residual=residual)
 
 
 def _describe_band(cmap: ConfigMap, X, S, members, caps: RecurrenceCaps) -> dict:
@@ -335,7 +329,7 @@ def _describe_band(cmap: ConfigMap, X, S, members, caps: RecurrenceCaps) -> dict
     lyap = float(np.mean(np.log(np.abs(sl[good])))) if np.any(good) else math.nan
     visits = tuple((int(k), float(np.mean(ss == k))) for k in np.unique(ss))
     return dict(kind="band", period=0, points=(), bands=bands, multiplier=math.nan, lyapunov=lyap,
-                members=members, side_visits=visits, key=(1, bands[0][0], bands[0][1]))
+                members=members, side_visits=visits, key=(1, bands[0][0], bands[0][1]), residual=math.nan)
 
 
 # --- the test ------------------------------------------------------------------------------------------------
@@ -366,11 +360,25 @@ def find_attractors(cmap: ConfigMap, x0, s0, caps: RecurrenceCaps | None = None,
     caps; default: the defaults). Returns a :class:`Recurrence`.
     """
     caps = resolve_caps(caps)
-    X, S, fate, per, alive, used = _settle(cmap, x0, s0, caps, progress)
+    X, S, fate, per, alive, used, settled = _settle(cmap, x0, s0, caps, progress)
     m = X.shape[0]
-    cycles = _cycles(X, S, alive[per[alive] > 0], per, caps.tol)
-    groups = _band_groups(X, S, alive[per[alive] == 0], caps)
-    found = [_describe_cycle(cmap, pts, members, caps) for pts, members in cycles]
+    cycles, demoted = verified_cycles(cmap, X, S, alive[per[alive] > 0], per, caps)
+    per[demoted] = 0
+    wander = alive[per[alive] == 0]
+    # a tail that only moves on (a drift) is on no attractor; nor, once max_transient ran
+    # out, is a group of tails whose span still moves (not stationary): both are unresolved
+    drift = wander[_drifting(X, S, wander)]
+    fate[drift] = FATE_UNRESOLVED
+    groups = _band_groups(X, S, np.setdiff1d(wander, drift), caps)
+    if not settled:
+        keep = []
+        for g in groups:
+            if _stationary(X[g], S[g], caps.band_gap):
+                keep.append(g)
+            else:
+                fate[g] = FATE_UNRESOLVED
+        groups = keep
+    found = [_describe_cycle(cmap, pts, members, res, caps) for pts, members, res in cycles]
     found += [_describe_band(cmap, X, S, members, caps) for members in groups]
     found.sort(key=lambda d: d["key"])
     labels = np.full(m, LABEL_ESCAPE, dtype=np.int64)
@@ -379,7 +387,8 @@ def find_attractors(cmap: ConfigMap, x0, s0, caps: RecurrenceCaps | None = None,
         labels[d["members"]] = k
         attractors.append(Attractor(id=k, kind=d["kind"], period=d["period"], points=d["points"],
                                     bands=d["bands"], multiplier=d["multiplier"], lyapunov=d["lyapunov"],
-                                    fraction=len(d["members"]) / m if m else 0.0, side_visits=d["side_visits"]))
+                                    fraction=len(d["members"]) / m if m else 0.0, side_visits=d["side_visits"],
+                                    residual=d["residual"]))
     return Recurrence(attractors=tuple(attractors), labels=labels, fates=fate, x_tail=X, side_tail=S,
                       transient_used=int(used))
 
