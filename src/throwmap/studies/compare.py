@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -22,7 +22,9 @@ class ModelComparison:
     the arm), ``side_agreement`` (fraction), ``dx_median``/``dx_p90``/``dx_max``
     (|Δx| in m over same-side outcomes), ``jog_rel_err_median``/``jog_rel_err_max``
     (|Δ jog length| / reference jog length over jogs of both), ``max_phi`` (largest
-    reference rotation in flight ω t, rad).
+    reference rotation in flight ω t, rad). ``settings``: what was run — ``x_min``,
+    ``x_max`` (m; starts x ∈ (max(x_min, side's x_min), x_max] on every stable side),
+    ``n_x``, ``omegas`` (rad/s), ``mu``, ``g`` (m/s²); the table's heading states them.
     """
 
     part_name: str
@@ -31,6 +33,18 @@ class ModelComparison:
     models: tuple
     rows: tuple
     switches: tuple = ()
+    settings: dict = field(default_factory=dict)
+
+    def settings_line(self) -> str:
+        """The range and settings the table covers, in one line (empty if unknown)."""
+        st = self.settings
+        if not st:
+            return ""
+        lo = "the side's x_min" if st.get("x_min") is None else f"max({st['x_min']:g} m, the side's x_min)"
+        oms = ", ".join(f"{w:g}" for w in st.get("omegas", ()))
+        return (f"starts x ∈ ({lo}, {st['x_max']:g} m] on every stable side, {st['n_x']} per side; "
+                f"ω ∈ {{{oms}}} rad/s; μ = {st['mu']:g}; g = {st['g']:g} m/s²; "
+                f"models {', '.join(self.models)} against {self.reference!r}")
 
     def switch_table(self) -> str:
         """r_i, the first x on each side at which a throw stops being a jog, per model (cm)."""
@@ -48,7 +62,10 @@ class ModelComparison:
     def error_table(self) -> str:
         head = (f"{'model':<13}{'ω rad/s':>8}{'n':>7}{'same side':>11}{'|Δx| med mm':>13}{'p90 mm':>9}"
                 f"{'max mm':>9}{'jog err med':>13}{'jog err max':>13}{'max ωt':>8}")
-        lines = [f"{self.part_name}, h = {self.h:g} m, against model {self.reference!r}", head, "-" * len(head)]
+        lines = [f"{self.part_name}, h = {self.h:g} m, against model {self.reference!r}"]
+        if self.settings:
+            lines.append(self.settings_line())
+        lines += [head, "-" * len(head)]
         for r in self.rows:
             lines.append(
                 f"{r['model']:<13}{r['omega']:>8.2f}{r['n']:>7d}{100 * r['side_agreement']:>10.1f}%"
@@ -58,8 +75,9 @@ class ModelComparison:
         return "\n".join(lines)
 
     def to_dict(self) -> dict:
+        st = {k: (list(v) if isinstance(v, tuple) else v) for k, v in self.settings.items()}
         return {"part": self.part_name, "h": self.h, "reference": self.reference, "models": list(self.models),
-                "rows": [dict(r) for r in self.rows], "switches": [dict(r) for r in self.switches]}
+                "rows": [dict(r) for r in self.rows], "switches": [dict(r) for r in self.switches], "settings": st}
 
     @classmethod
     def from_dict(cls, d: dict) -> "ModelComparison":
@@ -67,7 +85,12 @@ class ModelComparison:
         nan = float("nan")
         switches = tuple({k: (nan if v is None else v) for k, v in r.items()} for r in d.get("switches", ()))
         rows = tuple({k: (nan if v is None else v) for k, v in r.items()} for r in d["rows"])
-        return cls(d["part"], d["h"], d["reference"], tuple(d["models"]), rows, switches)
+        st = dict(d.get("settings", {}))
+        if "omegas" in st:
+            st["omegas"] = tuple(st["omegas"])
+        if st.get("mu", 0.0) is None:  # JSON has no infinity: μ = ∞ written as null
+            st["mu"] = float("inf")
+        return cls(d["part"], d["h"], d["reference"], tuple(d["models"]), rows, switches, st)
 
     def plot(self, ax=None):
         from ..viz.comparison import plot_model_comparison
@@ -77,20 +100,32 @@ class ModelComparison:
 
 def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), n_x: int = 200,
                    x_max: float | None = None, models=("small_angle", "small_angle2"),
-                   reference: str = "paper") -> ModelComparison:
-    """Compare ``models`` with ``reference`` over x ∈ (x_min, x_max] on every stable side, for each ω.
+                   reference: str = "paper", x_min: float | None = None) -> ModelComparison:
+    """Compare ``models`` with ``reference`` over x ∈ (lo, x_max] on every stable side, for each ω.
 
-    ``x_max`` defaults to the arm length or 0.4 m. Also records, per ω and side, the
-    first grid x at which each model's throw is not a jog (the switch r_i, Sec. III-D),
-    with the grid's resolution (x_max − x_min)/n_x.
+    lo is the side's smallest admissible start x_min (m), or ``x_min`` where that is
+    larger. ``x_max`` (m) defaults to the arm length or 0.4 m and must exceed every
+    side's lo. Also records, per ω and side, the first grid x at which each model's
+    throw is not a jog (the switch r_i, Sec. III-D), with the grid's resolution
+    (x_max − lo)/n_x. The result's ``settings`` (and its table) state the range.
     """
+    from ..errors import InvalidStateError
+
     for m in (*models, reference):
         check_model(m)
     if x_max is None:
         x_max = arm.length if arm.length is not None else 0.4
+    for name, v in (("x_max", x_max), ("x_min", x_min)):
+        if v is not None and not (isinstance(v, (int, float)) and np.isfinite(v)):
+            raise InvalidStateError(name, f"must be a finite number (m), got {v!r}")
+    x_max = float(x_max)
+    los = {s: max(part.x_min(s), x_min) if x_min is not None else part.x_min(s) for s in part.stable_sides}
+    if x_max <= max(los.values()):
+        raise InvalidStateError("x_max", f"must exceed the largest start bound {max(los.values()):.4g} m, "
+                                         f"got {x_max:g}")
     xs, ss = [], []
     for s in part.stable_sides:
-        x = np.linspace(part.x_min(s), x_max, n_x + 1)[1:]
+        x = np.linspace(los[s], x_max, n_x + 1)[1:]
         xs.append(x)
         ss.append(np.full(x.shape, s))
     xs = np.concatenate(xs)
@@ -133,4 +168,6 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
             })
         for s in part.stable_sides:
             switches.append({"omega": float(om), "side": int(s), **{m: sw[m][s] for m in (reference, *models)}})
-    return ModelComparison(part.name, arm.h, reference, tuple(models), tuple(rows), tuple(switches))
+    settings = {"x_min": None if x_min is None else float(x_min), "x_max": x_max, "n_x": int(n_x),
+                "omegas": tuple(float(w) for w in omegas), "mu": float(arm.mu), "g": float(arm.g)}
+    return ModelComparison(part.name, arm.h, reference, tuple(models), tuple(rows), tuple(switches), settings)
