@@ -29,6 +29,7 @@ import numpy as np
 from numba import njit
 
 from throwmap.kernels.rigid_body import coulomb_impact
+from throwmap.kernels.rigid_body.impact import LAW_VELOCITY
 from throwmap.kernels.rigid_body.modes import IMP_INCONSISTENT, IMP_SEPARATE
 from throwmap.system.part import Part
 
@@ -178,3 +179,27 @@ def test_reference_process_is_dissipative_and_in_the_cone():
             k1 = ex * ex + ey * ey + rho2 * ew * ew
             assert k1 <= k0 * (1 + 1e-9)
             assert abs((ey + ew * rx)) <= 1e-9 * _scale(vx, vy, w, rx, ry)  # compression ended: u_n = 0
+
+
+def test_velocity_level_law_is_one_step_coulomb_and_differs_from_routh_only_on_reversals():
+    """law=LAW_VELOCITY: u_n⁺ = 0, P in the cone, friction against the post-impact slip; it equals the
+    process wherever the process does not reverse the slip, and differs on some impacts that do."""
+    n_rev_differs = 0
+    for mu in MUS:
+        for st in _impact_states(12, 120):
+            vx, vy, w, rx, ry, rho2 = st
+            kx, ky, kw, pt, pn, kind, _, _ = coulomb_impact(vx, vy, w, rx, ry, rho2, mu, LAW_VELOCITY)
+            ex, ey, ew, done, rev, stick = documented_law(vx, vy, w, rx, ry, rho2, mu)
+            sc = _scale(vx, vy, w, rx, ry)
+            if kind == IMP_INCONSISTENT:
+                continue
+            ut, un = kx - kw * ry, ky + kw * rx
+            assert abs(un) <= 1e-12 * sc
+            assert pn >= 0.0 and abs(pt) <= mu * pn * (1 + 1e-12)
+            if abs(ut) > 1e-12 * sc:
+                assert pt == -mu * pn * math.copysign(1.0, ut) or abs(pt + mu * pn * math.copysign(1.0, ut)) <= 1e-12 * sc
+            err = max(abs(kx - ex), abs(ky - ey), abs(kw - ew) * math.hypot(rx, ry)) / sc
+            if done and rev == 0:
+                assert err <= TOL, (err, st, mu)
+            n_rev_differs += done and rev > 0 and err > 1e-2
+    assert n_rev_differs >= 5
