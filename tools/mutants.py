@@ -46,10 +46,22 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 SRC = ROOT / "src" / "throwmap"
 
-KERNEL_TESTS = ("tests/kernels/test_throw_physics.py", "tests/kernels/test_paper_record.py",
-                "tests/kernels/test_small_angle.py", "tests/kernels/test_rigid_body.py",
-                "tests/kernels/test_rigid_body_stick.py", "tests/models", "tests/kernels/test_mutation_kills.py")
-ANALYSIS_TESTS = ("tests/analysis", )
+KILLS_K = "tests/kernels/test_mutation_kills.py"
+KILLS_A = "tests/analysis/test_mutation_kills.py"
+TESTS = (  # (path prefix under src/throwmap, test subset run for a mutant there: first match wins)
+    ("kernels/small_angle.py", ("tests/kernels/test_small_angle.py", "tests/models", KILLS_K)),
+    ("kernels/rigid_body/", ("tests/kernels/test_rigid_body.py", "tests/kernels/test_rigid_body_stick.py",
+                             "tests/models", KILLS_K)),
+    ("kernels/", ("tests/kernels/test_throw_physics.py", "tests/kernels/test_paper_record.py",
+                  "tests/kernels/test_rigid_body.py", "tests/kernels/test_rigid_body_stick.py",
+                  "tests/kernels/test_small_angle.py", "tests/models", KILLS_K)),
+    ("analysis/critical.py", ("tests/analysis/test_critical.py", KILLS_A)),
+    ("analysis/", ("tests/analysis/test_maps_limitset.py", "tests/analysis/test_results.py",
+                   "tests/analysis/test_orbits.py", "tests/analysis/test_basins_funnels.py",
+                   "tests/analysis/test_critical.py", KILLS_A)),
+)
+"""Each mutant runs the tests that mirror its module (tests/kernels + tests/models for a kernel,
+tests/analysis for the analysis), cheapest first, plus this tool's own kill tests."""
 PYTEST_ARGS = ("-x", "-q", "-p", "no:cacheprovider")
 
 
@@ -66,7 +78,7 @@ class Mutant:
 
     @property
     def tests(self) -> tuple[str, ...]:
-        return KERNEL_TESTS if self.path.startswith("kernels/") else ANALYSIS_TESTS
+        return next(t for prefix, t in TESTS if self.path.startswith(prefix))
 
 
 def M(id, path, old, new, what, equivalent=""):
@@ -285,14 +297,18 @@ def run_tests(tests, cache: str, pyc: str, timeout: float) -> tuple[str, str, fl
     return "error", f"pytest rc {p.returncode}: " + (out.strip().splitlines() or [""])[-1][:120], dt
 
 
-def run(mutants, timeout: float, log=print) -> list[dict]:
-    """Baseline (each test subset must pass unmutated), then every non-equivalent mutant; returns rows."""
+def run(mutants, timeout: float, log=print, warm: str | None = None, baseline: bool = True, on_row=None) -> list[dict]:
+    """Baseline (each test subset must pass unmutated), then every non-equivalent mutant; returns rows.
+
+    ``warm``: numba cache directory for the unmutated kernels (kept between runs; default a
+    temporary one). ``on_row(rows)`` is called after each mutant (e.g. to save progress).
+    """
     work = Path(tempfile.mkdtemp(prefix="throwmap-mutants-"))
-    warm = str(work / "numba-warm")
+    warm = warm or str(work / "numba-warm")
     pyc = str(work / "pyc")
     rows = []
     try:
-        for tests in sorted({m.tests for m in mutants if not m.equivalent}):
+        for tests in sorted({m.tests for m in mutants if not m.equivalent}) if baseline else ():
             res, detail, dt = run_tests(tests, warm, pyc, 4 * timeout)
             log(f"baseline {' '.join(tests)}: {res} {detail} ({dt:.0f} s)")
             if res != "survived":
@@ -316,6 +332,8 @@ def run(mutants, timeout: float, log=print) -> list[dict]:
             row.update(result=res, detail=detail, seconds=round(dt, 1))
             rows.append(row)
             log(f"{m.id} {res:9s} {dt:6.1f} s  {m.what}  {detail}")
+            if on_row:
+                on_row(rows)
     finally:
         shutil.rmtree(work, ignore_errors=True)
     return rows
@@ -346,6 +364,8 @@ def main(argv=None) -> int:
     ap.add_argument("--check", action="store_true", help="check every snippet occurs exactly once, run nothing")
     ap.add_argument("--json", help="write the rows to this JSON file")
     ap.add_argument("--markdown", help="write the table to this Markdown file")
+    ap.add_argument("--warm-cache", help="numba cache directory for the unmutated code, kept between runs")
+    ap.add_argument("--no-baseline", action="store_true", help="skip the unmutated runs of the test subsets")
     a = ap.parse_args(argv)
     chosen = [m for m in MUTANTS if not a.only or m.id in a.only]
     if a.list or a.check:
@@ -356,13 +376,16 @@ def main(argv=None) -> int:
             flag = "" if n == 1 else f"  !! snippet occurs {n} times"
             print(f"{m.id}  {m.path:34s} {m.what}{'  [equivalent: ' + m.equivalent + ']' if m.equivalent else ''}{flag}")
         return 1 if bad else 0
-    rows = run(chosen, a.timeout, log=lambda s: print(s, flush=True))
-    table = markdown(rows)
-    print(table)
-    if a.json:
-        Path(a.json).write_text(json.dumps(rows, indent=1, ensure_ascii=False))
-    if a.markdown:
-        Path(a.markdown).write_text(table + "\n")
+    def save(rows):
+        if a.json:
+            Path(a.json).write_text(json.dumps(rows, indent=1, ensure_ascii=False))
+        if a.markdown:
+            Path(a.markdown).write_text(markdown(rows) + "\n")
+
+    rows = run(chosen, a.timeout, log=lambda s: print(s, flush=True), warm=a.warm_cache,
+               baseline=not a.no_baseline, on_row=save)
+    save(rows)
+    print(markdown(rows))
     return 0
 
 
