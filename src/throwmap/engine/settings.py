@@ -10,7 +10,8 @@ from ..errors import ThrowmapError
 __all__ = ["EngineSettings", "Friction", "NO_SLIP_MU"]
 
 NO_SLIP_MU = 1.0e4
-"""Friction coefficient given to pymunk for μ = ∞ (pymunk needs a finite number)."""
+"""Shape friction given to pymunk for μ = ∞ (pymunk needs a finite number); each contact's friction
+is then set per solve by :mod:`throwmap.engine.pymunk.friction` (capped where Chipmunk's solver needs it)."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -26,6 +26,12 @@ Checks (:mod:`.checks`)
 * escape: a part whose CM drops below the arm's underside has left the arm:
   ``behind_joint`` if it is behind the joint, else ``off_end``.
 
+Friction (:mod:`.friction`)
+---------------------------
+Each contact's friction is set before every solve to the pair's μ, capped where
+Chipmunk's solver would diverge (μ |K_nt| > 0.7 K_nn); without the cap μ = ∞
+lost contacts in most long throws.
+
 Contacts, impacts, hops and flips are counted in :mod:`.contacts`; the loop is
 :func:`.run.simulate`, its result :class:`.result.EngineRun`. pymunk itself is
 imported only when a run starts.

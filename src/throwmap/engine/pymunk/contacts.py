@@ -17,6 +17,7 @@ import numpy as np
 
 from ...kernels import codes as C
 from ...throws.outcome import Status
+from .friction import install_friction_cap
 from .world import PART, World
 
 __all__ = ["HOP_MIN", "PartTrack", "Contacts", "nearest_side"]
@@ -69,7 +70,7 @@ class Contacts:
     """
 
     __slots__ = ("world", "tracks", "now", "last_begin", "need_post", "finished", "events", "n_touching", "n_fell",
-                 "n_fell_touching", "_one")
+                 "n_fell_touching", "_one", "friction_cap")
 
     def __init__(self, world: World):
         self.world = world
@@ -90,13 +91,8 @@ class Contacts:
             y_arm = -s0 * b.position.x + c0 * b.position.y
             tr.rec[C.E_RELEASE] = (0.5 * (v.x**2 + v.y**2 + p.radius_of_gyration**2 * b.angular_velocity**2)
                                    + world.g * (y_arm - world.h))
-        mu_pp = world.mu_pp
-
-        def _pp_friction(arbiter, space_, data):
-            arbiter.friction = mu_pp
-
-        world.space.on_collision(PART, PART, pre_solve=_pp_friction)
-        world.space.on_collision(begin=self._begin, separate=self._separate)
+        self.friction_cap = cap = install_friction_cap(world)
+        world.space.on_collision(begin=self._begin, separate=self._separate, pre_solve=cap)
 
     def _parts(self, arbiter):
         if self._one is not None:

@@ -103,7 +103,7 @@ class World:
 
     __slots__ = ("pm", "cp", "space", "space_h", "arm", "arm_h", "arm_w", "bodies", "bodies_h", "shapes", "shapes_h",
                  "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h",
-                 "plain_arm", "index", "mu_pp")
+                 "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall")
 
     @property
     def n(self) -> int:
@@ -191,5 +191,6 @@ def build_world(scene, realisation, settings, *, raw: bool = True) -> World:
     w.betas = [tuple(p.beta.tolist()) for p in parts]
     w.plain_arm = not scene.fixtures and len(parts) == 1
     w.index = {id(b): i for i, b in enumerate(bodies)}
-    w.mu_pp = engine_mu(scene.mu("part"))
+    w.mu_pp = scene.mu("part")
+    w.mu_arm, w.mu_wall = scene.mu("arm"), scene.mu("wall")
     return w

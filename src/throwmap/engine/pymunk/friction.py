@@ -1,0 +1,131 @@
+"""Friction as Chipmunk can solve it: the per-contact cap that keeps its solver convergent.
+
+Root cause (issue 10, item 3)
+-----------------------------
+Chipmunk's solver (sequential impulses) updates each contact's normal and
+tangential impulse together from the same relative velocity, each with its own
+diagonal effective mass: ``Δj_n = −v_n / K_nn``, ``Δj_t = −v_t / K_tt``, the
+tangential one clamped to ``|j_t| ≤ μ j_n``. While the contact slides, ``j_t``
+follows ``μ j_n``, so one update changes the normal velocity by
+``(K_nn ± μ K_nt) Δj_n`` instead of ``K_nn Δj_n``: the iteration multiplies the
+normal-velocity error by ``μ |K_nt| / K_nn`` each pass and diverges once
+``μ |K_nt| > K_nn`` (the same ratio as Painlevé's condition,
+D = K_nn − μ |K_nt| of :mod:`throwmap.kernels.rigid_body`). It then stops on
+an arbitrary iterate, usually ``j_n = 0``, and the vertex sinks into the arm
+(a part pivoting towards a landing, where the no-slip friction ratio grows
+without bound as the normal force falls). With μ = ∞ given to pymunk as 10⁴
+this happened in 37 of 40 long throws.
+
+Fix
+---
+Before every solve (a ``pre_solve`` hook) each arbiter's friction is set to
+``min(μ, CAP · min_c K_nn,c / |K_nt,c|)`` over its contacts c (``K`` the
+contact's 2×2 inverse effective mass, both bodies; kinematic bodies add
+nothing), so the iteration contracts by at least ``CAP`` per pass. A contact
+whose friction ratio stays below the cap (sticking or sliding) is solved exactly
+as before; one that would need more slides at the cap instead. That happens
+where the no-slip friction ratio grows without bound (a pivot whose normal force
+falls towards lift-off) and changes final x by ≲ 2 mm against model
+"rigid_body" at μ = 3…∞ (tests/engine/test_engine_friction.py); results move by
+< 0.3 mm between CAP = 0.7 and 0.9, by up to 8 mm at 0.5. ``n_capped`` counts
+the solves where the cap was below the pair's μ.
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["CAP", "FrictionCap", "cap_bound", "install_friction_cap"]
+
+CAP = 0.7
+"""Largest μ |K_nt| / K_nn allowed: the solver's error shrinks by at least this factor per iteration."""
+
+
+def cap_bound(part) -> float:
+    """Smallest friction cap part ``part`` alone can meet against a fixed body (dimensionless).
+
+    For a vertex at distance ℓ from the CM and radius of gyration ρ, at angle θ
+    to the normal, K_nn/|K_nt| = (ρ² + ℓ² sin²θ)/(ℓ² |sinθ cosθ|); its minimum
+    over θ (a quadratic in tan θ) is 2 √(a (1 + a)) with a = ρ²/ℓ². A pair μ at
+    or below ``CAP`` times the minimum over the vertices never needs the hook.
+    """
+    rho2 = part.radius_of_gyration**2
+    best = math.inf
+    for wx, wy in part.w.tolist():
+        l2 = wx * wx + wy * wy
+        if l2 <= 0.0:
+            continue
+        a = rho2 / l2
+        best = min(best, 2.0 * math.sqrt(a * (1.0 + a)))
+    return CAP * best
+
+
+class FrictionCap:
+    """The ``pre_solve`` hook of one run: sets each arbiter's friction to the convergent value.
+
+    ``mu_of(arbiter)`` gives the pair's Coulomb μ (may be ``inf``); ``inv``
+    maps ``id(body)`` to ``(1/m, 1/I)`` of each dynamic body (absent: kinematic).
+    """
+
+    __slots__ = ("inv", "mu_of", "n_capped")
+
+    def __init__(self, inv: dict, mu_of):
+        self.inv = inv
+        self.mu_of = mu_of
+        self.n_capped = 0
+
+    def __call__(self, arbiter, space_, data):
+        mu = self.mu_of(arbiter)
+        cps = arbiter.contact_point_set
+        n = cps.normal
+        nx, ny = n.x, n.y
+        inv = self.inv
+        bodies = arbiter.bodies
+        cap = math.inf
+        for c in cps.points:
+            knn = knt = 0.0
+            for b, p in zip(bodies, (c.point_a, c.point_b)):
+                im = inv.get(id(b))
+                if im is None:
+                    continue
+                q = b.position
+                rx, ry = p.x - q.x, p.y - q.y
+                rn = rx * ny - ry * nx
+                rt = rx * nx + ry * ny
+                knn += im[0] + rn * rn * im[1]
+                knt += rn * rt * im[1]
+            if knt != 0.0:
+                cap = min(cap, CAP * knn / abs(knt))
+        if cap < mu:
+            self.n_capped += 1
+            arbiter.friction = cap
+        else:
+            arbiter.friction = mu if math.isfinite(mu) else 1.0e30
+
+
+def install_friction_cap(world) -> FrictionCap | None:
+    """The friction hook of ``world``'s space (its ``n_capped`` counts capped solves), or None.
+
+    Returns None where no pair needs it: one part, and arm and fixture μ at most
+    what the part meets uncapped (:func:`cap_bound`). Otherwise the caller sets
+    the hook as the space's wildcard ``pre_solve`` (a pair-specific handler
+    would replace the wildcard ``begin``/``separate`` bookkeeping of
+    :mod:`.contacts`); part–part pairs always need it (pymunk would multiply the
+    shapes' values).
+    """
+    from .world import FIXTURE, PART
+
+    inv = {id(b): (1.0 / b.mass, 1.0 / b.moment) for b in world.bodies}
+    mu_arm, mu_wall, mu_pp = world.mu_arm, world.mu_wall, world.mu_pp
+
+    def mu_of(arbiter):
+        ta, tb = (s.collision_type for s in arbiter.shapes)
+        if ta == PART and tb == PART:
+            return mu_pp
+        return mu_wall if FIXTURE in (ta, tb) else mu_arm
+
+    hook = FrictionCap(inv, mu_of)
+    bound = min(cap_bound(p) for p in world.parts)
+    if world.n == 1 and mu_arm <= bound and (mu_wall <= bound or not any(s.collision_type == FIXTURE for s in world.static_shapes)):
+        return None
+    return hook
