@@ -5,7 +5,7 @@ gives them names.
 """
 
 OK = 0  # came to rest on a stable side, on the arm
-BEHIND_JOINT = 1  # a contact or a resting support vertex at x <= 0
+BEHIND_JOINT = 1  # a contact or a resting support vertex at x <= -arm.back (x <= 0 by default)
 OFF_END = 2  # a contact beyond the arm's end, or the resting CM beyond it
 NO_REST = 3  # the impact cap was reached before the part came to rest
 INVALID_START = 4  # the start was not admissible (batch with on_invalid="status")
@@ -13,6 +13,10 @@ NO_CONTACT = 5  # the contact search hit its iteration cap (should not happen)
 TIMEOUT = 6  # an engine run did not settle within its time limit
 PENETRATION = 7  # an engine lost a contact: a vertex sank deeper than the tolerance (result refused)
 INCONSISTENT = 8  # rigid-body Coulomb contact has no consistent solution here (Painlevé)
+UNRESOLVED = 9  # the model cannot resolve this throw: its flight leaves the range it resolves (result refused)
+# (spin angle ω t at first contact beyond kernels.flight.MAX_SPIN_ANGLE, where double precision no
+# longer fixes the orientation; for "small_angle2" also g <= d ω², where its expansion has no contact)
+UNCONVERGED = 10  # an engine run disagreed with its half-step rerun (result refused)
 
 # record layout: one float64 row per throw (energies per unit mass, J/kg; impulses per unit mass, m/s)
 T_FLIGHT = 0  # s
