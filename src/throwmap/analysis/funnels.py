@@ -29,7 +29,13 @@ __all__ = ["ConfigSet", "Funnel", "FunnelGraph", "SetImage", "funnels", "push", 
 
 
 def mouth_of(b: Basins, ident: int) -> ConfigSet:
-    """The basin of attractor ``ident`` on the grid, as intervals (each run of grid points widened by half a cell)."""
+    """The basin of attractor ``ident`` on the grid, as intervals, never past the searched range.
+
+    Each run of grid points is widened by half a cell, then clipped to the range the
+    basins searched (``b.map_info["domain_m"]``, else the grid's own ends): nothing is
+    known of configurations beyond it.
+    """
+    dom = {int(k): (float(v[0]), float(v[1])) for k, v in (b.map_info.get("domain_m") or {}).items()}
     ivs = []
     for s in np.unique(b.side):
         g = np.flatnonzero(b.side == s)
@@ -38,10 +44,12 @@ def mouth_of(b: Basins, ident: int) -> ConfigSet:
         if not np.any(hit):
             continue
         half = 0.5 * float(np.max(np.diff(xs))) if xs.size > 1 else 0.0
+        lo_end, hi_end = dom.get(int(s), (float(xs[0]), float(xs[-1])))
+        hi_end = min(hi_end, float(xs[-1]) + half)
         edges = np.diff(np.concatenate(([0], hit.astype(np.int8), [0])))
         starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1
         for a, e in zip(starts, ends):
-            ivs.append((int(s), float(xs[a] - half), float(xs[e] + half)))
+            ivs.append((int(s), max(float(xs[a] - half), lo_end), min(float(xs[e] + half), hi_end)))
     return ConfigSet(tuple(ivs))
 
 
@@ -78,8 +86,9 @@ class Funnel:
 class FunnelGraph:
     """Funnels, which spout lies in which mouth, and the priority order that reaches ``goal``.
 
-    ``edges``: ``(i, j, share)`` — ``share`` of funnel i's sampled spout ends on funnel
-    j's attractor under j's throw (an edge is listed when share ≥ ``containment``).
+    ``edges``: ``(i, j, share)`` — ``share`` of funnel i's sampled spout that lies in
+    funnel j's mouth (never past the range j's basins searched) *and* ends on j's
+    attractor under j's throw (an edge is listed when share ≥ ``containment``).
     ``rank``: funnel index → priority (0: spout inside the goal) or None (leads
     nowhere near the goal). ``order``: funnel indices by priority, then mouth size.
     """
@@ -244,7 +253,7 @@ def funnels(part, arm=None, omegas=None, model: str = DEFAULT_MODEL, *, maps=Non
             if np.any(ok_side):
                 lab[ok_side], _, _ = map_to_attractors(cmap, xs[ok_side], ss[ok_side], found[owner[j]].attractors,
                                                        reach_tol, max_throws)
-            share = float(np.mean(lab == g.attractor.id))
+            share = float(np.mean((lab == g.attractor.id) & g.mouth.contains(xs, ss)))
             if share >= containment:
                 edges.append((i, j, share))
         if progress is not None:
