@@ -6,7 +6,10 @@ breaks, as ``"<field>: <reason>"``; the CLI prints exactly that line and exits 2
 
 from __future__ import annotations
 
+import re
+
 __all__ = [
+    "shown",
     "ThrowmapError",
     "InvalidPartError",
     "InvalidArmError",
@@ -25,9 +28,50 @@ class ThrowmapError(Exception):
     """
 
     def __init__(self, field: str, reason: str):
-        self.field = field
-        self.reason = reason
-        super().__init__(f"{field}: {reason}")
+        self.field = str(field)
+        self.reason = _plain(str(reason))
+        super().__init__(f"{self.field}: {self.reason}")
+
+
+def shown(value, limit: int = 80) -> str:
+    """``value`` as an error message shows it: NumPy scalars as plain Python numbers
+    (``1.5``, not ``np.float64(1.5)``), arrays as lists, strings quoted; at most
+    ``limit`` characters. Use it instead of ``{value!r}`` for anything a user passed in.
+    """
+    if isinstance(value, (str, bytes)):
+        text = repr(str(value) if isinstance(value, str) else bytes(value))
+    elif getattr(value, "ndim", None) == 0 and type(value).__module__ == "numpy":
+        text = str(value)  # NumPy's str of a scalar is the plain number: 1.5, 3, True, nan
+    elif hasattr(value, "tolist"):
+        try:
+            text = _plain(repr(value.tolist()))
+        except (TypeError, ValueError):  # pragma: no cover - exotic array-likes
+            text = _plain(repr(value))
+    else:
+        text = _plain(repr(value))
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+# NumPy's reprs (NumPy ≥ 2): np.float64(1.5), np.int64(3), np.True_, np.str_('a'), array([...])
+_NP_STR = re.compile(r"np\.(?:str_|bytes_)\((?P<q>'(?:[^'\\]|\\.)*'|\"(?:[^\"\\]|\\.)*\")\)")
+_NP_SCALAR = re.compile(r"np\.(?:float|int|uint|complex|longdouble|clongdouble|half|single|double)\w*"
+                        r"\((?P<v>[^()]*)\)")
+_NP_BOOL = re.compile(r"np\.(?P<v>True|False)_")
+_NP_ARRAY = re.compile(r"\barray\((?P<v>\[[^()]*\])(?:, dtype=\w+)?\)")
+
+
+def _plain(text: str) -> str:
+    """``text`` with NumPy scalar and array reprs written as plain Python values.
+
+    A safety net under :class:`ThrowmapError`: a reason built with ``{value!r}`` on a
+    NumPy value reads ``got 1.5``, never ``got np.float64(1.5)``.
+    """
+    if "np." not in text and "array(" not in text:
+        return text
+    text = _NP_STR.sub(lambda m: m.group("q"), text)
+    text = _NP_SCALAR.sub(lambda m: m.group("v"), text)
+    text = _NP_BOOL.sub(lambda m: m.group("v"), text)
+    return _NP_ARRAY.sub(lambda m: " ".join(m.group("v").split()), text)
 
 
 class InvalidPartError(ThrowmapError, ValueError):

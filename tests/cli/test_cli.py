@@ -78,7 +78,7 @@ def test_throw_json():
     assert doc["status"] == "ok"
     assert doc["kind"] in ("jog", "flip")
     assert doc["part"] == tm.triangle_30_60_90(0.17).name
-    assert doc["arm"] == {"h": -0.01, "g": 9.81, "length": None, "mu": None}
+    assert doc["arm"] == {"h": -0.01, "g": 9.81, "length": None, "mu": None, "back": 0.0}
     assert doc["version"] == tm.__version__
     direct = tm.throw(tm.triangle_30_60_90(0.17), tm.Arm(-0.01), 0.2, 0, 4.0)
     assert doc["x"] == direct.x and doc["side"] == direct.side
@@ -105,10 +105,10 @@ def test_throw_table():
 def test_throw_arm_from_file_and_override(tmp_path):
     path = part_file(tmp_path, arm="h = -0.01\nlength = 0.5")
     a = strict_json(invoke("throw", "--part", path, "--x", "0.07", "--side", "0", "--omega", "3", "--json").stdout)
-    assert a["arm"] == {"h": -0.01, "g": 9.81, "length": 0.5, "mu": None}
+    assert a["arm"] == {"h": -0.01, "g": 9.81, "length": 0.5, "mu": None, "back": 0.0}
     b = strict_json(invoke("throw", "--part", path, "--h", "-0.005", "--x", "0.07", "--side", "0", "--omega", "3",
                            "--json").stdout)
-    assert b["arm"] == {"h": -0.005, "g": 9.81, "length": 0.5, "mu": None}
+    assert b["arm"] == {"h": -0.005, "g": 9.81, "length": 0.5, "mu": None, "back": 0.0}
 
 
 def test_regime_warning_is_one_line():
@@ -298,6 +298,17 @@ def test_unknown_model_in_compare():
     assert_one_error(invoke("compare", *TRIANGLE, "--models", "small_angle,bogus"), "model")
 
 
+def test_file_arm_fields_survive_command_line_overrides(tmp_path):
+    """An option overrides its own field only: the file's μ and back are kept (were dropped before)."""
+    path = part_file(tmp_path, arm="h = -0.01\nlength = 0.5\nmu = 0.7\nback = 0.02")
+    doc = strict_json(invoke("throw", "--part", path, "--h", "-0.005", "--x", "0.07", "--side", "0", "--omega", "3",
+                             "--model", "paper", "--json").stdout)
+    assert doc["arm"] == {"h": -0.005, "g": 9.81, "length": 0.5, "mu": 0.7, "back": 0.02}
+    doc = strict_json(invoke("throw", "--part", path, "--mu", "0.3", "--back", "0", "--x", "0.07", "--side", "0",
+                             "--omega", "3", "--model", "paper", "--json").stdout)
+    assert doc["arm"] == {"h": -0.01, "g": 9.81, "length": 0.5, "mu": 0.3, "back": 0.0}
+
+
 def test_h_required_without_arm_section(tmp_path):
     path = part_file(tmp_path, arm=None)
     assert_one_error(invoke("throw", "--part", path, *START), "arm.h")
@@ -317,7 +328,8 @@ def test_plot_unsupported_extension(tmp_path):
     assert_one_error(result, "plot")
 
 
-def test_plot_missing_directory(tmp_path):
+def test_plot_directory_that_cannot_be_made(tmp_path):
+    (tmp_path / "no").write_text("a file, not a folder")
     result = invoke("iterate", *TRIANGLE, "--x", "0.2", "--side", "0", "--omega", "4", "-n", "2",
                     "--plot", tmp_path / "no" / "orbit.png")
     assert_one_error(result, "plot")

@@ -18,8 +18,8 @@ import typer
 from ..errors import InvalidStateError, ThrowmapError
 from ..models import DEFAULT_MODEL, model_names
 from ..throws.orbit_trajectory import orbit_trajectory, trajectory_models
-from .options import (GOpt, HOpt, LengthOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, check_finite, guard,
-                      part_and_arm)
+from .options import (BackOpt, GOpt, HOpt, LengthOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, check_finite,
+                      check_output, guard, part_and_arm)
 
 __all__ = ["register", "animate_cmd", "ANIMATE_MODELS", "PROGRESS_FRAMES"]
 
@@ -61,6 +61,7 @@ def animate_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
+    back: BackOpt = None,
     n: Annotated[int, typer.Option("-n", "--n", help="Number of throws (> 1 animates an orbit).")] = 1,
     model: Annotated[str, typer.Option("--model", help=f"Model: {', '.join(ANIMATE_MODELS)} "
                                                        f"(default {DEFAULT_MODEL}).")] = DEFAULT_MODEL,
@@ -84,7 +85,9 @@ def animate_cmd(
         from ..viz.animation import animate, check_animation_path, frame_times
 
         check_animation_path(out, need_directory=False)  # before any work; the directory is made below
-        the_part, arm = part_and_arm(part, h, g, length, mu)
+        check_output(out, "out")  # its folder writable or creatable
+        the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         check_finite(omega, "omega")
         os.environ.setdefault("MPLBACKEND", "Agg")  # files only, never a window

@@ -13,7 +13,9 @@ each in its own module and each registering its commands here:
 Each subcommand parses its options, builds the part and arm, calls one library
 function and prints (or writes) the result; there is no physics here. What the
 commands share (options, parsing, the one-line ``error: <field>: <reason>`` with exit
-status 2, strict JSON and atomic writes) is in :mod:`throwmap.cli.options`.
+status 2, strict JSON and atomic writes) is in :mod:`throwmap.cli.options`; the option
+parser's own usage errors (a non-number, an unknown option or command, a missing
+option) get the same one line through :class:`~throwmap.cli.usage.ThrowmapGroup`.
 Imports point one way: ``app`` → command modules → ``options`` → the library.
 """
 
@@ -25,11 +27,13 @@ import typer
 
 from .. import __version__
 from . import analysis, animate, studies, throws
+from .usage import ThrowmapGroup
 
 __all__ = ["app", "main"]
 
 app = typer.Typer(
     name="throwmap",
+    cls=ThrowmapGroup,  # usage errors as one `error: <field>: <reason>` line, exit 2
     help="Throw maps of planar parts on a one-joint throwing arm (SI units: m, kg, s, rad).",
     add_completion=False,
     no_args_is_help=True,

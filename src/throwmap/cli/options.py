@@ -5,21 +5,25 @@
 - Errors: :func:`guard` turns every :class:`~throwmap.errors.ThrowmapError` into exactly
   one line ``error: <field>: <reason>`` on stderr and exit status 2, and prints each
   warning (e.g. :class:`~throwmap.errors.RegimeWarning`) once as ``warning: <message>``.
-  Usage errors found by the option parser keep its own message and status 2.
+  Usage errors found by the option parser get the same line (:mod:`throwmap.cli.usage`).
 - Writing: :func:`to_json` (strict JSON: non-finite numbers become ``null``), files
-  written atomically (:mod:`throwmap.io.files`), figures checked before any work
-  (:func:`figure_format`) and saved after it (:func:`save_figure`).
+  written atomically (:mod:`throwmap.io.files`). Every output path is checked before any
+  work (:func:`check_output`, :func:`check_out_dir`, :func:`figure_format`: not a directory
+  where a file goes, its folder writable or creatable); folders are made when written.
 
 Nothing here imports another ``throwmap.cli`` module; the command modules import this one.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import io as _io
 import json
 import math
 import os
+import re
 import sys
+import tempfile
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
@@ -35,9 +39,10 @@ from ..system.arm import Arm
 from ..throws.throw import DEFAULT_MODEL, MODELS
 
 __all__ = [
-    "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "MuOpt", "OmegaOpt", "PartOpt", "SideOpt", "XOpt",
-    "arm_dict", "check_finite", "check_out_dir", "check_output", "figure_format", "format_value", "guard",
-    "make_out_dir", "parse_floats", "part_and_arm", "plot_format", "save_figure", "stderr_line", "to_json",
+    "BackOpt", "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "MuOpt", "OmegaOpt", "PartOpt", "SideOpt", "XOpt",
+    "arm_dict", "check_directory", "check_finite", "check_out_dir", "check_output", "figure_format", "format_value",
+    "guard", "make_out_dir", "parse_floats", "part_and_arm", "plot_format", "save_figure", "side_value", "stderr_line",
+    "to_json",
     "write_bytes", "write_text",
 ]
 
@@ -49,8 +54,28 @@ GOpt = Annotated[float | None, typer.Option("--g", help=f"Gravity, m/s² (defaul
 LengthOpt = Annotated[float | None, typer.Option("--length", help="Arm length, m (default: the file's, or unbounded).")]
 MuOpt = Annotated[float | None, typer.Option("--mu", help="Arm–part Coulomb friction μ (default: the file's, or inf = no slip; "
                                                "used by rigid_body, engine and mujoco).")]
+BackOpt = Annotated[float | None, typer.Option("--back", help="Arm surface behind the joint, m (default: the file's, "
+                                                              "or 0: any contact at x ≤ 0 is behind the joint).")]
 XOpt = Annotated[float, typer.Option("--x", help="Resting CM position along the arm, m.")]
-SideOpt = Annotated[int, typer.Option("--side", help="Side the part rests on (index, see conventions).")]
+
+
+def side_value(text: str) -> int | float | str:
+    """``--side`` as the Python value the library is given: a whole-number literal
+    (``3``, ``-1``) becomes an ``int``, any other number a ``float`` (``1.0``, ``0.5``),
+    anything else stays text. The library's one rule (:meth:`throwmap.Part.check_side`:
+    an integer index of a stable side) then accepts or refuses it, exactly as it does
+    ``throw(part, arm, x, side, ω)`` with that value."""
+    text = str(text).strip()
+    if re.fullmatch(r"[+-]?[0-9]+", text):
+        return int(text)
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+SideOpt = Annotated[int, typer.Option("--side", parser=side_value, metavar="INTEGER",
+                                      help="Side the part rests on (index of a stable side, see conventions).")]
 OmegaOpt = Annotated[float, typer.Option("--omega", help="Release angular velocity ω, rad/s (≥ 0).")]
 ModelOpt = Annotated[str, typer.Option("--model", help=f"Throw model: {', '.join(MODELS)} (default {DEFAULT_MODEL}).")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON to stdout instead of a table.")]
@@ -104,18 +129,16 @@ def parse_floats(values: list[str] | str, field: str) -> list[float]:
     return out
 
 
-def part_and_arm(part: str, h: float | None, g: float | None, length: float | None, mu: float | None = None):
-    """The part (built-in name or file) and the arm: command line over the file's [arm]."""
+def part_and_arm(part: str, h: float | None, g: float | None, length: float | None, mu: float | None = None,
+                 back: float | None = None):
+    """The part (built-in name or file) and the arm: each option given on the command line
+    over the file's ``[arm]`` value, every other field of the file's arm kept as it is."""
     loaded = resolve_part(part)
     base = loaded.arm
     if h is None and base is None:
         raise InvalidArmError("arm.h", "required: give --h, or an [arm] section in the part file")
-    arm = Arm(
-        h=h if h is not None else base.h,
-        g=g if g is not None else (base.g if base is not None else G),
-        length=length if length is not None else (base.length if base is not None else None),
-        mu=mu if mu is not None else (base.mu if base is not None else math.inf),
-    )
+    given = {k: v for k, v in (("h", h), ("g", g), ("length", length), ("mu", mu), ("back", back)) if v is not None}
+    arm = dataclasses.replace(base, **given) if base is not None else Arm(**given)
     return loaded.part, arm
 
 
@@ -126,8 +149,10 @@ def to_json(obj: Any) -> str:
 
 
 def arm_dict(arm: Arm) -> dict:
-    """The arm for JSON output (``mu`` = inf becomes ``None``)."""
-    return {"h": arm.h, "g": arm.g, "length": arm.length, "mu": arm.mu if math.isfinite(arm.mu) else None}
+    """The arm for JSON output: every :class:`Arm` field (``mu`` = inf becomes ``None``)."""
+    out = {f.name: getattr(arm, f.name) for f in dataclasses.fields(arm)}
+    out["mu"] = arm.mu if math.isfinite(arm.mu) else None
+    return out
 
 
 def format_value(v: Any, spec: str = ".6g") -> str:
@@ -139,31 +164,69 @@ def format_value(v: Any, spec: str = ".6g") -> str:
     return str(v)
 
 
+def _probe_directory(directory: Path, field: str, target: Path) -> None:
+    """Refuse ``directory`` unless a file can be created in it (tried: one empty file, removed at once)."""
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".throwmap-probe-", dir=directory)
+    except OSError as err:
+        raise ConfigError(field, f"cannot write {target}: directory {directory} is not writable "
+                                 f"({err.strerror or err})") from None
+    os.close(fd)
+    os.unlink(probe)
+
+
+def check_directory(directory: Path, field: str, target: Path | None = None) -> None:
+    """Refuse, before any work, a directory that output cannot go into: it exists and is not a
+    directory or is not writable, or it is missing and cannot be created (the nearest existing
+    folder above it is a file, or is not writable). Nothing is created here."""
+    target = directory if target is None else target
+    directory = Path(directory) if str(directory) else Path(".")
+    if directory.exists():
+        if not directory.is_dir():
+            raise ConfigError(field, f"cannot write {target}: {directory} exists and is not a directory")
+        _probe_directory(directory, field, target)
+        return
+    above = directory.parent
+    while not above.exists() and above != above.parent:
+        above = above.parent
+    if not above.is_dir():
+        raise ConfigError(field, f"cannot write {target}: cannot create {directory} because {above} is not a directory")
+    _probe_directory(above, field, target)
+
+
 def check_output(path: Path, field: str) -> None:
-    """Refuse an output file whose directory is missing, or which is a directory."""
-    parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
-        raise ConfigError(field, f"cannot write {path}: directory {parent} does not exist")
+    """Refuse, before any work, an output file that cannot be written: a directory where the file
+    should be, or a directory for it that is not writable or cannot be created (it is created
+    when the file is written)."""
+    path = Path(path)
     if path.is_dir():
         raise ConfigError(field, f"cannot write {path}: it is a directory")
+    check_directory(path.parent, field, path)
 
 
 def check_out_dir(out: Path | None) -> None:
-    """Refuse an ``--out`` directory that exists as something else."""
-    if out is not None and out.exists() and not out.is_dir():
-        raise ConfigError("out", f"{out} exists and is not a directory")
+    """Refuse an ``--out`` directory that exists as something else, or cannot be written or created."""
+    if out is not None:
+        check_directory(Path(out), "out")
 
 
-def make_out_dir(out: Path) -> None:
+def make_out_dir(out: Path, field: str = "out") -> None:
     """Create the ``--out`` directory (and its parents)."""
     try:
-        out.mkdir(parents=True, exist_ok=True)
+        Path(out).mkdir(parents=True, exist_ok=True)
     except OSError as err:
-        raise ConfigError("out", f"cannot create {out}: {err.strerror or err}") from None
+        raise ConfigError(field, f"cannot create {out}: {err.strerror or err}") from None
+
+
+def _make_parent(path: Path, field: str) -> None:
+    parent = Path(path).parent
+    if str(parent) and not parent.is_dir():
+        make_out_dir(parent, field)
 
 
 def write_text(path: Path, text: str, field: str) -> None:
     """Write ``text`` atomically; an OS error becomes a :class:`~throwmap.errors.ConfigError` on ``field``."""
+    _make_parent(path, field)
     try:
         atomic_write_text(path, text)
     except OSError as err:
@@ -172,6 +235,7 @@ def write_text(path: Path, text: str, field: str) -> None:
 
 def write_bytes(path: Path, data: bytes, field: str) -> None:
     """Write ``data`` atomically; an OS error becomes a :class:`~throwmap.errors.ConfigError` on ``field``."""
+    _make_parent(path, field)
     try:
         atomic_write_bytes(path, data)
     except OSError as err:
@@ -208,6 +272,7 @@ def save_figure(fig, path: Path, fmt: str, field: str) -> None:
     buf = _io.BytesIO()
     fig.savefig(buf, format=fmt, dpi=130)
     try:
+        _make_parent(path, field)
         atomic_write_bytes(path, buf.getvalue())
     except OSError as err:
         raise ConfigError(field, f"cannot write {path}: {err.strerror or err}") from None

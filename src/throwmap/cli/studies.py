@@ -19,8 +19,8 @@ from .. import __version__
 from ..errors import ConfigError, InvalidStateError
 from ..io.config import resolve_part
 from ..throws.throw import check_model
-from .options import (GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, arm_dict, check_finite, check_out_dir,
-                      check_output, guard, make_out_dir, parse_floats, part_and_arm, stderr_line, to_json,
+from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, arm_dict, check_finite,
+                      check_out_dir, check_output, guard, make_out_dir, parse_floats, part_and_arm, stderr_line, to_json,
                       write_text)
 
 __all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "ENGINES"]
@@ -72,6 +72,7 @@ def compare_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
+    back: BackOpt = None,
     omegas: Annotated[str | None, typer.Option("--omegas", help="Release rates, rad/s, comma list "
                                                                 "(default: the library's).")] = None,
     n_x: Annotated[int | None, typer.Option("--n-x", help="Start positions per stable side.")] = None,
@@ -85,7 +86,7 @@ def compare_cmd(
     from ..studies import compare
 
     with guard():
-        the_part, arm = part_and_arm(part, h, g, length, mu)
+        the_part, arm = part_and_arm(part, h, g, length, mu, back)
         kwargs = _compare_kwargs(omegas, n_x, models)
         if out is not None:
             check_output(out, "out")

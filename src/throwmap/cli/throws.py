@@ -17,8 +17,8 @@ from .. import __version__
 from ..errors import InvalidStateError
 from ..throws.orbit import Orbit, iterate
 from ..throws.throw import DEFAULT_MODEL, check_model, throw
-from .options import (GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, arm_dict,
-                      check_finite, figure_format, format_value, guard, parse_floats, part_and_arm, save_figure,
+from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt,
+                      arm_dict, check_finite, figure_format, format_value, guard, parse_floats, part_and_arm, save_figure,
                       to_json)
 
 __all__ = ["register", "throw_cmd", "iterate_cmd", "PROGRESS_THRESHOLD"]
@@ -37,13 +37,15 @@ def throw_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
+    back: BackOpt = None,
     model: ModelOpt = DEFAULT_MODEL,
     as_json: JsonOpt = False,
 ) -> None:
     """One throw from rest at (x, side): where the part lands and how."""
     with guard():
         check_model(model)
-        the_part, arm = part_and_arm(part, h, g, length, mu)
+        the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         check_finite(omega, "omega")
         out = throw(the_part, arm, x, side, omega, model=model)
@@ -138,6 +140,7 @@ def iterate_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
+    back: BackOpt = None,
     model: ModelOpt = DEFAULT_MODEL,
     as_json: JsonOpt = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a figure of the orbit (e.g. orbit.png).")] = None,
@@ -145,7 +148,8 @@ def iterate_cmd(
     """Repeated throws from (x, side): an orbit of the throw map."""
     with guard():
         check_model(model)
-        the_part, arm = part_and_arm(part, h, g, length, mu)
+        the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         omegas = _throw_rates(omega, n)
         fmt = figure_format(plot, "plot")
