@@ -17,14 +17,17 @@ Schema (SI units, see :mod:`throwmap.conventions`)::
     h = -0.01                     # m, surface height (below the joint: h < 0)
     g = 9.81                      # m/s², optional
     length = 0.5                  # m, optional (default: unbounded)
+    mu = 0.8                      # arm–part friction, optional (default: inf = no slip)
+    back = 0.0                    # m, surface behind the joint, optional (default 0)
 
 The JSON form is the same document as an object: ``{"part": {...}, "arm": {...}}``.
 
 Every failure raises :class:`~throwmap.errors.ConfigError` whose ``field`` is the
 dotted path of the culprit (``part.vertices[2][0]``, ``part.point_masses[0].mass``,
 ``arm.h``) or ``"file"`` when the file cannot be read or parsed (the reason then
-names the path and the parser's line/column). Unknown keys, non-numbers, NaN and
-infinities are refused here; the geometric and physical rules (convexity, CM
+names the path and the parser's line/column). Unknown keys (a typo such as
+``mas = 0.05`` is named, with the nearest allowed key), non-numbers, NaN and
+infinities (except ``mu = inf``) are refused here; the geometric and physical rules (convexity, CM
 inside, positive masses, g > 0…) are those of :class:`~throwmap.Part` and
 :class:`~throwmap.Arm`, whose :class:`~throwmap.errors.InvalidPartError` /
 :class:`~throwmap.errors.InvalidArmError` propagate unchanged (their fields
@@ -33,6 +36,8 @@ already read ``part.…`` / ``arm.…``).
 
 from __future__ import annotations
 
+import dataclasses
+import difflib
 import json
 import math
 import tomllib
@@ -56,6 +61,9 @@ __all__ = [
     "arm_from_spec",
     "resolve_part",
     "part_to_toml",
+    "part_document",
+    "arm_document",
+    "save_part",
     "save_part_toml",
 ]
 
@@ -96,7 +104,8 @@ class ArmSpec(_Spec):
     h: FiniteFloat
     g: FiniteFloat = G
     length: FiniteFloat | None = None
-    mu: float | None = None
+    mu: Annotated[float, Field(strict=True)] | None = None
+    back: FiniteFloat = 0.0
 
 
 class FileSpec(_Spec):
@@ -133,6 +142,8 @@ def _short_repr(value: Any, limit: int = 60) -> str:
 def _config_error(err: ValidationError, prefix: str, source: Path | None = None) -> ConfigError:
     """The first pydantic error as one ``ConfigError(dotted.field, reason)``."""
     errors = err.errors(include_url=False)
+    # an unknown key first: a typo (``mas``) also makes the key it meant (``mass``) missing
+    errors.sort(key=lambda e: e["type"] != "extra_forbidden")
     first = errors[0]
     loc = tuple(first["loc"])
     field = _dotted(prefix, loc) or "file"
@@ -146,8 +157,12 @@ def _config_error(err: ValidationError, prefix: str, source: Path | None = None)
             if isinstance(item, str):
                 parent = item
         model = _KEYS_BY_TABLE.get(parent)
-        allowed = f" (allowed: {', '.join(model.model_fields)})" if model is not None else ""
-        reason = f"unknown key{allowed}"
+        allowed = ""
+        if model is not None:
+            close = difflib.get_close_matches(str(loc[-1]), list(model.model_fields), n=1) if loc else []
+            hint = f"did you mean {close[0]!r}? " if close else ""
+            allowed = f" ({hint}allowed: {', '.join(model.model_fields)})"
+        reason = f"unknown key {str(loc[-1]) if loc else ''!r}{allowed}"
     elif kind == "finite_number":
         reason = f"must be a finite number, got {_short_repr(value)}"
     elif kind in ("float_type", "float_parsing"):
@@ -186,7 +201,11 @@ def _build_part(spec: PartSpec, default_name: str = "") -> Part:
 
 
 def _build_arm(spec: ArmSpec) -> Arm:
-    return Arm(h=spec.h, g=spec.g, length=spec.length, mu=math.inf if spec.mu is None else spec.mu)
+    """Every key of the ``[arm]`` table is the :class:`Arm` field of that name (``mu`` left out: ∞)."""
+    values = spec.model_dump()
+    if values["mu"] is None:
+        values["mu"] = math.inf
+    return Arm(**values)
 
 
 def part_from_spec(spec: dict) -> Part:
@@ -361,10 +380,58 @@ def part_to_toml(part: Part, arm: Arm | None = None) -> str:
     for m, at in part.point_masses:
         lines += ["", "[[part.point_masses]]", f"mass = {_toml_float(m)}  # kg", f"at = {_toml_point(at)}  # m"]
     if arm is not None:
-        lines += ["", "[arm]", f"h = {_toml_float(arm.h)}  # m", f"g = {_toml_float(arm.g)}  # m/s^2"]
-        if arm.length is not None:
-            lines.append(f"length = {_toml_float(arm.length)}  # m")
+        lines += ["", "[arm]"]
+        for key, value in arm_document(arm).items():
+            lines.append(f"{key} = {_toml_float(value)}{_ARM_UNITS.get(key, '')}")
     return "\n".join(lines) + "\n"
+
+
+_ARM_UNITS = {"h": "  # m", "g": "  # m/s^2", "length": "  # m", "mu": "  # Coulomb friction", "back": "  # m"}
+
+
+def arm_document(arm: Arm) -> dict:
+    """The ``[arm]`` table of ``arm``: every :class:`Arm` field, in its order, except those
+    at a default the file cannot spell (``length`` = None: unbounded; ``mu`` = ∞: no slip).
+
+    Driven by the dataclass's fields, so a field added to :class:`Arm` is written at once
+    (and refused on reading until :class:`ArmSpec` knows it: the round-trip test sees it).
+    """
+    out = {}
+    for f in dataclasses.fields(Arm):
+        value = getattr(arm, f.name)
+        if value is None or (isinstance(value, float) and not math.isfinite(value) and value == f.default):
+            continue
+        out[f.name] = value
+    return out
+
+
+def part_document(part: Part, arm: Arm | None = None) -> dict:
+    """The part file as a document (``{"part": {...}, "arm": {...}}``) that :func:`load_config`
+    reads back to an equal part and arm; ``mass`` is the plate mass without the point masses."""
+    doc = {"part": {
+        "name": part.name,
+        "vertices": [list(v) for v in part.vertices],
+        "mass": _plate_mass(part),
+        "com": list(part.com),
+        "radius_of_gyration": part.radius_of_gyration,
+        "point_masses": [{"mass": m, "at": list(at)} for m, at in part.point_masses],
+    }}
+    if arm is not None:
+        doc["arm"] = arm_document(arm)
+    return doc
+
+
+def save_part(part: Part, arm: Arm | None, path) -> Path:
+    """Write ``part`` (and ``arm``) as a part file, TOML or JSON by the extension, atomically;
+    :func:`load_config` reads it back to an equal part and arm. Returns the path."""
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".toml":
+        return save_part_toml(part, arm, path)
+    if suffix != ".json":
+        raise ConfigError("file", f"{path}: a part file must end in .toml or .json, got {suffix or '(no extension)'!r}")
+    text = json.dumps(part_document(part, arm), indent=2, allow_nan=False, ensure_ascii=False)
+    return atomic_write_text(path, text + "\n")
 
 
 def save_part_toml(part: Part, arm: Arm | None, path) -> Path:
