@@ -73,3 +73,22 @@ def test_validate_cli_bad_input(tmp_path, args, field):
     assert r.exit_code == 2
     err = r.stderr.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"error: {field}")
+
+
+def test_validate_adds_mu_rows_and_keeps_the_old_ones():
+    """One extra row per μ (rigid_body vs pymunk at that μ); the rows at the set's own μ are unchanged,
+    and the μ row at that same μ reproduces the rigid_body row (the same throws, thrown again)."""
+    parts = {"square": default_parts()["square"]}
+    kw = dict(n=8, grid=False, models=("rigid_body",), workers=1)
+    plain = validate(parts, mu_rows=(), **kw)
+    rep = validate(parts, mu_rows=(0.3, 1.5, float("inf")), **kw)
+    names = [r["model"] for r in rep.rows]
+    assert names[:len(plain.rows)] == [r["model"] for r in plain.rows]
+    assert rep.rows[:len(plain.rows)] == plain.rows
+    assert names[len(plain.rows):] == ["rigid_body, μ = 0.3", "rigid_body, μ = 1.5", "rigid_body, μ = ∞"]
+    same = {k: v for k, v in next(r for r in rep.rows if r["model"] == "rigid_body").items()
+            if k not in ("model", "assumptions")}
+    again = {k: v for k, v in rep.rows[names.index("rigid_body, μ = 1.5")].items() if k not in ("model", "assumptions")}
+    assert again == same
+    assert "| rigid_body, μ = ∞ |" in rep.table() and rep.settings["mu_rows"] == [0.3, 1.5, float("inf")]
+    assert all(r["n"] == 8 for r in rep.rows)

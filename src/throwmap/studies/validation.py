@@ -33,6 +33,9 @@ DEFAULT_OMEGA = (3.0, 7.0)
 """Range of release rates, rad/s."""
 X_MAX = 0.45
 """Largest starting CM abscissa, m."""
+MU_ROWS = (0.3, 0.6, 1.0, 2.0, math.inf)
+"""Arm frictions of the table's extra rows: rigid_body vs pymunk on the same cases at each μ
+(at μ ≤ 0.6 the impact law decides, :mod:`throwmap.kernels.rigid_body.impact`)."""
 
 
 def default_parts() -> dict[str, Part]:
@@ -218,8 +221,13 @@ def realisation_departures(part: Part, arm: Arm, n: int = 40, seed: int = 0, *, 
 def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 0, grid: bool = True,
              models=("paper", "small_angle", "rigid_body"), engines=("pymunk",), mu: float = DEFAULT_MU,
              hs=DEFAULT_H, omega_range=DEFAULT_OMEGA, workers: int | None = 0, engine_settings=None,
-             mujoco_settings=None, progress=None, n_realisations: int = 0) -> ValidationReport:
+             mujoco_settings=None, progress=None, n_realisations: int = 0,
+             mu_rows=MU_ROWS) -> ValidationReport:
     """Throw the validation set through ``models`` and ``engines``; compare each with pymunk.
+
+    The rows are at arm friction ``mu``; then, for each μ in ``mu_rows`` (default
+    :data:`MU_ROWS`, ``()`` for none), one more row: rigid_body against pymunk on
+    the same cases at that μ (label ``rigid_body, μ = …``).
 
     ``engines`` ⊆ {"pymunk", "mujoco"} ("pymunk" is always run: it is the
     reference). ``workers`` processes run the engine (0: one per core).
@@ -313,4 +321,43 @@ def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 
         real_rows = realisation_departures(first, Arm(h=hs[0], mu=mu), n_realisations, seed, workers=workers,
                                            omega_range=omega_range)
         settings["n_realisations"] = n_realisations
+    rows.extend(_mu_rows(parts, cases, mu_rows, workers, engine_settings))
+    settings["mu_rows"] = [float(m) for m in mu_rows]
     return ValidationReport("pymunk", case_info, results, tuple(rows), goals, settings, real_rows)
+
+
+def _mu_label(mu: float) -> str:
+    return "∞" if math.isinf(mu) else f"{mu:g}"
+
+
+def _mu_rows(parts: dict, cases: list, mu_values, workers, engine_settings) -> list[dict]:
+    """One row per μ: model rigid_body against pymunk on the same cases, both at that arm friction.
+
+    The row's assumptions column says how many throws had an impact or contact phase
+    outside the friction cone (N_SLIPS > 0): where such a slip stops and reverses, the
+    two impact laws differ (:mod:`throwmap.kernels.rigid_body.impact`).
+    """
+    out = []
+    for mu in mu_values:
+        acc = {m: {"x": [], "side": [], "status": [], "slips": []} for m in ("rigid_body", "pymunk")}
+        for case in cases:
+            part = parts[case.part_name]
+            for hv in np.unique(case.h):
+                sel = case.h == hv
+                arm = Arm(h=float(hv), mu=float(mu))
+                args = (part, arm, case.x[sel], case.side[sel], case.omega[sel])
+                import warnings
+
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    rb = throw_batch(*args, model="rigid_body", on_invalid="status")
+                en = throw_batch(*args, model="engine", on_invalid="status", workers=workers,
+                                 **({"settings": engine_settings} if engine_settings else {}))
+                for key, b in (("rigid_body", rb), ("pymunk", en)):
+                    acc[key]["x"].append(b.x), acc[key]["side"].append(b.side), acc[key]["status"].append(b.status)
+                acc["rigid_body"]["slips"].append(rb.records[:, C.N_SLIPS])
+        ref = {k: np.concatenate(v) for k, v in acc["pymunk"].items() if v}
+        res = {k: np.concatenate(v) for k, v in acc["rigid_body"].items()}
+        slip = 100.0 * np.mean(np.nan_to_num(res["slips"]) > 0) if res["slips"].size else math.nan
+        out.append(_compare(f"rigid_body, μ = {_mu_label(mu)}", ref, res, f"slip in {slip:.0f} % of throws"))
+    return out
