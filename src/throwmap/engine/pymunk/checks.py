@@ -6,8 +6,10 @@
   millimetres into the arm) and the run's result is refused.
 * clearance: a lower bound of the distance from a part to everything else,
   which bounds how long it may fly on the exact parabola (:mod:`.stepping`).
-* escape: a part whose CM drops below the arm's underside has left the arm:
-  ``behind_joint`` behind the joint's half of the arm, else ``off_end``.
+* escape: a part with a vertex below the surface line beyond either edge of the
+  arm (x < −back or x > L), or whose CM drops below the arm's underside, has
+  left the arm: ``behind_joint`` behind the joint's half of the arm, else ``off_end``.
+* near: a vertex about to land (no coarse steps then, :mod:`.run`).
 * settling: every part slower than ``settle_speed`` and ``settle_spin``.
 """
 
@@ -18,42 +20,72 @@ import math
 from ...throws.outcome import Status
 from .world import World
 
-__all__ = ["inspect", "clearance", "escape", "all_slow"]
+__all__ = ["inspect", "clearance", "escape", "all_slow", "EDGE_EPS", "UNCONVERGED"]
 
 
-def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float):
+UNCONVERGED = getattr(Status, "UNCONVERGED", Status.TIMEOUT)
+"""Status of a run refused as not converged (``Status.UNCONVERGED``, code 10 of :mod:`throwmap.kernels.codes`)."""
+
+EDGE_EPS = 1e-4
+"""m a vertex must be below the arm's surface line, beyond one of its ends, to have left the arm."""
+
+
+def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0):
     """Part i against the arm at ``arm_angle`` (rad; ``ca``, ``sa`` its cos and sin).
 
-    Returns ``(depth, x, y, phi)``: the deepest penetration (m) of part i's
-    vertices into the arm, fixtures or other parts, and its CM ``(x, y)`` (m)
-    and angle ``phi`` (rad) in the arm frame (``phi`` unwrapped).
+    Returns ``(depth, x, y, phi, over, near)``: the deepest penetration (m) of
+    part i's vertices into the arm (its solid: −back ≤ x ≤ L, less than its
+    thickness below the surface), fixtures or other parts; its CM ``(x, y)`` (m)
+    and angle ``phi`` (rad) in the arm frame (``phi`` unwrapped); ``over``: −1 if
+    a vertex is below the surface line (by more than :data:`EDGE_EPS`) behind the
+    arm's back edge x = −back, +1 if beyond its end x = L, else 0 (the part is
+    over an edge: it has left the arm); ``near``: a vertex not in contact could
+    touch within ``horizon`` (s), i.e. its gap is below ``flight_margin`` plus its
+    approach speed times ``horizon`` (a landing is coming: no coarse steps).
     """
     cp = w.cp
     b = w.bodies_h[i]
     a = cp.angle(b)
     p = cp.position(b)
     px, py = p.x, p.y
+    v = cp.velocity(b)
+    vx, vy, om = v.x, v.y, cp.spin(b)
     deepest = 0.0
-    if w.plain_arm:  # fast path: depth below the flat surface line, in the arm frame
-        c, s = math.cos(a), math.sin(a)
-        L, h = w.L, w.h
-        for wx, wy in w.wlists[i]:
-            X = px + c * wx - s * wy
-            Y = py + s * wx + c * wy
-            xa = ca * X + sa * Y
-            if 0.0 <= xa <= L:
-                d = h - (-sa * X + ca * Y)
+    over = 0
+    near = False
+    L, h, back, thick, margin = w.L, w.h, w.back, w.thickness, w.margin
+    c, s = math.cos(a), math.sin(a)
+    for wx, wy in w.wlists[i]:
+        X = px + c * wx - s * wy
+        Y = py + s * wx + c * wy
+        xa = ca * X + sa * Y
+        ya = -sa * X + ca * Y
+        d = h - ya
+        if d > EDGE_EPS and (xa < -back or xa > L):
+            over = -1 if xa < -back else 1
+        if w.plain_arm:  # fast path: depth below the flat surface line, in the arm frame
+            if -back <= xa <= L and d <= thick:
                 if d > deepest:
                     deepest = d
-    else:
+                if horizon > 0.0 and d < -EDGE_EPS:
+                    vn = -sa * (vx - om * (Y - py)) + ca * (vy + om * (X - px))
+                    if -d < margin + max(0.0, -vn) * horizon:
+                        near = True
+    if not w.plain_arm:
         distance, NULL, to_world = cp.distance, cp.NULL, cp.to_world
         others = w.others_h[i]
-        for v in [to_world(b, v) for v in w.wlists[i]]:
-            for s in others:
-                d = distance(s, v, NULL)
+        for q in [to_world(b, v) for v in w.wlists[i]]:
+            closest = math.inf
+            for sh in others:
+                d = distance(sh, q, NULL)
                 if d < -deepest:
                     deepest = -d
-    return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle
+                closest = min(closest, d)
+            if horizon > 0.0 and EDGE_EPS < closest:
+                speed = math.hypot(vx - om * (q.y - py), vy + om * (q.x - px))
+                if closest < margin + speed * horizon:
+                    near = True
+    return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle, over, near
 
 
 def clearance(w: World, i: int) -> float:
@@ -85,14 +117,19 @@ def clearance(w: World, i: int) -> float:
     return best
 
 
-def escape(w: World, i: int, xa: float, ya: float, arm_thickness: float):
-    """Status of part i if its CM ``(xa, ya)`` (m, arm frame) has left the arm, else None.
+def escape(w: World, i: int, xa: float, ya: float, arm_thickness: float, over: int = 0):
+    """Status of part i if it has left the arm, else None.
 
-    Left: below the arm's underside (less 3 × the part's radius), or below its
-    top beyond either end; ``behind_joint`` on the joint's half of the arm, else ``off_end``.
+    Left: a vertex below the surface line beyond either edge (``over`` from
+    :func:`inspect`: −1 behind the back edge x = −back, +1 beyond the end), or its
+    CM ``(xa, ya)`` (m, arm frame) below the arm's underside (less 3 × the part's
+    radius), or below its top beyond either end; ``behind_joint`` on the joint's
+    half of the arm, else ``off_end``.
     """
+    if over:
+        return Status.BEHIND_JOINT if over < 0 else Status.OFF_END
     R, L, h = w.R[i], w.L, w.h
-    if ya < h - arm_thickness - 3.0 * R or (ya < h and (xa < -R or xa > L + R)):
+    if ya < h - arm_thickness - 3.0 * R or (ya < h and (xa < -w.back - R or xa > L + R)):
         return Status.BEHIND_JOINT if xa < 0.5 * L else Status.OFF_END
     return None
 

@@ -82,11 +82,13 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     pen_tol, thickness, impact_window = settings.penetration_tol, settings.arm_thickness, settings.impact_window
     settle_speed, settle_spin, settle_hold = settings.settle_speed, settings.settle_spin, settings.settle_hold
     exact_flight = settings.exact_flight
+    horizon = 2.0 * 4.0 * coarse_dt if use_coarse else 0.0  # twice the longest stretch between two checks, s
     n_steps = n_coarse = n_leaps = n_checks = n_clearance = 0
 
     t = 0.0
     next_check = next_flight_check = next_sample = next_progress = 0.0
     still_since = None
+    landing_near = False  # a vertex not in contact may touch before the next check: no coarse steps
     status = Status.OK
     message = ""
     pen_max = 0.0
@@ -125,9 +127,20 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     contacts.now = t
                     leap(w, tau, alpha + realisation.angle(t))
                     n_leaps += 1
+                    # a part falling past an edge of the arm has left it: say so now, not at t_max
+                    aa = cp.angle(w.arm_h)
+                    ca, sa = math.cos(aa), math.sin(aa)
+                    for i in range(n_parts):
+                        if tracks[i].fell is None:
+                            _, xa, ya, _, over, _ = inspect(w, i, aa, ca, sa)
+                            gone = escape(w, i, xa, ya, thickness, over)
+                            if gone is not None:
+                                contacts.fell(i, t, gone)
+                    if contacts.n_fell == n_parts:
+                        break
                     continue
         # -------------------------------------------- fixed steps up to the next check
-        coarse = (use_coarse and not arm_moving and t - contacts.last_begin >= impact_window
+        coarse = (use_coarse and not arm_moving and not landing_near and t - contacts.last_begin >= impact_window
                   and contacts.all_touching())
         h_step = coarse_dt if coarse else dt
         n_inner = max(1, int(math.ceil((min(next_check, t_max) - t) / h_step - 1e-9)))
@@ -143,11 +156,19 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             next_check = t + (CHECK_EVERY if h_step == dt else 4.0 * h_step)
             aa = cp.angle(w.arm_h)
             ca, sa = math.cos(aa), math.sin(aa)
+            landing_near = False
             for i in range(n_parts):
                 tr = tracks[i]
                 if tr.fell is not None:
                     continue
-                pen, xa, ya, phi = inspect(w, i, aa, ca, sa)
+                pen, xa, ya, phi, over, near = inspect(w, i, aa, ca, sa, horizon)
+                if near:  # a landing is coming: fine steps until impact_window after it (pymunk's warm
+                    landing_near = True  # start would scale the landing impulse by coarse_dt / dt)
+                    contacts.last_begin = t
+                gone = escape(w, i, xa, ya, thickness, over)
+                if gone is not None:  # left the arm: its depth "into" the arm's far side is no penetration
+                    contacts.fell(i, t, gone)
+                    continue
                 if pen > tr.rec[C.PENETRATION_MAX]:
                     tr.rec[C.PENETRATION_MAX] = pen
                 if pen > pen_max:
@@ -159,9 +180,6 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                                f"(> penetration_tol {pen_tol * 1e3:g} mm); result refused")
                     done = True
                     break
-                gone = escape(w, i, xa, ya, thickness)
-                if gone is not None:
-                    contacts.fell(i, t, gone)
                 # flips: the side the part lies on whenever it is in contact and nearly flat
                 if tr.n_contacts > 0 and tr.ever:
                     k, tilt = nearest_side(w.betas[i], phi)

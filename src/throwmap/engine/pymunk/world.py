@@ -93,7 +93,10 @@ class World:
 
     ``arm`` is the kinematic arm body (fixtures on it), ``bodies``/``shapes``/
     ``parts`` per part; ``*_h`` are the matching :class:`Chipmunk` handles.
-    ``L`` is the simulated arm length, ``corners`` the arm pieces' corners in the
+    ``L`` is the simulated arm length, ``back`` the surface's extent behind the
+    joint (:attr:`throwmap.Arm.back`, m; the arm spans −back ≤ x ≤ L),
+    ``thickness`` the arm solid's depth below the surface (m), ``margin`` the
+    flight margin (m), ``corners`` the arm pieces' corners in the
     arm frame and ``reach`` their largest distance from the joint, ``R[i]`` part
     i's largest vertex distance from its CM, ``others_h[i]`` the handles of every
     shape part i can touch. ``plain_arm``: one part and no fixtures (the
@@ -103,7 +106,7 @@ class World:
 
     __slots__ = ("pm", "cp", "space", "space_h", "arm", "arm_h", "arm_w", "bodies", "bodies_h", "shapes", "shapes_h",
                  "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h",
-                 "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall")
+                 "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall", "back", "thickness", "margin")
 
     @property
     def n(self) -> int:
@@ -135,6 +138,14 @@ def build_world(scene, realisation, settings, *, raw: bool = True) -> World:
     a0 = scene.alpha + realisation.angle(0.0)
     arm_body.angle = a0
     arm_pieces, fixture_pieces = arm_solids(arm.h, L, settings.arm_thickness, scene.fixtures)
+    back = arm.back
+    if back > 0.0:  # the surface continues behind the joint to x = -back (Arm.back): widen the first piece
+        first = np.array(arm_pieces[0], dtype=float)
+        first[first[:, 0] <= 0.0, 0] = -back
+        arm_pieces = [first] + list(arm_pieces[1:])
+    w.back = back
+    w.thickness = float(arm.h - min(float(np.min(np.asarray(p)[:, 1])) for p in arm_pieces))
+    w.margin = settings.flight_margin
     mu_arm = engine_mu(scene.mu("arm"))
     mu_wall = engine_mu(scene.mu("wall"))
     static_shapes, corners = [], []
