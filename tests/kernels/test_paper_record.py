@@ -12,8 +12,8 @@ O = PaperOptions()
 
 
 def _args(part, arm):
-    return (arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL, part.uR,
-            part.ell, part.stable, O.tol, O.max_iter, O.max_impacts, O.n_samples)
+    return (arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
+            part.uR, part.ell, part.stable, O.tol, O.max_iter, O.max_impacts, O.n_samples)
 
 
 @pytest.mark.parametrize("x, side, omega", [(0.2, 0, 4.0), (0.34, 1, 4.0), (0.4, 1, 10.0), (0.1225, 0, 10.0)])

@@ -29,6 +29,18 @@ from numba import njit
 SNAP = 1e-15
 """Relative size (of ℓ_j) below which a gap constant c0_j is snapped to exactly 0."""
 
+MAX_SPIN_ANGLE = 1e9
+"""Largest spin angle ω t (rad) a flight may reach before its first contact.
+
+Beyond it double precision no longer resolves the orientation (ulp(1e9) ≈ 1.2e-7 rad),
+so the contact vertex and the impact are not determined by the inputs: the search
+stops with :data:`UNRESOLVED_J` and the models report status UNRESOLVED, never a
+number. (Such flights need launch speeds far beyond any arm: e.g. ω = 1e6 rad/s at
+x = 2e8 m.)"""
+
+UNRESOLVED_J = -2
+"""Vertex returned by :func:`touch_time` when the flight passed :data:`MAX_SPIN_ANGLE`."""
+
 
 @njit(cache=True, inline="always")
 def release_state(x0, d, h, omega):
@@ -133,16 +145,32 @@ def touch_time(c0, b, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
     obeys G_j(t+s) ≥ G_j + G_j' s − ½ M_j s²; each step is the smallest positive
     root of that lower bound over all vertices, so all gaps stay ≥ 0 (up to
     rounding) and the iteration approaches the first root from below in time,
-    quadratically once near a transversal crossing. It stops when the smallest
-    gap is ≤ ``tol`` (m); a short Newton polish on the touching vertex's gap then
-    removes the time error tol / |G_j'| left by stopping at a positive gap.
+    quadratically once near a transversal crossing.
 
-    Returns ``(t, j)``; ``j = -1`` if ``max_iter`` steps did not reach contact.
+    Stopping is relative to the scale of the flight: it stops when the smallest
+    gap is ≤ ``tol`` × S_j(t) with S_j(t) = |c0_j| + (|b_j| + ω|u_j|) t + ½ g t²
+    + |v_j| |cos ωt − 1|, the size of the terms G_j is summed from (its rounding
+    error is a few ulp of S_j; ``tol`` is dimensionless, default 1e-14 ≈ 45 ulp).
+    An absolute tolerance fails both ways: on long flights (metres, tens of m/s) the
+    gap's rounding noise exceeds 1e-14 m and the search never stops; on the tiny
+    flights of starts δ above x_min the whole gap excursion (≈ ω²δ²/g) is far
+    below it and the search stopped at its first step, with t_flight ~25 % short.
+    If a step no longer advances t in floating point, the vertex of smallest gap
+    is taken (the contact is resolved to rounding). A short Newton polish on the
+    touching vertex's gap then removes the time error gap / |G_j'| left by
+    stopping at a positive gap. A flight whose spin angle ω t passes
+    :data:`MAX_SPIN_ANGLE` is not resolved.
+
+    Returns ``(t, j)``; ``j = -1`` if ``max_iter`` steps did not reach contact,
+    ``j = UNRESOLVED_J`` (−2) past :data:`MAX_SPIN_ANGLE`.
     """
     n = ru.shape[0]
     t = 0.0
+    aw = abs(w)
     for _ in range(max_iter):
         wt = w * t
+        if aw * t > MAX_SPIN_ANGLE:
+            return t, UNRESOLVED_J
         if t > 0.0:
             hs = math.sin(0.5 * wt)  # half-angle: two trig calls per step
             hc = math.cos(0.5 * wt)
@@ -159,10 +187,16 @@ def touch_time(c0, b, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
         jmin = -1
         gmin = math.inf
         dgmin = 0.0
+        jlow = -1  # the vertex of smallest gap, in case t can no longer advance
+        glow = math.inf
+        dglow = 0.0
+        half_gt2 = -base
         for j in range(n):
             gj = c0[j] + b[j] * t + base + rv[j] * cm1 + ru[j] * smw
             dg = dbase + w * (ru[j] * c - rv[j] * s)
             M = g + w * w * ell[j]
+            scale = abs(c0[j]) + (abs(b[j]) + aw * abs(ru[j])) * t + half_gt2 + abs(rv[j] * cm1)
+            tol_j = tol * scale
             if j == excl_j and t < excl_t:
                 sj = excl_t - t
                 if gj > 0.0 or dg > 0.0:
@@ -172,15 +206,24 @@ def touch_time(c0, b, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
                 if sj < step:
                     step = sj
                 continue
-            if gj <= tol and (t > 0.0 or dg <= 0.0):
+            if gj <= tol_j and (t > 0.0 or dg <= 0.0):
                 if gj < gmin:
                     gmin = gj
                     dgmin = dg
                     jmin = j
                 continue
+            if gj < glow and t > 0.0:
+                glow = gj
+                dglow = dg
+                jlow = j
             sj = _lower_bound_step(gj, dg, M)
             if sj < step:
                 step = sj
+        if jmin < 0 and t + step == t and jlow >= 0:
+            # the step is below the resolution of t: the contact is resolved to rounding
+            jmin = jlow
+            gmin = glow
+            dgmin = dglow
         if jmin >= 0:
             if t > 0.0 and gmin > 0.0:
                 t = _polish(t, gmin, dgmin, jmin, c0, b, ru, rv, vy, w, g)
@@ -196,9 +239,10 @@ def first_contact(c0, ru, rv, vy, w, g, ell, excl_j, excl_t, tol, max_iter):
     ``c0`` gaps at t = 0 (m, :func:`gap_constants`), ``(ru, rv)`` vertex offsets
     at t = 0 (m), ``vy`` CM vertical velocity (m/s), ``w`` spin (rad/s), ``ell``
     vertex distances |w_j| (m). Vertex ``excl_j`` (one that just left the line;
-    −1: none) is known to stay above it for t < ``excl_t`` (s). ``tol`` (m) is the
-    gap at which the search stops, ``max_iter`` its step cap.
-    Returns ``(t, j)``; ``j = -1`` if ``max_iter`` steps did not reach contact.
+    −1: none) is known to stay above it for t < ``excl_t`` (s). ``tol`` (dimensionless)
+    is the gap, relative to the size of its terms, at which the search stops,
+    ``max_iter`` its step cap. Returns ``(t, j)``; ``j = -1`` if ``max_iter`` steps
+    did not reach contact, ``UNRESOLVED_J`` past :data:`MAX_SPIN_ANGLE`.
     See :func:`touch_time` (this computes b_j = v_y + ω u_j).
     """
     n = ru.shape[0]

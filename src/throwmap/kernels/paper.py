@@ -8,7 +8,8 @@ sequence of :mod:`throwmap.kernels.roll`.
 
 Entry points: :func:`throw_one` (one throw), :func:`throw_one_traj` (one throw with
 its trajectory rows, :mod:`~throwmap.kernels.record`) and :func:`throw_many` (a
-batch, in parallel; no trajectory cost: its buffers have zero rows).
+batch, in parallel; no trajectory cost: its buffers have zero rows) with its serial
+twin :func:`throw_many_serial` for batches below :data:`PARALLEL_MIN`.
 """
 
 import math
@@ -18,7 +19,7 @@ from numba import njit, prange
 
 from . import codes as C
 from . import record as R
-from .flight import gap_constants, release_state, touch_time
+from .flight import UNRESOLVED_J, gap_constants, release_state, touch_time
 from .impact import plastic_impact
 from .roll import pivot_cascade, side_angles
 from .rows import mark_invalid, start_record
@@ -26,9 +27,15 @@ from .rows import mark_invalid, start_record
 CHUNK = 256
 """Throws per work unit of :func:`throw_many` (one scratch allocation per chunk)."""
 
+PARALLEL_MIN = 2048
+"""Smallest batch the "paper" model runs on Numba's thread pool (:func:`throw_many`); smaller
+batches run on the calling thread (:func:`throw_many_serial`, same results). A throw takes
+about 1–3 µs, while waking the pool costs tens of µs and, when the cores are busy, can
+cost milliseconds (issue 10: critical_points 108 ms on two threads vs 3.7 ms on one)."""
+
 
 @njit(cache=True, inline="always")
-def _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+def _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
            n_samples, ta_j, tb_j, work, rec, traj, tags, ts):
     """One throw; ``work`` is (4, n) scratch, ``traj``/``tags``/``ts`` the trajectory writer (0 rows: none)."""
     n = w.shape[0]
@@ -43,7 +50,7 @@ def _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable,
     if omega == 0.0:
         rec[C.E_FINAL] = g * dk
         rec[C.N_MIN] = 1.0
-        return x0, side, C.OK
+        return x0, side, (C.BEHIND_JOINT if x0 + uL[side] <= -back else C.OK)
     # reset release (Eq. 1); vertices relative to the CM at the rest orientation on `side`
     vx, vy0, _ = release_state(x0, dk, h, omega)
     pu = work[0]
@@ -63,7 +70,7 @@ def _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable,
     if jc < 0:
         if record:
             R.release_flight_rows(traj, tags, ts, R.ESCAPE_FALL_TIME, x0, dk, h, omega, g, phi0, R.FLIGHT)
-        return x0, side, C.NO_CONTACT
+        return x0, side, (C.UNRESOLVED if jc == UNRESOLVED_J else C.NO_CONTACT)
     # state just before impact (Eq. 1)
     phi = omega * t
     xc = x0 + vx * t
@@ -103,17 +110,17 @@ def _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable,
     rec[C.K_POST] = k_post
     rec[C.K_MAX_IMPACT_GAIN] = k_post - k_pre
     rec[C.N_IMPACTS] = 1.0
-    if px <= 0.0 or px > length:
+    if px <= -back or px > length:
         if record:  # nothing to land on there: the part falls on past the arm line
             R.flight_rows(traj, tags, ts, t, t + R.ESCAPE_FALL_TIME, xc, yc, phi0 + omega * t, vx, vy, omega, g,
                           R.FLIGHT)
-        return xc, side, (C.BEHIND_JOINT if px <= 0.0 else C.OFF_END)
+        return xc, side, (C.BEHIND_JOINT if px <= -back else C.OFF_END)
     theta = math.atan2(-ry, -rx)
     x, k, status = pivot_cascade(jc, theta, wp, px, side, rho2, d, uL, uR, ell, stable, ta_j, tb_j, g, length,
-                                 max_impacts, n_samples, rec, traj, tags, ts, h, w, beta)
+                                 max_impacts, n_samples, rec, traj, tags, ts, h, w, beta, back)
     rec[C.E_FINAL] = g * d[k]
     if status == C.OK:
-        if x + uL[k] <= 0.0:
+        if x + uL[k] <= -back:
             status = C.BEHIND_JOINT
         elif x > length:
             status = C.OFF_END
@@ -121,21 +128,24 @@ def _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable,
 
 
 @njit(cache=True)
-def throw_one(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+def throw_one(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
               n_samples, rec):
     """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s).
 
+    ``length`` (m, inf: unbounded) and ``back`` (m, ``Arm.back``) bound the arm's
+    surface: a contact at x ≤ −back is BEHIND_JOINT, beyond length OFF_END; ``tol``
+    is the relative contact tolerance (:func:`~throwmap.kernels.flight.touch_time`).
     Fills ``rec`` (see :mod:`~throwmap.kernels.codes`) and returns ``(x, side, status)``.
-    The caller has checked the start (stable side, x0 + u_L > 0, omega ≥ 0).
+    The caller has checked the start (stable side, x0 + u_L > −back, omega ≥ 0).
     """
     ta_j, tb_j = side_angles(d, uL, uR)
     work = np.empty((4, w.shape[0]))
-    return _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+    return _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
                   n_samples, ta_j, tb_j, work, rec, np.empty((0, 4)), np.empty(0, np.int64), np.zeros(R.NTS))
 
 
 @njit(cache=True)
-def throw_one_traj(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+def throw_one_traj(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                    max_impacts, n_samples, rec, traj, tags, dt):
     """:func:`throw_one` also recording its trajectory every ``dt`` s and at every event.
 
@@ -148,29 +158,53 @@ def throw_one_traj(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell,
     ta_j, tb_j = side_angles(d, uL, uR)
     work = np.empty((4, w.shape[0]))
     ts = R.new_state(dt)
-    x, k, st = _throw(x0, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+    x, k, st = _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                       max_impacts, n_samples, ta_j, tb_j, work, rec, traj, tags, ts)
     return x, k, st, int(ts[R.COUNT]), int(ts[R.DROPPED])
 
 
-@njit(cache=True, parallel=True)
-def throw_many(x0, side, omega, valid, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
-               max_impacts, n_samples, x_out, side_out, status_out, rec_out):
-    """Batch of independent throws (flat arrays); invalid starts get ``INVALID_START``."""
+@njit(cache=True, inline="always")
+def _chunk(c, x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+           max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out):
+    """Throws ``c·CHUNK`` … ``(c+1)·CHUNK − 1`` of a batch (one scratch allocation)."""
     m = x0.shape[0]
+    work = np.empty((4, w.shape[0]))
+    traj = np.empty((0, 4))
+    tags = np.empty(0, np.int64)
+    ts = np.zeros(R.NTS)
+    for i in range(c * CHUNK, min(m, (c + 1) * CHUNK)):
+        if not valid[i]:
+            mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
+            continue
+        x, k, st = _throw(x0[i], side[i], omega[i], h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
+                          max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec_out[i], traj, tags, ts)
+        x_out[i] = x
+        side_out[i] = k
+        status_out[i] = st
+
+
+@njit(cache=True, parallel=True)
+def throw_many(x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+               max_impacts, n_samples, x_out, side_out, status_out, rec_out):
+    """Batch of independent throws (flat arrays), chunks in parallel; invalid starts get ``INVALID_START``.
+
+    Arguments as :func:`throw_one`; fills ``x_out``, ``side_out``, ``status_out`` (m,)
+    and ``rec_out`` (m, NREC). Same results as :func:`throw_many_serial`; the model
+    picks this one for batches of at least :data:`PARALLEL_MIN` throws.
+    """
     ta_j, tb_j = side_angles(d, uL, uR)
-    n_chunks = (m + CHUNK - 1) // CHUNK
+    n_chunks = (x0.shape[0] + CHUNK - 1) // CHUNK
     for c in prange(n_chunks):
-        work = np.empty((4, w.shape[0]))
-        traj = np.empty((0, 4))
-        tags = np.empty(0, np.int64)
-        ts = np.zeros(R.NTS)
-        for i in range(c * CHUNK, min(m, (c + 1) * CHUNK)):
-            if not valid[i]:
-                mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
-                continue
-            x, k, st = _throw(x0[i], side[i], omega[i], h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol,
-                              max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec_out[i], traj, tags, ts)
-            x_out[i] = x
-            side_out[i] = k
-            status_out[i] = st
+        _chunk(c, x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+               max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out)
+
+
+@njit(cache=True)
+def throw_many_serial(x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
+                      max_iter, max_impacts, n_samples, x_out, side_out, status_out, rec_out):
+    """:func:`throw_many` on the calling thread (no thread-pool wake-up): for batches below :data:`PARALLEL_MIN`."""
+    ta_j, tb_j = side_angles(d, uL, uR)
+    n_chunks = (x0.shape[0] + CHUNK - 1) // CHUNK
+    for c in range(n_chunks):
+        _chunk(c, x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+               max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out)

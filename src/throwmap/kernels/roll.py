@@ -272,28 +272,30 @@ def side_angles(d, uL, uR):
 
 
 @njit(cache=True)
-def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, length, max_impacts, n_samples, rec):
+def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, length, max_impacts, n_samples, rec,
+                 back=0.0):
     """Pivot on vertex ``w_j`` from angle ``theta`` at rate ``thdot`` (rad/s, CCW +) until rest.
 
     ``px`` is the pivot's world x (m), ``side0`` the side thrown from, ``length``
-    the arm length (inf: unbounded). Returns ``(x, side, status)``; ``rec``
-    counters are updated in place. :func:`pivot_cascade` without its tables and
-    trajectory.
+    the arm length (inf: unbounded), ``back`` its extent behind the joint (m,
+    ``Arm.back``). Returns ``(x, side, status)``; ``rec`` counters are updated in
+    place. :func:`pivot_cascade` without its tables and trajectory.
     """
     ta_j, tb_j = side_angles(d, uL, uR)
     return pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j, tb_j, g, length,
                          max_impacts, n_samples, rec, np.empty((0, 4)), np.empty(0, np.int64), np.zeros(5), 0.0,
-                         np.empty((0, 2)), d)
+                         np.empty((0, 2)), d, back)
 
 
 @njit(cache=True, inline="always")
 def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j, tb_j, g, length, max_impacts,
-                  n_samples, rec, traj, tags, ts, h, w, beta):
+                  n_samples, rec, traj, tags, ts, h, w, beta, back):
     """Pivot on vertex ``w_j`` from angle ``theta`` at rate ``thdot`` (rad/s, CCW +) until rest.
 
     ``px`` is the pivot's world x (m), ``side0`` the side thrown from (flips are
     counted as landings on a side other than the last one landed on), ``length``
-    the arm length (inf: unbounded), ``ta_j``/``tb_j`` the tables of
+    the arm length (inf: unbounded), ``back`` its extent behind the joint (m; a
+    contact at x ≤ −back is BEHIND_JOINT), ``ta_j``/``tb_j`` the tables of
     :func:`side_angles`. Per-side/vertex arrays as in
     :func:`throwmap.system.geometry.side_table`.
     Returns ``(x, side, status)``; ``rec`` counters are updated in place.
@@ -334,7 +336,7 @@ def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j
         x_cm = px - uA  # CM x with the part flat on side k
         pxB = x_cm + uB
         # guard leave_arm: the landing vertex B must hit the arm, not the air beyond its span
-        if pxB <= 0.0:
+        if pxB <= -back:
             return x_cm, k, C.BEHIND_JOINT
         if pxB > length:
             return x_cm, k, C.OFF_END
@@ -350,7 +352,7 @@ def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j
         else:
             thdot = 0.0
             j, px, theta = tip_over(k, x_cm, n, d, uL, uR)
-        if px <= 0.0:
+        if px <= -back:
             return x_cm, k, C.BEHIND_JOINT
         if px > length:
             return x_cm, k, C.OFF_END

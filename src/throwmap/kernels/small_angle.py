@@ -36,7 +36,7 @@ The first-order forms are inconsistent where it matters: the jog −hφ* has the
 coefficient |h|, while the dropped term −u_L φ*²/2 of u_L cos φ* has the large |u_L|,
 so they compete once φ* ≳ 2|h/u_L| (about 0.2 rad for the canonical triangle,
 and the jog length is off by ~20 % already at φ* = 0.035). With cos φ → 1 − φ²/2:
-t* = 2ω(R + u_L)/(g − dω²) (no contact in the model if g ≤ dω²), the CM from Eq. (1)
+t* = 2ω(R + u_L)/(g − dω²) (no contact in the model if g ≤ dω²: status UNRESOLVED), the CM from Eq. (1)
 exactly, r = (u_L(1 − φ*²/2) + dφ*, u_Lφ* − d(1 − φ*²/2)), and steps 4–8 unchanged.
 """
 
@@ -45,13 +45,26 @@ import math
 from numba import njit, prange
 
 from . import codes as C
-from .flight import release_state
+from .flight import MAX_SPIN_ANGLE, release_state
 from .rows import mark_invalid
 
 
+PARALLEL_MIN = 8192
+"""Smallest batch run on Numba's thread pool (:func:`throw_many_small_angle`); smaller batches
+run on the calling thread (:func:`throw_many_small_angle_serial`, same results). A closed-form
+throw takes well under a microsecond, so only large batches repay waking the pool."""
+
+
 @njit(cache=True)
-def throw_one_small_angle(x0, side, omega, h, g, length, rho2, d, uL, uR, ell, elen, stable, order, rec):
-    """One throw with the corrected small-angle closed forms of ``order`` 1 or 2; returns ``(x, side, status)``."""
+def throw_one_small_angle(x0, side, omega, h, g, length, back, rho2, d, uL, uR, ell, elen, stable, order, rec):
+    """One throw with the corrected small-angle closed forms of ``order`` 1 or 2; returns ``(x, side, status)``.
+
+    ``length`` (m, inf: unbounded) and ``back`` (m, ``Arm.back``) bound the arm's surface
+    (a contact or resting support vertex at x ≤ −back is BEHIND_JOINT). Status UNRESOLVED
+    where the closed forms give no answer: ``order`` 2 with g ≤ d ω² (no contact in the
+    expansion), or a spin angle ω t* beyond
+    :data:`~throwmap.kernels.flight.MAX_SPIN_ANGLE` (as the exact models).
+    """
     n = d.shape[0]
     for i in range(C.NREC):
         rec[i] = math.nan
@@ -63,14 +76,18 @@ def throw_one_small_angle(x0, side, omega, h, g, length, rho2, d, uL, uR, ell, e
     rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + g * dk
     if omega == 0.0:
         rec[C.E_FINAL] = g * dk
-        return x0, side, C.OK
+        return x0, side, (C.BEHIND_JOINT if x0 + u <= -back else C.OK)
     if order == 1:
         t = 2.0 * omega * (x0 + u) / g  # 1.
     else:
         geff = g - dk * omega * omega
         if geff <= 0.0:
-            return x0, side, C.NO_CONTACT
+            return x0, side, C.UNRESOLVED
         t = 2.0 * omega * (x0 + u) / geff
+    if t < 0.0:  # left support vertex behind the joint (arm.back > 0): it moves down at once
+        t = 0.0
+    if not omega * t <= MAX_SPIN_ANGLE:
+        return x0, side, C.UNRESOLVED
     vx, vy0, _ = release_state(x0, dk, h, omega)  # Eq. (1)
     phi = omega * t
     xs = x0 + vx * t  # 2.
@@ -101,7 +118,7 @@ def throw_one_small_angle(x0, side, omega, h, g, length, rho2, d, uL, uR, ell, e
     rec[C.K_POST] = K
     rec[C.U_IMPACT] = g * (ys - h)
     rec[C.N_IMPACTS] = 1.0
-    if px <= 0.0:
+    if px <= -back:
         return xs, side, C.BEHIND_JOINT
     if px > length:
         return xs, side, C.OFF_END
@@ -119,7 +136,7 @@ def throw_one_small_angle(x0, side, omega, h, g, length, rho2, d, uL, uR, ell, e
         k = side
         x = px - u
     rec[C.E_FINAL] = g * d[k]
-    if x + uL[k] <= 0.0:
+    if x + uL[k] <= -back:
         return x, k, C.BEHIND_JOINT
     if x > length:
         return x, k, C.OFF_END
@@ -127,13 +144,29 @@ def throw_one_small_angle(x0, side, omega, h, g, length, rho2, d, uL, uR, ell, e
 
 
 @njit(cache=True, parallel=True)
-def throw_many_small_angle(x0, side, omega, valid, h, g, length, rho2, d, uL, uR, ell, elen, stable, order, x_out,
-                           side_out, status_out, rec_out):
+def throw_many_small_angle(x0, side, omega, valid, h, g, length, back, rho2, d, uL, uR, ell, elen, stable, order,
+                           x_out, side_out, status_out, rec_out):
+    """Batch of :func:`throw_one_small_angle` throws in parallel (flat arrays; invalid starts get INVALID_START)."""
     for i in prange(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_small_angle(x0[i], side[i], omega[i], h, g, length, rho2, d, uL, uR, ell, elen,
+        x, k, st = throw_one_small_angle(x0[i], side[i], omega[i], h, g, length, back, rho2, d, uL, uR, ell, elen,
+                                         stable, order, rec_out[i])
+        x_out[i] = x
+        side_out[i] = k
+        status_out[i] = st
+
+
+@njit(cache=True)
+def throw_many_small_angle_serial(x0, side, omega, valid, h, g, length, back, rho2, d, uL, uR, ell, elen, stable,
+                                  order, x_out, side_out, status_out, rec_out):
+    """:func:`throw_many_small_angle` on the calling thread (batches below :data:`PARALLEL_MIN`; same results)."""
+    for i in range(x0.shape[0]):
+        if not valid[i]:
+            mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
+            continue
+        x, k, st = throw_one_small_angle(x0[i], side[i], omega[i], h, g, length, back, rho2, d, uL, uR, ell, elen,
                                          stable, order, rec_out[i])
         x_out[i] = x
         side_out[i] = k

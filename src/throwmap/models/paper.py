@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernels import codes as C
-from ..kernels.paper import throw_many, throw_one, throw_one_traj
+from ..kernels.paper import PARALLEL_MIN, throw_many, throw_many_serial, throw_one, throw_one_traj
 from ..kernels.record import FLIGHT
 from ..throws.outcome import Status, ThrowOutcome
 from ..throws.trajectory import NO_CONTACT, Trajectory, contact_points, drawn_length, world_vertices
@@ -28,8 +28,10 @@ __all__ = ["PaperOptions", "PaperModel", "MODEL"]
 class PaperOptions:
     """Numerical options of the "paper" kernel.
 
-    ``tol`` (m): contact tolerance of the first-contact search; ``max_iter``: cap on its
-    steps (status NO_CONTACT beyond); ``max_impacts``: cap on plastic impacts in one
+    ``tol`` (dimensionless): contact tolerance of the first-contact search, relative to
+    the size of the gap's terms (:func:`~throwmap.kernels.flight.touch_time`), so that
+    tiny flights near x_min and long flights at high ω are both resolved to rounding;
+    ``max_iter``: cap on its steps (status NO_CONTACT beyond); ``max_impacts``: cap on plastic impacts in one
     throw (status NO_REST beyond); ``n_samples``: points per pivot swing at which the
     friction demand (record ``friction_ratio_max``) is sampled.
     """
@@ -57,7 +59,8 @@ class PaperModel:
     def throw_one(self, part, system, x, side, omega, o: PaperOptions):
         arm = system.arm
         rec = np.empty(C.NREC)
-        xn, kn, st = throw_one(x, side, omega, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w,
+        xn, kn, st = throw_one(x, side, omega, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2,
+                               part.w,
                                part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter,
                                o.max_impacts, o.n_samples, rec)
         return xn, kn, st, rec
@@ -66,9 +69,10 @@ class PaperModel:
         arm = system.arm
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
-        throw_many(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w,
-                   part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts,
-                   o.n_samples, out.x, out.side, out.status, out.records)
+        kernel = throw_many if m >= PARALLEL_MIN else throw_many_serial
+        kernel(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w,
+               part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts,
+               o.n_samples, out.x, out.side, out.status, out.records)
         return out
 
     def assumptions(self, records, mu, status) -> str:
@@ -103,7 +107,7 @@ def record_trajectory(part, arm, x0, k0, om, dt, o: PaperOptions):
         rows = np.full((m, 4), np.nan)
         tags = np.full(m, FLIGHT, dtype=np.int64)
         xn, kn, st, count, dropped = throw_one_traj(
-            x0, k0, om, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w, part.beta, part.d,
+            x0, k0, om, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d,
             part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples, rec, rows, tags,
             dt)
         if dropped == 0:

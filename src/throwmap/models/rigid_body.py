@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernels import codes as C
-from ..kernels.rigid_body import count_samples, throw_many_rigid_body, throw_one_rigid_body
+from ..kernels.rigid_body import count_samples, pick, throw_one_rigid_body
 from ..throws.outcome import ThrowOutcome
 from ..throws.trajectory import Trajectory, world_vertices
 from ._checks import int_at_least, positive_float
@@ -31,7 +31,8 @@ NO_TRAJ = np.empty((0, 4))
 class RigidBodyOptions:
     """Numerical options of the "rigid_body" kernel.
 
-    ``tol`` (m): contact tolerance of the first-contact search; ``max_iter``: cap on the
+    ``tol`` (dimensionless): contact tolerance of the first-contact search, relative to
+    the size of the gap's terms (:func:`~throwmap.kernels.flight.touch_time`); ``max_iter``: cap on the
     contact-search and integration steps of one mode; ``max_impacts``: cap on mode
     changes (events) in one throw (status NO_REST beyond).
     """
@@ -49,9 +50,9 @@ class RigidBodyOptions:
 def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt: float = 1.0):
     """One kernel call: ``(x', side', status, record)``; ``traj`` (M, 4) receives the sampled motion."""
     rec = np.empty(C.NREC)
-    xn, kn, st = throw_one_rigid_body(x, side, omega, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2,
-                                      arm.mu, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable,
-                                      o.tol, o.max_iter, o.max_impacts, rec, traj, dt)
+    xn, kn, st = throw_one_rigid_body(x, side, omega, arm.h, arm.g, arm.length_or_inf, arm.back,
+                                      part.radius_of_gyration**2, arm.mu, part.w, part.beta, part.d, part.uL, part.uR,
+                                      part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, rec, traj, dt)
     return xn, kn, st, rec
 
 
@@ -69,9 +70,9 @@ class RigidBodyModel:
         arm = system.arm
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
-        throw_many_rigid_body(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2,
-                              arm.mu, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol,
-                              o.max_iter, o.max_impacts, out.x, out.side, out.status, out.records)
+        pick(m)(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, arm.mu,
+                part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts,
+                out.x, out.side, out.status, out.records)
         return out
 
     def assumptions(self, records, mu, status) -> str:

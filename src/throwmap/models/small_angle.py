@@ -12,7 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernels import codes as C
-from ..kernels.small_angle import throw_many_small_angle, throw_one_small_angle
+from ..kernels.small_angle import (PARALLEL_MIN, throw_many_small_angle, throw_many_small_angle_serial,
+                                   throw_one_small_angle)
 from .base import BatchArrays, Features, NoOptions
 from .registry import register
 
@@ -32,17 +33,19 @@ class SmallAngleModel:
     def throw_one(self, part, system, x, side, omega, o):
         arm = system.arm
         rec = np.empty(C.NREC)
-        xn, kn, st = throw_one_small_angle(x, side, omega, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2,
-                                           part.d, part.uL, part.uR, part.ell, part.length, part.stable, self.order, rec)
+        xn, kn, st = throw_one_small_angle(x, side, omega, arm.h, arm.g, arm.length_or_inf, arm.back,
+                                           part.radius_of_gyration**2, part.d, part.uL, part.uR, part.ell,
+                                           part.length, part.stable, self.order, rec)
         return xn, kn, st, rec
 
     def throw_batch(self, part, system, x, side, omega, valid, o, progress=None):
         arm = system.arm
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
-        throw_many_small_angle(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2,
-                               part.d, part.uL, part.uR, part.ell, part.length, part.stable, self.order, out.x,
-                               out.side, out.status, out.records)
+        kernel = throw_many_small_angle if m >= PARALLEL_MIN else throw_many_small_angle_serial
+        kernel(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.d,
+               part.uL, part.uR, part.ell, part.length, part.stable, self.order, out.x, out.side, out.status,
+               out.records)
         return out
 
     def assumptions(self, records, mu, status) -> str:

@@ -33,7 +33,7 @@ class Arm:
         and only report the friction ratio a throw needs.
     back : float
         Extent of the arm's surface behind the joint, m (≥ 0, finite): the surface
-        spans −back ≤ x along the arm, and a contact at x < −back is
+        spans −back ≤ x along the arm, and a contact at x ≤ −back is
         ``behind_joint``. With the default 0 any contact at x ≤ 0 is
         ``behind_joint`` (a contact exactly at the joint included), as in the
         paper, where the part must stay on the arm's outer side.

@@ -94,10 +94,11 @@ def check_start(part: Part, arm: Arm, x: float, side: int, omega: float) -> tupl
     omega = _check_scalar(omega, "omega")
     if omega < 0:
         raise InvalidStateError("omega", f"must be ≥ 0 (the arm throws upward), got {omega}")
-    x_min = -float(part.uL[k])
+    x_min = -float(part.uL[k]) - arm.back
     if x <= x_min:
+        edge = "the joint" if arm.back == 0.0 else f"the arm's edge behind the joint (arm.back = {arm.back:g} m)"
         raise InvalidStateError(
-            "x", f"the left support vertex is behind the joint: on side {k} x must exceed {x_min:.6g} m, got {x:.6g}"
+            "x", f"the left support vertex is behind {edge}: on side {k} x must exceed {x_min:.6g} m, got {x:.6g}"
         )
     if arm.length is not None and x > arm.length:
         raise InvalidStateError("x", f"the CM is beyond the arm's end ({arm.length:g} m), got {x:.6g}")
@@ -121,7 +122,7 @@ def throw(
 
     Returns a :class:`ThrowOutcome` (new ``x``, ``side``, ``status`` and the record).
     Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible start:
-    unknown or unstable side, a left support vertex at x ≤ 0, negative ω.
+    unknown or unstable side, a left support vertex at x ≤ −arm.back (x ≤ 0 by default), negative ω.
 
     ``model`` is a registered model name (default ``"rigid_body"``, see
     :mod:`throwmap.models`). ``fixtures`` and ``alpha`` (rad) describe the
@@ -194,7 +195,7 @@ def throw_batch(
     stable[in_range] = part.stable[sf[in_range]]
     uL = np.where(in_range, part.uL[np.clip(sf, 0, n - 1)], np.nan)
     L = arm.length_or_inf
-    valid = stable & np.isfinite(xf) & np.isfinite(of) & (of >= 0) & (xf + uL > 0) & (xf <= L)
+    valid = stable & np.isfinite(xf) & np.isfinite(of) & (of >= 0) & (xf + uL > -arm.back) & (xf <= L)
     if on_invalid == "raise" and not np.all(valid):
         i = int(np.flatnonzero(~valid)[0])
         idx = np.unravel_index(i, shape) if shape else ()

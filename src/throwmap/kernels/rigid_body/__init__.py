@@ -111,11 +111,12 @@ Modules (the automaton's pieces)
 ``landing``      reset land_side, FLAT_SLIDE, rocking_rest, rest
 ``trajectory``   trajectory rows
 ``automaton``    one throw: the loop over modes
-``batch``        many throws in parallel
+``batch``        many throws: parallel kernels and their serial twins, chosen by batch size
 """
 
 from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4
-from .batch import throw_many_rigid_body, throw_many_rigid_body_rk4
+from .batch import (PARALLEL_MIN, pick, throw_many_rigid_body, throw_many_rigid_body_rk4,
+                    throw_many_rigid_body_rk4_serial, throw_many_rigid_body_serial)
 from .flight import departure_window
 from .impact import coulomb_impact
 from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE,
@@ -127,7 +128,8 @@ from .stick_exact import pivot_stick_exact
 from .swing import swing_time
 from .trajectory import count_samples
 
-__all__ = ["count_samples", "coulomb_impact", "departure_window", "pivot_slide", "pivot_stick",
+__all__ = ["PARALLEL_MIN", "pick", "throw_many_rigid_body_serial", "throw_many_rigid_body_rk4_serial",
+           "count_samples", "coulomb_impact", "departure_window", "pivot_slide", "pivot_stick",
            "pivot_stick_exact", "run_throw", "select_contact_mode", "slide_rhs", "slide_sense",
            "stick_forces", "swing_time", "throw_many_rigid_body", "throw_many_rigid_body_rk4",
            "throw_one_rigid_body", "throw_one_rigid_body_rk4"]

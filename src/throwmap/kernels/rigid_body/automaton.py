@@ -18,7 +18,7 @@ from numba import njit
 
 from .. import codes as C
 from ..roll import theta_a, theta_b
-from ..flight import gap_constants, release_state, rest_offsets
+from ..flight import UNRESOLVED_J, gap_constants, release_state, rest_offsets
 from ..rows import start_record
 from .flight import departure_window, flight_frame, fly, leave_arm, lift
 from .impact import coulomb_impact, record_first_contact, record_first_impact, record_impact
@@ -33,7 +33,7 @@ from .trajectory import _put, clear
 
 
 @njit(cache=True, inline='always')
-def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
               max_events, rec, traj, traj_dt):
     """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`."""
     n = w.shape[0]
@@ -48,7 +48,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, 
         ts[1] = ts[2]
     if omega == 0.0:
         rec[C.N_MIN] = 1.0
-        return rest(x0, side, 0.0, h, g, d, uL, beta, length, beta[side], traj, ts, rec)
+        return rest(x0, side, 0.0, h, g, d, uL, beta, length, back, beta[side], traj, ts, rec)
     # ------------------------------------------------------------------ reset release (Eq. 1)
     vx, vy, om = release_state(x0, dk, h, omega)
     x = x0
@@ -83,12 +83,12 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, 
             jc, t, x, y, vy, phi, rx, ry = fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol,
                                                max_iter, traj, ts)
             if jc < 0:
-                return x, last_side, C.NO_CONTACT
+                return x, last_side, (C.UNRESOLVED if jc == UNRESOLVED_J else C.NO_CONTACT)
             pxc = x + rx
             k_pre = 0.5 * (vx * vx + vy * vy + rho2 * om * om)
             if first:
                 record_first_contact(rec, t, jc, pxc, vx, vy, om, k_pre, y - h, g)
-            status = leave_arm(pxc, length)
+            status = leave_arm(pxc, back, length)
             if status != C.OK:
                 return x, last_side, status
             # ---------------------------------------------------------- reset impact
@@ -140,7 +140,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, 
                                               ts, rec)
             va = 0.0
         elif mode == MODE_SLIDE:
-            ev, px, theta, va, thdot, t = pivot_slide(px, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu_s, length,
+            ev, px, theta, va, thdot, t = pivot_slide(px, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu_s, length, back,
                                                       t, max_iter, h, phi_off, traj, ts, rec)
             if ev == EV_INCONSISTENT:
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
@@ -179,7 +179,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, 
         # -------------------------------------------------------------- guard land: reset land_side
         (mode, status, x, y, vx, vy, om, phi, t, jp, px, theta, thdot, va, phi_off, j_ex, t_ex,
          last_side) = land_side(1 if ev == EV_LAND_B else -1, jp, px, thdot, va, phi, t, last_side, h, g, length,
-                                rho2, mu, w, beta, d, uL, uR, ell, stable, ta, tb, ru, rv, c0, traj, ts, rec)
+                                back, rho2, mu, w, beta, d, uL, uR, ell, stable, ta, tb, ru, rv, c0, traj, ts, rec)
         if mode == MODE_REST:
             return x, last_side, status
         if mode == MODE_FLIGHT:
@@ -188,24 +188,26 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, rho2, mu, w, beta, d, 
 
 
 @njit(cache=True)
-def throw_one_rigid_body(x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+def throw_one_rigid_body(x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                          max_events, rec, traj, traj_dt):
     """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s), model "rigid_body".
 
     Fills ``rec`` (layout :mod:`~throwmap.kernels.codes`) and ``traj`` (see
     :mod:`throwmap.kernels.rigid_body`; rows not written are NaN) and returns
-    ``(x, side, status)``. ``mu`` is the Coulomb coefficient (``inf``: no slip),
+    ``(x, side, status)``. ``length`` (m, inf: unbounded) and ``back`` (m, ``Arm.back``)
+    bound the arm's surface: a contact at x ≤ −back is BEHIND_JOINT, beyond length
+    OFF_END. ``mu`` is the Coulomb coefficient (``inf``: no slip, 0: frictionless),
     ``max_iter`` caps the contact-search and integration steps of one mode,
     ``max_events`` the mode changes (status NO_REST beyond). The caller has
     checked the start. The sticking phase is closed form (:func:`pivot_stick_exact`).
     """
-    return run_throw(pivot_stick_exact, x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable,
+    return run_throw(pivot_stick_exact, x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable,
                      tol, max_iter, max_events, rec, traj, traj_dt)
 
 
 @njit(cache=True)
-def throw_one_rigid_body_rk4(x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+def throw_one_rigid_body_rk4(x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                              max_events, rec, traj, traj_dt):
     """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`pivot_stick`): the reference it is checked against."""
-    return run_throw(pivot_stick, x0, side, omega, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol,
+    return run_throw(pivot_stick, x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol,
                      max_iter, max_events, rec, traj, traj_dt)

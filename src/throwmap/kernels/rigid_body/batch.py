@@ -1,10 +1,13 @@
-"""Batches of independent "rigid_body" throws (flat arrays, Numba-parallel).
+"""Batches of independent "rigid_body" throws (flat arrays), in parallel or on the calling thread.
 
-Two entries with one loop each (a jitted function passed into a parallel loop
-cannot be cached): :func:`throw_many_rigid_body` (closed-form sticking phase)
-and :func:`throw_many_rigid_body_rk4` (the RK4 reference). Batches smaller than
-``SERIAL_BELOW`` run on the calling thread: the analysis layer asks for many
-small batches, for which waking the thread pool costs more than the throws.
+Each batch entry has a parallel kernel (Numba ``prange``) and a serial twin with the
+same loop (a jitted function passed into a parallel loop cannot be cached, so each
+sticking phase has its own pair): :func:`throw_many_rigid_body` /
+:func:`throw_many_rigid_body_serial` (closed-form sticking phase) and
+:func:`throw_many_rigid_body_rk4` / :func:`throw_many_rigid_body_rk4_serial` (the RK4
+reference). :func:`pick` chooses by batch size: batches smaller than
+:data:`PARALLEL_MIN` run serially, since the analysis layer asks for many small
+batches, for which waking the thread pool costs more than the throws.
 """
 
 
@@ -14,27 +17,32 @@ from numba import njit, prange
 from ..rows import mark_invalid
 from .automaton import throw_one_rigid_body, throw_one_rigid_body_rk4
 
-SERIAL_BELOW = 128
-"""Batches with fewer throws than this run serially (same results, no thread-pool wake-up)."""
+PARALLEL_MIN = 256
+"""Smallest batch run on Numba's thread pool; smaller batches run serially (same results).
+
+A "rigid_body" throw takes about 2–20 µs; waking the pool costs tens of µs and, when
+the cores are busy, up to milliseconds per call (issue 10: ``critical_points`` took
+108 ms on two threads and 3.7 ms on one under load)."""
 
 
 @njit(cache=True)
-def _serial(x0, side, omega, valid, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_events,
-            x_out, side_out, status_out, rec_out):
+def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell,
+                                 stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
+    """:func:`throw_many_rigid_body` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
     for i in range(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, rho2, mu, w, beta, d, uL, uR, ell,
-                                        stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, w, beta, d, uL, uR,
+                                        ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
 
 
 @njit(cache=True, parallel=True)
-def throw_many_rigid_body(x0, side, omega, valid, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol,
+def throw_many_rigid_body(x0, side, omega, valid, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol,
                           max_iter, max_events, x_out, side_out, status_out, rec_out):
     """Batch of independent throws (flat arrays), model "rigid_body"; invalid starts get INVALID_START.
 
@@ -46,24 +54,47 @@ def throw_many_rigid_body(x0, side, omega, valid, h, g, length, rho2, mu, w, bet
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, rho2, mu, w, beta, d, uL, uR, ell,
-                                        stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, w, beta, d, uL, uR,
+                                        ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
 
 
 @njit(cache=True, parallel=True)
-def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, rho2, mu, w, beta, d, uL, uR, ell, stable, tol,
-                              max_iter, max_events, x_out, side_out, status_out, rec_out):
+def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable,
+                              tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body` with the RK4 sticking phase (:func:`~.automaton.throw_one_rigid_body_rk4`)."""
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, rho2, mu, w, beta, d, uL, uR,
-                                            ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, w, beta, d, uL,
+                                            uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
+
+
+@njit(cache=True)
+def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell,
+                                     stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
+    """:func:`throw_many_rigid_body_rk4` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
+    no_traj = np.empty((0, 4))
+    for i in range(x0.shape[0]):
+        if not valid[i]:
+            mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
+            continue
+        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, w, beta, d, uL,
+                                            uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+        x_out[i] = x
+        side_out[i] = k
+        status_out[i] = st
+
+
+def pick(n: int, rk4: bool = False):
+    """The batch kernel for ``n`` throws: parallel from :data:`PARALLEL_MIN` throws on, else its serial twin."""
+    if rk4:
+        return throw_many_rigid_body_rk4 if n >= PARALLEL_MIN else throw_many_rigid_body_rk4_serial
+    return throw_many_rigid_body if n >= PARALLEL_MIN else throw_many_rigid_body_serial

@@ -29,9 +29,10 @@ def flight_frame(phi, y, h, w, ru, rv, c0, j_on):
 
 
 @njit(cache=True)
-def leave_arm(px, length):
-    """Guard ``leave_arm`` for a contact at world x = ``px``: BEHIND_JOINT (x ≤ 0), OFF_END (x > length), else OK."""
-    if px <= 0.0:
+def leave_arm(px, back, length):
+    """Guard ``leave_arm`` for a contact at world x = ``px`` (m): BEHIND_JOINT (x ≤ −back, ``Arm.back``),
+    OFF_END (x > length), else OK."""
+    if px <= -back:
         return C.BEHIND_JOINT
     if px > length:
         return C.OFF_END
@@ -44,7 +45,8 @@ def fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol, max_i
 
     ``excl_j`` (−1: none) is a vertex that just left the line, known to stay above
     it for ``excl_t`` s. Returns ``(j, t, x, y, v_y, φ, r_x, r_y)`` at contact: vertex j (−1 if the
-    search hit ``max_iter``) and its offset (r_x, r_y) from the CM (m).
+    search hit ``max_iter``; ``UNRESOLVED_J`` past the spin angle the search resolves) and
+    its offset (r_x, r_y) from the CM (m).
     """
     tc, jc = first_contact(c0, ru, rv, vy, om, g, ell, excl_j, excl_t, tol, max_iter)
     if jc < 0:

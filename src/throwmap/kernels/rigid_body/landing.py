@@ -6,6 +6,13 @@ vertices stop normal motion and friction removes what it can of the horizontal
 velocity; what remains slides the part flat (mode FLAT_SLIDE, deceleration μ g,
 closed form) to rest on a stable side, or it tips from rest about the vertex its
 CM overhangs (unstable side).
+
+Frictionless arm (μ = 0): no contact force has a horizontal component, so the CM's
+horizontal velocity never changes (it stays −(h + d) ω from the release). A part
+landing flat keeps sliding (:func:`slide_away`: behind the joint inward, off the end
+outward, NO_REST outward on an unbounded arm); an unstable side tips while it slides
+(pivot on the overhung vertex, sliding); the Zeno rule compares the kinetic energy
+relative to the CM's horizontal motion with the topple barriers.
 """
 
 import math
@@ -52,12 +59,14 @@ def arc_ok(th_from, E, lj, I, g, mu, towards_peak):
 
 
 @njit(cache=True)
-def rest(x, k, t, h, g, d, uL, beta, length, phi, traj, ts, rec):
+def rest(x, k, t, h, g, d, uL, beta, length, back, phi, traj, ts, rec):
+    """Terminal mode REST flat on side k with the CM at x (m): status BEHIND_JOINT if the left support
+    vertex is at x ≤ −back, OFF_END if the CM is beyond ``length``, else OK."""
     rec[C.E_FINAL] = g * d[k]
     rec[C.T_REST] = t
     m = round((phi - beta[k]) / TWO_PI)
     _put_final(traj, ts, t, x, h + d[k], beta[k] + TWO_PI * m)
-    if x + uL[k] <= 0.0:
+    if x + uL[k] <= -back:
         return x, k, C.BEHIND_JOINT
     if x > length:
         return x, k, C.OFF_END
@@ -101,6 +110,35 @@ def flat_slide(x_cm, vx, t, mu, g, y, phi, traj, ts, rec):
 
 
 @njit(cache=True)
+def slide_away(x_cm, vx, t, k, uL, uR, length, back, y, phi, traj, ts, rec):
+    """Mode FLAT_SLIDE on a frictionless arm (μ = 0): flat on side k at speed ``vx`` ≠ 0 (m/s), for ever.
+
+    Moving inward it reaches the arm's edge behind the joint (left support vertex at
+    x = −back): BEHIND_JOINT; outward it passes the arm's end: OFF_END; on an unbounded
+    arm it never comes to rest: NO_REST (CM where the slide began). Returns ``(x, status, t)``
+    with the CM x (m) and time (s) at the edge.
+    """
+    rec[C.N_SLIPS] += 1.0
+    if vx < 0.0:
+        x_end = -back - uL[k]
+        status = C.BEHIND_JOINT
+    elif length < math.inf:
+        x_end = length - uR[k]
+        status = C.OFF_END
+    else:
+        return x_cm, C.NO_REST, t
+    dist = abs(x_end - x_cm)
+    t_end = t + dist / abs(vx)
+    rec[C.SLIP_DISTANCE] += dist
+    if traj.shape[0] > 0:
+        while ts[1] <= t_end:
+            _put(traj, ts, ts[1], x_cm + vx * (ts[1] - t), y, phi)
+            ts[1] += ts[2]
+        _put_final(traj, ts, t_end, x_end, y, phi)
+    return x_end, status, t_end
+
+
+@njit(cache=True)
 def tip_from_rest(k, x_cm, n, d, uL, uR):
     """Flat on an unstable side k: the pivot the part tips over from rest (the vertex its CM overhangs).
 
@@ -113,7 +151,7 @@ def tip_from_rest(k, x_cm, n, d, uL, uR):
 
 
 @njit(cache=True)
-def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, rho2, mu, w, beta, d, uL, uR, ell,
+def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell,
               stable, ta, tb, ru, rv, c0, traj, ts, rec):
     """Reset ``land_side``: pivoting on A = w_jp, θ reached θb (``land_dir`` +1) or θa (−1) and B touches.
 
@@ -144,7 +182,7 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, rho2
     pxB = x_cm + uB
     vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vxm, vym, thdot, uB, -dk, rho2, mu)
     lifts = kind != IMP_INCONSISTENT and (vyp + wp * uA) > 0.0
-    status = leave_arm(pxB, length)
+    status = leave_arm(pxB, back, length)
     if status != C.OK:
         rec[C.N_IMPACTS] += 1.0
         return (MODE_REST, status, x_cm, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, thdot, va, 0.0, -1, 0.0,
@@ -158,10 +196,18 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, rho2
         if kind != IMP_STICK:
             rec[C.N_SLIPS] += 1.0
         th_new = theta_a(jB, n, d, uL) if land_dir > 0 else theta_b(jB, d, uR)
+        if mu == 0.0 and stable[k] and k_after - 0.5 * vxp * vxp < min(g * (ell[jp] - dk), g * (ell[jB] - dk)):
+            # frictionless Zeno rule: the CM's horizontal motion is free (no friction), the rocking
+            # relative to it is below both topple barriers and dies out: flat on side k, sliding at v_x
+            if vxp == 0.0:
+                x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, back, phi, traj, ts, rec)
+            else:
+                x, status, t = slide_away(x_cm, vxp, t, k, uL, uR, length, back, h + dk, phi, traj, ts, rec)
+            return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
         if kind == IMP_STICK and stable[k]:
             th_A = tb if land_dir > 0 else ta
             if rocking_rest(th_new, th_A, k_after, ell[jp], ell[jB], rho2, dk, g, mu, land_dir):
-                x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, phi, traj, ts, rec)
+                x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, back, phi, traj, ts, rec)
                 return (MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0,
                         last_side)
         phi_off = phi - th_new
@@ -183,13 +229,24 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, rho2
     vx_after = vxm + jt
     record_impact(jt, jn, k_before, 0.5 * vx_after * vx_after, rec)
     phi = beta[k] + TWO_PI * round((phi - beta[k]) / TWO_PI)
+    if vx_after != 0.0 and mu == 0.0:
+        # frictionless arm: nothing stops the horizontal motion
+        if stable[k]:
+            x, status, t = slide_away(x_cm, vx_after, t, k, uL, uR, length, back, h + dk, phi, traj, ts, rec)
+            return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
+        # an unstable side tips over the vertex its CM overhangs while it slides on
+        jt_, px_t, theta = tip_from_rest(k, x_cm, n, d, uL, uR)
+        status = leave_arm(px_t, back, length)
+        mode = MODE_SELECT if status == C.OK else MODE_REST
+        return (mode, status, x_cm, h + dk, vx_after, 0.0, 0.0, phi, t, jt_, px_t, theta, 0.0, vx_after,
+                phi - theta, -1, 0.0, last_side)
     if vx_after != 0.0:
         x_cm, t = flat_slide(x_cm, vx_after, t, mu, g, h + dk, phi, traj, ts, rec)
     if stable[k]:
-        x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, phi, traj, ts, rec)
+        x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, back, phi, traj, ts, rec)
         return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
     # flat on an unstable side: tips over the vertex its CM overhangs, from rest
     jt_, px_t, theta = tip_from_rest(k, x_cm, n, d, uL, uR)
-    status = leave_arm(px_t, length)
+    status = leave_arm(px_t, back, length)
     mode = MODE_STICK if status == C.OK else MODE_REST
     return mode, status, x_cm, h + dk, 0.0, 0.0, 0.0, phi, t, jt_, px_t, theta, 0.0, 0.0, phi - theta, -1, 0.0, last_side

@@ -61,7 +61,7 @@ def _rk4_slide(xa, th, va, w, dt, lj, rho2, g, musig):
 
 
 @njit(cache=True)
-def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length):
+def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back):
     _a, _b, N, D = slide_rhs(th, w, lj, rho2, g, musig)
     gmin = sig * va
     which = EV_STICK
@@ -76,8 +76,8 @@ def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length):
     if N / g < gmin:
         gmin = N / g
         which = EV_LIFT_OFF
-    if xa < gmin:
-        gmin = xa
+    if xa + back < gmin:
+        gmin = xa + back
         which = EV_BEHIND_JOINT
     if length - xa < gmin:
         gmin = length - xa
@@ -86,7 +86,7 @@ def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length):
 
 
 @njit(cache=True)
-def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length):
+def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back):
     """The value of one guard of :func:`_slide_guards` (a smooth function of the state)."""
     if which == EV_STICK:
         return sig * va
@@ -98,14 +98,14 @@ def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length):
         _a, _b, N, _D = slide_rhs(th, w, lj, rho2, g, musig)
         return N / g
     if which == EV_BEHIND_JOINT:
-        return xa
+        return xa + back
     if which == EV_OFF_END:
         return length - xa
     return math.nan
 
 
 @njit(cache=True)
-def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length):
+def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back):
     """Smallest RK4 step length τ ∈ (0, dt] at which the guard function (:func:`_slide_guards`) is ≤ 0.
 
     Bracket [lo, hi] with min-guard G(lo) > 0 ≥ G(hi). Each trial point is a
@@ -129,13 +129,13 @@ def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, 
             break
         mid = lo + 0.5 * width
         if falsi:
-            c_lo = _guard_value(which, x_lo, th_lo, v_lo, w_lo, sig, ta, tb, lj, rho2, g, musig, length)
-            c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length)
+            c_lo = _guard_value(which, x_lo, th_lo, v_lo, w_lo, sig, ta, tb, lj, rho2, g, musig, length, back)
+            c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length, back)
             if c_lo > 0.0 and c_hi <= 0.0:
                 mid = lo + width * c_lo / (c_lo - c_hi)
                 mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
         xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig)
-        gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length)
+        gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length, back)
         if gmid <= 0.0:
             hi = mid
             which = wh
@@ -148,12 +148,12 @@ def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, 
 
 
 @njit(cache=True)
-def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, t, max_steps, h, phi_off, traj, ts,
+def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back, t, max_steps, h, phi_off, traj, ts,
                 rec):
     """Mode PIVOT_SLIDE on vertex A at (x_A, h), slip sense σ = sgn v_A, until a guard fires.
 
     Guards ``stick`` (σ v_A = 0), ``land`` (θa, θb), ``lift_off`` (N = 0),
-    ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ 0 or > length). RK4, the guard
+    ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ −back or > length). RK4, the guard
     located inside a step by :func:`_locate_guard`. Updates N_MIN, MU_MAX, SLIP_DISTANCE. Returns
     ``(event, x_A, θ, v_A, θ̇, t)``.
     """
@@ -166,13 +166,13 @@ def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, t, m
     for _ in range(max_steps):
         dt = DTH / (abs(thdot) + om)
         x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig)
-        gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length)
+        gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back)
         step = dt
         if gm <= 0.0:
-            hi = _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length)
+            hi = _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back)
             step = hi
             x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, hi, lj, rho2, g, musig)
-            gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length)
+            gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back)
         if sample:
             while ts[1] <= t + step:
                 xq, thq, _v, _w = _rk4_slide(xa, theta, va, thdot, ts[1] - t, lj, rho2, g, musig)
