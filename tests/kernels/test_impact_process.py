@@ -203,3 +203,18 @@ def test_velocity_level_law_is_one_step_coulomb_and_differs_from_routh_only_on_r
                 assert err <= TOL, (err, st, mu)
             n_rev_differs += done and rev > 0 and err > 1e-2
     assert n_rev_differs >= 5
+
+
+def test_infinite_friction_is_the_process_limit():
+    """μ = ∞ (the kernel's own branch: tangential impulse until u_t = 0 or u_n = 0) = the process at μ = 1e9,
+    including the impacts whose no-slip impulse would have to pull (J_n < 0) and which end sliding."""
+    n_slide = 0
+    for st in _impact_states(13, 300):
+        kx, ky, kw, _, _, kind, _, jn0 = coulomb_impact(*st, math.inf)
+        ex, ey, ew, done, _ = impulse_process(*st, 1e9, N_STEPS, 200 * N_STEPS)
+        assert done
+        rx, ry = st[3], st[4]
+        err = max(abs(kx - ex), abs(ky - ey), abs(kw - ew) * math.hypot(rx, ry)) / _scale(*st[:5])
+        assert err <= TOL, (err, st)
+        n_slide += jn0 < 0.0
+    assert n_slide >= 10
