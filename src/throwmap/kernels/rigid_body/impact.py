@@ -32,9 +32,9 @@ tests/engine/test_low_mu_agreement.py, swapping only this reset for the
 velocity-level law brings rigid_body from 8.6 mm to ≤ 0.45 mm of pymunk at
 μ = 0.3 (6.1 → 0.21 mm at μ = 0.6), and on the whole validation set at μ = 0.3
 from 75 % to 99 % within 0.5 mm (max 32 → 1.3 mm): the low-μ gap is the impact
-law, not the rest of the automaton. (At μ ≥ 10 and μ = ∞ a smaller gap of ≤ 2.7 mm, 80 %
-within 0.5 mm, remains that the velocity-level law does not change: it is not
-the impact law.)
+law, not the rest of the automaton. (At μ ≳ 3 and μ = ∞ a smaller gap, ≤ 2.7 mm, 81 % within
+0.5 mm at μ = ∞, is pymunk's: its friction cap, :mod:`throwmap.engine.pymunk.friction`,
+freezes its results above μ ≈ 3 while rigid_body's still move towards μ = ∞.)
 
 Which to trust: for a part whose contact is stiff in both directions and short
 (the rigid-body idealisation), Routh's process is the one derived from the
