@@ -32,6 +32,21 @@ class Orbit:
     status: Status
     model: str
 
+    def __repr__(self) -> str:
+        om = np.asarray(self.omegas, dtype=float)
+        if om.size == 0:
+            omega = "no throw"
+        elif np.all(om == om[0]):
+            omega = f"omega={om[0]:g} rad/s"
+        else:
+            omega = f"omega∈[{om.min():g}, {om.max():g}] rad/s"
+        kinds = self.kinds
+        jogs, flips = kinds.count("jog"), kinds.count("flip")
+        sides = ", ".join(str(int(s)) for s in np.unique(self.side))
+        return (f"Orbit(model={self.model!r}, {omega}, {self.n_throws} throws ({jogs} jogs, {flips} flips), "
+                f"{self.status.label}, sides {sides}, x∈[{np.min(self.x):.4g}, {np.max(self.x):.4g}] m, "
+                f"final (x={self.x[-1]:.4g} m, side {int(self.side[-1])}))")
+
     @property
     def n_throws(self) -> int:
         return len(self.outcomes)

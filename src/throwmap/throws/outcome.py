@@ -25,6 +25,13 @@ class Status(enum.IntEnum):
     tolerance); the engine's result is refused, not returned.
     ``INCONSISTENT``: rigid-body Coulomb contact has no consistent solution there
     (Painlevé's paradox); the model says so instead of giving a number.
+    ``UNRESOLVED``: the flight leaves the range the model resolves (a spin angle at
+    first contact beyond double precision, or small_angle2 with g ≤ d ω²): refused
+    rather than a wrong number. ``UNCONVERGED``: an engine run disagreed with its
+    half-step rerun; its result is refused.
+
+    ``str(status)`` and ``f"{status}"`` give the label (``ok``, ``behind_joint``…);
+    ``int(status)`` the code.
     """
 
     OK = C.OK
@@ -36,10 +43,20 @@ class Status(enum.IntEnum):
     TIMEOUT = C.TIMEOUT
     PENETRATION = C.PENETRATION
     INCONSISTENT = C.INCONSISTENT
+    UNRESOLVED = C.UNRESOLVED
+    UNCONVERGED = C.UNCONVERGED
 
     @property
     def label(self) -> str:
         return self.name.lower()
+
+    def __str__(self) -> str:
+        return self.label
+
+    def __format__(self, spec: str) -> str:
+        if spec and spec[-1] in "bcdoxXn":  # an integer format asks for the code
+            return int.__format__(int(self), spec)
+        return format(self.label, spec)
 
     @classmethod
     def from_label(cls, label: str) -> "Status":
@@ -112,6 +129,12 @@ class ThrowOutcome:
     slip_distance: float = 0.0
     t_rest: float = float("nan")
     penetration_max: float = 0.0
+
+    def __repr__(self) -> str:
+        end = (f"(x={self.x:.4g} m, side {self.side}), {self.kind}" if self.ok
+               else f"{self.status.label} at x={self.x:.4g} m")
+        return (f"ThrowOutcome(model={self.model!r}, omega={self.omega:g} rad/s, "
+                f"(x={self.x0:.4g} m, side {self.side0}) → {end}, {self.n_impacts} impacts)")
 
     @property
     def ok(self) -> bool:
@@ -236,6 +259,11 @@ class BatchOutcome:
     status: np.ndarray
     records: np.ndarray
     model: str
+
+    def __repr__(self) -> str:
+        counts = ", ".join(f"{k} {v}" for k, v in self.counts().items()) or "none"
+        return (f"BatchOutcome(model={self.model!r}, {int(self.status.size)} throws, shape {tuple(self.x.shape)}: "
+                f"{counts})")
 
     @property
     def ok(self) -> np.ndarray:

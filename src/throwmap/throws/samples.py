@@ -92,6 +92,16 @@ class MapSamples:
             if np.any(self.side[i * n:(i + 1) * n] != s):
                 raise InvalidStateError("side", f"samples {i * n}…{(i + 1) * n - 1} must all start on side {s}")
 
+    def __repr__(self) -> str:
+        info = self.info
+        if "model" in info and "omega_rad_s" in info:
+            what = f"model={info['model']!r}, omega={info['omega_rad_s']:g} rad/s"
+        else:
+            what = f"map={(self.label if len(self.label) <= 60 else self.label[:59] + '…')!r}"
+        ok = 100.0 * float(np.mean(self.ok)) if self.status.size else 0.0
+        return (f"MapSamples({what}, sides {', '.join(map(str, self.sides))}, {self.n} per side, "
+                f"x∈({min(self.x_lo):.4g}, {max(self.x_hi):.4g}] m, {ok:.1f} % rest on the arm)")
+
     @property
     def n(self) -> int:
         """Samples per side."""

@@ -116,6 +116,14 @@ class Trajectory:
         object.__setattr__(self, "arm_angle", a)
         object.__setattr__(self, "poses", p)
 
+    def __repr__(self) -> str:
+        span = f"t∈[{self.t[0]:.4g}, {self.t[-1]:.4g}] s" if self.n_samples else "no samples"
+        names = ", ".join(dict.fromkeys(p.name or "part" for p in self.parts))
+        if len(names) > 40:
+            names = names[:39] + "…"
+        return (f"Trajectory(source={self.source!r}, {len(self.parts)} part{'s' if len(self.parts) != 1 else ''} "
+                f"({names}), {self.n_samples} samples, {span}, {len(self.events)} events, h={self.h:g} m)")
+
     @property
     def n_samples(self) -> int:
         return int(self.t.shape[0])
