@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..system.arm import Arm
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from .outcome import Status, ThrowOutcome
 from ..system.part import Part
 from .throw import DEFAULT_MODEL, throw
@@ -108,7 +108,7 @@ def throw_rates(omegas, n=None, *, min_n: int = 0) -> np.ndarray:
             raise InvalidStateError("n", "the number of throws is required with a single omega")
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < min_n:
             kind = "positive" if min_n >= 1 else "non-negative"
-            raise InvalidStateError("n", f"must be a {kind} integer, got {n!r}")
+            raise InvalidStateError("n", f"must be a {kind} integer, got {shown(n)}")
         om = np.full(int(n), float(om[0]))
     elif n is not None and n != len(om):
         raise InvalidStateError("n", f"got n = {n} but {len(om)} omegas")
@@ -129,7 +129,7 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     try:
         x0, s0 = state
     except (TypeError, ValueError):
-        raise InvalidStateError("state", f"must be a pair (x, side), got {state!r}") from None
+        raise InvalidStateError("state", f"must be a pair (x, side), got {shown(state)}") from None
     om = throw_rates(omegas, n)
     xs = [float(x0)]
     ss = [part.check_side(s0)]

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..models import DEFAULT_MODEL, model_names
 from ..system.arm import Arm
 from ..system.part import Part
@@ -127,7 +127,7 @@ def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int |
     om = throw_rates(omegas, n, min_n=1)
     pause = float(pause)
     if not (math.isfinite(pause) and pause >= 0):
-        raise InvalidStateError("pause", f"must be a finite time ≥ 0 (s), got {pause!r}")
+        raise InvalidStateError("pause", f"must be a finite time ≥ 0 (s), got {shown(pause)}")
     dt = check_dt(dt)
     traj = None
     outcomes = []

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import shown
 from ..kernels import codes as C
 
 __all__ = ["Status", "ThrowOutcome", "BatchOutcome"]
@@ -64,7 +65,7 @@ class Status(enum.IntEnum):
         try:
             return cls[str(label).upper()]
         except KeyError:
-            raise ValueError(f"status: unknown status {label!r}") from None
+            raise ValueError(f"status: unknown status {shown(label)}") from None
 
 
 _STATUS = tuple(Status(c) for c in range(len(Status)))

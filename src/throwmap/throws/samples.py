@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..system.arm import Arm
 from ..system.part import Part
 from .outcome import Status
@@ -115,7 +115,7 @@ class MapSamples:
     def panel(self, side: int) -> slice:
         """The slice of the flat arrays that starts on ``side``."""
         if side not in self.sides:
-            raise InvalidStateError("side", f"must be one of the sampled sides {list(self.sides)}, got {side!r}")
+            raise InvalidStateError("side", f"must be one of the sampled sides {list(self.sides)}, got {shown(side)}")
         i = self.sides.index(side)
         return slice(i * self.n, (i + 1) * self.n)
 
@@ -140,7 +140,7 @@ class MapSamples:
 
 def _check_n(n, least: int) -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < least:
-        raise InvalidStateError("n", f"must be an integer ≥ {least}, got {n!r}")
+        raise InvalidStateError("n", f"must be an integer ≥ {least}, got {shown(n)}")
     return int(n)
 
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..system.part import Part
 
 __all__ = ["Trajectory", "pose_at_rest", "state_from_pose", "to_arm_frame", "world_vertices"]
@@ -164,13 +164,13 @@ def contact_points(*points) -> np.ndarray:
 def check_dt(dt) -> float:
     """A positive finite sample interval (s), or :class:`InvalidStateError` naming ``dt``."""
     if isinstance(dt, bool):
-        raise InvalidStateError("dt", f"must be a number, got {dt!r}")
+        raise InvalidStateError("dt", f"must be a number, got {shown(dt)}")
     try:
         v = float(dt)
     except (TypeError, ValueError):
-        raise InvalidStateError("dt", f"must be a number, got {dt!r}") from None
+        raise InvalidStateError("dt", f"must be a number, got {shown(dt)}") from None
     if not (math.isfinite(v) and v > 0):
-        raise InvalidStateError("dt", f"must be a positive finite time step (s), got {dt!r}")
+        raise InvalidStateError("dt", f"must be a positive finite time step (s), got {shown(dt)}")
     return v
 
 
