@@ -127,7 +127,7 @@ def bench_single(part, arm, x, sides, omega, n_calls):
 
 
 @njit(cache=True)
-def _phases(x, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+def _phases(x, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
             n_samples, stop, count_steps):
     """Run the "paper" kernel's phases on every start, stopping after phase ``stop`` (0 release, 1 first
     contact, 2 impact, 3 whole throw); returns a checksum and the total number of first-contact steps."""
@@ -142,7 +142,7 @@ def _phases(x, side, omega, h, g, length, rho2, w, beta, d, uL, uR, ell, stable,
     steps = 0
     for i in range(x.shape[0]):
         if stop == 3:
-            acc += _throw(x[i], side[i], omega[i], h, g, length, rho2, w, beta, d, uL, uR, ell, stable, tol,
+            acc += _throw(x[i], side[i], omega[i], h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
                           max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec, traj, tags, ts)[0]
             continue
         x0 = x[i]
@@ -191,7 +191,8 @@ def flight_steps(c0, b, ru, rv, vy, w, g, ell, tol, max_iter):
         hit = False
         for j in range(n):
             gj, dg = gap(t, j, c0, b, ru, rv, vy, w, g)
-            if gj <= tol and (t > 0.0 or dg <= 0.0):
+            scale = abs(c0[j]) + (abs(b[j]) + abs(w * ru[j])) * t + 0.5 * g * t * t + abs(rv[j] * (1.0 - c))
+            if gj <= tol * scale and (t > 0.0 or dg <= 0.0):
                 hit = True
                 continue
             M = g + w * w * ell[j]
@@ -209,7 +210,7 @@ def bench_phases(part, arm, x, sides, omega, repeat):
     """ns per throw (one thread) after each phase of the "paper" kernel, and mean first-contact steps."""
     o = PaperOptions()
     args = (np.ascontiguousarray(x), np.ascontiguousarray(sides, dtype=np.int64), np.ascontiguousarray(omega),
-            arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
+            arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
             part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples)
     out = {}
     for stop, name in enumerate(("release", "first_contact", "impact", "whole_throw")):
@@ -231,8 +232,8 @@ def bench_kernel(part, arm, x, sides, omega, repeat):
     s = np.ascontiguousarray(sides, dtype=np.int64)
     valid = np.ones(m, dtype=bool)
     outs = (np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
-    geo = (arm.h, arm.g, arm.length_or_inf, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL, part.uR,
-           part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples)
+    geo = (arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
+           part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples)
     throw_many(x[:16], s[:16], omega[:16], valid[:16], *geo, *(a[:16] for a in outs))
     best = float("inf")
     for _ in range(repeat):
