@@ -174,13 +174,18 @@ def test_throw_batch_engine_marks_invalid_starts():
 
 # ------------------------------------------------------------------ escapes and fixtures
 def test_escape_off_the_end_and_wall_stops_it():
-    """A part jogging past a short arm's end falls off; a wall there keeps it on."""
+    """A part jogging past a short arm's end falls off; a wall there keeps it on (leaning on it).
+
+    The start is clear of the wall (x + u_R ≤ length): a part started inside the wall
+    is pushed out by position correction, gains energy, and is refused as unconverged."""
     arm = Arm(h=-0.01, mu=1.5, length=0.36)
-    ref = throw(TRI, arm, 0.35, 1, 2.5, model="paper")
+    x, k, om = 0.28, 0, 3.5
+    assert x + TRI.uR[k] <= arm.length
+    ref = throw(TRI, arm, x, k, om, model="paper")
     assert ref.status == Status.OFF_END
-    free = engine_run(TRI, arm, 0.35, 1, 2.5)
+    free = engine_run(TRI, arm, x, k, om)
     assert free.status == Status.OFF_END
-    walled = engine_run(TRI, arm, 0.35, 1, 2.5, fixtures=(Wall(0.06),))
+    walled = engine_run(TRI, arm, x, k, om, fixtures=(Wall(0.06),))
     assert walled.status == Status.OK
     assert world_vertices(TRI, walled.poses[0])[:, 0].max() <= 0.36 + 1e-3
 

@@ -42,6 +42,10 @@ class EngineSettings:
     default_length : arm length simulated when ``Arm.length`` is None, m beyond
         the farthest part.
     record_dt : sampling interval of recorded trajectories, s.
+    verify, agreement : rerun hard runs (deep penetration, repeated side changes,
+        energy gain, timeout) at half the step and refuse them (status
+        ``unconverged``) unless both agree: same status, side and x within
+        ``agreement`` (m); see :mod:`throwmap.engine.pymunk.verify`.
     """
 
     dt: float = 1.25e-4
@@ -60,12 +64,14 @@ class EngineSettings:
     arm_thickness: float = 0.02
     default_length: float = 2.0
     record_dt: float = 1.0 / 240.0
+    verify: bool = True
+    agreement: float = 5e-4
 
     def __post_init__(self):
         for f in fields(self):
             v = getattr(self, f.name)
             key = f"engine.{f.name}"
-            if f.name == "exact_flight":
+            if f.name in ("exact_flight", "verify"):
                 if not isinstance(v, bool):
                     raise ThrowmapError(key, f"must be true or false, got {v!r}")
                 continue

@@ -9,6 +9,9 @@
 * escape: a part with a vertex below the surface line beyond either edge of the
   arm (x < −back or x > L), or whose CM drops below the arm's underside, has
   left the arm: ``behind_joint`` behind the joint's half of the arm, else ``off_end``.
+* energy: once the arm has stopped, no part may gain mechanical energy (zero
+  restitution); a gain beyond what position correction explains (g times twice
+  ``penetration_tol``) marks a run that blew up (:func:`.run.simulate` reruns it).
 * near: a vertex about to land (no coarse steps then, :mod:`.run`).
 * settling: every part slower than ``settle_speed`` and ``settle_spin``.
 """
@@ -20,7 +23,7 @@ import math
 from ...throws.outcome import Status
 from .world import World
 
-__all__ = ["inspect", "clearance", "escape", "all_slow", "EDGE_EPS", "UNCONVERGED"]
+__all__ = ["inspect", "clearance", "escape", "energy", "all_slow", "EDGE_EPS", "UNCONVERGED"]
 
 
 UNCONVERGED = getattr(Status, "UNCONVERGED", Status.TIMEOUT)
@@ -132,6 +135,15 @@ def escape(w: World, i: int, xa: float, ya: float, arm_thickness: float, over: i
     if ya < h - arm_thickness - 3.0 * R or (ya < h and (xa < -w.back - R or xa > L + R)):
         return Status.BEHIND_JOINT if xa < 0.5 * L else Status.OFF_END
     return None
+
+
+def energy(w: World, i: int) -> float:
+    """Part i's mechanical energy per unit mass in the world frame, J/kg: ½(v² + ρ²φ̇²) + g y."""
+    cp = w.cp
+    b = w.bodies_h[i]
+    v = cp.velocity(b)
+    om = cp.spin(b)
+    return 0.5 * (v.x * v.x + v.y * v.y + w.rho2[i] * om * om) + w.g * cp.position(b).y
 
 
 def all_slow(w: World, tracks, speed: float, spin: float) -> bool:

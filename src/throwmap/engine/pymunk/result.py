@@ -32,7 +32,11 @@ class EngineRun:
     The run's cost: ``n_steps`` pymunk steps (``n_coarse`` of them at
     ``coarse_dt``), ``n_leaps`` exact-flight leaps, ``n_checks`` rounds of the
     periodic checks (penetration, escape, flips, settling) and ``n_clearance``
-    clearance evaluations (exact flight).
+    clearance evaluations (exact flight); ``n_capped`` contact solves whose
+    friction was capped (:mod:`.friction`). ``energy_gain`` (J/kg) is the largest
+    rise of any part's mechanical energy after the arm stopped (a blow-up if
+    large), ``dt`` the step the run used (s) and ``verified`` whether a
+    half-step rerun was made and agreed (:func:`~throwmap.engine.simulate`).
     """
 
     scene: Scene
@@ -52,6 +56,10 @@ class EngineRun:
     n_coarse: int = 0
     n_checks: int = 0
     n_clearance: int = 0
+    n_capped: int = 0
+    energy_gain: float = 0.0
+    dt: float = float("nan")
+    verified: bool = False
 
     def outcome(self, i: int = 0, *, x0=None, side0=None, omega=0.0, model="engine") -> ThrowOutcome:
         """Part ``i``'s result as a :class:`~throwmap.ThrowOutcome`."""
@@ -159,4 +167,5 @@ def finish(scene: Scene, w: World, contacts: Contacts, status: Status, message: 
     return EngineRun(scene, overall, tuple(statuses), tuple(states), tuple(poses),
                      np.array([tr.rec for tr in contacts.tracks]), t, counts["steps"], counts["leaps"], pen_max,
                      final_alpha, traj, message, n_coarse=counts["coarse"], n_checks=counts["checks"],
-                     n_clearance=counts["clearance"])
+                     n_clearance=counts["clearance"], n_capped=counts["capped"], energy_gain=counts["energy_gain"],
+                     dt=counts["dt"])

@@ -11,9 +11,10 @@ from ...throws.outcome import Status
 from ..realisation import ImpulseThrow, check_realisation
 from ..scene import Scene
 from ..settings import EngineSettings
-from .checks import all_slow, clearance, escape, inspect
+from .checks import UNCONVERGED, all_slow, clearance, energy, escape, inspect
 from .contacts import Contacts, nearest_side
 from .result import EngineRun, Recorder, finish
+from .verify import disagreement, flags
 from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
 from .world import build_world
 
@@ -38,7 +39,11 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
 
     A run that loses a contact (status ``penetration``) is repeated with half the
     step, up to ``settings.retries`` times; if it still fails, the failure is
-    returned (with its message), never the result.
+    returned (with its message), never the result. With ``settings.verify`` a
+    hard run (deep penetration, repeated side changes, an energy gain, a
+    timeout; :mod:`.verify`) is rerun at half the step, and where the two
+    disagree the run is refused with status ``unconverged`` (its message says
+    how they differ); where they agree the first run is returned, ``verified``.
     """
     settings = EngineSettings() if settings is None else settings
     if not isinstance(settings, EngineSettings):
@@ -52,6 +57,19 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
         run = _simulate_once(scene, realisation, finer, record, progress, run_for)
         run = replace(run, message=(run.message + "; " if run.message else "")
                       + f"retried at dt = {finer.dt:g} s after: {first}", retries=tries)
+    if settings.verify and run_for is None and run.status != Status.PENETRATION:
+        why = flags(run, settings)
+        if why:
+            half = replace(settings, dt=run.dt / 2, coarse_dt=max(settings.coarse_dt / 2, run.dt / 2))
+            again = _simulate_once(scene, realisation, half, False, None, None)
+            diff = disagreement(run, again, settings)
+            if diff:
+                n = len(run.statuses)
+                run = replace(run, status=UNCONVERGED, statuses=(UNCONVERGED,) * n,
+                              message=(run.message + "; " if run.message else "")
+                              + f"half-step rerun ({', '.join(why)}) disagrees: {diff}; result refused")
+            else:
+                run = replace(run, verified=True)
     return run
 
 
@@ -89,6 +107,8 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     next_check = next_flight_check = next_sample = next_progress = 0.0
     still_since = None
     landing_near = False  # a vertex not in contact may touch before the next check: no coarse steps
+    e_low = [math.inf] * n_parts  # lowest energy of each part since the arm stopped, J/kg
+    e_gain = 0.0  # largest energy gain over that, J/kg
     status = Status.OK
     message = ""
     pen_max = 0.0
@@ -169,6 +189,10 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 if gone is not None:  # left the arm: its depth "into" the arm's far side is no penetration
                     contacts.fell(i, t, gone)
                     continue
+                if t >= arm_stop:
+                    e = energy(w, i)
+                    e_low[i] = min(e_low[i], e)
+                    e_gain = max(e_gain, e - e_low[i])
                 if pen > tr.rec[C.PENETRATION_MAX]:
                     tr.rec[C.PENETRATION_MAX] = pen
                 if pen > pen_max:
@@ -206,5 +230,6 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     if record:
         recorder.sample(t)
     contacts.finished = True
-    counts = {"steps": n_steps, "coarse": n_coarse, "leaps": n_leaps, "checks": n_checks, "clearance": n_clearance}
+    counts = {"steps": n_steps, "coarse": n_coarse, "leaps": n_leaps, "checks": n_checks, "clearance": n_clearance,
+              "capped": contacts.friction_cap.n_capped if contacts.friction_cap is not None else 0, "energy_gain": e_gain, "dt": dt}
     return finish(scene, w, contacts, status, message, t, still_since, counts, pen_max, recorder)

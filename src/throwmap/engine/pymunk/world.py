@@ -97,7 +97,8 @@ class World:
     joint (:attr:`throwmap.Arm.back`, m; the arm spans −back ≤ x ≤ L),
     ``thickness`` the arm solid's depth below the surface (m), ``margin`` the
     flight margin (m), ``corners`` the arm pieces' corners in the
-    arm frame and ``reach`` their largest distance from the joint, ``R[i]`` part
+    arm frame and ``reach`` their largest distance from the joint,
+    ``rho2[i]`` part i's squared radius of gyration (m²), ``R[i]`` part
     i's largest vertex distance from its CM, ``others_h[i]`` the handles of every
     shape part i can touch. ``plain_arm``: one part and no fixtures (the
     penetration check then reads depth below the flat surface directly).
@@ -106,7 +107,7 @@ class World:
 
     __slots__ = ("pm", "cp", "space", "space_h", "arm", "arm_h", "arm_w", "bodies", "bodies_h", "shapes", "shapes_h",
                  "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h",
-                 "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall", "back", "thickness", "margin")
+                 "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall", "back", "thickness", "margin", "rho2")
 
     @property
     def n(self) -> int:
@@ -197,6 +198,7 @@ def build_world(scene, realisation, settings, *, raw: bool = True) -> World:
     w.others_h = [static_h + [w.shapes_h[j] for j in range(len(shapes)) if j != i] for i in range(len(shapes))]
     w.corners = corners
     w.reach = float(np.max(np.hypot(*np.array(corners).T))) if corners else L
+    w.rho2 = [p.radius_of_gyration**2 for p in parts]
     w.R = [float(np.max(np.hypot(p.w[:, 0], p.w[:, 1]))) for p in parts]
     w.wlists = [[tuple(v) for v in p.w.tolist()] for p in parts]
     w.betas = [tuple(p.beta.tolist()) for p in parts]
