@@ -309,6 +309,29 @@ def test_file_arm_fields_survive_command_line_overrides(tmp_path):
     assert doc["arm"] == {"h": -0.01, "g": 9.81, "length": 0.5, "mu": 0.3, "back": 0.0}
 
 
+def test_compare_x_range(tmp_path):
+    """--x-min/--x-max reach the library and the printed table states the range."""
+    result = invoke("compare", *TRIANGLE, "--omegas", "2", "--n-x", "5", "--x-min", "0.12", "--x-max", "0.3", "--json")
+    assert result.exit_code == 0, result.output
+    settings = strict_json(result.stdout)["settings"]
+    assert settings["x_min"] == 0.12 and settings["x_max"] == 0.3
+    table = invoke("compare", *TRIANGLE, "--omegas", "2", "--n-x", "5", "--x-max", "0.3").stdout
+    assert "0.3 m]" in table
+    assert_one_error(invoke("compare", *TRIANGLE, "--x-max", "inf"), "x_max")
+
+
+def test_animate_reports_the_frames_in_the_file(tmp_path):
+    """The frame count printed is the one in the GIF (a held end is merged there), not the frames drawn."""
+    from PIL import Image
+
+    out = tmp_path / "t.gif"
+    result = invoke("animate", *TRIANGLE, *START, "--model", "paper", "--out", out)
+    assert result.exit_code == 0, result.output
+    with Image.open(out) as im:
+        n = im.n_frames
+    assert f"({n} frames," in result.stdout
+
+
 def test_h_required_without_arm_section(tmp_path):
     path = part_file(tmp_path, arm=None)
     assert_one_error(invoke("throw", "--part", path, *START), "arm.h")

@@ -106,24 +106,25 @@ def animate_cmd(
         except OSError as err:
             raise ThrowmapError("out", f"cannot create directory {parent}: {err.strerror or err}") from None
         throws, summary = _summary(traj)
-        title = f"{the_part.name or 'part'} — model {model!r}, ω = {omega:g} rad/s, {throws}"
-        n_frames = len(frame_times(traj, fps, speed, 0.5))
+        title = f"{the_part.name or 'part'} — h = {arm.h:g} m, ω = {omega:g} rad/s, model {model!r}, {throws}"
+        n_drawn = len(frame_times(traj, fps, speed, 0.5))  # the progress bar's total
         try:
             from rich.console import Console
 
             console = Console(stderr=True)
-            if n_frames > PROGRESS_FRAMES and console.is_terminal:
+            if n_drawn > PROGRESS_FRAMES and console.is_terminal:
                 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
                 with Progress(TextColumn("drawing"), BarColumn(), MofNCompleteColumn(),
                               console=console, transient=True) as bar:
-                    task = bar.add_task("drawing", total=n_frames)
-                    animate(traj, out, fps=fps, speed=speed, title=title,
-                            progress=lambda done, total: bar.update(task, completed=done))
+                    task = bar.add_task("drawing", total=n_drawn)
+                    made = animate(traj, out, fps=fps, speed=speed, title=title,
+                                   progress=lambda done, total: bar.update(task, completed=done))
             else:
-                animate(traj, out, fps=fps, speed=speed, title=title)
+                made = animate(traj, out, fps=fps, speed=speed, title=title)
         except OSError as err:
             raise ThrowmapError("out", f"cannot write {out}: {err.strerror or err}") from None
+        n_frames = getattr(made, "n_frames", n_drawn)  # frames in the file (a GIF merges a held end)
         typer.echo(f"wrote {out} ({n_frames} frames, {fps} fps, {speed:g}× real time)")
         typer.echo(summary)
 

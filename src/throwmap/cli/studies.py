@@ -48,9 +48,13 @@ def demo_cmd(
 
 
 # ------------------------------------------------------------------ compare
-def _compare_kwargs(omegas: str | None, n_x: int | None, models: str | None) -> dict[str, Any]:
+def _compare_kwargs(omegas: str | None, n_x: int | None, models: str | None, x_min: float | None = None,
+                    x_max: float | None = None) -> dict[str, Any]:
     """The options of :func:`~throwmap.studies.compare.compare_models` given on the command line."""
     kwargs: dict[str, Any] = {}
+    for name, value in (("x_min", x_min), ("x_max", x_max)):
+        if value is not None:
+            kwargs[name] = check_finite(value, name)
     if omegas is not None:
         oms = parse_floats(omegas, "omegas")
         for w in oms:
@@ -78,6 +82,10 @@ def compare_cmd(
     n_x: Annotated[int | None, typer.Option("--n-x", help="Start positions per stable side.")] = None,
     models: Annotated[str | None, typer.Option("--models", help="Models to compare with 'paper', comma list "
                                                                 "(default: the library's).")] = None,
+    x_min: Annotated[float | None, typer.Option("--x-min", help="Starts from x > max(this, the side's smallest "
+                                                                "resting x), m (default: the side's).")] = None,
+    x_max: Annotated[float | None, typer.Option("--x-max", help="Starts up to this x, m (default: the arm length, "
+                                                                "else the library's).")] = None,
     as_json: JsonOpt = False,
     out: Annotated[Path | None, typer.Option("--out", help="Also write the result: JSON if FILE ends in .json, "
                                                            "else the table as text.")] = None,
@@ -87,7 +95,7 @@ def compare_cmd(
 
     with guard():
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
-        kwargs = _compare_kwargs(omegas, n_x, models)
+        kwargs = _compare_kwargs(omegas, n_x, models, x_min, x_max)
         if out is not None:
             check_output(out, "out")
         result = compare.compare_models(the_part, arm, **kwargs)

@@ -159,7 +159,7 @@ def iterate_cmd(
             orbit = iterate(the_part, arm, (x, side), omegas, model=model)
         summary = _orbit_summary(orbit, len(omegas))
         if plot is not None:
-            save_figure(orbit.plot(part=the_part), plot, fmt, "plot")
+            save_figure(orbit.plot(part=the_part, arm=arm), plot, fmt, "plot")
         if as_json:
             doc = {**orbit.to_dict(), "summary": summary, "part": the_part.name, "arm": arm_dict(arm),
                    "plot": str(plot) if plot is not None else None, "version": __version__}
