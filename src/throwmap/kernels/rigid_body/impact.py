@@ -127,6 +127,9 @@ def coulomb_impact(vx, vy, w, rx, ry, rho2, mu, law=LAW_ROUTH):
         if abs(ut) <= 1e-14 * scale:
             ut = 0.0
             lam = -Ktn / Ktt
+            # Sticking here ends at the no-slip impulse J, a sum of impulses in the cone, so J is in
+            # the cone and step 1 has taken it: this branch is reached only when rounding puts J
+            # just outside the cone (a safety net; hand-made mutants of it are equivalent).
             if abs(lam) <= mu:
                 dp = -un / (Knn + Ktn * lam)
                 Pt += lam * dp
@@ -169,7 +172,7 @@ def coulomb_impact(vx, vy, w, rx, ry, rho2, mu, law=LAW_ROUTH):
         Pn += p_t
         un += an * p_t
         ut = 0.0
-    if un > 0.0:
+    if un > 0.0:  # defensive: every exit above leaves u_n = 0 or u_n < 0 (loop cap)
         kind = IMP_SEPARATE
     vxp = vx + Pt
     vyp = vy + Pn
