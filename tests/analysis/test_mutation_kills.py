@@ -1,0 +1,88 @@
+"""Checks added by the mutation pass (tools/mutants.py) where the analysis tests let a slip through.
+
+Each test names the mutant(s) it kills. All use synthetic maps or small objects whose
+answer is known in closed form (a contraction's multiplier and Lyapunov exponent, a
+rotation's period, a repeller's instability), never copied outputs.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from throwmap.analysis import Attractor, ConfigSet, FunctionMap, limit_set
+from throwmap.throws.outcome import Status
+
+OK, BEHIND, OFF_END = int(Status.OK), int(Status.BEHIND_JOINT), int(Status.OFF_END)
+
+
+def _ok(x):
+    return np.zeros(x.size, dtype=np.int64)
+
+
+def rotation(p, x=0.5):
+    """Side s → side s + 1 (mod p), x kept: every orbit is a p-cycle with multiplier 1 (neutral)."""
+    return FunctionMap(lambda x, s: (x.copy(), (s + 1) % p, _ok(x)), {s: (0.0, 1.0) for s in range(p)},
+                       name=f"rotation {p}")
+
+
+def contraction(a, k):
+    return FunctionMap(lambda x, s: (a + k * (x - a), s, _ok(x)), {0: (0.0, 1.0)}, name=f"contraction {a} {k}")
+
+
+def test_a_cycle_of_exactly_the_longest_period_sought_is_found():
+    """A01: period p = max_period must be tested (range(1, max_period + 1))."""
+    p = 6
+    cyc = FunctionMap(lambda x, s: (0.2 + 0.5 * (x - 0.2), (s + 1) % p, _ok(x)),
+                      {s: (0.0, 1.0) for s in range(p)}, name="contracting rotation")
+    ls = limit_set(cyc, n_starts=2, max_period=p, n_record=4 * p, transient=200)
+    assert ls.kind == "cycle", ls.summary()
+    (cy,) = ls.attractors
+    assert cy.period == p
+    # closed form: every point at x = 0.2, one per side; T^p contracts by 0.5^p
+    assert sorted(s for s, _ in cy.points) == list(range(p))
+    assert cy.multiplier == pytest.approx(0.5 ** p, rel=1e-5)
+
+
+def test_lyapunov_exponent_of_an_alternating_contraction_is_log_of_the_slope_size():
+    """A07: the mean of log|dT/dx| over a cycle uses |slope|; a negative slope must not give NaN."""
+    k = -0.5
+    ls = limit_set(contraction(0.4, k), n_starts=8)
+    (fp,) = ls.attractors
+    assert fp.multiplier == pytest.approx(k, rel=1e-5)
+    assert fp.lyapunov == pytest.approx(math.log(abs(k)), rel=1e-5)
+
+
+def test_a_flipping_repeller_is_unstable():
+    """A09: stability is |multiplier| < 1, so a multiplier of −2 is unstable."""
+    a = 0.5
+
+    def f(x, s):
+        xn = a - 2.0 * (x - a)
+        return xn, s, np.where(xn > 1.0, OFF_END, np.where(xn <= 0.0, BEHIND, OK))
+
+    ls = limit_set(FunctionMap(f, {0: (0.0, 1.0)}, name="flipping repeller"), starts=(np.array([a, 0.3]), 0))
+    (fp,) = ls.attractors
+    assert fp.points == ((0, a),)
+    assert fp.multiplier == pytest.approx(-2.0, rel=1e-6)
+    assert fp.stable is False
+
+
+def test_attractor_contains_is_a_closed_interval_widened_by_tol():
+    """A10: contains(x, side, tol) is lo − tol ≤ x ≤ hi + tol at both ends."""
+    a = Attractor(id=1, kind="band", period=0, points=(), bands=((0, 0.2, 0.3),), multiplier=math.nan,
+                  lyapunov=0.1, fraction=1.0, side_visits=((0, 1.0),))
+    tol = 1e-3
+    x = np.array([0.2 - 0.5 * tol, 0.2, 0.25, 0.3, 0.3 + 0.5 * tol, 0.2 - 2 * tol, 0.3 + 2 * tol])
+    assert a.contains(x, 0, tol).tolist() == [True] * 5 + [False] * 2
+    assert not np.any(a.contains(x, 1, tol))
+
+
+def test_config_set_contains_its_end_points_and_one_point_sets():
+    """A12, A13: intervals are closed; a one-point interval (lo = hi) is a valid set containing its point."""
+    cs = ConfigSet(((0, 0.2, 0.3), (1, 0.4, 0.4)))
+    assert cs.contains(np.array([0.2, 0.3, 0.25]), 0).all()
+    assert bool(cs.contains(0.4, 1)) and not bool(cs.contains(0.4 + 1e-9, 1))
+    assert ConfigSet.parse("1:0.4").intervals == ((1, 0.4, 0.4),)
