@@ -33,7 +33,7 @@ from throwmap.kernels.rigid_body.impact import LAW_VELOCITY
 from throwmap.kernels.rigid_body.modes import IMP_INCONSISTENT, IMP_SEPARATE, IMP_SLIDE, IMP_STICK
 from throwmap.system.part import Part
 
-MUS = (0.1, 0.3, 0.6, 1.0, 2.0)
+MUS = (0.0, 0.1, 0.3, 0.6, 1.0, 2.0)  # μ = 0: a frictionless arm is legitimate (issue 10)
 N_STEPS = 100_000
 TOL = 1e-4  # relative to the velocity scale |v| + |ω| ℓ
 
