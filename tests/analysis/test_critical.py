@@ -273,7 +273,8 @@ def test_critical_points_round_trip_through_json(triangle, arm, cps):
 def test_table_lists_every_side_in_cm(cps):
     text = cps["paper"].table()
     lines = text.splitlines()
-    assert len(lines) == 4
-    for s, line in zip((0, 1, 2), lines[1:]):
+    assert len(lines) == 5
+    assert lines[0].startswith("searched: x ≤ 60.0 cm")  # the range r_i, l_i and flips_beyond hold in
+    for s, line in zip((0, 1, 2), lines[2:]):
         assert line.split()[0] == str(s)
         assert f"{100 * cps['paper'].r[s]:.4f}" in line

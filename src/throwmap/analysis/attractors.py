@@ -225,7 +225,7 @@ def check_cycles(attractors, tol: float) -> None:
 
 
 def domain_text(domain: dict, valid_from_joint: bool = False) -> str:
-    """The range of starts a result covers, e.g. ``"every valid start with x ≤ 0.600 m"``.
+    """The range of starts a result covers, e.g. ``"valid starts with x ≤ 0.600 m"``.
 
     ``domain`` is ``{side: (x_lo, x_hi)}`` (m; x_lo excluded). ``valid_from_joint``: the
     lower ends are the part's first valid x per side, so the range is every valid start
@@ -236,11 +236,11 @@ def domain_text(domain: dict, valid_from_joint: bool = False) -> str:
     his = {round(float(v[1]), 12) for v in domain.values()}
     los = {round(float(v[0]), 12) for v in domain.values()}
     if valid_from_joint and len(his) == 1:
-        return f"every valid start with x ≤ {his.pop():.3f} m"
+        return f"valid starts with x ≤ {his.pop():.3f} m"
     if len(his) == 1 and len(los) == 1:
-        return f"starts {los.pop():.4g} < x ≤ {his.pop():.4g} m"
-    return "starts " + ", ".join(f"{float(lo):.4g} < x ≤ {float(hi):.4g} m on side {k}"
-                                 for k, (lo, hi) in sorted(domain.items(), key=lambda kv: int(kv[0])))
+        return f"starts with {los.pop():.4g} < x ≤ {his.pop():.4g} m"
+    return "starts with " + ", ".join(f"{float(lo):.4g} < x ≤ {float(hi):.4g} m on side {k}"
+                                      for k, (lo, hi) in sorted(domain.items(), key=lambda kv: int(kv[0])))
 
 
 def domain_of(map_info: dict) -> tuple[dict, bool]:

@@ -34,18 +34,23 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..rng import as_generator
-from .attractors import LABEL_ESCAPE, Attractor, attractor_table, escape_fractions
+from .attractors import (LABEL_ESCAPE, Attractor, attractor_table, domain_text, escape_fractions, map_short,
+                         range_short)
 from .caps import RecurrenceCaps, check_int, check_length, resolve_caps, split_options
-from .cellmap import basin_grid, cell_map, exact_with_discovery, map_to_attractors, trap_excursion
+from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_limits, guard_work
+from .cellmap import basin_grid, cell_map, exact_with_discovery, grid_size, map_to_attractors, trap_excursion
 from .limitset import limit_set
-from .maps import DEFAULT_MODEL, ConfigMap, as_map
+from .maps import DEFAULT_MODEL, ConfigMap, ThrowMap, as_map
 
 __all__ = ["Basins", "Certificate", "basins", "map_to_attractors"]
 
 AUTO_CELLS_ABOVE = 20_000
 """``method="auto"`` switches to cell mapping above this many configurations."""
+BYTES_PER_CONFIG = 160
+"""Memory a basin map plans per configuration: the result's five arrays (40 B), the cell graph and labels
+in flight (≈ 40 B), and working copies (the rest); the throws themselves go in chunks."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,11 +73,18 @@ class Certificate:
     trap_excursion: float
     trap_tol: float
     statement: str
+    range_text: str = ""
+
+    def __repr__(self) -> str:
+        att = "-" if self.attractor is None else f"#{self.attractor}"
+        return (f"Certificate(unique={self.unique}, attractor {att}, {self.n_configs} configs, "
+                f"{self.range_text or 'range not recorded'})")
 
     def table(self) -> str:
         """The evidence, one line each (lengths in m), then the statement."""
         spacing = ", ".join(f"side {k}: {v:.3g}" for k, v in sorted(self.grid_spacing.items()))
         rows = [("unique and globally attractive", "yes" if self.unique else "no"),
+                ("for", self.range_text or "-"),
                 ("attractor", "-" if self.attractor is None else f"#{self.attractor}"),
                 ("configurations", str(self.n_configs)), ("grid spacing (m)", spacing),
                 ("most throws to reach it", str(self.max_throws_to_reach)),
@@ -85,7 +97,7 @@ class Certificate:
                 "grid_spacing_m": {str(k): float(v) for k, v in self.grid_spacing.items()},
                 "max_throws_to_reach": self.max_throws_to_reach, "check_agreement": self.check_agreement,
                 "trap_excursion_m": None if not math.isfinite(self.trap_excursion) else self.trap_excursion,
-                "trap_tol_m": self.trap_tol, "statement": self.statement}
+                "trap_tol_m": self.trap_tol, "statement": self.statement, "range": self.range_text}
 
     @classmethod
     def from_dict(cls, d: dict) -> "Certificate":
@@ -94,7 +106,7 @@ class Certificate:
                    n_configs=int(d["n_configs"]), grid_spacing={int(k): float(v) for k, v in d["grid_spacing_m"].items()},
                    max_throws_to_reach=int(d["max_throws_to_reach"]), check_agreement=float(d["check_agreement"]),
                    trap_excursion=math.nan if te is None else float(te), trap_tol=float(d["trap_tol_m"]),
-                   statement=str(d["statement"]))
+                   statement=str(d["statement"]), range_text=str(d.get("range", "")))
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -119,6 +131,14 @@ class Basins:
     check: dict
     caps: dict
     map_info: dict
+
+    def __repr__(self) -> str:
+        shares = ", ".join(f"#{a.id} {a.kind} {100 * a.fraction:.1f} %" for a in self.attractors[:3])
+        more = f", … {len(self.attractors)} attractors" if len(self.attractors) > 3 else ""
+        esc = sum(v for v in self.escapes.values())
+        return (f"Basins({map_short(self.map_info)}, {range_short(self.map_info)}, {self.n_configs} configs, "
+                f"{self.method}: {shares or 'no attractor'}{more}; -1 {100 * esc:.1f} %; "
+                f"unique={getattr(self.certificate, 'unique', None)})")
 
     @property
     def n_configs(self) -> int:
@@ -206,8 +226,13 @@ class Basins:
 
 
 
-def _certificate(cmap, x, labels, fates, throws, spacing, attractors, check, trap_samples, trap_tol) -> Certificate:
-    """Unique and globally attractive at grid resolution: one attractor reached, no −1, check agrees, trapping."""
+def _certificate(cmap, x, labels, fates, throws, spacing, attractors, check, trap_samples, trap_tol,
+                 where: str) -> Certificate:
+    """Unique and globally attractive at grid resolution: one attractor reached, no −1, check agrees, trapping.
+
+    ``where`` names the range the grid covers (e.g. "valid starts with x ≤ 0.600 m"):
+    the statement holds there only — beyond it a map may have other attractors.
+    """
     reached = [a for a in attractors if a.fraction > 0]
     no_escape = not np.any(labels == LABEL_ESCAPE)
     check_ok = (not check) or check["agreement"] == 1.0
@@ -219,22 +244,24 @@ def _certificate(cmap, x, labels, fates, throws, spacing, attractors, check, tra
         dx = max(spacing.values())
         why = "" if unique else (" — but the exact check disagreed" if not check_ok else
                                  f" — but its region is not trapping (images leave it by {exc:.3g} m)")
-        statement = (f"{'unique and globally attractive' if unique else 'one attractor reached'} at grid "
-                     f"resolution: all {x.size} configurations (spacing ≤ {dx:.3g} m) reach attractor "
+        statement = (f"{'unique and globally attractive' if unique else 'one attractor reached'} for the {where} "
+                     f"(not beyond), at grid resolution: all {x.size} configurations (spacing ≤ {dx:.3g} m) reach "
+                     f"attractor "
                      f"#{a.id} ({a.kind}) within {tmax} throws" + (
                          f"; {check['n']} exact orbits agree on {100 * check['agreement']:.2f} %" if check else "")
                      + f"; its region maps into itself to {exc:.2g} m{why}")
         return Certificate(unique=unique, attractor=a.id, n_configs=int(x.size), grid_spacing=spacing,
                            max_throws_to_reach=tmax, check_agreement=float(check.get("agreement", 1.0)),
-                           trap_excursion=exc, trap_tol=trap_tol, statement=statement)
+                           trap_excursion=exc, trap_tol=trap_tol, statement=statement, range_text=where)
     parts = [f"#{a.id} {a.kind} {100 * a.fraction:.2f} %" for a in reached]
     esc = escape_fractions(fates, labels)
     parts += [f"-1 {fate} {100 * v:.2f} %" for fate, v in esc.items()]
-    statement = f"not unique: {len(reached)} attractor(s) and escapes share the grid: " + ", ".join(parts)
+    statement = (f"not unique for the {where}: {len(reached)} attractor(s) and escapes share the grid: "
+                 + ", ".join(parts))
     return Certificate(unique=False, attractor=None, n_configs=int(x.size), grid_spacing=spacing,
                        max_throws_to_reach=int(throws.max()) if throws.size else 0,
                        check_agreement=float(check.get("agreement", 1.0)), trap_excursion=math.nan,
-                       trap_tol=trap_tol, statement=statement)
+                       trap_tol=trap_tol, statement=statement, range_text=where)
 
 
 def _check_cells(cmap, x, s, labels, throws, attractors, reach_tol, max_throws, n_check, gen, n_exact) -> dict:
@@ -252,7 +279,8 @@ def _check_cells(cmap, x, s, labels, throws, attractors, reach_tol, max_throws, 
 def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000, method: str = "auto", limit=None,
            n_seeds: int = 64, reach_tol: float = 1e-6, max_throws: int = 500, n_check: int = 1000,
            max_discover: int = 256, trap_samples: int = 400, trap_tol: float = 5e-4, rng=0, x_max=None,
-           caps: RecurrenceCaps = RecurrenceCaps(), progress=None, **overrides) -> Basins:
+           caps: RecurrenceCaps = RecurrenceCaps(), progress=None, max_memory: float = DEFAULT_MAX_MEMORY,
+           max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False, **overrides) -> Basins:
     """Label every configuration of a grid with the attractor its orbit reaches (paper Sec. III-D).
 
     Parameters
@@ -288,6 +316,12 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
         for the limit set and for attractors discovered later.
     progress
         ``progress(stage, done, total)``.
+    max_memory, max_seconds, force
+        Work guard (:mod:`throwmap.analysis.budget`): the grid's memory (≈ 160 bytes per
+        configuration) and time (one throw per configuration for cells, the mean throws
+        to reach an attractor of a sample for orbits, at the time per throw measured
+        now) are estimated before the work; above ``max_memory`` bytes (2 GB) or
+        ``max_seconds`` (1800 s) the call is refused with one line, unless ``force``.
     overrides
         Any cap by name (``transient=50``), merged into ``caps``; with a part, other
         keywords are throw options for :func:`throwmap.throw_batch`.
@@ -301,11 +335,15 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
     for name, v in (("reach_tol", reach_tol), ("trap_tol", trap_tol)):
         check_length(name, v)
     if method not in ("auto", "orbits", "cells"):
-        raise InvalidStateError("method", f"must be 'auto', 'orbits' or 'cells', got {method!r}")
+        raise InvalidStateError("method", f"must be 'auto', 'orbits' or 'cells', got {shown(method)}")
+    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
     gen = as_generator(rng)
+    n_planned = grid_size(cmap, grid)
+    planned = "cells" if method == "cells" or (method == "auto" and n_planned > AUTO_CELLS_ABOVE) else "orbits"
+    guard_work(f"basins ({planned})", "grid", n_planned, BYTES_PER_CONFIG, max_memory, max_seconds, force,
+               throws_per_config=1.0, cmap=cmap, hint="a coarser --grid")
     x, s, spacing = basin_grid(cmap, grid)
-    if method == "auto":
-        method = "cells" if x.size > AUTO_CELLS_ABOVE else "orbits"
+    method = planned
 
     def stage(name):
         return None if progress is None else (lambda d, t: progress(name, d, t))
@@ -317,12 +355,18 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
         caps_record = dict(limit.caps)
     attractors = tuple(limit.attractors)
     check = {}
+    if method == "orbits" and not force and x.size > 64:
+        pick = np.linspace(0, x.size - 1, 64).astype(int)
+        _, _, t_sample = map_to_attractors(cmap, x[pick], s[pick], attractors, reach_tol, max_throws)
+        guard_work("basins (orbits)", "grid", x.size, BYTES_PER_CONFIG, max_memory, max_seconds, force,
+                   throws_per_config=max(1.0, float(np.mean(t_sample))), cmap=cmap,
+                   hint="a coarser --grid or --method cells")
     if method == "orbits":
         attractors, labels, fates, throws = exact_with_discovery(
             cmap, x, s, attractors, caps, reach_tol, max_throws, max_discover, stage("orbits"))
     else:
-        labels, fates, throws, rest, _ = cell_map(cmap, x, s, spacing, attractors, reach_tol, max_throws,
-                                                  stage("cells"))
+        labels, fates, throws, rest = cell_map(cmap, x, s, spacing, attractors, reach_tol, max_throws,
+                                               stage("cells"))
         if rest.size:
             attractors, l2, f2, t2 = exact_with_discovery(cmap, x[rest], s[rest], attractors, caps, reach_tol,
                                                           max_throws, max_discover, stage("exact"))
@@ -333,9 +377,15 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
     # basin fractions on the attractors
     n = max(1, x.size)
     attractors = tuple(a.with_fraction(float(np.sum(labels == a.id)) / n) for a in attractors)
-    cert = _certificate(cmap, x, labels, fates, throws, spacing, attractors, check, trap_samples, trap_tol)
     info = cmap.describe()
     info["label"] = cmap.label
+    info["grid"] = "grid" if not isinstance(grid, dict) else "given"
+    if isinstance(grid, dict):
+        where = "configurations of the given grid (" + ", ".join(
+            f"side {k}: {x[s == k].min():.4g}–{x[s == k].max():.4g} m" for k in np.unique(s)) + ")"
+    else:
+        where = domain_text(cmap.domain(), isinstance(cmap, ThrowMap))
+    cert = _certificate(cmap, x, labels, fates, throws, spacing, attractors, check, trap_samples, trap_tol, where)
     caps_out = dict(caps_record, reach_tol=reach_tol, max_throws=max_throws, n_seeds=n_seeds, n_check=n_check,
                     rng=rng if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool) else None)
     return Basins(x=x, side=s, labels=labels, fates=fates, throws=throws, attractors=attractors, certificate=cert,

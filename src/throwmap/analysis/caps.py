@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 
 __all__ = ["RecurrenceCaps", "DEFAULT_CAPS", "check_caps", "resolve_caps", "split_options", "check_int",
            "check_length"]
@@ -28,14 +28,14 @@ __all__ = ["RecurrenceCaps", "DEFAULT_CAPS", "check_caps", "resolve_caps", "spli
 def check_int(name: str, v, lo: int) -> int:
     """``v`` as an int ≥ ``lo``; bools and floats refused with a one-line error naming ``name``."""
     if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
-        raise InvalidStateError(name, f"must be an integer ≥ {lo}, got {v!r}")
+        raise InvalidStateError(name, f"must be an integer ≥ {lo}, got {shown(v)}")
     return int(v)
 
 
 def check_length(name: str, v) -> float:
     """``v`` as a positive length in m (int or float; bools, nan and inf refused)."""
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
-        raise InvalidStateError(name, f"must be a positive length in m, got {v!r}")
+        raise InvalidStateError(name, f"must be a positive length in m, got {shown(v)}")
     return float(v)
 
 
@@ -43,7 +43,7 @@ def _pos_cap(name: str, v) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not (
         math.isfinite(float(v)) and float(v) > 0
     ):
-        raise InvalidStateError(name, f"must be a positive finite length in m, got {v!r}")
+        raise InvalidStateError(name, f"must be a positive finite length in m, got {shown(v)}")
     return float(v)
 
 

@@ -23,14 +23,15 @@ import math
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from .attractors import FATE_UNRESOLVED, LABEL_ESCAPE, Attractor
 from .caps import RecurrenceCaps
 from .maps import ConfigMap, config_grid
 from .recurrence import find_attractors
 
-__all__ = ["map_to_attractors", "exact_with_discovery", "cell_map", "trap_excursion", "basin_grid"]
+__all__ = ["map_to_attractors", "exact_with_discovery", "cell_map", "trap_excursion", "basin_grid", "grid_size",
+           "CHUNK"]
 
 
 def _membership(attractors, x, s, tol) -> np.ndarray:
@@ -41,7 +42,7 @@ def _membership(attractors, x, s, tol) -> np.ndarray:
     return lab
 
 
-def map_to_attractors(cmap: ConfigMap, x0, s0, attractors, reach_tol: float, max_throws: int, progress=None):
+def _map_chunk(cmap: ConfigMap, x0, s0, attractors, reach_tol: float, max_throws: int, progress=None):
     """Exact orbits until each lies on an attractor (within ``reach_tol``), escapes, or ``max_throws`` pass.
 
     Returns ``(labels, fates, throws)``; unresolved orbits get label −1, fate −1 and
@@ -79,6 +80,32 @@ def map_to_attractors(cmap: ConfigMap, x0, s0, attractors, reach_tol: float, max
     return labels, fates, throws
 
 
+CHUNK = 200_000
+"""Configurations handled at once by the exact orbits and the cell mapping (bounds their working memory)."""
+
+
+def map_to_attractors(cmap: ConfigMap, x0, s0, attractors, reach_tol: float, max_throws: int, progress=None):
+    """Exact orbits until each lies on an attractor (within ``reach_tol``), escapes, or ``max_throws`` pass.
+
+    Returns ``(labels, fates, throws)``; unresolved orbits get label −1, fate −1 and
+    ``throws = max_throws``. Large inputs go through in chunks of :data:`CHUNK`
+    configurations, so the working arrays stay that size.
+    """
+    x0 = np.asarray(x0, dtype=float).ravel()
+    s0 = np.broadcast_to(np.asarray(s0).ravel(), x0.shape) if np.size(s0) == 1 else np.asarray(s0).ravel()
+    if x0.size <= CHUNK:
+        return _map_chunk(cmap, x0, s0, attractors, reach_tol, max_throws, progress)
+    labels = np.empty(x0.size, dtype=np.int64)
+    fates = np.empty(x0.size, dtype=np.int64)
+    throws = np.empty(x0.size, dtype=np.int64)
+    for a in range(0, x0.size, CHUNK):
+        b = min(a + CHUNK, x0.size)
+        labels[a:b], fates[a:b], throws[a:b] = _map_chunk(cmap, x0[a:b], s0[a:b], attractors, reach_tol, max_throws)
+        if progress is not None:
+            progress(b, x0.size)
+    return labels, fates, throws
+
+
 def _same_attractor(a: Attractor, b: Attractor, tol: float) -> bool:
     if a.kind != b.kind or a.period != b.period:
         return False
@@ -113,6 +140,17 @@ def exact_with_discovery(cmap, x0, s0, attractors, caps: RecurrenceCaps, reach_t
     return tuple(attractors), labels, fates, throws
 
 
+def grid_size(cmap: ConfigMap, grid) -> int:
+    """Configurations a grid spec will hold, without building it (refuses what :func:`basin_grid` refuses)."""
+    if isinstance(grid, (int, np.integer)) and not isinstance(grid, bool):
+        if grid < 2:
+            raise InvalidStateError("grid", f"must be an integer ≥ 2 (points per side), got {shown(grid)}")
+        return int(grid) * len(cmap.sides)
+    if isinstance(grid, dict):
+        return int(sum(np.size(v) for v in grid.values()))
+    raise InvalidStateError("grid", f"must be points per side (int ≥ 2) or {{side: x values}}, got {shown(grid)}")
+
+
 def basin_grid(cmap: ConfigMap, grid):
     """Grid spec → flat (x, side) sorted by side then x, and the spacing per side."""
     if isinstance(grid, (int, np.integer)) and not isinstance(grid, bool):
@@ -131,7 +169,7 @@ def basin_grid(cmap: ConfigMap, grid):
             ss.append(np.full(v.size, side, dtype=np.int64))
         x, s = np.concatenate(xs), np.concatenate(ss)
     else:
-        raise InvalidStateError("grid", f"must be points per side (int ≥ 2) or {{side: x values}}, got {grid!r}")
+        raise InvalidStateError("grid", f"must be points per side (int ≥ 2) or {{side: x values}}, got {shown(grid)}")
     spacing = {}
     for k in np.unique(s):
         v = x[s == k]
@@ -144,46 +182,43 @@ def cell_map(cmap, x, s, spacing, attractors, reach_tol: float, max_throws: int,
 
     ``(x, side)`` is the grid from :func:`basin_grid` with its ``spacing`` per side (m).
     A configuration within ``max(reach_tol, half a cell)`` of an attractor is on it.
-    Returns ``(labels, fates, throws, rest, images)``: label 0 and the indices ``rest``
-    where the graph ended on no attractor (to be finished by exact orbits); ``images``
-    is ``(thrown indices, x', side', status)``.
+    The grid is thrown in chunks of :data:`CHUNK`; of each chunk's images only the
+    successor cell is kept. Returns ``(labels, fates, throws, rest)``: label 0 and the
+    indices ``rest`` where the graph ended on no attractor (to be finished by exact orbits).
     """
     n = x.size
-    tol = {k: max(reach_tol, 0.5 * v) for k, v in spacing.items()}
-    tol_arr = np.array([tol[int(k)] for k in s])
     labels = np.zeros(n, dtype=np.int64)
-    for a in attractors:
-        hit = (labels == 0) & _near(a, x, s, tol_arr)
-        labels[hit] = a.id
+    for k, v in spacing.items():
+        on = np.flatnonzero(s == k)
+        tol = max(reach_tol, 0.5 * v)
+        for a in attractors:
+            hit = (labels[on] == 0) & _near(a, x[on], s[on], tol)
+            labels[on[hit]] = a.id
     fates = np.zeros(n, dtype=np.int64)
     throws = np.zeros(n, dtype=np.int64)
-    todo = np.flatnonzero(labels == 0)
-    chunk = 200_000
-    xn = np.empty(todo.size)
-    sn = np.empty(todo.size, dtype=np.int64)
-    st = np.empty(todo.size, dtype=np.int64)
-    for a in range(0, todo.size, chunk):
-        b = min(a + chunk, todo.size)
-        xn[a:b], sn[a:b], st[a:b] = cmap(x[todo[a:b]], s[todo[a:b]])
-        if progress is not None:
-            progress(b, todo.size)
-    bad = st != C.OK
-    labels[todo[bad]] = LABEL_ESCAPE
-    fates[todo[bad]] = st[bad]
-    throws[todo[bad]] = 1
     succ = np.full(n, -1, dtype=np.int64)
-    ok = todo[~bad]
-    xo, so = xn[~bad], sn[~bad]
-    for k in np.unique(so):
-        g = np.flatnonzero(s == k)
-        m = so == k
-        if g.size < 2:
-            continue
-        xs = x[g]
-        j = np.clip(np.searchsorted(xs, xo[m]), 1, xs.size - 1)
-        j = np.where(np.abs(xs[j - 1] - xo[m]) <= np.abs(xs[j] - xo[m]), j - 1, j)
-        inside = (xo[m] >= xs[0] - spacing[int(k)]) & (xo[m] <= xs[-1] + spacing[int(k)])
-        succ[ok[m]] = np.where(inside, g[j], -1)
+    todo = np.flatnonzero(labels == 0)
+    side_idx = {int(k): np.flatnonzero(s == k) for k in np.unique(s)}
+    for a in range(0, todo.size, CHUNK):
+        idx = todo[a:a + CHUNK]
+        xn, sn, st = cmap(x[idx], s[idx])
+        bad = st != C.OK
+        labels[idx[bad]] = LABEL_ESCAPE
+        fates[idx[bad]] = st[bad]
+        throws[idx[bad]] = 1
+        ok, xo, so = idx[~bad], xn[~bad], sn[~bad]
+        for k in np.unique(so):
+            g = side_idx.get(int(k))
+            m = so == k
+            if g is None or g.size < 2:
+                continue
+            xs = x[g]
+            j = np.clip(np.searchsorted(xs, xo[m]), 1, xs.size - 1)
+            j = np.where(np.abs(xs[j - 1] - xo[m]) <= np.abs(xs[j] - xo[m]), j - 1, j)
+            inside = (xo[m] >= xs[0] - spacing[int(k)]) & (xo[m] <= xs[-1] + spacing[int(k)])
+            succ[ok[m]] = np.where(inside, g[j], -1)
+        if progress is not None:
+            progress(min(a + CHUNK, todo.size), todo.size)
     for _ in range(max_throws):
         open_ = np.flatnonzero((labels == 0) & (succ >= 0))
         if open_.size == 0:
@@ -197,13 +232,13 @@ def cell_map(cmap, x, s, spacing, attractors, reach_tol: float, max_throws: int,
         fates[i] = fates[j]
         throws[i] = throws[j] + 1
     rest = np.flatnonzero(labels == 0)
-    return labels, fates, throws, rest, (todo, xn, sn, st)
+    return labels, fates, throws, rest
 
 
-def _near(a: Attractor, x, s, tol_arr):
+def _near(a: Attractor, x, s, tol):
     out = np.zeros(x.size, dtype=bool)
     for side, lo, hi in a.bands:
-        out |= (s == side) & (x >= lo - tol_arr) & (x <= hi + tol_arr)
+        out |= (s == side) & (x >= lo - tol) & (x <= hi + tol)
     return out
 
 

@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidStateError
-from .attractors import Attractor
+from ..errors import InvalidStateError, shown
+from .attractors import Attractor, domain_text
 from .basins import Basins, basins
 from .cellmap import map_to_attractors
 from .maps import DEFAULT_MODEL, as_map
@@ -67,6 +67,10 @@ class Funnel:
     mouth: ConfigSet
     mouth_fraction: float
 
+    def __repr__(self) -> str:
+        return (f"Funnel({self.name!r}, mouth {100 * self.mouth_fraction:.1f} % in {len(self.mouth.intervals)} "
+                f"interval(s), spout {self.attractor.kind} on sides {self.attractor.sides})")
+
     @property
     def spout(self) -> ConfigSet:
         return ConfigSet.from_attractor(self.attractor)
@@ -100,6 +104,32 @@ class FunnelGraph:
     containment: float
     map_info: dict
 
+    def __repr__(self) -> str:
+        names = ", ".join(self.funnels[i].name for i in self.order[:4]) + (" …" if len(self.order) > 4 else "")
+        return (f"FunnelGraph({self._maps_short()}, {len(self.funnels)} funnels, {len(self.edges)} edges, "
+                f"goal {'none' if self.goal is None else f'{len(self.goal.intervals)} interval(s)'}, "
+                f"order: {names or '-'})")
+
+    def _maps_short(self) -> str:
+        maps = self.map_info.get("maps", [])
+        oms = [", ".join(f"{w:g}" for w in m.get("omegas_rad_s", ())) for m in maps if m.get("kind") == "throw"]
+        models = sorted({m.get("model") for m in maps if m.get("kind") == "throw"})
+        if oms and len(oms) == len(maps):
+            xm = max(m.get("x_max_m", 0.0) for m in maps)
+            return f"model={', '.join(models)!r}, omegas=[{'; '.join(oms)}] rad/s, x ≤ {xm:.4g} m"
+        return f"{len(maps)} maps"
+
+    @property
+    def range_text(self) -> str:
+        """The range every map's basins (the mouths) were searched over, in words."""
+        texts = []
+        for m in self.map_info.get("maps", []):
+            d = {int(k): tuple(v) for k, v in (m.get("domain_m") or {}).items()}
+            t = domain_text(d, m.get("kind") == "throw")
+            if t not in texts:
+                texts.append(t)
+        return "; ".join(texts) or "the analysed grid"
+
     @property
     def order(self) -> tuple:
         ranked = [i for i, r in self.rank.items() if r is not None]
@@ -122,7 +152,8 @@ class FunnelGraph:
 
     def table(self) -> str:
         """The funnels, their mouths and spouts, and the edges, as text (cm for reading)."""
-        lines = ["goal: " + (self.goal.describe("cm") if self.goal is not None else "none (all funnels listed)")]
+        lines = ["goal: " + (self.goal.describe("cm") if self.goal is not None else "none (all funnels listed)"),
+                 f"mouths searched over the {self.range_text} (nothing is claimed beyond)"]
         lines.append(f"{'#':>3}  {'funnel':<16} {'priority':>8}  {'mouth %':>8}  spout")
         for i, f in enumerate(self.funnels):
             r = self.rank.get(i)
@@ -222,9 +253,9 @@ def funnels(part, arm=None, omegas=None, model: str = DEFAULT_MODEL, *, maps=Non
         if bad:
             raise InvalidStateError("goal", f"side {bad[0]} is not a stable side of the maps {known}")
     if isinstance(containment, bool) or not isinstance(containment, (int, float)) or not 0 < containment <= 1:
-        raise InvalidStateError("containment", f"must be in (0, 1], got {containment!r}")
+        raise InvalidStateError("containment", f"must be in (0, 1], got {shown(containment)}")
     if isinstance(spout_samples, bool) or not isinstance(spout_samples, (int, np.integer)) or spout_samples < 2:
-        raise InvalidStateError("spout_samples", f"must be an integer ≥ 2, got {spout_samples!r}")
+        raise InvalidStateError("spout_samples", f"must be an integer ≥ 2, got {shown(spout_samples)}")
     fs: list[Funnel] = []
     owner: list[int] = []
     found: list[Basins] = []

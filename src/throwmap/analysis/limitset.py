@@ -26,6 +26,7 @@ import numpy as np
 from ..errors import InvalidStateError
 from .attractors import (Attractor, attractor_counts, attractor_table, check_cycles, domain_of, domain_text,
                          escape_fractions, map_short, range_short)
+from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_limits, guard_work
 from .caps import DEFAULT_CAPS, RecurrenceCaps, check_caps, resolve_caps, split_options
 from .maps import DEFAULT_MODEL, ConfigMap, as_map
 from .recurrence import check_starts, find_attractors, start_grid
@@ -68,7 +69,7 @@ class LimitSet:
 
     @property
     def range_text(self) -> str:
-        """The starts this result covers, in words (e.g. ``"every valid start with x ≤ 0.600 m"``).
+        """The starts this result covers, in words (e.g. ``"valid starts with x ≤ 0.600 m"``).
 
         On an unbounded arm the search stops at ``x_max`` (default 0.6 m); beyond it the
         map may have other attractors, so "unique" and "every orbit escapes" hold for
@@ -125,10 +126,13 @@ class LimitSet:
     def summary(self) -> str:
         """A few lines: kind, each attractor, escapes."""
         lines = [f"limit set of {self.map_info.get('label', 'map')}: {self.kind}, {len(self.attractors)} "
-                 f"attractor(s) from {self.n_starts} starts ({self.range_text}; not searched beyond)"]
+                 f"attractor(s) from {self.n_starts} starts (searched: {self.range_text}; not beyond)"]
         if not self.attractors and self.escapes:
-            lines.append(f"  no orbit from {self.range_text} ends on an attractor (see the escapes below); "
-                         "others may lie beyond this range")
+            lines.append(f"  no orbit from the {self.range_text} ends on an attractor (escapes below); "
+                         "attractors beyond this range are not ruled out")
+        elif self.unique:
+            lines.append(f"  every orbit from the {self.range_text} ends on #1; attractors beyond this range are "
+                         "not ruled out")
         for a in self.attractors:
             lines.append(f"  {a.describe()}  [{100 * a.fraction:.1f} % of starts]")
         for k, v in self.escapes.items():
@@ -169,7 +173,8 @@ class LimitSet:
 
 
 def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: RecurrenceCaps = RecurrenceCaps(),
-              starts=None, n_starts: int = 64, rng=0, x_max=None, progress=None, **overrides) -> LimitSet:
+              starts=None, n_starts: int = 64, rng=0, x_max=None, progress=None, max_memory: float = DEFAULT_MAX_MEMORY,
+              max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False, **overrides) -> LimitSet:
     """Find and describe every forward limit set reached from many initial configurations.
 
     Parameters
@@ -194,6 +199,11 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
         Outer end of the domain, m (default: the arm length, else 0.6 m).
     progress
         ``progress(done, total)`` after each iteration of the batch.
+    max_memory, max_seconds, force
+        Work guard (:mod:`throwmap.analysis.budget`): the recorded tails (16 bytes per
+        start and recorded throw) and ``transient + n_record`` throws per start are
+        estimated first; above ``max_memory`` bytes or ``max_seconds`` the call is
+        refused with one line, unless ``force``.
     overrides
         Any cap by name (``transient=50``; ``None`` keeps ``caps``' value), merged into
         ``caps``; with a part, other keywords are throw options for
@@ -205,6 +215,15 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
     cap_overrides, throw_options = split_options(overrides, not isinstance(part, ConfigMap))
     cmap = as_map(part, arm, omega, model, x_max=x_max, **throw_options)
     rc = resolve_caps(caps, cap_overrides)
+    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
+    if starts is None:
+        valid = isinstance(n_starts, (int, np.integer)) and not isinstance(n_starts, bool) and n_starts >= 1
+        n_planned = int(n_starts) * len(cmap.sides) if valid else 0  # start_grid refuses the rest
+    else:
+        n_planned = int(np.size(starts[0])) if isinstance(starts, (tuple, list)) and len(starts) == 2 else 1
+    guard_work("limit set", "n_starts", n_planned, 16 * rc.n_record + 64, max_memory, max_seconds, force,
+               throws_per_config=rc.transient + rc.n_record, cmap=cmap if n_planned * (rc.transient + rc.n_record)
+               > 10**6 else None, hint="fewer starts or a shorter record")
     if starts is None:
         x0, s0 = start_grid(cmap, n_starts, rng)
     else:

@@ -27,7 +27,7 @@ from typing import Callable
 import numpy as np
 
 from ..system.arm import Arm
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from ..models import DEFAULT_MODEL, check_model  # DEFAULT_MODEL re-exported here for the analysis modules
 from ..system.part import Part
@@ -71,7 +71,7 @@ class ConfigMap:
 
     def check_side(self, side) -> int:
         if isinstance(side, bool) or not isinstance(side, (int, np.integer)) or int(side) not in self.sides:
-            raise InvalidStateError("side", f"must be one of the stable sides {list(self.sides)}, got {side!r}")
+            raise InvalidStateError("side", f"must be one of the stable sides {list(self.sides)}, got {shown(side)}")
         return int(side)
 
     def domain(self) -> dict:
@@ -83,11 +83,11 @@ def _check_x_max(x_max, lo_max: float, arm_length) -> float:
     if x_max is None:
         x_max = arm_length if arm_length is not None else DEFAULT_X_MAX
     if isinstance(x_max, bool):
-        raise InvalidStateError("x_max", f"must be a number, got {x_max!r}")
+        raise InvalidStateError("x_max", f"must be a number, got {shown(x_max)}")
     try:
         v = float(x_max)
     except (TypeError, ValueError):
-        raise InvalidStateError("x_max", f"must be a number, got {x_max!r}") from None
+        raise InvalidStateError("x_max", f"must be a number, got {shown(x_max)}") from None
     if not math.isfinite(v):
         raise InvalidStateError("x_max", f"must be finite, got {v}")
     if v <= lo_max:
@@ -192,7 +192,7 @@ class FunctionMap(ConfigMap):
         for s, iv in self.domain_.items():
             a, b = (float(v) for v in iv)
             if not (math.isfinite(a) and math.isfinite(b) and b > a):
-                raise InvalidStateError("domain", f"side {s}: need finite x_lo < x_hi, got {iv!r}")
+                raise InvalidStateError("domain", f"side {s}: need finite x_lo < x_hi, got {shown(iv)}")
             lo[int(s)], hi[int(s)] = a, b
         object.__setattr__(self, "sides", tuple(sorted(lo)))
         object.__setattr__(self, "x_lo", lo)
@@ -235,7 +235,7 @@ def as_map(part_or_map, arm: Arm | None = None, omega=None, model: str = DEFAULT
 def config_grid(cmap: ConfigMap, n: int, *, field_name: str = "grid") -> tuple[np.ndarray, np.ndarray]:
     """``n`` evenly spaced x per side over ``(x_lo, x_hi]`` (the open end excluded); flat ``(x, side)``."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
-        raise InvalidStateError(field_name, f"must be an integer ≥ 2 (points per side), got {n!r}")
+        raise InvalidStateError(field_name, f"must be an integer ≥ 2 (points per side), got {shown(n)}")
     xs, ss = [], []
     for s in cmap.sides:
         xs.append(np.linspace(cmap.x_lo[s], cmap.x_hi[s], int(n) + 1)[1:])

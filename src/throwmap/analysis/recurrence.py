@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from ..rng import as_generator
 from .attractors import FATE_UNRESOLVED, LABEL_ESCAPE, Attractor, merge_intervals
@@ -352,6 +352,12 @@ class Recurrence:
     side_tail: np.ndarray
     transient_used: int
 
+    def __repr__(self) -> str:
+        kinds = ", ".join(f"#{a.id} {a.kind}" for a in self.attractors[:4])
+        more = " …" if len(self.attractors) > 4 else ""
+        return (f"Recurrence({self.labels.size} starts: {kinds or 'no attractor'}{more}; "
+                f"-1 {int(np.sum(self.labels == LABEL_ESCAPE))}; {self.transient_used} throws discarded)")
+
 
 def find_attractors(cmap: ConfigMap, x0, s0, caps: RecurrenceCaps | None = None, progress=None) -> Recurrence:
     """The recurrence test on the orbits of the given starts (see the module docstring).
@@ -399,7 +405,7 @@ def find_attractors(cmap: ConfigMap, x0, s0, caps: RecurrenceCaps | None = None,
 def start_grid(cmap: ConfigMap, n_starts: int, rng) -> tuple[np.ndarray, np.ndarray]:
     """``n_starts`` configurations per side, one drawn uniformly in each of n equal cells of (x_lo, x_hi]."""
     if isinstance(n_starts, bool) or not isinstance(n_starts, (int, np.integer)) or n_starts < 1:
-        raise InvalidStateError("n_starts", f"must be a positive integer, got {n_starts!r}")
+        raise InvalidStateError("n_starts", f"must be a positive integer, got {shown(n_starts)}")
     gen = as_generator(rng)
     xs, ss = [], []
     for s in cmap.sides:
@@ -428,7 +434,7 @@ def check_starts(cmap: ConfigMap, starts) -> tuple[np.ndarray, np.ndarray]:
         raise InvalidStateError("starts", "x must be finite")
     bad = ~np.isin(s, cmap.sides)
     if np.any(bad):
-        raise InvalidStateError("starts", f"side {s[bad][0]!r} is not a stable side {list(cmap.sides)}")
+        raise InvalidStateError("starts", f"side {shown(s[bad][0])} is not a stable side {list(cmap.sides)}")
     s = s.astype(np.int64)
     lo = np.array([cmap.x_lo[int(k)] for k in s])
     if np.any(x <= lo):

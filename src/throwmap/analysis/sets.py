@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from .attractors import Attractor, fate_label, merge_intervals
 from .maps import DEFAULT_MODEL, ConfigMap, ThrowMap, as_map
@@ -37,14 +37,20 @@ class ConfigSet:
             try:
                 s, lo, hi = iv
             except (TypeError, ValueError):
-                raise InvalidStateError("goal", f"an interval must be (side, lo, hi), got {iv!r}") from None
+                raise InvalidStateError("goal", f"an interval must be (side, lo, hi), got {shown(iv)}") from None
             if isinstance(s, bool) or not isinstance(s, (int, np.integer)) or s < 0:
-                raise InvalidStateError("goal", f"side must be a non-negative integer, got {s!r}")
+                raise InvalidStateError("goal", f"side must be a non-negative integer, got {shown(s)}")
             lo, hi = float(lo), float(hi)
             if not (math.isfinite(lo) and math.isfinite(hi)) or hi < lo:
                 raise InvalidStateError("goal", f"side {s}: need finite lo ≤ hi, got [{lo}, {hi}]")
             out.append((int(s), lo, hi))
         object.__setattr__(self, "intervals", tuple(sorted(out)))
+
+    def __repr__(self) -> str:
+        shown = ", ".join(f"({s}, {lo:.4g}–{hi:.4g} m)" if hi > lo else f"({s}, {lo:.4g} m)"
+                          for s, lo, hi in self.intervals[:3])
+        more = f", … {len(self.intervals)} intervals" if len(self.intervals) > 3 else ""
+        return f"ConfigSet({shown}{more}; sides {self.sides}, {self.measure():.4g} m in all)"
 
     @classmethod
     def parse(cls, spec: str) -> "ConfigSet":
@@ -59,7 +65,7 @@ class ConfigSet:
                 lo, hi = rng.split("-") if "-" in rng.strip()[1:] else (rng, rng)
                 ivs.append((int(s), float(lo), float(hi)))
             except ValueError:
-                raise InvalidStateError("goal", f"expected side:lo-hi in metres (e.g. 0:0.20-0.30), got {piece!r}") from None
+                raise InvalidStateError("goal", f"expected side:lo-hi in metres (e.g. 0:0.20-0.30), got {shown(piece)}") from None
         if not ivs:
             raise InvalidStateError("goal", "is empty")
         return cls(tuple(ivs))
@@ -135,6 +141,12 @@ class SetImage:
     status: np.ndarray
     hulls: tuple
     gap: float
+
+    def __repr__(self) -> str:
+        w = ", ".join(f"{v:g}" for v in self.omegas[:6]) + (", …" if len(self.omegas) > 6 else "")
+        fin = self.final
+        return (f"SetImage(omegas=[{w}] rad/s, {self.x.shape[1]} configs, {100 * self.escaped:.1f} % escaped, "
+                f"final: {len(fin.intervals)} interval(s) on sides {fin.sides}, {fin.measure():.4g} m)")
 
     @property
     def final(self) -> ConfigSet:
