@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import throwmap as tm
-from throwmap.analysis import FunctionMap, basins, critical_points, limit_set
+from throwmap.analysis import FunctionMap, basins, critical_points, limit_set, push
 from throwmap.analysis import cellmap
 from throwmap.analysis.budget import guard_work
 from throwmap.errors import InvalidStateError
@@ -41,6 +41,10 @@ def test_the_time_estimate_refuses_long_work_and_says_how_to_go_on():
     with pytest.raises(InvalidStateError) as err:
         critical_points(m, n_grid=200_000, max_memory=1e6)
     assert err.value.field == "n_grid"
+    part, arm = tm.triangle_30_60_90(0.17), tm.Arm(h=-0.01)
+    with pytest.raises(InvalidStateError) as err:
+        push(part, arm, [4.0] * 10, "0:0.2-0.3", model="paper", n=10**8)
+    assert err.value.field == "n" and "GB of memory" in str(err.value)
     b = basins(m, grid=50, max_seconds=1e-9, max_memory=1.0, force=True)  # force: no estimate stops it
     assert b.n_configs == 50
 
