@@ -10,7 +10,7 @@ from throwmap.engine import (
     EngineSettings, FiniteThrow, Friction, ImpulseThrow, Placement, RecoilThrow, Scene, TiltTo, engine_run,
     engine_trajectory, simulate,
 )
-from throwmap.errors import ThrowmapError
+from throwmap.errors import InvalidStateError, ThrowmapError
 from throwmap.system.fixtures import Cavity, Wall, arm_solids
 from throwmap.throws.outcome import Status
 from throwmap.system.catalogue import rectangle, triangle_30_60_90
@@ -267,19 +267,22 @@ def test_timeout_status():
 
 
 @pytest.mark.parametrize("kw, field", [
-    ({"dt": -1.0}, "engine.dt"),
-    ({"dt": 0.01}, "engine.dt"),
-    ({"iterations": 0}, "engine.iterations"),
-    ({"settle_speed": float("nan")}, "engine.settle_speed"),
-    ({"coarse_dt": 1e-5}, "engine.coarse_dt"),
-    ({"exact_flight": 1}, "engine.exact_flight"),
-    ({"retries": -1}, "engine.retries"),
-    ({"t_max": 0.01}, "engine.t_max"),
+    ({"dt": -1.0}, "settings.dt"),
+    ({"dt": 0.01}, "settings.dt"),
+    ({"dt": np.float64(-1.0)}, "settings.dt"),
+    ({"iterations": 0}, "settings.iterations"),
+    ({"settle_speed": float("nan")}, "settings.settle_speed"),
+    ({"coarse_dt": 1e-5}, "settings.coarse_dt"),
+    ({"exact_flight": 1}, "settings.exact_flight"),
+    ({"verify": "yes"}, "settings.verify"),
+    ({"agreement": 0.0}, "settings.agreement"),
+    ({"retries": -1}, "settings.retries"),
+    ({"t_max": 0.01}, "settings.t_max"),
 ])
 def test_bad_engine_settings_rejected(kw, field):
-    with pytest.raises(ThrowmapError) as err:
+    with pytest.raises(InvalidStateError) as err:
         EngineSettings(**kw)
-    assert str(err.value).startswith(field + ":")
+    assert str(err.value).startswith(field + ":") and "np." not in str(err.value)
 
 
 @pytest.mark.parametrize("make, field", [
@@ -290,13 +293,24 @@ def test_bad_engine_settings_rejected(kw, field):
     (lambda: RecoilThrow(100.0, zeta=1.5), "zeta"),
     (lambda: Friction(part_part=-1), "friction.part_part"),
     (lambda: Scene(Arm(-0.01), (Placement(TRI, x=0.2, side=0),), fixtures=(Wall(),)), "arm.length"),
-    (lambda: Scene(Arm(-0.01), (Placement(TRI, x=0.2, side=0),), alpha=2.0), "scene.alpha"),
+    (lambda: Scene(Arm(-0.01), (Placement(TRI, x=0.2, side=0),), alpha=2.0), "alpha"),
+    (lambda: Scene(Arm(-0.01), (Placement(TRI, x=0.2, side=0),), alpha=np.float64(2.0)), "alpha"),
+    (lambda: Scene(Arm(-0.01), (Placement(TRI, x=0.2, side=0),), friction=0.5), "friction"),
     (lambda: Placement(TRI, x=0.2), "placement"),
+    (lambda: Placement(TRI, x="0.2", side=0), "placement.x"),
+    (lambda: engine_run(TRI, ARM, 0.3, 0, 4.0, settings=3), "settings"),
+    (lambda: throw(TRI, ARM, 0.3, 0, 4.0, model="engine", settings=3), "settings"),
+    (lambda: throw(TRI, ARM, 0.3, 0, 4.0, model="engine", friction=0.5), "friction"),
+    (lambda: throw(TRI, ARM, 0.3, 0, 4.0, model="engine", alpha=np.float64(2.0)), "alpha"),
 ])
 def test_bad_engine_inputs_rejected(make, field):
+    """One line naming the user-facing field (not scene.alpha), a ValueError, no NumPy reprs.
+
+    (Wall and Cavity live in throwmap.system.fixtures and still raise the base ThrowmapError.)"""
     with pytest.raises(ThrowmapError) as err:
         make()
-    assert str(err.value).startswith(field + ":")
+    assert isinstance(err.value, ValueError) or field.startswith(("wall.", "cavity."))
+    assert str(err.value).startswith(field + ":") and "np." not in str(err.value) and "\n" not in str(err.value)
 
 
 def test_engine_keywords_only_for_engine_model():

@@ -286,3 +286,24 @@ def test_tuned_agrees_with_paper_throw_map_defaults_do_not(grid_runs):
     agree_free, dx_free = _agreement(grid_runs, 3)
     assert agree_free <= agree
     assert np.median(dx_free) > 5 * np.median(dx) and np.median(dx_free) > 5e-4
+
+
+# ---------------------------------------------------------------- the arm behind the joint (Arm.back)
+def test_model_arm_spans_back_to_length(triangle):
+    """The arm geom reaches x = -back behind the joint and x = L at the end."""
+    arm = tm.Arm(h=-0.01, mu=1.5, length=0.4, back=0.05)
+    model = mujoco.MjModel.from_xml_string(mujoco_model_xml(triangle, arm, TUNED, 0.2, 0))
+    g = model.geom("arm")
+    assert g.pos[0] - g.size[0] == pytest.approx(-0.05) and g.pos[0] + g.size[0] == pytest.approx(0.4)
+
+
+@pytest.mark.parametrize("x, omega", [(0.1695, 5.0), (0.1797, 6.0)])
+def test_landing_across_the_joint_follows_back_as_rigid_body(triangle, x, omega):
+    """A throw landing across the joint: behind_joint with back = 0, ok with back = 5 cm, as rigid_body."""
+    for back in (0.0, 0.05):
+        arm = tm.Arm(h=-0.01, mu=1.5, back=back)
+        ref = tm.throw(triangle, arm, x, 2, omega, model="rigid_body")
+        out = mujoco_throw(triangle, arm, x, 2, omega)
+        assert out.status == ref.status == (Status.OK if back else Status.BEHIND_JOINT)
+        if back:
+            assert out.side == ref.side and out.x == pytest.approx(ref.x, abs=5e-3)

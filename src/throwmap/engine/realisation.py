@@ -23,16 +23,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..errors import ThrowmapError
+from ..errors import InvalidStateError, shown
 
 __all__ = ["ImpulseThrow", "FiniteThrow", "RecoilThrow", "TiltTo", "check_realisation"]
 
 
 def _pos(value, field: str, *, allow_zero=False) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ThrowmapError(field, f"must be a finite number, got {value!r}")
+        raise InvalidStateError(field, f"must be a finite number, got {shown(value)}")
     if value < 0 or (value == 0 and not allow_zero):
-        raise ThrowmapError(field, f"must be {'≥' if allow_zero else '>'} 0, got {value!r}")
+        raise InvalidStateError(field, f"must be {'≥' if allow_zero else '>'} 0, got {shown(value)}")
     return float(value)
 
 
@@ -72,7 +72,7 @@ class FiniteThrow:
         object.__setattr__(self, "omega", _pos(self.omega, "omega", allow_zero=True))
         object.__setattr__(self, "duration", _pos(self.duration, "duration"))
         if self.omega * self.duration > 0.5:
-            raise ThrowmapError("duration", f"ω·Δt = {self.omega * self.duration:.3g} rad is too large (≤ 0.5 rad)")
+            raise InvalidStateError("duration", f"ω·Δt = {self.omega * self.duration:.3g} rad is too large (≤ 0.5 rad)")
 
     @property
     def start_angle(self) -> float:
@@ -109,7 +109,7 @@ class RecoilThrow:
             object.__setattr__(self, name, _pos(getattr(self, name), name))
         z = _pos(self.zeta, "zeta")
         if z >= 1.0:
-            raise ThrowmapError("zeta", f"must be < 1 (an underdamped loop overshoots), got {z}")
+            raise InvalidStateError("zeta", f"must be < 1 (an underdamped loop overshoots), got {z}")
         object.__setattr__(self, "zeta", z)
 
     @staticmethod
@@ -199,7 +199,7 @@ class TiltTo:
     def __post_init__(self):
         d = self.delta
         if isinstance(d, bool) or not isinstance(d, (int, float)) or not math.isfinite(d):
-            raise ThrowmapError("delta", f"must be a finite angle in rad, got {d!r}")
+            raise InvalidStateError("delta", f"must be a finite angle in rad, got {shown(d)}")
         object.__setattr__(self, "delta", float(d))
         object.__setattr__(self, "rate_", _pos(self.rate_, "rate"))
 
@@ -220,5 +220,5 @@ class TiltTo:
 
 def check_realisation(r):
     if not isinstance(r, (ImpulseThrow, FiniteThrow, RecoilThrow, TiltTo)):
-        raise ThrowmapError("realisation", f"unknown throw realisation {r!r}")
+        raise InvalidStateError("realisation", f"unknown throw realisation {shown(r)}")
     return r

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 
 from ..system.arm import Arm
-from ..errors import ThrowmapError
+from ..errors import InvalidStateError, shown
 from ..system.fixtures import Cavity, Wall
 from ..system.part import Part
 from ..throws.trajectory import pose_at_rest
@@ -30,21 +31,22 @@ class Placement:
 
     def __post_init__(self):
         if not isinstance(self.part, Part):
-            raise ThrowmapError("placement.part", f"must be a Part, got {type(self.part).__name__}")
+            raise InvalidStateError("placement.part", f"must be a Part, got {type(self.part).__name__}")
         if self.pose is None:
             if self.x is None or self.side is None:
-                raise ThrowmapError("placement", "give either (x, side) or pose")
+                raise InvalidStateError("placement", "give either (x, side) or pose")
             self.part.check_side(self.side)
-            if not math.isfinite(float(self.x)):
-                raise ThrowmapError("placement.x", f"must be finite, got {self.x}")
+            x = self.x
+            if isinstance(x, bool) or not isinstance(x, numbers.Real) or not math.isfinite(x):
+                raise InvalidStateError("placement.x", f"must be a finite number, got {shown(x)}")
         else:
             p = tuple(float(v) for v in self.pose)
             if len(p) != 3 or not all(math.isfinite(v) for v in p):
-                raise ThrowmapError("placement.pose", f"must be 3 finite numbers (x, y, φ), got {self.pose!r}")
+                raise InvalidStateError("placement.pose", f"must be 3 finite numbers (x, y, φ), got {shown(self.pose)}")
             object.__setattr__(self, "pose", p)
         v = tuple(float(c) for c in self.velocity)
         if len(v) != 3 or not all(math.isfinite(c) for c in v):
-            raise ThrowmapError("placement.velocity", f"must be 3 finite numbers, got {self.velocity!r}")
+            raise InvalidStateError("placement.velocity", f"must be 3 finite numbers, got {shown(self.velocity)}")
         object.__setattr__(self, "velocity", v)
 
     def arm_pose(self, h: float) -> tuple[float, float, float]:
@@ -70,24 +72,25 @@ class Scene:
 
     def __post_init__(self):
         if not isinstance(self.arm, Arm):
-            raise ThrowmapError("scene.arm", f"must be an Arm, got {type(self.arm).__name__}")
+            raise InvalidStateError("arm", f"must be an Arm, got {type(self.arm).__name__}")
         pl = tuple(self.placements)
         if not pl:
-            raise ThrowmapError("scene.placements", "needs at least one part")
+            raise InvalidStateError("placements", "needs at least one part")
         object.__setattr__(self, "placements", pl)
         fx = tuple(self.fixtures)
         for f in fx:
             if not isinstance(f, (Wall, Cavity)):
-                raise ThrowmapError("scene.fixtures", f"unknown fixture {f!r} (use Wall or Cavity)")
+                raise InvalidStateError("fixtures", f"unknown fixture {shown(f)} (use Wall or Cavity)")
         if fx and self.arm.length is None:
-            raise ThrowmapError("arm.length", "fixtures sit at the arm's end: give the arm a length")
+            raise InvalidStateError("arm.length", "fixtures sit at the arm's end: give the arm a length")
         object.__setattr__(self, "fixtures", fx)
         a = self.alpha
         if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a) or abs(a) >= math.pi / 2:
-            raise ThrowmapError("scene.alpha", f"must be a finite angle with |α| < π/2 rad, got {a!r}")
+            raise InvalidStateError("alpha", f"must be a finite angle with |α| < π/2 rad, got {shown(a)}")
         object.__setattr__(self, "alpha", float(a))
         if not isinstance(self.friction, Friction):
-            raise ThrowmapError("scene.friction", "must be a Friction")
+            raise InvalidStateError(
+                "friction", f"must be a throwmap.engine.Friction, got {type(self.friction).__name__}")
 
     @property
     def parts(self) -> tuple:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 
-from ..errors import ThrowmapError
+from ..errors import InvalidStateError, shown
 
 __all__ = ["EngineSettings", "Friction", "NO_SLIP_MU"]
 
@@ -70,31 +70,31 @@ class EngineSettings:
     def __post_init__(self):
         for f in fields(self):
             v = getattr(self, f.name)
-            key = f"engine.{f.name}"
+            key = f"settings.{f.name}"
             if f.name in ("exact_flight", "verify"):
                 if not isinstance(v, bool):
-                    raise ThrowmapError(key, f"must be true or false, got {v!r}")
+                    raise InvalidStateError(key, f"must be true or false, got {shown(v)}")
                 continue
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise ThrowmapError(key, f"must be a finite number, got {v!r}")
+                raise InvalidStateError(key, f"must be a finite number, got {shown(v)}")
             if f.name == "retries":
                 if int(v) != v or v < 0:
-                    raise ThrowmapError(key, f"must be an integer ≥ 0, got {v!r}")
+                    raise InvalidStateError(key, f"must be an integer ≥ 0, got {shown(v)}")
                 continue
             if f.name == "iterations":
                 if int(v) != v or v < 1:
-                    raise ThrowmapError(key, f"must be a positive integer, got {v!r}")
+                    raise InvalidStateError(key, f"must be a positive integer, got {shown(v)}")
                 continue
             if v <= 0:
-                raise ThrowmapError(key, f"must be > 0, got {v!r}")
+                raise InvalidStateError(key, f"must be > 0, got {shown(v)}")
         if self.dt > 2e-3:
-            raise ThrowmapError("engine.dt", f"{self.dt:g} s is too coarse for impacts (≤ 2 ms; 0.125 ms converged)")
+            raise InvalidStateError("settings.dt", f"{self.dt:g} s is too coarse for impacts (≤ 2 ms; 0.125 ms converged)")
         if self.coarse_dt < self.dt:
-            raise ThrowmapError("engine.coarse_dt", f"must be ≥ dt ({self.dt:g} s), got {self.coarse_dt:g}")
+            raise InvalidStateError("settings.coarse_dt", f"must be ≥ dt ({self.dt:g} s), got {self.coarse_dt:g}")
         if self.settle_hold < 4 * self.dt:
-            raise ThrowmapError("engine.settle_hold", f"must cover at least 4 steps ({4 * self.dt:g} s), got {self.settle_hold:g}")
+            raise InvalidStateError("settings.settle_hold", f"must cover at least 4 steps ({4 * self.dt:g} s), got {self.settle_hold:g}")
         if self.t_max < self.settle_hold:
-            raise ThrowmapError("engine.t_max", f"must exceed settle_hold ({self.settle_hold:g} s), got {self.t_max:g}")
+            raise InvalidStateError("settings.t_max", f"must exceed settle_hold ({self.settle_hold:g} s), got {self.t_max:g}")
 
 
 @dataclass(frozen=True, slots=True)
@@ -116,7 +116,7 @@ class Friction:
             if v is None and name != "part_part":
                 continue
             if isinstance(v, bool) or not isinstance(v, (int, float)) or math.isnan(v) or v < 0:
-                raise ThrowmapError(f"friction.{name}", f"must be a number ≥ 0 (inf: no slip), got {v!r}")
+                raise InvalidStateError(f"friction.{name}", f"must be a number ≥ 0 (inf: no slip), got {shown(v)}")
             object.__setattr__(self, name, float(v))
 
 

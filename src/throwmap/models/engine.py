@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from .base import BatchArrays, Features
 from .registry import register
@@ -35,16 +35,25 @@ class EngineOptions:
     def __post_init__(self):
         w = self.workers
         if w is not None and (isinstance(w, bool) or not isinstance(w, int) or w < 0):
-            raise InvalidStateError("workers", f"must be an integer ≥ 0 (0: all cores) or None, got {w!r}")
+            raise InvalidStateError("workers", f"must be an integer ≥ 0 (0: all cores) or None, got {shown(w)}")
+        if self.settings is not None or self.friction is not None:
+            from ..engine.settings import EngineSettings, Friction  # no pymunk import
+
+            for name, kind in (("settings", EngineSettings), ("friction", Friction)):
+                v = getattr(self, name)
+                if v is not None and not isinstance(v, kind):
+                    raise InvalidStateError(
+                        name, f"must be a throwmap.engine.{kind.__name__} (or None: the defaults), got {type(v).__name__}")
 
     def engine_keywords(self) -> dict:
         return {"settings": self.settings, "realisation": self.realisation, "friction": self.friction}
 
 
 def engine_failures(status) -> str:
-    """``"timeouts a/n, penetration refused b/n"`` over a batch's status codes."""
+    """``"timeouts a/n, penetration refused b/n, unconverged refused c/n"`` over a batch's status codes."""
     n = max(len(status), 1)
-    return f"timeouts {int((status == C.TIMEOUT).sum())}/{n}, penetration refused {int((status == C.PENETRATION).sum())}/{n}"
+    return (f"timeouts {int((status == C.TIMEOUT).sum())}/{n}, penetration refused {int((status == C.PENETRATION).sum())}/{n}, "
+            f"unconverged refused {int((status == C.UNCONVERGED).sum())}/{n}")
 
 
 class EngineModel:

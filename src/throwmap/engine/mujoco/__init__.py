@@ -89,15 +89,15 @@ Not resolved (left nan): ``N_FLIPS``, ``MU_MAX``, ``N_MIN``, ``N_PULL``,
 ``N_SLIPS``, ``SLIP_DISTANCE``.
 
 Status: ``PENETRATION`` as soon as a vertex is deeper than ``penetration_tol``
-(the run stops; the result is refused); ``BEHIND_JOINT``/``OFF_END`` when every
-vertex has dropped below the arm's top (x ≤ 0: behind the joint, else past the
-end) or when the settled part has its CM outside [0, L], its CM below the arm's
-top, its left support vertex at x ≤ 0 or its CM beyond the end; ``TIMEOUT`` when
-it has not settled by ``t_max``; else ``OK`` with ``(x, side)`` from
-:func:`~throwmap.throws.trajectory.state_from_pose`. Unlike model ``"paper"``, a part
-that comes to rest with its CM on the arm and a support vertex past the end is
-``OK`` here (it is supported); the paper model calls any contact beyond the end
-``OFF_END``.
+(the run stops; the result is refused); ``BEHIND_JOINT``/``OFF_END`` as soon as
+a vertex is below the surface line past an edge of the arm (x < −back, the arm's
+extent behind the joint, :attr:`throwmap.Arm.back`; x > L) or every vertex is
+below the arm's top; ``TIMEOUT`` when it has not settled by ``t_max``. A settled
+part is ``OK`` only as :func:`throwmap.engine.rest.rest_status` reads it, the same
+rule as the pymunk engine and the analytic models: flat on a stable side with
+both support vertices on the arm (else ``BEHIND_JOINT``/``OFF_END``, or
+``UNCONVERGED`` tilted on the bare arm), with ``(x, side)`` from
+:func:`~throwmap.throws.trajectory.state_from_pose`.
 
 Agreement with model "paper"
 ----------------------------

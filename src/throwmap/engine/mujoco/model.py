@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from ...errors import ThrowmapError
+from ...errors import InvalidStateError
 from ...system.arm import Arm
 from ...system.part import Part
 from ...throws.trajectory import pose_at_rest
@@ -33,11 +33,11 @@ def mujoco_model_xml(part: Part, arm: Arm, settings: MujocoSettings = MujocoSett
     on ``side`` with its CM at ``x``. Needs no MuJoCo installed.
     """
     if not isinstance(part, Part):
-        raise ThrowmapError("part", f"must be a Part, got {type(part).__name__}")
+        raise InvalidStateError("part", f"must be a Part, got {type(part).__name__}")
     if not isinstance(arm, Arm):
-        raise ThrowmapError("arm", f"must be an Arm, got {type(arm).__name__}")
+        raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
     if not isinstance(settings, MujocoSettings):
-        raise ThrowmapError("settings", f"must be MujocoSettings, got {type(settings).__name__}")
+        raise InvalidStateError("settings", f"must be MujocoSettings, got {type(settings).__name__}")
     if x is not None:
         x = finite(x, "x")
     s = settings
@@ -65,8 +65,9 @@ def mujoco_model_xml(part: Part, arm: Arm, settings: MujocoSettings = MujocoSett
     if x is not None and side is not None:
         px, py, phi = pose_at_rest(part, arm.h, x, side)
         key = f'\n  <keyframe>\n    <key name="rest" qpos="{_f(px)} {_f(py)} {_f(phi)}"/>\n  </keyframe>'
-    box = f'size="{_f(0.5 * L)} {_f(s.thickness)} {_f(0.5 * ARM_DEPTH)}"'
-    box += f' pos="{_f(0.5 * L)} 0 {_f(arm.h - 0.5 * ARM_DEPTH)}"'
+    back = arm.back  # the surface spans -back <= x <= L (Arm.back)
+    box = f'size="{_f(0.5 * (L + back))} {_f(s.thickness)} {_f(0.5 * ARM_DEPTH)}"'
+    box += f' pos="{_f(0.5 * (L - back))} 0 {_f(arm.h - 0.5 * ARM_DEPTH)}"'
     name = part.name.replace('"', "'").replace("&", "and").replace("<", "(").replace(">", ")")
     return f"""<mujoco model="throwmap {name}">
   <compiler angle="radian"/>

@@ -7,7 +7,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ...errors import ThrowmapError
+from ...errors import InvalidStateError, shown
 
 __all__ = ["MujocoSettings", "MODEL_NAME", "NO_SLIP_MU", "UNBOUNDED_EXTRA", "ARM_DEPTH", "POST_SPEED_FRACTION",
            "POST_WINDOW", "TOUCH_HYSTERESIS", "finite"]
@@ -28,12 +28,12 @@ TOUCH_HYSTERESIS = 1e-4
 
 
 def finite(value, key: str) -> float:
-    """``value`` as a finite float, or a :class:`ThrowmapError` naming ``key``."""
+    """``value`` as a finite float, or a :class:`~throwmap.errors.InvalidStateError` naming ``key``."""
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ThrowmapError(key, f"must be a number, got {value!r}")
+        raise InvalidStateError(key, f"must be a number, got {shown(value)}")
     v = float(value)
     if not math.isfinite(v):
-        raise ThrowmapError(key, f"must be finite, got {value!r}")
+        raise InvalidStateError(key, f"must be finite, got {shown(value)}")
     return v
 
 
@@ -83,43 +83,43 @@ class MujocoSettings:
             v = getattr(self, f.name)
             if f.name in ("multiccd", "contact_priority", "defaults"):
                 if not isinstance(v, (bool, np.bool_)):
-                    raise ThrowmapError(key, f"must be true or false, got {v!r}")
+                    raise InvalidStateError(key, f"must be true or false, got {shown(v)}")
                 object.__setattr__(self, f.name, bool(v))
             elif f.name == "cone":
                 if v not in ("elliptic", "pyramidal"):
-                    raise ThrowmapError(key, f"must be 'elliptic' or 'pyramidal', got {v!r}")
+                    raise InvalidStateError(key, f"must be 'elliptic' or 'pyramidal', got {shown(v)}")
             elif f.name == "solref":
                 if v is None:
                     continue
                 vals = self._tuple(v, key, (2,))
                 if not ((vals[0] > 0 and vals[1] > 0) or (vals[0] < 0 and vals[1] <= 0)):
-                    raise ThrowmapError(
-                        key, f"must be (timeconst > 0, dampratio > 0) or (-stiffness < 0, -damping ≤ 0), got {v!r}"
+                    raise InvalidStateError(
+                        key, f"must be (timeconst > 0, dampratio > 0) or (-stiffness < 0, -damping ≤ 0), got {shown(v)}"
                     )
                 object.__setattr__(self, f.name, vals)
             elif f.name == "solimp":
                 vals = self._tuple(v, key, (3, 5))
                 dmin, dmax, width = vals[:3]
                 if not (0 < dmin < 1 and 0 < dmax < 1):
-                    raise ThrowmapError(key, f"dmin and dmax must lie in (0, 1), got {v!r}")
+                    raise InvalidStateError(key, f"dmin and dmax must lie in (0, 1), got {shown(v)}")
                 if width <= 0:
-                    raise ThrowmapError(key, f"width must be > 0 m, got {v!r}")
+                    raise InvalidStateError(key, f"width must be > 0 m, got {shown(v)}")
                 if len(vals) == 5 and not (0 < vals[3] < 1 and vals[4] >= 1):
-                    raise ThrowmapError(key, f"midpoint must lie in (0, 1) and power be ≥ 1, got {v!r}")
+                    raise InvalidStateError(key, f"midpoint must lie in (0, 1) and power be ≥ 1, got {shown(v)}")
                 object.__setattr__(self, f.name, vals)
             else:
                 x = finite(v, key)
                 if x <= 0:
-                    raise ThrowmapError(key, f"must be > 0, got {v!r}")
+                    raise InvalidStateError(key, f"must be > 0, got {shown(v)}")
                 object.__setattr__(self, f.name, x)
         if self.timestep > 2e-3:
-            raise ThrowmapError("mujoco.timestep", f"must be ≤ 2e-3 s to resolve impacts, got {self.timestep!r}")
+            raise InvalidStateError("mujoco.timestep", f"must be ≤ 2e-3 s to resolve impacts, got {shown(self.timestep)}")
         if self.settle_hold < 4 * self.timestep:
-            raise ThrowmapError(
-                "mujoco.settle_hold", f"must cover at least 4 steps ({4 * self.timestep:g} s), got {self.settle_hold!r}"
+            raise InvalidStateError(
+                "mujoco.settle_hold", f"must cover at least 4 steps ({4 * self.timestep:g} s), got {shown(self.settle_hold)}"
             )
         if self.t_max < self.settle_hold:
-            raise ThrowmapError("mujoco.t_max", f"must be ≥ settle_hold ({self.settle_hold:g} s), got {self.t_max!r}")
+            raise InvalidStateError("mujoco.t_max", f"must be ≥ settle_hold ({self.settle_hold:g} s), got {shown(self.t_max)}")
 
     @staticmethod
     def _tuple(v, key, lengths) -> tuple:
@@ -127,9 +127,9 @@ class MujocoSettings:
         try:
             vals = tuple(v)
         except TypeError:
-            raise ThrowmapError(key, f"must be a sequence of {counts} numbers, got {v!r}") from None
+            raise InvalidStateError(key, f"must be a sequence of {counts} numbers, got {shown(v)}") from None
         if len(vals) not in lengths:
-            raise ThrowmapError(key, f"must have {counts} numbers, got {v!r}")
+            raise InvalidStateError(key, f"must have {counts} numbers, got {shown(v)}")
         return tuple(finite(c, key) for c in vals)
 
     @property

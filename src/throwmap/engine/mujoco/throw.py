@@ -6,13 +6,14 @@ import math
 
 import numpy as np
 
-from ...errors import ThrowmapError
+from ...errors import InvalidStateError, ThrowmapError
 from ...kernels import codes as C
 from ...system.arm import Arm
 from ...system.part import Part
 from ...throws.outcome import Status, ThrowOutcome
 from ...throws.throw import check_start
 from ...throws.trajectory import Trajectory, pose_at_rest, state_from_pose
+from ..rest import edge_status, rest_status
 from .model import arm_length, mujoco_model_xml
 from .settings import MODEL_NAME, POST_SPEED_FRACTION, POST_WINDOW, TOUCH_HYSTERESIS, MujocoSettings
 
@@ -44,18 +45,18 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
     when MuJoCo is not installed. Deterministic: same inputs, same result.
     """
     if not isinstance(part, Part):
-        raise ThrowmapError("part", f"must be a Part, got {type(part).__name__}")
+        raise InvalidStateError("part", f"must be a Part, got {type(part).__name__}")
     if not isinstance(arm, Arm):
-        raise ThrowmapError("arm", f"must be an Arm, got {type(arm).__name__}")
+        raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
     if not isinstance(settings, MujocoSettings):
-        raise ThrowmapError("settings", f"must be MujocoSettings, got {type(settings).__name__}")
+        raise InvalidStateError("settings", f"must be MujocoSettings, got {type(settings).__name__}")
     x0, k0, om = check_start(part, arm, x, side, omega)
     mujoco = _mujoco()
     s = settings
     model = mujoco.MjModel.from_xml_string(mujoco_model_xml(part, arm, s, x0, k0))
     data = mujoco.MjData(model)
 
-    h, g, L = arm.h, arm.g, arm_length(arm, x0)
+    h, g, L, back = arm.h, arm.g, arm_length(arm, x0), arm.back
     rho2 = part.radius_of_gyration**2
     w = np.asarray(part.w, dtype=float)
     n = w.shape[0]
@@ -95,9 +96,9 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
         q = data.qpos.copy()
         v = data.qvel.copy()
         vx_, vy_ = _vertices(w, q)
-        over = (vx_ >= 0.0) & (vx_ <= L)
+        over = (vx_ >= -back) & (vx_ <= L)
         gap = np.where(over, vy_ - h, np.inf)
-        pen = np.where(over & (vy_ < h), np.minimum(np.minimum(h - vy_, vx_), L - vx_), 0.0)
+        pen = np.where(over & (vy_ < h), np.minimum(np.minimum(h - vy_, vx_ + back), L - vx_), 0.0)
         pen_now = float(pen.max())
         if pen_now > rec[C.PENETRATION_MAX]:
             rec[C.PENETRATION_MAX] = pen_now
@@ -161,8 +162,11 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
             status = Status.OK
             events.append((rec[C.T_REST], "rest"))
             break
-        if np.all(vy_ < h):  # wholly below the arm's top: it left the arm
-            status, t_event = (Status.BEHIND_JOINT if q[0] <= 0.0 else Status.OFF_END), t
+        gone = edge_status(vx_, vy_, h, L, back)  # a vertex below the surface past an edge: it left the arm
+        if gone is None and np.all(vy_ < h):  # wholly below the arm's top
+            gone = Status.BEHIND_JOINT if q[0] <= -back else Status.OFF_END
+        if gone is not None:
+            status, t_event = gone, t
             events.append((t, "left arm"))
             break
         if step >= n_max:
@@ -173,15 +177,13 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
         step += 1
 
     q = data.qpos.copy()
-    xe, ke, _tilt = state_from_pose(part, tuple(q))
+    xe, ke, tilt = state_from_pose(part, tuple(q))
     rec[C.E_FINAL] = g * (q[1] - h)
-    if status == Status.OK:
-        if q[1] < h or not (0.0 <= xe <= L):
-            status = Status.BEHIND_JOINT if xe <= 0.0 else Status.OFF_END
-        elif xe + float(part.uL[ke]) <= 0.0:
-            status = Status.BEHIND_JOINT
-        elif xe > L:
-            status = Status.OFF_END
+    if status == Status.OK:  # ok only as a start throw() accepts, as the analytic models and pymunk
+        if q[1] < h:
+            status = Status.BEHIND_JOINT if xe <= -back else Status.OFF_END
+        else:
+            status = rest_status(part, tuple(q), xe, ke, tilt, h, L, back, True)
     out = ThrowOutcome.from_record(part, x0, k0, om, MODEL_NAME, xe, ke, status, rec)
     if not record:
         return out

@@ -21,16 +21,10 @@ from __future__ import annotations
 import math
 
 from ...throws.outcome import Status
+from ..rest import EDGE_EPS
 from .world import World
 
-__all__ = ["inspect", "clearance", "escape", "energy", "all_slow", "EDGE_EPS", "UNCONVERGED"]
-
-
-UNCONVERGED = getattr(Status, "UNCONVERGED", Status.TIMEOUT)
-"""Status of a run refused as not converged (``Status.UNCONVERGED``, code 10 of :mod:`throwmap.kernels.codes`)."""
-
-EDGE_EPS = 1e-4
-"""m a vertex must be below the arm's surface line, beyond one of its ends, to have left the arm."""
+__all__ = ["inspect", "clearance", "escape", "energy", "all_slow"]
 
 
 def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0):
@@ -40,7 +34,7 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     part i's vertices into the arm (its solid: −back ≤ x ≤ L, less than its
     thickness below the surface), fixtures or other parts; its CM ``(x, y)`` (m)
     and angle ``phi`` (rad) in the arm frame (``phi`` unwrapped); ``over``: −1 if
-    a vertex is below the surface line (by more than :data:`EDGE_EPS`) behind the
+    a vertex is below the surface line (by more than :data:`throwmap.engine.rest.EDGE_EPS`) behind the
     arm's back edge x = −back, +1 if beyond its end x = L, else 0 (the part is
     over an edge: it has left the arm); ``near``: a vertex not in contact could
     touch within ``horizon`` (s), i.e. its gap is below ``flight_margin`` plus its

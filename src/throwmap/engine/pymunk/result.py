@@ -9,13 +9,13 @@ import numpy as np
 
 from ...kernels import codes as C
 from ...throws.outcome import Status, ThrowOutcome
-from ...throws.trajectory import Trajectory, state_from_pose, world_vertices
+from ...throws.trajectory import Trajectory, state_from_pose
+from ..rest import rest_status
 from ..scene import Placement, Scene
-from .checks import EDGE_EPS, UNCONVERGED
 from .contacts import Contacts
 from .world import World
 
-__all__ = ["EngineRun", "Recorder", "finish", "rest_status", "FLAT_TILT"]
+__all__ = ["EngineRun", "Recorder", "finish"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -107,37 +107,14 @@ class Recorder:
                           scene.fixtures, tuple(self.contacts), tuple(events), "engine:pymunk")
 
 
-FLAT_TILT = 0.02
-"""rad: a settled part within this angle of a side lies flat on it."""
-
-
-def rest_status(part, pose_a, x: float, k: int, tilt: float, h: float, L: float, back: float, plain: bool) -> Status:
-    """Status of a part at rest at arm-frame pose ``pose_a`` (state ``(x, k, tilt)``) on an arm −back ≤ x ≤ L at height h."""
-    V = world_vertices(part, pose_a)
-    below = V[:, 1] < h - EDGE_EPS
-    flat = abs(tilt) < FLAT_TILT and bool(part.stable[k])
-    if np.any(below & (V[:, 0] < -back)) or (flat and x + float(part.uL[k]) <= -back):
-        return Status.BEHIND_JOINT
-    if np.any(below & (V[:, 0] > L)) or (flat and x + float(part.uR[k]) > L) or x > L:
-        return Status.OFF_END
-    if plain and not flat:
-        return UNCONVERGED
-    return Status.OK
-
-
 def finish(scene: Scene, w: World, contacts: Contacts, status: Status, message: str, t: float, still_since,
            counts: dict, pen_max: float, recorder: Recorder | None) -> EngineRun:
     """Read the final poses and states off the space and assemble the :class:`EngineRun`.
 
     A part that settled is ``ok`` only where :func:`throwmap.throw` would accept
-    its rest as a start: flat on a stable side (tilt below :data:`FLAT_TILT`)
-    with both support vertices on the arm (−back < x + u_L, x + u_R ≤ L), as the
-    analytic models count it. Otherwise it is ``behind_joint`` (a vertex below
-    the surface line behind x = −back, or the left support vertex there) or
-    ``off_end`` (beyond x = L); a part resting tilted elsewhere on a plain arm
-    (one part, no fixtures: nothing can hold it so) has not settled (``unconverged``).
-    With fixtures or other parts a tilted rest (against a wall, in a cavity, on
-    another part) is ``ok``.
+    its rest as a start (:func:`throwmap.engine.rest.rest_status`): flat on a
+    stable side with both support vertices on the arm, as the analytic models
+    count it; else ``behind_joint``/``off_end`` (or ``unconverged`` tilted on a plain arm).
     """
     g, h, L, back = w.g, w.h, w.L, w.back
     final_alpha = w.arm.angle

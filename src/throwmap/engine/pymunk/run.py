@@ -5,17 +5,18 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from ...errors import ThrowmapError
+from ...errors import InvalidStateError, shown
 from ...kernels import codes as C
 from ...throws.outcome import Status
 from ..realisation import ImpulseThrow, check_realisation
+from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
-from .checks import UNCONVERGED, all_slow, clearance, energy, escape, inspect
+from .checks import all_slow, clearance, energy, escape, inspect
 from .contacts import Contacts, nearest_side
 from .result import EngineRun, Recorder, finish
-from .verify import disagreement, flags
 from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
+from .verify import disagreement, flags
 from .world import build_world
 
 __all__ = ["simulate", "CHECK_EVERY"]
@@ -47,7 +48,8 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
     """
     settings = EngineSettings() if settings is None else settings
     if not isinstance(settings, EngineSettings):
-        raise ThrowmapError("settings", "must be an EngineSettings")
+        raise InvalidStateError(
+            "settings", f"must be a throwmap.engine.EngineSettings (or None: the defaults), got {type(settings).__name__}")
     run = _simulate_once(scene, realisation, settings, record, progress, run_for)
     tries = 0
     while run.status == Status.PENETRATION and tries < settings.retries:
@@ -76,13 +78,13 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
 def _simulate_once(scene, realisation, settings, record, progress, run_for, *, raw: bool = True) -> EngineRun:
     """One attempt of :func:`simulate` (no retries); ``raw=False`` calls pymunk's public API only."""
     if not isinstance(scene, Scene):
-        raise ThrowmapError("scene", "must be a Scene")
+        raise InvalidStateError("scene", f"must be a throwmap.engine.Scene, got {type(scene).__name__}")
     realisation = ImpulseThrow(0.0) if realisation is None else check_realisation(realisation)
     t_max = settings.t_max
     if run_for is not None:
         if isinstance(run_for, bool) or not isinstance(run_for, (int, float)) or not run_for > 0 \
                 or not math.isfinite(run_for):
-            raise ThrowmapError("run_for", f"must be a positive number of seconds, got {run_for!r}")
+            raise InvalidStateError("run_for", f"must be a positive number of seconds, got {shown(run_for)}")
         t_max = float(run_for)
     w = build_world(scene, realisation, settings, raw=raw)
     contacts = Contacts(w)

@@ -1,0 +1,60 @@
+"""How both engine backends (pymunk, MuJoCo) read a part's end state as a status, as the analytic models do.
+
+The arm's surface spans −back ≤ x ≤ L (:attr:`throwmap.Arm.back`, the arm's
+length). A part with a vertex below the surface line beyond either edge has left
+the arm (``behind_joint`` behind x = −back, ``off_end`` beyond x = L); a part at
+rest is ``ok`` only where :func:`throwmap.throw` would accept its rest as a start
+(flat on a stable side, both support vertices on the arm), which is where the
+analytic models call a landing ``ok``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..throws.outcome import Status
+from ..throws.trajectory import world_vertices
+
+__all__ = ["EDGE_EPS", "FLAT_TILT", "UNCONVERGED", "edge_status", "rest_status"]
+
+UNCONVERGED = getattr(Status, "UNCONVERGED", Status.TIMEOUT)
+"""Status of a run refused as not converged (``Status.UNCONVERGED``, code 10 of :mod:`throwmap.kernels.codes`)."""
+
+EDGE_EPS = 1e-4
+"""m a vertex must be below the arm's surface line, beyond one of its edges, to have left the arm."""
+
+FLAT_TILT = 0.02
+"""rad: a settled part within this angle of a side lies flat on it."""
+
+
+def edge_status(vx, vy, h: float, L: float, back: float):
+    """``behind_joint``/``off_end`` if a vertex (arm-frame coordinates ``vx``, ``vy``, m) is below the
+    surface line y = h (by more than :data:`EDGE_EPS`) behind x = −back / beyond x = L, else None."""
+    below = np.asarray(vy) < h - EDGE_EPS
+    vx = np.asarray(vx)
+    if np.any(below & (vx < -back)):
+        return Status.BEHIND_JOINT
+    if np.any(below & (vx > L)):
+        return Status.OFF_END
+    return None
+
+
+def rest_status(part, pose_a, x: float, k: int, tilt: float, h: float, L: float, back: float, plain: bool) -> Status:
+    """Status of ``part`` at rest at arm-frame pose ``pose_a`` = state ``(x, k, tilt)`` on an arm −back ≤ x ≤ L.
+
+    ``ok`` only flat on a stable side (|tilt| < :data:`FLAT_TILT`) with
+    −back < x + u_L and x + u_R ≤ L; ``behind_joint``/``off_end`` past an edge;
+    tilted elsewhere on a ``plain`` arm (one part, no fixtures: nothing can hold
+    it so) ``unconverged``. With fixtures or other parts a tilted rest (against a
+    wall, in a cavity, on another part) is ``ok``.
+    """
+    V = world_vertices(part, pose_a)
+    over = edge_status(V[:, 0], V[:, 1], h, L, back)
+    flat = abs(tilt) < FLAT_TILT and bool(part.stable[k])
+    if over == Status.BEHIND_JOINT or (flat and x + float(part.uL[k]) <= -back):
+        return Status.BEHIND_JOINT
+    if over == Status.OFF_END or (flat and x + float(part.uR[k]) > L) or x > L:
+        return Status.OFF_END
+    if plain and not flat:
+        return UNCONVERGED
+    return Status.OK
