@@ -7,13 +7,23 @@ import pytest
 
 from throwmap import Arm, throw, throw_batch
 from throwmap.engine import (
-    EngineSettings, FiniteThrow, Friction, ImpulseThrow, Placement, RecoilThrow, Scene, TiltTo, engine_run,
-    engine_trajectory, simulate,
+    EngineSettings,
+    FiniteThrow,
+    Friction,
+    ImpulseThrow,
+    Placement,
+    RecoilThrow,
+    Scene,
+    TiltTo,
+    engine_batch,
+    engine_run,
+    engine_trajectory,
+    simulate,
 )
 from throwmap.errors import InvalidStateError, ThrowmapError
+from throwmap.system.catalogue import rectangle, triangle_30_60_90
 from throwmap.system.fixtures import Cavity, Wall, arm_solids
 from throwmap.throws.outcome import Status
-from throwmap.system.catalogue import rectangle, triangle_30_60_90
 from throwmap.throws.trajectory import pose_at_rest, world_vertices
 
 TRI = triangle_30_60_90()
@@ -299,6 +309,7 @@ def test_bad_engine_settings_rejected(kw, field):
     (lambda: Placement(TRI, x=0.2), "placement"),
     (lambda: Placement(TRI, x="0.2", side=0), "placement.x"),
     (lambda: engine_run(TRI, ARM, 0.3, 0, 4.0, settings=3), "settings"),
+    (lambda: engine_batch(TRI, ARM, [0.3, 0.4], [0, 0], [4.0, 4.0], settings=3), "settings"),  # not 2 invalid starts
     (lambda: throw(TRI, ARM, 0.3, 0, 4.0, model="engine", settings=3), "settings"),
     (lambda: throw(TRI, ARM, 0.3, 0, 4.0, model="engine", friction=0.5), "friction"),
     (lambda: throw(TRI, ARM, 0.3, 0, 4.0, model="engine", alpha=np.float64(2.0)), "alpha"),

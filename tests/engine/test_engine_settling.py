@@ -6,7 +6,6 @@ a settled result does not move when simulated longer, and a slide on a flat arm
 stops where Coulomb friction says, x0 + v²/(2 μ g).
 """
 
-import math
 
 import pytest
 

@@ -52,6 +52,15 @@ def engine_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, *
     return run.outcome(0, x0=x, side0=side, omega=omega), run.trajectory
 
 
+def _check_keywords(kw: dict) -> None:
+    """Raise :class:`InvalidStateError` naming ``settings``/``friction`` when they have the wrong type."""
+    for name, kind in (("settings", EngineSettings), ("friction", Friction)):
+        v = kw.get(name)
+        if v is not None and not isinstance(v, kind):
+            raise InvalidStateError(
+                name, f"must be a throwmap.engine.{kind.__name__} (or None: the defaults), got {type(v).__name__}")
+
+
 def _one(args):
     part, arm, x, side, omega, kw = args
     try:
@@ -69,6 +78,7 @@ def engine_batch(part: Part, arm: Arm, x, side, omega, *, valid=None, workers: i
     ``valid`` marks admissible starts (others get ``INVALID_START``);
     ``progress(done, total)`` is called after each throw.
     """
+    _check_keywords(kw)  # a bad setting is the caller's error, not an invalid start of every throw
     x = np.asarray(x, dtype=float).ravel()
     side = np.asarray(side).ravel().astype(np.int64)
     omega = np.asarray(omega, dtype=float).ravel()

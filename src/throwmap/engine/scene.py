@@ -6,8 +6,8 @@ import math
 import numbers
 from dataclasses import dataclass, field
 
-from ..system.arm import Arm
 from ..errors import InvalidStateError, shown
+from ..system.arm import Arm
 from ..system.fixtures import Cavity, Wall
 from ..system.part import Part
 from ..throws.trajectory import pose_at_rest

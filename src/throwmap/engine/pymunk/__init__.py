@@ -19,12 +19,23 @@ Checks (:mod:`.checks`)
 -----------------------
 * penetration: every millisecond, each part vertex is tested against the arm,
   fixtures and other parts; deeper than ``penetration_tol`` → status
-  ``penetration`` (pymunk can lose grazing high-friction contacts) — that
-  result is refused, and the run retried with a finer step.
+  ``penetration`` — that result is refused, and the run retried with a finer step.
+* escape: a vertex below the surface line past an edge of the arm (x < −back,
+  :attr:`throwmap.Arm.back`; x > L), or a CM below the arm's underside: the part
+  has left the arm, ``behind_joint`` or ``off_end`` at once (also after every
+  exact-flight leap).
+* landing ahead: while a vertex not in contact is about to touch, no coarse steps.
+* energy: after the arm stops no part may gain mechanical energy.
 * settling: after the arm has stopped, every part slower than ``settle_speed``
-  and ``settle_spin`` for ``settle_hold`` → status ``ok``; ``t_max`` → ``timeout``.
-* escape: a part whose CM drops below the arm's underside has left the arm:
-  ``behind_joint`` if it is behind the joint, else ``off_end``.
+  and ``settle_spin`` for ``settle_hold`` → at rest, ``t_max`` → ``timeout``. A
+  part at rest is ``ok`` only flat on a stable side with both support vertices
+  on the arm (:mod:`throwmap.engine.rest`, as the analytic models).
+
+Verification (:mod:`.verify`)
+-----------------------------
+Hard runs (deep penetration, repeated side changes, energy gain, timeout) are
+rerun at half the step; where the two disagree the run is refused as
+``unconverged``, with the reason in its message.
 
 Friction (:mod:`.friction`)
 ---------------------------

@@ -18,7 +18,7 @@ import numpy as np
 from ...kernels import codes as C
 from ...throws.outcome import Status
 from .friction import install_friction_cap
-from .world import PART, World
+from .world import World
 
 __all__ = ["HOP_MIN", "PartTrack", "Contacts", "nearest_side"]
 
