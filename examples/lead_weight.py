@@ -40,8 +40,9 @@ def main(out_dir: str | Path = "out") -> dict:
     result = {}
     for ax, (label, part) in zip(axes, parts.items()):
         orbit = tm.iterate(part, arm, (part.x_min(0) + 0.01, 0), 4.0, n=400, model="paper")
-        orbit.plot(ax=ax, part=part)
-        ax.set_title(f"{label}: CM at ({100 * part.com[0]:.1f}, {100 * part.com[1]:.1f}) cm, {orbit.status.label}")
+        orbit.plot(ax=ax, part=part, arm=arm)  # titled with the part (its lead included), h, ω and the model
+        ax.set_title(ax.get_title() + f"\n{label}: CM at ({100 * part.com[0]:.1f}, {100 * part.com[1]:.1f}) cm, "
+                     f"{orbit.status.label}", fontsize=8)
         result[label] = bands(orbit, part)
         print(f"{label}:")
         for s, b in result[label].items():

@@ -135,7 +135,8 @@ def test_limit_set_triangle_with_critical_and_orbit(limit, critical, orbit, tmp_
     # the last 20 throws as arrows, jogs arcing along a lane and flips crossing lanes
     arrows = [p for p in ax.patches if isinstance(p, FancyArrowPatch) and p.get_gid() == "orbit"]
     assert len(arrows) == 20
-    assert "band" in ax.get_title() and limit.map_info["label"] in ax.get_title()
+    title = ax.get_title()
+    assert "band" in title and all(v in title for v in (limit.map_info["part"], "h = -0.01 m", "ω = 4", "'paper'"))
     # x axis in cm: the band reaches past 40 cm on side 0
     assert ax.get_xlim()[1] > 40
     fig.savefig(tmp_path / "limit_set.png")

@@ -273,9 +273,10 @@ def test_gif_has_the_expected_frames(tmp_path):
     n = int(math.floor(traj.t[-1] * fps / speed + 1e-9)) + 1
     assert len(times) in (n, n + 1) and times[-1] == traj.t[-1] and times[0] == 0.0
     calls = []
-    path = animate(traj, tmp_path / "throw.gif", fps=fps, speed=speed, dpi=40, hold=0.0,
-                   progress=lambda done, total: calls.append((done, total)))
-    assert path == tmp_path / "throw.gif"
+    res = animate(traj, tmp_path / "throw.gif", fps=fps, speed=speed, dpi=40, hold=0.0,
+                  progress=lambda done, total: calls.append((done, total)))
+    path = res.path
+    assert path == tmp_path / "throw.gif" and res.n_frames == len(times)
     with PImage.open(path) as im:
         assert im.format == "GIF"
         assert im.n_frames == len(times)

@@ -73,7 +73,7 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
 
     say("orbit")
     orbit = iterate(part, arm, (DEMO["x0"], DEMO["side0"]), omega, n=DEMO["n_throws"], model=DEMO["model"])
-    fig = orbit.plot(part=part)
+    fig = orbit.plot(part=part, arm=arm)
     files.append(save_figure(fig, out / "orbit.png"))
     plt.close(fig)
     tail = slice(len(orbit.x) // 3, None)  # after the transient

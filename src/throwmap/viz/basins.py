@@ -13,9 +13,35 @@ import textwrap
 import numpy as np
 
 from ..errors import InvalidStateError
-from .style import ESCAPE_COLOR, _plt, attractor_colors, fmt_share, layout, scale, side_colors
+from .style import (
+    ESCAPE_COLOR,
+    _plt,
+    attractor_colors,
+    fmt_share,
+    layout,
+    map_title,
+    scale,
+    side_colors,
+    x_range_text,
+)
 
-__all__ = ["plot_basins"]
+__all__ = ["plot_basins", "shade"]
+
+FADE = 0.8
+"""Share of white blended into a label's colour at the largest throw count."""
+
+
+def shade(rgba, mean_throws, t_norm: float, fade: float = FADE) -> np.ndarray:
+    """Colours of columns of one label: ``rgba`` blended with white by ``fade · log(1 + throws) / t_norm``.
+
+    ``rgba`` is one colour ``(4,)`` or one per column ``(N, 4)``; ``mean_throws`` the
+    throws to reach the attractor (one per column); ``t_norm = log(1 + largest throws)``.
+    The lanes and the colour key both use this, so the key shows the lanes' colours.
+    """
+    base = np.broadcast_to(np.asarray(rgba, dtype=float), (np.size(mean_throws), 4)).copy()
+    w = fade * np.log1p(np.asarray(mean_throws, dtype=float).ravel()) / t_norm
+    base[:, :3] = base[:, :3] * (1 - w[:, None]) + w[:, None]
+    return base
 
 
 def _bin_lane(x, labels, throws, edges, label_values):
@@ -51,11 +77,13 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     max_columns : int
         Most columns per lane (≥ 1).
 
-    Returns the Figure (with a colour bar for the shade; the title carries the
-    certificate's statement, shortened).
+    Returns the Figure: the x axis starts at the joint (x = 0); a colour key beside
+    it has one column per label drawn, faded by throws exactly as the lanes are
+    (:func:`shade`), ticked in throws; the title names the part, h, ω, the model
+    and the analysed range, and carries the certificate's statement, shortened.
     """
-    from matplotlib.colors import LinearSegmentedColormap, Normalize
     from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import LinearSegmentedColormap, Normalize
     from matplotlib.patches import Patch
 
     plt = _plt()
@@ -79,7 +107,6 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     lut = np.array([palette[int(v)] for v in label_values]).reshape(-1, 4)
     t_max = float(throws.max()) if throws.size else 0.0
     t_norm = math.log1p(t_max) if t_max > 0 else 1.0
-    fade = 0.8  # share of white at the largest throw count
 
     x_lo = float(x.min()) if x.size else 0.0
     x_hi = float(x.max()) if x.size else 1.0
@@ -98,9 +125,7 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     for i, s in enumerate(sides):
         m = side == s
         mode, mean_t, total = _bin_lane(x[m], labels[m], throws[m], edges, label_values)
-        rgba = lut[mode].copy()
-        w = fade * np.log1p(mean_t) / t_norm
-        rgba[:, :3] = rgba[:, :3] * (1 - w[:, None]) + w[:, None]
+        rgba = shade(lut[mode], mean_t, t_norm)
         rgba[:, 3] = np.where(total > 0, 1.0, 0.0)
         img = ax.imshow(rgba[None, :, :], extent=(edges[0] * k, edges[-1] * k, i - 0.38, i + 0.38),
                         origin="lower", aspect="auto", interpolation="nearest", zorder=2)
@@ -111,8 +136,9 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     for lab, s in zip(ax.get_yticklabels(), sides):
         lab.set_color(scol[s])
     ax.set_ylim(-0.6, len(sides) - 0.4)
-    ax.set_xlim(edges[0] * k, edges[-1] * k)
-    ax.set_xlabel(f"x of CM along the arm ({unit})")
+    ax.set_xlim(min(0.0, edges[0]) * k, edges[-1] * k)  # from the joint, x = 0
+    ax.axvline(0.0, color="0.3", lw=1.2, zorder=1, gid="joint")
+    ax.set_xlabel(f"x of CM along the arm ({unit}; joint at 0)")
 
     frac = basins.fractions if hasattr(basins, "fractions") else {}
     handles = []
@@ -127,19 +153,31 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     if handles:
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(0.0, -0.2 if len(sides) < 3 else -0.15),
                   ncol=min(3, len(handles)), fontsize=7, frameon=False)
-    # the shade scale, on a neutral grey
-    grey = np.array([0.35, 0.35, 0.35])
-    shade = LinearSegmentedColormap.from_list("throws", [tuple(grey), tuple(grey * (1 - fade) + fade)])
-    sm = ScalarMappable(norm=Normalize(0.0, t_norm), cmap=shade)
-    cb = fig.colorbar(sm, ax=ax, pad=0.01, fraction=0.04)
+    # the colour key: one column per label drawn, its colour faded exactly as in the lanes
+    key_labels = [int(v) for v in label_values]
+    key_rows = 256
+    t_rows = np.expm1(np.linspace(0.0, t_norm, key_rows))  # throws at each row (log1p-spaced)
+    key = np.stack([shade(palette[v], t_rows, t_norm) for v in key_labels], axis=1) if key_labels else \
+        np.ones((key_rows, 1, 4))
+    sm = ScalarMappable(norm=Normalize(0.0, t_norm), cmap=LinearSegmentedColormap.from_list("w", ["w", "w"]))
+    cb = fig.colorbar(sm, ax=ax, pad=0.01, fraction=0.025 * max(1, len(key_labels)) + 0.015)
+    cb.solids.set_visible(False)
+    cb.ax.imshow(key, extent=(0.0, 1.0, 0.0, t_norm), origin="lower", aspect="auto", interpolation="nearest",
+                 zorder=1).set_gid("basin-key")
+    cb.ax.set_xlim(0.0, 1.0)
+    n_key = max(1, len(key_labels))
+    cb.ax.xaxis.set_visible(True)
+    cb.ax.set_xticks([(j + 0.5) / n_key for j in range(len(key_labels))])
+    cb.ax.set_xticklabels([f"#{v}" if v != -1 else "−1" for v in key_labels], fontsize=6)
     ticks = [v for v in (0, 1, 3, 10, 30, 100, 300, 1000, 3000, 10000) if v <= max(t_max, 1)]
     cb.set_ticks([math.log1p(v) for v in ticks])
     cb.set_ticklabels([str(v) for v in ticks])
-    cb.set_label("throws to reach", fontsize=8)
+    cb.set_label("throws to reach (colour: attractor)", fontsize=8)
     cb.ax.tick_params(labelsize=7)
 
-    label = basins.map_info.get("label", "map")
+    label = map_title(basins.map_info, basins.map_info.get("label", "map"))
+    rng = x_range_text(basins.map_info)
     statement = textwrap.shorten(str(basins.certificate.statement), width=120, placeholder=" …")
-    ax.set_title(f"basins: {label} — {x.size} configurations\n{statement}", fontsize=9)
+    ax.set_title(f"basins: {label}\n{x.size} configurations{', ' + rng if rng else ''}; {statement}", fontsize=8)
     layout(fig)
     return fig

@@ -6,13 +6,18 @@ Draws a :class:`~throwmap.studies.compare.ModelComparison` already computed by
 
 from __future__ import annotations
 
-from .style import _plt
+import math
+
+from .style import _plt, describe_setting, wrap_setting
 
 __all__ = ["plot_model_comparison"]
 
 
 def plot_model_comparison(comparison, ax=None):
-    """Median relative jog error (%) of each model against ``comparison.reference``, per ω (rad/s); the Figure."""
+    """Median relative jog error (%) of each model against ``comparison.reference``, per ω (rad/s); the Figure.
+
+    The title names the part, h, the ω compared, the models and the reference model.
+    """
     plt = _plt()
     if ax is None:
         fig, ax = plt.subplots(figsize=(6, 3.5))
@@ -24,6 +29,13 @@ def plot_model_comparison(comparison, ax=None):
     ax.set_ylabel(f"median |Δ jog| / jog vs {comparison.reference!r} (%)")
     ax.set_yscale("log")
     ax.legend()
-    ax.set_title(comparison.part_name)
+    omegas = sorted({float(r["omega"]) for r in comparison.rows})
+    models = ", ".join(comparison.models)
+    setting = describe_setting(comparison.part_name, comparison.h, omegas, comparison.reference)
+    x_max = getattr(comparison, "x_max", None)
+    rng = f", x ≤ {100 * x_max:.4g} cm" if isinstance(x_max, (int, float)) and math.isfinite(x_max) else ""
+    width = max(40, int(12 * fig.get_figwidth()))  # characters that fit at fontsize 8
+    ax.set_title(wrap_setting(setting + rng, width) + f"\njog error of {models} against {comparison.reference!r}",
+                 fontsize=8)
     fig.tight_layout()
     return fig

@@ -7,9 +7,7 @@ imported on first use.
 
 from __future__ import annotations
 
-import textwrap
-
-from .style import _plt, layout
+from .style import _plt, layout, map_title, wrap_setting, x_range_text
 
 __all__ = ["plot_funnel_graph"]
 
@@ -21,12 +19,27 @@ def _omega_text(omegas) -> str:
     return "ω = " + ", ".join(f"{w:g}" for w in om) + " rad/s"
 
 
+def wrap_intervals(text: str, width: int = 40, sep: str = " ∪ ") -> list[str]:
+    """Lines of at most ``width`` characters, broken only between the ``sep``-joined items.
+
+    An item (e.g. ``"side 0: [50, 90] cm"``) is never split, so no line ends inside an
+    interval; an item longer than ``width`` gets a line of its own.
+    """
+    lines: list[str] = []
+    for item in str(text).split(sep):
+        if lines and len(lines[-1]) + len(sep) + len(item) <= width:
+            lines[-1] += sep + item
+        else:
+            lines.append(item)
+    return lines
+
+
 def _goal_text(goal) -> str:
     try:
         d = goal.describe("cm")
     except TypeError:
         d = goal.describe()
-    return "goal\n" + "\n".join(textwrap.wrap(str(d), 40))
+    return "goal\n" + "\n".join(wrap_intervals(str(d), 40))
 
 
 def plot_funnel_graph(graph, ax=None):
@@ -140,6 +153,12 @@ def plot_funnel_graph(graph, ax=None):
         title += "\npriority: " + " > ".join(order)
     elif goal is not None:
         title += "\nno funnel leads to the goal"
+    maps = dict(getattr(graph, "map_info", {}) or {}).get("maps", [])
+    setting = map_title(maps, "")
+    if setting:
+        rng = x_range_text(maps)
+        width = max(40, int(11 * fig.get_figwidth()))  # characters that fit at fontsize 9
+        title = wrap_setting(f"{setting}{', ' + rng if rng else ''}", width) + "\n" + title
     ax.set_title(title, fontsize=9)
     layout(fig)
     return fig

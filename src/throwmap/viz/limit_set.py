@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from ..errors import InvalidStateError
-from .style import _plt, fmt_share, layout, scale, side_colors
+from .style import _plt, fmt_share, layout, map_title, scale, side_colors, x_range_text
 
 __all__ = ["plot_limit_set"]
 
@@ -217,9 +217,11 @@ def plot_limit_set(limit, ax=None, *, critical=None, orbit=None, unit: str = "cm
     lo = min(xs + [0.0])
     ax.set_xlim(lo * k - 0.02 * x_hi * k, 1.03 * x_hi * k)
     ax.set_xlabel(f"x of CM along the arm ({unit}; joint at 0)")
-    label = limit.map_info.get("label", "map")
+    label = map_title(limit.map_info, limit.map_info.get("label", "map"))
+    rng = x_range_text(limit.map_info)
     n_att_txt = f"{len(limit.attractors)} attractor{'s' if len(limit.attractors) != 1 else ''}"
-    ax.set_title(f"{label}\nlimit set: {limit.kind}, {n_att_txt} from {limit.n_starts} starts", fontsize=10)
+    ax.set_title(f"{label}\nlimit set: {limit.kind}, {n_att_txt} from {limit.n_starts} starts"
+                 + (f", {rng}" if rng else ""), fontsize=10)
     if handles:
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=False)
     layout(fig)

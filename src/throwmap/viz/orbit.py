@@ -9,17 +9,20 @@ from __future__ import annotations
 import numpy as np
 
 from ..throws.outcome import Status
-from .style import _plt, side_colors
+from .style import _plt, describe_setting, side_colors
 
 __all__ = ["plot_orbit"]
 
 
-def plot_orbit(orbit, ax=None, part=None, unit: str = "cm"):
+def plot_orbit(orbit, ax=None, part=None, unit: str = "cm", *, arm=None, title: str | None = None):
     """x against throw number, side by colour (like paper Figs. 7 and 16); returns the Figure.
 
     ``orbit.x`` is in m and drawn in ``unit`` (``"cm"``, the default, else m);
-    ``part`` (optional) fixes the number of side colours. An orbit that ended
-    early (``status`` not OK) has its last outcome marked ``x`` with the reason.
+    ``part`` (optional) fixes the number of side colours and names the part in the
+    title, ``arm`` (optional) gives its h (an :class:`~throwmap.Orbit` holds neither:
+    pass both, or the title shows ``?`` for what is missing). The title names the
+    part, h, ω and the model unless ``title`` is given. An orbit that ended early
+    (``status`` not OK) has its last outcome marked ``x`` with the reason.
     """
     plt = _plt()
     if ax is None:
@@ -40,9 +43,14 @@ def plot_orbit(orbit, ax=None, part=None, unit: str = "cm"):
                    label=f"escape: {orbit.status.label}")
     ax.set_xlabel("throw number")
     ax.set_ylabel(f"x of CM on the arm ({unit})")
-    omegas = np.unique(np.round(orbit.omegas, 6))
-    om = f"ω = {omegas[0]:g} rad/s" if len(omegas) == 1 else f"{len(omegas)} release rates"
-    ax.set_title(f"orbit, model {orbit.model!r}, {om}")
+    if title is None:
+        omegas = [float(w) for w in np.unique(np.round(orbit.omegas, 6))]
+        setting = describe_setting(part, None if arm is None else arm.h, omegas if len(omegas) <= 4 else (),
+                                   orbit.model, None if arm is None else arm.mu)
+        if len(omegas) > 4:
+            setting = setting.replace("ω = ?", f"{len(omegas)} release rates {min(omegas):g}–{max(omegas):g} rad/s")
+        title = f"orbit ({orbit.n_throws} throws): {setting}"
+    ax.set_title(title, fontsize=9)
     ax.legend(loc="best", fontsize=8)
     fig.tight_layout()
     return fig

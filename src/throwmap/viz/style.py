@@ -7,9 +7,12 @@ units (m); figures label their axes in ``unit`` — ``"cm"`` (the default) or ``
 
 from __future__ import annotations
 
+import math
+
 from ..errors import InvalidStateError
 
-__all__ = ["ESCAPE_COLOR", "UNITS", "attractor_colors", "save_figure", "scale", "side_colors"]
+__all__ = ["ESCAPE_COLOR", "UNITS", "attractor_colors", "describe_setting", "map_title", "save_figure", "scale",
+           "side_colors", "wrap_setting", "x_range_text"]
 
 UNITS = {"cm": 100.0, "m": 1.0}
 """Axis units per metre, by name."""
@@ -50,6 +53,74 @@ def attractor_colors(n: int) -> list:
     plt = _plt()
     base = [plt.get_cmap("Set1")(k) for k in (0, 1, 2, 3, 4, 6, 7)] + [plt.get_cmap("Dark2")(k) for k in range(8)]
     return [base[k % len(base)] for k in range(n)]
+
+
+def _omegas_text(omegas) -> str:
+    om = [float(w) for w in omegas]
+    return "ω = " + ", ".join(f"{w:g}" for w in om) + " rad/s" if om else "ω = ?"
+
+
+def describe_setting(part=None, h=None, omegas=(), model=None, mu=None) -> str:
+    """What a figure shows, for its title: ``"<part>, h = -0.01 m, ω = 4 rad/s, model 'paper'"``.
+
+    ``part`` is a name (or a :class:`~throwmap.system.part.Part`), ``h`` the arm height (m),
+    ``omegas`` the release rate(s) (rad/s), ``model`` a model name, ``mu`` the arm's
+    friction (shown when finite). A piece that is not known is shown as ``?`` rather than
+    left out, so a title never silently omits the part, h, ω or the model.
+    """
+    name = getattr(part, "name", part)
+    if isinstance(omegas, (int, float)):
+        omegas = (omegas,)
+    bits = [str(name) if name else "part ?", f"h = {h:g} m" if h is not None else "h = ?", _omegas_text(omegas or ())]
+    if mu is not None and math.isfinite(mu):
+        bits.append(f"μ = {mu:g}")
+    bits.append(f"model {model!r}" if model else "model ?")
+    return ", ".join(bits)
+
+
+def map_title(info: dict, fallback: str = "map") -> str:
+    """:func:`describe_setting` of a map's ``describe()`` dict (a throw map); ``fallback`` for any other map.
+
+    Also takes a list of such dicts (a funnel graph's maps): parts, h, ω and models merged.
+    """
+    infos = info if isinstance(info, (list, tuple)) else [info]
+    infos = [i for i in infos if isinstance(i, dict) and i.get("kind") == "throw"]
+    if not infos:
+        return fallback
+
+    def merged(key):
+        return list(dict.fromkeys(v for v in (i.get(key) for i in infos) if v is not None))
+
+    omegas = [w for i in infos for w in (i.get("omegas_rad_s") or [i.get("omega_rad_s")]) if w is not None]
+    parts, hs, models, mus = merged("part"), merged("h_m"), merged("model"), merged("mu")
+    text = describe_setting(" | ".join(parts), hs[0] if len(hs) == 1 else None, list(dict.fromkeys(omegas)),
+                            ", ".join(models), mus[0] if len(mus) == 1 else None)
+    if len(hs) > 1:
+        text = text.replace("h = ?", "h = " + ", ".join(f"{h:g}" for h in hs) + " m")
+    return text
+
+
+def wrap_setting(text: str, width: int) -> str:
+    """``text`` from :func:`describe_setting` on lines of about ``width`` characters, broken only
+    at the comma before a setting (``h =``, ``ω =``, ``μ =``, ``model``, ``analysed``, ``x ≤``), never
+    inside a list of ω or a part's name."""
+    import re
+
+    pieces = re.split(r", (?=h = |ω = |μ = |model |analysed |x ≤ )", text)
+    lines: list[str] = []
+    for p in pieces:
+        if lines and len(lines[-1]) + 2 + len(p) <= width:
+            lines[-1] += ", " + p
+        else:
+            lines.append(p)
+    return ",\n".join(lines)
+
+
+def x_range_text(info: dict) -> str:
+    """``"x ≤ 60 cm"``: the outer end of the analysed domain from a map's ``describe()`` dict, or ``""``."""
+    infos = info if isinstance(info, (list, tuple)) else [info]
+    xs = [i.get("x_max_m") for i in infos if isinstance(i, dict) and i.get("x_max_m") is not None]
+    return f"analysed for x ≤ {100 * max(xs):.4g} cm" if xs else ""
 
 
 def fmt_share(d: dict) -> str:

@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from ..errors import InvalidStateError
-from .style import _plt, layout, scale, side_colors
+from .style import _plt, layout, map_title, scale, side_colors
 
 __all__ = ["plot_map"]
 
@@ -93,7 +93,8 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
         (default) the axes span every image and one legend sits below the panels
         (or in the last panel of a figure without constrained layout).
     title : str, optional
-        The figure's title; default ``samples.label``.
+        The figure's title; default names the part, h, ω and the model for a throw
+        map (from ``samples.info``), else ``samples.label``.
 
     Returns the Figure.
     """
@@ -157,7 +158,10 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
         ax.set_title(f"side {s}")
         if compact:
             ax.legend(handles=list(panel.values()), loc="upper left", fontsize=7)
-    fig.suptitle(samples.label if title is None else title, **({} if compact else {"fontsize": 10}))
+    if title is None:
+        setting = map_title(samples.info, "")
+        title = f"throw map T(x): {setting}" if setting else samples.label
+    fig.suptitle(title, **({} if compact else {"fontsize": 10}))
     if not compact:
         handles = sorted(legend.values(), key=lambda h: not h.get_label().startswith("lands on"))  # stable
         engine = fig.get_layout_engine()
