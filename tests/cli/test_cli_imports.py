@@ -1,4 +1,4 @@
-"""The command line's modules import one way: ``app`` → command modules → ``options``.
+"""The command line's modules import one way: ``app`` → command modules (and ``usage``) → ``options``.
 
 Read from the source with :mod:`ast` (function-local imports included), and checked
 by importing each module first in a fresh interpreter.
@@ -18,6 +18,7 @@ import throwmap.cli
 CLI_DIR = Path(throwmap.cli.__file__).parent
 MODULES = sorted(p.stem for p in CLI_DIR.glob("*.py"))
 COMMAND_MODULES = ("analysis", "animate", "studies", "throws")
+SUPPORT_MODULES = ("usage",)  # the app's command group (usage errors as one line); imports options only
 
 
 def cli_imports(stem: str) -> set[str]:
@@ -45,20 +46,20 @@ GRAPH = {stem: cli_imports(stem) for stem in MODULES}
 
 
 def test_the_modules_are_there():
-    assert set(MODULES) == {"__init__", "app", "options", *COMMAND_MODULES}
+    assert set(MODULES) == {"__init__", "app", "options", *COMMAND_MODULES, *SUPPORT_MODULES}
 
 
 def test_options_imports_no_cli_module():
     assert GRAPH["options"] == set()
 
 
-@pytest.mark.parametrize("stem", COMMAND_MODULES)
+@pytest.mark.parametrize("stem", COMMAND_MODULES + SUPPORT_MODULES)
 def test_command_modules_import_only_options(stem):
     assert GRAPH[stem] <= {"options"}
 
 
 def test_app_registers_every_command_module():
-    assert GRAPH["app"] == set(COMMAND_MODULES)
+    assert GRAPH["app"] == set(COMMAND_MODULES) | set(SUPPORT_MODULES)
 
 
 def test_only_the_package_imports_app():
