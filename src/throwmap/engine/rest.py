@@ -17,8 +17,8 @@ from ..throws.trajectory import world_vertices
 
 __all__ = ["EDGE_EPS", "FLAT_TILT", "UNCONVERGED", "edge_status", "rest_status"]
 
-UNCONVERGED = getattr(Status, "UNCONVERGED", Status.TIMEOUT)
-"""Status of a run refused as not converged (``Status.UNCONVERGED``, code 10 of :mod:`throwmap.kernels.codes`)."""
+UNCONVERGED = Status.UNCONVERGED
+"""Status of a run refused as not converged (code 10 of :mod:`throwmap.kernels.codes`)."""
 
 EDGE_EPS = 1e-4
 """m a vertex must be below the arm's surface line, beyond one of its edges, to have left the arm."""
