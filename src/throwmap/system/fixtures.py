@@ -14,22 +14,23 @@ scene (:class:`throwmap.engine.Scene`), since it may change between throws.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ThrowmapError
+from ..errors import InvalidStateError, shown
 
 __all__ = ["Wall", "Cavity", "arm_solids", "surface_profile"]
 
 
 def _num(value, field: str, *, positive=False, nonneg=False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ThrowmapError(field, f"must be a finite number, got {value!r}")
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real) or not math.isfinite(value):
+        raise InvalidStateError(field, f"must be a finite number, got {shown(value)}")
     if positive and value <= 0:
-        raise ThrowmapError(field, f"must be > 0, got {value!r}")
+        raise InvalidStateError(field, f"must be > 0, got {shown(value)}")
     if nonneg and value < 0:
-        raise ThrowmapError(field, f"must be ≥ 0, got {value!r}")
+        raise InvalidStateError(field, f"must be ≥ 0, got {shown(value)}")
     return float(value)
 
 
@@ -51,8 +52,8 @@ class Wall:
         object.__setattr__(self, "thickness", _num(self.thickness, "wall.thickness", positive=True))
         if self.mu is not None:
             mu = self.mu
-            if isinstance(mu, bool) or not isinstance(mu, (int, float)) or math.isnan(mu) or mu < 0:
-                raise ThrowmapError("wall.mu", f"must be a number ≥ 0, got {mu!r}")
+            if isinstance(mu, (bool, np.bool_)) or not isinstance(mu, numbers.Real) or math.isnan(mu) or mu < 0:
+                raise InvalidStateError("wall.mu", f"must be a number ≥ 0, got {shown(mu)}")
             object.__setattr__(self, "mu", float(mu))
 
     def solids(self, h: float, length: float, depth: float) -> list[np.ndarray]:
@@ -84,24 +85,24 @@ class Cavity:
         try:
             pts = tuple((float(s), float(y)) for s, y in self.profile)
         except (TypeError, ValueError):
-            raise ThrowmapError("cavity.profile", "must be a sequence of (s, y) pairs in metres") from None
+            raise InvalidStateError("cavity.profile", "must be a sequence of (s, y) pairs in metres") from None
         if len(pts) < 2:
-            raise ThrowmapError("cavity.profile", f"needs at least 2 points, got {len(pts)}")
+            raise InvalidStateError("cavity.profile", f"needs at least 2 points, got {len(pts)}")
         for i, (s, y) in enumerate(pts):
             if not (math.isfinite(s) and math.isfinite(y)):
-                raise ThrowmapError(f"cavity.profile[{i}]", f"must be finite, got {(s, y)}")
+                raise InvalidStateError(f"cavity.profile[{i}]", f"must be finite, got {(s, y)}")
             if s < 0:
-                raise ThrowmapError(f"cavity.profile[{i}]", f"s (distance back from the arm's end) must be ≥ 0, got {s}")
+                raise InvalidStateError(f"cavity.profile[{i}]", f"s (distance back from the arm's end) must be ≥ 0, got {s}")
             if y > 0:
-                raise ThrowmapError(f"cavity.profile[{i}]", f"y must be ≤ 0 (a depression), got {y}")
+                raise InvalidStateError(f"cavity.profile[{i}]", f"y must be ≤ 0 (a depression), got {y}")
             if i and s > pts[i - 1][0]:
-                raise ThrowmapError(f"cavity.profile[{i}]", "s must not increase from the lip to the arm's end")
+                raise InvalidStateError(f"cavity.profile[{i}]", "s must not increase from the lip to the arm's end")
         if pts[0][1] != 0.0:
-            raise ThrowmapError("cavity.profile[0]", f"the lip must be at y = 0, got {pts[0][1]}")
+            raise InvalidStateError("cavity.profile[0]", f"the lip must be at y = 0, got {pts[0][1]}")
         if pts[-1][0] != 0.0:
-            raise ThrowmapError(f"cavity.profile[{len(pts) - 1}]", f"must end at the arm's end (s = 0), got s = {pts[-1][0]}")
+            raise InvalidStateError(f"cavity.profile[{len(pts) - 1}]", f"must end at the arm's end (s = 0), got s = {pts[-1][0]}")
         if pts[0][0] <= 0.0:
-            raise ThrowmapError("cavity.profile[0]", "the cavity must have a positive length")
+            raise InvalidStateError("cavity.profile[0]", "the cavity must have a positive length")
         object.__setattr__(self, "profile", pts)
 
     @property
@@ -122,11 +123,11 @@ def surface_profile(h: float, length: float, fixtures=()) -> np.ndarray:
     """The arm's top surface as a polyline (arm frame) from the joint to the arm's end."""
     cav = [f for f in fixtures if isinstance(f, Cavity)]
     if len(cav) > 1:
-        raise ThrowmapError("fixtures", "at most one cavity")
+        raise InvalidStateError("fixtures", "at most one cavity")
     if cav:
         c = cav[0]
         if c.span >= length:
-            raise ThrowmapError("cavity.profile", f"the cavity ({c.span:g} m) must be shorter than the arm ({length:g} m)")
+            raise InvalidStateError("cavity.profile", f"the cavity ({c.span:g} m) must be shorter than the arm ({length:g} m)")
         return np.vstack(([[0.0, h]], c.points(h, length)))
     return np.array([[0.0, h], [length, h]])
 
@@ -142,9 +143,9 @@ def arm_solids(h: float, length: float, thickness: float, fixtures=()) -> tuple[
     walls = [f for f in fixtures if isinstance(f, Wall)]
     unknown = [f for f in fixtures if not isinstance(f, (Wall, Cavity))]
     if unknown:
-        raise ThrowmapError("fixtures", f"unknown fixture {unknown[0]!r} (use Wall or Cavity)")
+        raise InvalidStateError("fixtures", f"unknown fixture {unknown[0]!r} (use Wall or Cavity)")
     if len(walls) > 1:
-        raise ThrowmapError("fixtures", "at most one wall")
+        raise InvalidStateError("fixtures", "at most one wall")
     prof = surface_profile(h, length, fixtures)
     depth = max(thickness, float(h - prof[:, 1].min()) + 0.5 * thickness)
     bottom = h - depth
