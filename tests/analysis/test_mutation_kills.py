@@ -86,3 +86,67 @@ def test_config_set_contains_its_end_points_and_one_point_sets():
     assert cs.contains(np.array([0.2, 0.3, 0.25]), 0).all()
     assert bool(cs.contains(0.4, 1)) and not bool(cs.contains(0.4 + 1e-9, 1))
     assert ConfigSet.parse("1:0.4").intervals == ((1, 0.4, 0.4),)
+
+
+def test_stationarity_needs_both_ends_of_the_span_to_stay():
+    """A02: tails whose lower end drifts while the upper end stays are not stationary (nor the converse)."""
+    from throwmap.analysis.recurrence import _stationary
+
+    S = np.zeros((1, 8), dtype=np.int64)
+    steady = np.array([[0.1, 0.5, 0.1, 0.5, 0.1, 0.5, 0.1, 0.5]])
+    low_drifts = np.array([[0.1, 0.5, 0.1, 0.5, 0.3, 0.5, 0.3, 0.5]])
+    high_drifts = np.array([[0.1, 0.5, 0.1, 0.5, 0.1, 0.3, 0.1, 0.3]])
+    assert _stationary(steady, S, 1e-3)
+    assert not _stationary(low_drifts, S, 1e-3)
+    assert not _stationary(high_drifts, S, 1e-3)
+
+
+def test_converging_means_a_tail_still_shrinking_above_tol():
+    """A03: a tail already within tol, or one that does not shrink, is not "still converging"."""
+    from throwmap.analysis.recurrence import _converging
+
+    settled = np.array([[0.3 + 1e-12, 0.3 - 1e-12, 0.3, 0.3, 0.3, 0.3]])
+    wide = np.array([[0.1, 0.9, 0.1, 0.9, 0.1, 0.9]])
+    shrinking = 0.3 + 0.1 * 0.5 ** np.arange(12)[None, :]
+    assert not _converging(settled, 1e-8)
+    assert not _converging(wide, 1e-8)
+    assert _converging(shrinking, 1e-8)
+
+
+def test_cycles_on_different_sides_are_different_even_at_the_same_x():
+    """A04: two cycles are one only if every point matches in side *and* x."""
+    from throwmap.analysis.cycles import _same_points
+
+    assert _same_points(((0, 0.3), (1, 0.5)), ((0, 0.3), (1, 0.5)), 1e-8)
+    assert not _same_points(((0, 0.3), (1, 0.5)), ((1, 0.3), (0, 0.5)), 1e-8)
+    assert not _same_points(((0, 0.3), (1, 0.5)), ((0, 0.3), (1, 0.6)), 1e-8)
+
+
+def test_two_disjoint_chaotic_bands_on_one_side_stay_two_attractors():
+    """A06: bands merge only where their intervals overlap; two tents on disjoint intervals are two bands."""
+    s = 1.9
+
+    def f(x, side):
+        lo = x < 0.5
+        u = np.where(lo, x / 0.5, (x - 0.5) / 0.5)  # local coordinate in (0, 1)
+        t = s * np.minimum(u, 1.0 - u)
+        return np.where(lo, 0.5 * t, 0.5 + 0.5 * t), side, _ok(x)
+
+    ls = limit_set(FunctionMap(f, {0: (0.0, 1.0)}, name="two tents"), n_starts=64)
+    assert ls.kind == "several" and len(ls.attractors) == 2, ls.summary()
+    a, b = ls.attractors
+    assert a.kind == b.kind == "band"
+    assert a.interval(0)[1] < 0.5 < b.interval(0)[0]
+
+
+def test_fixed_points_far_apart_are_different_attractors():
+    """A19: two fixed points are the same attractor only if |x_a − x_b| ≤ tol (either order)."""
+    from throwmap.analysis.cellmap import _same_attractor
+
+    def fp(x):
+        return Attractor(id=1, kind="fixed_point", period=1, points=((0, x),), bands=((0, x, x),), multiplier=0.5,
+                         lyapunov=math.log(0.5), fraction=0.5, side_visits=((0, 1.0),))
+
+    assert _same_attractor(fp(0.2), fp(0.2 + 1e-9), 1e-6)
+    assert not _same_attractor(fp(0.2), fp(0.8), 1e-6)
+    assert not _same_attractor(fp(0.8), fp(0.2), 1e-6)
