@@ -351,7 +351,14 @@ def test_plot_unsupported_extension(tmp_path):
     assert_one_error(result, "plot")
 
 
-def test_plot_directory_that_cannot_be_made(tmp_path):
+def test_plot_missing_directory(tmp_path):
+    result = invoke("iterate", *TRIANGLE, "--x", "0.2", "--side", "0", "--omega", "4", "-n", "2",
+                    "--plot", tmp_path / "no" / "orbit.png")
+    assert_one_error(result, "plot")
+    assert "does not exist" in result.stderr
+
+
+def test_plot_directory_that_is_a_file(tmp_path):
     (tmp_path / "no").write_text("a file, not a folder")
     result = invoke("iterate", *TRIANGLE, "--x", "0.2", "--side", "0", "--omega", "4", "-n", "2",
                     "--plot", tmp_path / "no" / "orbit.png")

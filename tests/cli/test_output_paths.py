@@ -46,19 +46,28 @@ def no_work(monkeypatch):
         monkeypatch.setattr(cli_analysis, name, _never)
 
 
+FILE_COMMANDS = [
+    (["iterate", *ARM, *START, "-n", "2", "--plot"], "orbit.png", "plot"),
+    (["compare", *ARM, "--out"], "cmp.json", "out"),
+    (["animate", *ARM, *START, "--out"], "throw.gif", "out"),
+    (["limitset", *ARM, "--omega", "4", "--plot"], "ls.png", "plot"),
+    (["funnels", *ARM, "--omega", "4", "--plot"], "f.png", "plot"),
+]
+"""Commands writing one file: (command line without the path, file name, field)."""
+
+DIR_COMMANDS = [
+    (["demo", "--out"], "out"),
+    (["validate", "--n", "5", "--out"], "out"),
+    (["limitset", *ARM, "--omega", "4", "--out"], "out"),
+    (["basins", *ARM, "--omega", "4", "--out"], "out"),
+]
+"""Commands writing into an ``--out`` directory: (command line without the path, field)."""
+
+
 def commands(target_file, target_dir):
     """(command line, field) for each command that writes: a file target or a directory target."""
-    return [
-        (["iterate", *ARM, *START, "-n", "2", "--plot", target_file("orbit.png")], "plot"),
-        (["compare", *ARM, "--out", target_file("cmp.json")], "out"),
-        (["animate", *ARM, *START, "--out", target_file("throw.gif")], "out"),
-        (["demo", "--out", target_dir()], "out"),
-        (["validate", "--n", "5", "--out", target_dir()], "out"),
-        (["limitset", *ARM, "--omega", "4", "--out", target_dir()], "out"),
-        (["limitset", *ARM, "--omega", "4", "--plot", target_file("ls.png")], "plot"),
-        (["basins", *ARM, "--omega", "4", "--out", target_dir()], "out"),
-        (["funnels", *ARM, "--omega", "4", "--plot", target_file("f.png")], "plot"),
-    ]
+    return ([([*args, target_file(name)], field) for args, name, field in FILE_COMMANDS]
+            + [([*args, target_dir()], field) for args, field in DIR_COMMANDS])
 
 
 def assert_refused(result, field, *words):
@@ -74,7 +83,7 @@ def _cases(tmp_path, kind):
     blocker = tmp_path / "a_file"
     blocker.write_text("not a directory")
     if kind == "folder is a file":
-        return commands(lambda name: blocker / "sub" / name, lambda: blocker / "sub"), "not a directory"
+        return commands(lambda name: blocker / name, lambda: blocker / "sub"), "not a directory"
     if kind == "target is a folder":
         folder = tmp_path / "a_folder"
         folder.mkdir()
@@ -105,20 +114,30 @@ def test_folder_that_is_not_writable_refused_before_work(tmp_path, no_work, monk
         return real(*args, dir=dir, **kwargs)
 
     monkeypatch.setattr(cli_options.tempfile, "mkstemp", refuse_in_locked)
-    for args, field in commands(lambda name: locked / "new" / name, lambda: locked / "new"):
+    for args, field in commands(lambda name: locked / name, lambda: locked / "new" / "deeper"):
         result = runner.invoke(app, [str(a) for a in args])
         assert_refused(result, field, "not writable", "Permission denied")
 
 
+def test_missing_folder_of_a_file_is_refused_before_work(tmp_path, no_work):
+    """A figure or result file needs its folder (as the library's writers do); an --out directory does not."""
+    for args, name, field in FILE_COMMANDS:
+        if args[0] == "animate":  # an animation's folder is made (below)
+            continue
+        result = runner.invoke(app, [str(a) for a in [*args, tmp_path / "missing" / name]])
+        assert_refused(result, field, "does not exist")
+
+
 def test_missing_folders_are_created(tmp_path):
-    out = tmp_path / "new" / "deeper" / "orbit.png"
-    result = runner.invoke(app, ["iterate", *ARM, *START, "-n", "2", "--model", "paper", "--plot", str(out)])
+    out = tmp_path / "new" / "deeper" / "throw.gif"
+    result = runner.invoke(app, ["animate", *ARM, *START, "--model", "paper", "--out", str(out)])
     assert result.exit_code == 0, result.output
-    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert sorted(p.name for p in out.parent.iterdir()) == ["orbit.png"]  # no probe file left behind
+    assert out.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+    assert sorted(p.name for p in out.parent.iterdir()) == ["throw.gif"]  # no probe file left behind
 
 
 def test_check_leaves_nothing_behind(tmp_path):
-    cli_options.check_output(tmp_path / "sub" / "x.json", "out")
+    cli_options.check_output(tmp_path / "sub" / "x.json", "out", create=True)
+    cli_options.check_output(tmp_path / "x.json", "out")
     cli_options.check_out_dir(tmp_path / "d")
     assert list(tmp_path.iterdir()) == []  # nothing created by a check

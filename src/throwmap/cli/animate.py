@@ -85,7 +85,7 @@ def animate_cmd(
         from ..viz.animation import animate, check_animation_path, frame_times
 
         check_animation_path(out, need_directory=False)  # before any work; the directory is made below
-        check_output(out, "out")  # its folder writable or creatable
+        check_output(out, "out", create=True)  # its folder writable or creatable
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")

@@ -8,8 +8,9 @@
   Usage errors found by the option parser get the same line (:mod:`throwmap.cli.usage`).
 - Writing: :func:`to_json` (strict JSON: non-finite numbers become ``null``), files
   written atomically (:mod:`throwmap.io.files`). Every output path is checked before any
-  work (:func:`check_output`, :func:`check_out_dir`, :func:`figure_format`: not a directory
-  where a file goes, its folder writable or creatable); folders are made when written.
+  work (:func:`check_output`, :func:`check_out_dir`, :func:`figure_format`): not a directory
+  where a file goes, its folder existing and writable; an ``--out`` directory (and an
+  animation's folder) writable or creatable, and made when written.
 
 Nothing here imports another ``throwmap.cli`` module; the command modules import this one.
 """
@@ -194,14 +195,17 @@ def check_directory(directory: Path, field: str, target: Path | None = None) -> 
     _probe_directory(above, field, target)
 
 
-def check_output(path: Path, field: str) -> None:
-    """Refuse, before any work, an output file that cannot be written: a directory where the file
-    should be, or a directory for it that is not writable or cannot be created (it is created
-    when the file is written)."""
+def check_output(path: Path, field: str, *, create: bool = False) -> None:
+    """Refuse, before any work, an output file that cannot be written: a directory where the
+    file should be, a folder for it that is missing (unless ``create``: then it must be
+    creatable, and is made when the file is written), not a folder, or not writable."""
     path = Path(path)
     if path.is_dir():
         raise ConfigError(field, f"cannot write {path}: it is a directory")
-    check_directory(path.parent, field, path)
+    parent = path.parent if str(path.parent) else Path(".")
+    if not create and not parent.exists():
+        raise ConfigError(field, f"cannot write {path}: directory {parent} does not exist")
+    check_directory(parent, field, path)
 
 
 def check_out_dir(out: Path | None) -> None:
