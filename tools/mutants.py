@@ -49,16 +49,19 @@ SRC = ROOT / "src" / "throwmap"
 KILLS_K = "tests/kernels/test_mutation_kills.py"
 KILLS_A = "tests/analysis/test_mutation_kills.py"
 TESTS = (  # (path prefix under src/throwmap, test subset run for a mutant there: first match wins)
-    ("kernels/small_angle.py", ("tests/kernels/test_small_angle.py", KILLS_K)),
-    ("kernels/rigid_body/", ("tests/kernels/test_rigid_body.py", "tests/kernels/test_rigid_body_stick.py", KILLS_K)),
-    ("kernels/", ("tests/kernels/test_throw_physics.py", "tests/kernels/test_paper_record.py", KILLS_K)),
+    ("kernels/small_angle.py", ("tests/kernels/test_small_angle.py", "tests/kernels/test_mu_zero.py", KILLS_K)),
+    ("kernels/rigid_body/", ("tests/kernels/test_rigid_body.py", "tests/kernels/test_impact_process.py",
+                             "tests/kernels/test_rigid_body_stick.py", "tests/kernels/test_mu_zero.py", KILLS_K)),
+    ("kernels/", ("tests/kernels/test_throw_physics.py", "tests/kernels/test_paper_record.py",
+                  "tests/kernels/test_contact_scale.py", "tests/kernels/test_mu_zero.py", KILLS_K)),
     ("analysis/critical.py", ("tests/analysis/test_critical.py", KILLS_A)),
-    ("analysis/basins.py", ("tests/analysis/test_basins_funnels.py", KILLS_A)),
+    ("analysis/basins.py", ("tests/analysis/test_basins_funnels.py", "tests/analysis/test_budget.py", KILLS_A)),
     ("analysis/cellmap.py", ("tests/analysis/test_basins_funnels.py", KILLS_A)),
-    ("analysis/funnels.py", ("tests/analysis/test_basins_funnels.py", KILLS_A)),
+    ("analysis/funnels.py", ("tests/analysis/test_basins_funnels.py", "tests/analysis/test_funnel_ranges.py", KILLS_A)),
     ("analysis/sets.py", ("tests/analysis/test_basins_funnels.py", KILLS_A)),
-    ("analysis/", ("tests/analysis/test_maps_limitset.py", "tests/analysis/test_results.py",
-                   "tests/analysis/test_orbits.py", KILLS_A)),
+    ("analysis/", ("tests/analysis/test_maps_limitset.py", "tests/analysis/test_recurrence_verified.py",
+                   "tests/analysis/test_results.py", "tests/analysis/test_orbits.py",
+                   "tests/analysis/test_ranges_reprs.py", KILLS_A)),
 )
 """Each mutant runs the test files that mirror its module, then this tool's own kill tests *last*:
 with ``-x`` the "caught by" column then names an existing test whenever one catches the
