@@ -17,8 +17,10 @@ class Status(enum.IntEnum):
     """How a throw ended (integer codes shared with the kernels).
 
     ``OK``: at rest on a stable side on the arm. ``BEHIND_JOINT``: a contact, or a
-    resting support vertex, at x ≤ 0. ``OFF_END``: a contact beyond the arm's
-    length, or the resting CM beyond it. ``NO_REST``: the impact cap was reached.
+    resting support vertex, at x ≤ −arm.back (x ≤ 0 by default). ``OFF_END``: a
+    contact beyond the arm's length, or the resting CM beyond it. ``NO_REST``: the
+    impact cap was reached, or (rigid_body, μ = 0 on an unbounded arm) the part slides
+    outward for ever and never comes to rest.
     ``INVALID_START``: not thrown (batch with ``on_invalid="status"``).
     ``NO_CONTACT``: the contact search hit its cap (a bug if ever seen).
     ``TIMEOUT``: an engine run did not settle within its time limit.
