@@ -56,6 +56,12 @@ CASES = {
                              "--omega", "4", "-n", "x"], "n", ["integer", "'x'"]),
     "analysis command, grid not an integer": (["basins", "--part", "triangle", "--h", "-0.01", "--omega", "4",
                                                "--grid", "abc"], "grid", ["integer", "'abc'"]),
+    "n is a float literal": (["iterate", "--part", "triangle", "--h", "-0.01", "--x", "0.2", "--side", "0",
+                              "--omega", "4", "-n", "3.0"], "n", ["integer", "'3.0'"]),
+    "fps is a float literal": (["animate", "--part", "triangle", "--h", "-0.01", "--x", "0.2", "--side", "0",
+                                "--omega", "4", "--fps", "2.0"], "fps", ["integer", "'2.0'"]),
+    "dashed option names the field": (["compare", "--part", "triangle", "--h", "-0.01", "--n-x", "1.0"], "n_x",
+                                      ["integer"]),
     "animate, speed not a number": (["animate", "--part", "triangle", "--h", "-0.01", "--x", "0.2", "--side", "0",
                                      "--omega", "4", "--speed", "fast"], "speed", ["number", "'fast'"]),
 }
@@ -118,3 +124,16 @@ def test_side_rule_refuses_and_accepts_both_kinds():
     verdicts = {text: _api_refuses_side(v) for text, v in SIDES.items()}
     assert verdicts["1.0"] and verdicts["0.5"] and verdicts["abc"] and verdicts["-1"]
     assert not verdicts["0"] and not verdicts["1"] and not verdicts["+1"]
+
+
+def test_integer_options_follow_the_library_rule():
+    """``iterate(n=3.0)`` is refused by the library, so ``-n 3.0`` is refused too; ``-n 3`` works in both."""
+    part, arm = resolve_part("triangle").part, tm.Arm(h=-0.01)
+    with pytest.raises(InvalidStateError) as err:
+        tm.iterate(part, arm, (0.2, 0), 4.0, n=3.0, model="paper")
+    assert err.value.field == "n"
+    base = ["iterate", "--part", "triangle", "--h", "-0.01", "--x", "0.2", "--side", "0", "--omega", "4",
+            "--model", "paper", "--json"]
+    assert_one_error(invoke(*base, "-n", "3.0"), "n", "integer")
+    assert tm.iterate(part, arm, (0.2, 0), 4.0, n=3, model="paper").n_throws == 3
+    assert invoke(*base, "-n", "3").exit_code == 0

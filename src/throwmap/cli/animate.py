@@ -19,7 +19,7 @@ from ..errors import InvalidStateError, ThrowmapError
 from ..models import DEFAULT_MODEL, model_names
 from ..throws.orbit_trajectory import orbit_trajectory, trajectory_models
 from .options import (BackOpt, GOpt, HOpt, LengthOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, check_finite,
-                      check_output, guard, part_and_arm)
+                      check_output, guard, part_and_arm, strict_int)
 
 __all__ = ["register", "animate_cmd", "ANIMATE_MODELS", "PROGRESS_FRAMES"]
 
@@ -62,12 +62,13 @@ def animate_cmd(
     length: LengthOpt = None,
     mu: MuOpt = None,
     back: BackOpt = None,
-    n: Annotated[int, typer.Option("-n", "--n", help="Number of throws (> 1 animates an orbit).")] = 1,
+    n: Annotated[int, typer.Option("-n", "--n", parser=strict_int, metavar="INTEGER",
+                                   help="Number of throws (> 1 animates an orbit).")] = 1,
     model: Annotated[str, typer.Option("--model", help=f"Model: {', '.join(ANIMATE_MODELS)} "
                                                        f"(default {DEFAULT_MODEL}).")] = DEFAULT_MODEL,
     out: Annotated[Path, typer.Option("--out", help="Animation file, .gif or .mp4 (mp4 needs ffmpeg).")]
     = Path("out/throw.gif"),
-    fps: Annotated[int, typer.Option("--fps", help="Frames per second.")] = 30,
+    fps: Annotated[int, typer.Option("--fps", parser=strict_int, metavar="INTEGER", help="Frames per second.")] = 30,
     speed: Annotated[float, typer.Option("--speed", help="Playback speed relative to real time "
                                                          "(0.25: four times slower).")] = 0.25,
 ) -> None:

@@ -43,7 +43,7 @@ __all__ = [
     "BackOpt", "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "MuOpt", "OmegaOpt", "PartOpt", "SideOpt", "XOpt",
     "arm_dict", "check_directory", "check_finite", "check_out_dir", "check_output", "figure_format", "format_value",
     "guard", "make_out_dir", "parse_floats", "part_and_arm", "plot_format", "save_figure", "side_value", "stderr_line",
-    "to_json",
+    "strict_int", "to_json",
     "write_bytes", "write_text",
 ]
 
@@ -73,6 +73,15 @@ def side_value(text: str) -> int | float | str:
         return float(text)
     except ValueError:
         return text
+
+
+def strict_int(text: str) -> int:
+    """An integer option: whole-number literals only (``3``, ``-1``), as the library takes
+    ``int`` and refuses ``3.0``; anything else is a usage error naming the option."""
+    text = str(text).strip()
+    if not re.fullmatch(r"[+-]?[0-9]+", text):
+        raise typer.BadParameter("Input should be a valid integer")
+    return int(text)
 
 
 SideOpt = Annotated[int, typer.Option("--side", parser=side_value, metavar="INTEGER",

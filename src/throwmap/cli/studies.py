@@ -20,8 +20,8 @@ from ..errors import ConfigError, InvalidStateError
 from ..io.config import resolve_part
 from ..throws.throw import check_model
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, arm_dict, check_finite,
-                      check_out_dir, check_output, guard, make_out_dir, parse_floats, part_and_arm, stderr_line, to_json,
-                      write_text)
+                      check_out_dir, check_output, guard, make_out_dir, parse_floats, part_and_arm, stderr_line,
+                      strict_int, to_json, write_text)
 
 __all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "ENGINES"]
 
@@ -79,7 +79,8 @@ def compare_cmd(
     back: BackOpt = None,
     omegas: Annotated[str | None, typer.Option("--omegas", help="Release rates, rad/s, comma list "
                                                                 "(default: the library's).")] = None,
-    n_x: Annotated[int | None, typer.Option("--n-x", help="Start positions per stable side.")] = None,
+    n_x: Annotated[int | None, typer.Option("--n-x", parser=strict_int, metavar="INTEGER",
+                                            help="Start positions per stable side.")] = None,
     models: Annotated[str | None, typer.Option("--models", help="Models to compare with 'paper', comma list "
                                                                 "(default: the library's).")] = None,
     x_min: Annotated[float | None, typer.Option("--x-min", help="Starts from x > max(this, the side's smallest "
@@ -143,15 +144,19 @@ def validate_cmd(
     part: Annotated[list[str] | None, typer.Option("--part", help="Part(s) to validate (repeatable; default: "
                                                                    "triangle, triangle+lead, rectangle+lead, square, "
                                                                    "pentagon).")] = None,
-    n: Annotated[int, typer.Option("--n", help="Random throws in all (spread over the parts), besides the grid.")] = 400,
+    n: Annotated[int, typer.Option("--n", parser=strict_int, metavar="INTEGER",
+                                   help="Random throws in all (spread over the parts), besides the grid.")] = 400,
     grid: Annotated[bool, typer.Option("--grid/--no-grid", help="Also throw a grid per part.")] = True,
     engines: Annotated[str, typer.Option("--engines", help="Engines, comma list: pymunk (reference), mujoco.")] = "pymunk",
     models: Annotated[str, typer.Option("--models", help="Analytic models, comma list.")] = "paper,small_angle,rigid_body",
     mu: Annotated[float, typer.Option("--mu", help="Arm–part friction μ of the validation set.")] = 1.5,
-    seed: Annotated[int, typer.Option("--seed", help="Seed of the random cases.")] = 0,
-    workers: Annotated[int, typer.Option("--workers", help="Engine processes (0: one per core).")] = 0,
-    realisations: Annotated[int, typer.Option("--realisations", help="Also compare finite arm motions with the "
-                                                                     "impulse on this many throws (0: skip).")] = 40,
+    seed: Annotated[int, typer.Option("--seed", parser=strict_int, metavar="INTEGER",
+                                      help="Seed of the random cases.")] = 0,
+    workers: Annotated[int, typer.Option("--workers", parser=strict_int, metavar="INTEGER",
+                                         help="Engine processes (0: one per core).")] = 0,
+    realisations: Annotated[int, typer.Option("--realisations", parser=strict_int, metavar="INTEGER",
+                                              help="Also compare finite arm motions with the "
+                                                   "impulse on this many throws (0: skip).")] = 40,
     out: Annotated[Path, typer.Option("--out", help="Directory for validation.json and validation.md.")] = Path("out"),
     as_json: JsonOpt = False,
 ) -> None:

@@ -19,7 +19,7 @@ from ..throws.orbit import Orbit, iterate
 from ..throws.throw import DEFAULT_MODEL, check_model, throw
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt,
                       arm_dict, check_finite, figure_format, format_value, guard, parse_floats, part_and_arm, save_figure,
-                      to_json)
+                      strict_int, to_json)
 
 __all__ = ["register", "throw_cmd", "iterate_cmd", "PROGRESS_THRESHOLD"]
 
@@ -135,7 +135,8 @@ def iterate_cmd(
                                                              "one per throw (repeat the option or give a comma list).")],
     x: XOpt,
     side: SideOpt,
-    n: Annotated[int | None, typer.Option("-n", "--n", help="Number of throws (required with a single ω).")] = None,
+    n: Annotated[int | None, typer.Option("-n", "--n", parser=strict_int, metavar="INTEGER",
+                                               help="Number of throws (required with a single ω).")] = None,
     h: HOpt = None,
     g: GOpt = None,
     length: LengthOpt = None,

@@ -5,7 +5,7 @@ a missing option or an unknown command before any ``throwmap`` code runs, and wo
 print a usage box. :class:`ThrowmapGroup` (the app's command group) catches those
 errors and prints the same single line every other bad input gets,
 ``error: <field>: <reason>`` on stderr, with exit status 2. The field is the option's
-name without dashes (``h``, ``side``), ``option`` for an unknown option, ``command``
+name as the library spells its fields (``h``, ``side``, ``x_max`` for ``--x-max``), ``option`` for an unknown option, ``command``
 for an unknown command, ``arguments`` for anything else.
 """
 
@@ -39,8 +39,9 @@ class UnknownCommand(_cx.UsageError):
 
 
 def _field(opts: Sequence[str]) -> str:
-    """An option's name without dashes, from its longest spelling (``-n/--n`` → ``n``)."""
-    return max(opts, key=len).lstrip("-") if opts else "arguments"
+    """An option's name as the library's fields spell it, from its longest spelling
+    (``-n/--n`` → ``n``, ``--x-max`` → ``x_max``)."""
+    return max(opts, key=len).lstrip("-").replace("-", "_") if opts else "arguments"
 
 
 def _given(args: Sequence[str], opts: Sequence[str]) -> str | None:
