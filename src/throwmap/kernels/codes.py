@@ -7,7 +7,7 @@ gives them names.
 OK = 0  # came to rest on a stable side, on the arm
 BEHIND_JOINT = 1  # a contact or a resting support vertex at x <= -arm.back (x <= 0 by default)
 OFF_END = 2  # a contact beyond the arm's end, or the resting CM beyond it
-NO_REST = 3  # the impact cap was reached before the part came to rest
+NO_REST = 3  # the impact cap was reached before rest, or (μ = 0, unbounded arm) the part slides outward for ever
 INVALID_START = 4  # the start was not admissible (batch with on_invalid="status")
 NO_CONTACT = 5  # the contact search hit its iteration cap (should not happen)
 TIMEOUT = 6  # an engine run did not settle within its time limit

@@ -27,7 +27,7 @@ from .rows import mark_invalid, start_record
 CHUNK = 256
 """Throws per work unit of :func:`throw_many` (one scratch allocation per chunk)."""
 
-PARALLEL_MIN = 2048
+PARALLEL_MIN = 4096
 """Smallest batch the "paper" model runs on Numba's thread pool (:func:`throw_many`); smaller
 batches run on the calling thread (:func:`throw_many_serial`, same results). A throw takes
 about 1–3 µs, while waking the pool costs tens of µs and, when the cores are busy, can

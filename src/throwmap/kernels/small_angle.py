@@ -49,7 +49,7 @@ from .flight import MAX_SPIN_ANGLE, release_state
 from .rows import mark_invalid
 
 
-PARALLEL_MIN = 8192
+PARALLEL_MIN = 16384
 """Smallest batch run on Numba's thread pool (:func:`throw_many_small_angle`); smaller batches
 run on the calling thread (:func:`throw_many_small_angle_serial`, same results). A closed-form
 throw takes well under a microsecond, so only large batches repay waking the pool."""

@@ -110,7 +110,9 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, w, bet
                 # the vertex leaves at once: flight again, this vertex excluded for a while
                 un = vy + om * rx
                 excl_j = jc
-                excl_t = departure_window(un, rx, ry, om, g, ell[jc]) if un <= 1e-12 else 0.0
+                # a departing normal velocity at rounding level (relative to the motion's speed) gets the window
+                vscale = max(1.0, abs(vx) + abs(vy) + abs(om) * ell[jc])
+                excl_t = departure_window(un, rx, ry, om, g, ell[jc]) if un <= 1e-12 * vscale else 0.0
                 flight_frame(phi, y, h, w, ru, rv, c0, jc)
                 continue
             jp = jc

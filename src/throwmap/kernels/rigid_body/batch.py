@@ -17,7 +17,7 @@ from numba import njit, prange
 from ..rows import mark_invalid
 from .automaton import throw_one_rigid_body, throw_one_rigid_body_rk4
 
-PARALLEL_MIN = 256
+PARALLEL_MIN = 1024
 """Smallest batch run on Numba's thread pool; smaller batches run serially (same results).
 
 A "rigid_body" throw takes about 2–20 µs; waking the pool costs tens of µs and, when

@@ -214,7 +214,9 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
         if kind == IMP_SEPARATE:
             # B bounced: flight again, B excluded from touch while it provably stays above the line
             un = vyp + wp * uB
-            excl_t = departure_window(un if un > 0.0 else 0.0, uB, -dk, wp, g, ell[jB]) if un <= 1e-12 else 0.0
+            vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * ell[jB])
+            excl_t = (departure_window(un if un > 0.0 else 0.0, uB, -dk, wp, g, ell[jB])
+                      if un <= 1e-12 * vscale else 0.0)
             flight_frame(phi, h + dk, h, w, ru, rv, c0, jB)
             return (MODE_FLIGHT, C.OK, x_cm, h + dk, vxp, vyp, wp, phi, t, jB, pxB, th_new, wp, 0.0, phi_off, jB,
                     excl_t, last_side)
