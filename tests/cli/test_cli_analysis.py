@@ -7,6 +7,7 @@ and result files; and one-line errors with exit status 2.
 
 from __future__ import annotations
 
+import dataclasses
 import io
 import json
 import subprocess
@@ -85,7 +86,9 @@ def test_limitset_json_one_band_and_round_trip():
     doc = strict_json(ok(invoke("limitset", *TRIANGLE, "--omega", "4", *CAPS, "--json")).stdout)
     assert {"limit_set", "critical_points", "part", "arm", "omega", "model", "seed", "version"} <= set(doc)
     assert doc["version"] == tm.__version__ and doc["seed"] == 0 and doc["model"] == "paper"
-    assert doc["arm"] == {"h": -0.01, "g": 9.81, "length": None, "mu": None}
+    assert {k: doc["arm"][k] for k in ("h", "g", "length", "mu")} == {"h": -0.01, "g": 9.81, "length": None,
+                                                                       "mu": None}
+    assert set(doc["arm"]) == {f.name for f in dataclasses.fields(tm.Arm)}  # every field of the arm
     ls = doc["limit_set"]
     assert ls["kind"] == "band" and ls["unique"] is True
     assert len(ls["attractors"]) == 1 and ls["attractors"][0]["kind"] == "band"
@@ -226,7 +229,13 @@ def test_funnels_json_and_round_trip():
     assert names[doc["order"][0]] == "ω=4 #1"
     assert doc["rank"][str(names.index("ω=4 #1"))] == 0
     assert any(n.startswith("ω=3") for n in names)
-    assert all(doc["rank"][str(i)] == 1 for i, n in enumerate(names) if n.startswith("ω=3"))
+    for i, f in enumerate(doc["funnels"]):
+        if not f["name"].startswith("ω=3"):
+            continue
+        beyond = all(b["lo_m"] > 1.0 for b in f["attractor"]["bands"])
+        # a spout inside the searched range leads into ω=4's mouth; one beyond x_max = 1.0 m leads nowhere
+        assert doc["rank"][str(i)] == (None if beyond else 1), (f["name"], f["attractor"]["bands"])
+    assert all(f["mouth"] == [] or max(iv["hi_m"] for iv in f["mouth"]) <= 1.0 for f in doc["funnels"])
     assert_round_trip(FunnelGraph, doc)
 
 
@@ -274,8 +283,8 @@ def test_bad_input_is_one_line(args, field):
 def test_bad_plot_paths(tmp_path, cmd):
     base = [cmd, *TRIANGLE, "--omega", "4"]
     assert_one_error(invoke(*base, "--plot", tmp_path / "fig.xyz"), "plot")
-    assert_one_error(invoke(*base, "--plot", tmp_path / "no" / "fig.png"), "plot")
     (tmp_path / "file").write_text("x")
+    assert_one_error(invoke(*base, "--plot", tmp_path / "file" / "fig.png"), "plot")  # its folder is a file
     assert_one_error(invoke(*base, "--out", tmp_path / "file"), "out")
     assert list(tmp_path.iterdir()) == [tmp_path / "file"]  # nothing written
 
@@ -317,3 +326,32 @@ def test_demo_analysis_figures_and_summary(tmp_path, monkeypatch):
     # the omega = 3 band lies in x in [0.5, 0.9] on every side: it is the top funnel, omega = 4 leads into it
     assert summary["funnels"]["order"][:2] == ["ω=3 #1", "ω=4 #1"]
     json.dumps(normalised(summary), allow_nan=False)
+
+
+# ---------------------------------------------------------------- issue 10: guarded work, stated ranges
+def test_a_huge_basin_grid_is_refused_up_front_in_one_line():
+    """``basins --grid 100000000`` once ran 17 min and took 12 GB; now it is refused before any throw."""
+    result = invoke("basins", *TRIANGLE, "--omega", "4", "--grid", "100000000")
+    assert_one_error(result, "grid")
+    line = result.stderr
+    assert "300,000,000 configurations" in line and "GB of memory" in line
+    assert "--max-memory" in line and "--force" in line
+
+
+def test_a_long_limit_set_is_refused_by_its_time_estimate():
+    result = invoke("limitset", *TRIANGLE, "--omega", "4", "--starts", "100000", "--max-time", "1")
+    assert_one_error(result, "starts")
+    assert "measured now" in result.stderr and "--max-time" in result.stderr
+
+
+@pytest.mark.parametrize("args, field", [(["--max-memory", "0"], "max_memory"), (["--max-time", "-1"], "max_time")])
+def test_bad_limits_are_one_line(args, field):
+    assert_one_error(invoke("basins", *TRIANGLE, "--omega", "4", "--grid", "20", *args), field)
+
+
+def test_limitset_and_basins_state_the_range_they_searched():
+    out = ok(invoke("limitset", *TRIANGLE, "--omega", "5.6", *CAPS)).stdout
+    assert "valid starts with x ≤ 0.600 m" in out and "not ruled out" in out
+    assert "searched: x ≤ 60.0 cm" in out
+    out = ok(invoke("basins", *TRIANGLE, "--omega", "4", "--grid", "100", "--x-max", "0.5")).stdout
+    assert "unique and globally attractive for the valid starts with x ≤ 0.500 m" in out

@@ -23,6 +23,7 @@ import typer
 
 from .. import __version__
 from ..analysis import ConfigSet, basins, critical_points, funnels, limit_set
+from ..analysis.budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
 from ..analysis.limitset import DEFAULT_CAPS
 from ..analysis.maps import ThrowMap
 from ..analysis.orbits import orbit_on_attractor
@@ -38,7 +39,8 @@ JSON_ARRAYS_MAX = 200_000
 """``basins --out`` puts the per-configuration arrays into ``basins.json`` up to this many
 configurations; above it the JSON holds the summary and the arrays are in ``basins.npz`` only."""
 
-OPTION_FIELDS = {"n_starts": "starts", "n_seeds": "starts", "n_record": "record", "n_check": "check"}
+OPTION_FIELDS = {"n_starts": "starts", "n_seeds": "starts", "n_record": "record", "n_check": "check",
+                 "max_seconds": "max_time"}
 """Library argument names that the command line calls differently (errors name the option)."""
 
 XMaxOpt = Annotated[float | None, typer.Option("--x-max", help="Outer end of the analysed configurations, m "
@@ -51,6 +53,22 @@ TransientOpt = Annotated[int | None, typer.Option("--transient", help="Throws di
                                                                       f"(default {DEFAULT_CAPS['transient']}).")]
 RecordOpt = Annotated[int | None, typer.Option("--record", help="Throws recorded per orbit "
                                                                 f"(default {DEFAULT_CAPS['n_record']}).")]
+MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the analysis may plan to hold, GB; "
+                                                                    "above it the command refuses before starting.")]
+MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the analysis may plan to run, s (estimated "
+                                                              "from throws timed at the start).")]
+ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
+
+
+def _limits(max_memory_gb: float, max_time: float, force: bool) -> dict:
+    """The work guard's keywords for the library (:mod:`throwmap.analysis.budget`); GB → bytes."""
+    check_finite(max_memory_gb, "max_memory")
+    check_finite(max_time, "max_time")
+    if max_memory_gb <= 0:
+        raise InvalidStateError("max_memory", f"must be positive (GB), got {max_memory_gb:g}")
+    if max_time <= 0:
+        raise InvalidStateError("max_time", f"must be positive (s), got {max_time:g}")
+    return {"max_memory": max_memory_gb * 1e9, "max_seconds": float(max_time), "force": bool(force)}
 
 
 # ------------------------------------------------------------------ helpers (no physics)
@@ -119,6 +137,9 @@ def limitset_cmd(
                                                                      "limit set (paper Fig. 2), e.g. map.png.")]
     = None,
     out: Annotated[Path | None, typer.Option("--out", help="Directory for limit_set.json (created).")] = None,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Critical points r_i, l_i and the forward limit set(s) of the throw map T^ω (paper Sec. III-D)."""
     with guard():
@@ -128,9 +149,10 @@ def limitset_cmd(
         fmt = figure_format(plot, "plot")
         fmt_map = figure_format(plot_map, "plot_map")
         check_out_dir(out)
-        crit = critical_points(the_part, arm, omega, model, x_max=x_max)
+        limits = _limits(max_memory, max_time, force)
+        crit = critical_points(the_part, arm, omega, model, x_max=x_max, **limits)
         with _option_names(), _progress() as bar:
-            limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max,
+            limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, **limits,
                               transient=transient, n_record=record, tol=tol, max_period=max_period,
                               progress=lambda done, total: bar("iterating", done, total))
         if plot is not None:
@@ -190,6 +212,9 @@ def basins_cmd(
     plot: Annotated[Path | None, typer.Option("--plot", help="Write the basin map, e.g. basins.png.")] = None,
     out: Annotated[Path | None, typer.Option("--out", help="Directory for basins.json and basins.npz "
                                                            "(created).")] = None,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Basins of attraction over a grid of configurations, with a certificate of global attractivity."""
     with guard():
@@ -198,8 +223,9 @@ def basins_cmd(
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         check_out_dir(out)
+        limits = _limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
-            result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed,
+            result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, **limits,
                             max_throws=max_throws, n_check=check, n_seeds=starts, transient=transient,
                             n_record=record, x_max=x_max, progress=bar)
         if plot is not None:
@@ -255,6 +281,9 @@ def funnels_cmd(
     plot: Annotated[Path | None, typer.Option("--plot", help="Write the funnel graph, e.g. funnels.png.")]
     = None,
     out: Annotated[Path | None, typer.Option("--out", help="Directory for funnels.json (created).")] = None,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Funnels (mouth: basin, spout: attractor) of several throws and the priority order to a goal (Sec. I-A)."""
     with guard():
@@ -271,8 +300,9 @@ def funnels_cmd(
                                                     f"(stable sides: {stable})")
         fmt = figure_format(plot, "plot")
         check_out_dir(out)
+        limits = _limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
-            graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment,
+            graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment, **limits,
                             rng=seed, x_max=x_max, method=method, n_seeds=starts, progress=bar)
         if plot is not None:
             from ..viz.funnels import plot_funnel_graph
