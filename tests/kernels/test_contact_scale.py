@@ -100,3 +100,14 @@ def test_unresolvable_flight_is_refused_by_every_analytic_model(triangle):
 def test_spin_limit_is_where_double_precision_stops_resolving_the_angle():
     assert np.spacing(MAX_SPIN_ANGLE) <= 1e-6  # orientation still known to a micro-radian there
     assert np.spacing(1e3 * 2 * 1e3 * 10.0 / 9.81) < np.spacing(MAX_SPIN_ANGLE)  # the scan above stays inside
+
+
+@pytest.mark.filterwarnings("ignore::throwmap.RegimeWarning")
+def test_unresolved_through_throw_has_its_label(triangle):
+    k = int(np.flatnonzero(triangle.stable)[0])
+    for model in ANALYTIC:
+        o = tm.throw(triangle, tm.Arm(h=-0.01), 2e8, k, 1e6, model=model)
+        assert o.status.label == "unresolved" and not o.ok, model
+    # small_angle2 has no contact when g ≤ d ω² (before: the "bug if ever seen" no_contact)
+    o = tm.throw(triangle, tm.Arm(h=-0.01), 0.3, k, 100.0, model="small_angle2")
+    assert o.status.label == "unresolved"
