@@ -20,7 +20,9 @@ Modes
                  I_A θ̈ = −g ℓ_A cos θ (θ = angle of A→CM, I_A = ρ² + ℓ_A²), as roll.py.
 ``PIVOT_SLIDE``  one vertex A on the line, sliding with slip velocity v_A ≠ 0:
                  2 DOF (x_A, θ), friction −μ N sgn(v_A).
-``FLAT_SLIDE``   a side flat on the line, sliding at deceleration μ g (closed form).
+``FLAT_SLIDE``   a side flat on the line, sliding at deceleration μ g (closed form); with
+                 μ = 0 it never stops (to the arm's edge: BEHIND_JOINT / OFF_END, or
+                 NO_REST outward on an unbounded arm).
 ``REST``         terminal.
 
 Guards (named as in the code, ``EV_*``)
@@ -28,7 +30,8 @@ Guards (named as in the code, ``EV_*``)
 ``touch``        FLIGHT: the earliest time any vertex reaches y = h moving down
                  (:func:`throwmap.kernels.flight.first_contact`: safe lower-bound
                  stepping from any flight state, shared with model "paper").
-``leave_arm``    a contact point at x ≤ 0 (BEHIND_JOINT) or x > length (OFF_END).
+``leave_arm``    a contact point at x ≤ −back (BEHIND_JOINT; ``Arm.back``, default 0)
+                 or x > length (OFF_END).
 ``land``         PIVOT_*: θ reaches θa (side j−1 flat) or θb (side j flat): the
                  second vertex B of that side touches (``EV_LAND_A``/``EV_LAND_B``).
 ``lift_off``     PIVOT_*: the normal force N reaches 0 (``EV_LIFT_OFF``). While
@@ -87,6 +90,11 @@ Numerics and accuracy (plainly)
   bisection, to a bracket of 1e-16 (t + τ) (:func:`.slide._locate_guard`).
 * T_REST: when the Zeno rule decides rest, the (finite) remaining rocking time is
   not added: T_REST is the time of the deciding landing.
+* Frictionless arm (μ = 0): every contact force is vertical, so the CM's
+  horizontal velocity stays −(h + d) ω from the release (tested on whole
+  trajectories); the Zeno rule then compares the kinetic energy relative to that
+  horizontal motion with the topple barriers, and an unstable side landed on
+  while sliding tips over its overhung vertex as a sliding pivot.
 * FLAT_SLIDE assumes the part does not tip over its leading edge while it
   decelerates (not checked).
 
