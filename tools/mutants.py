@@ -224,7 +224,9 @@ MUTANTS: tuple[Mutant, ...] = (
       "if int(st[0]) != C.OK and int(s[0]) != int(want_s):", "cycle residual: or → and",
       "the residual re-throws points of tails recorded resting on those sides; a deterministic map repeats them, "
       "so an escape or a side change with the other test passing cannot occur"),
-    M("A29", "analysis/cycles.py", "if not res <= tol:", "if not res <= 1e3 * tol:", "cycle confirmed at 1000 tol"),
+    M("A29", "analysis/cycles.py", "if not res <= tol:", "if not res <= 1e3 * tol:", "cycle confirmed at 1000 tol",
+      "closing() has already required |T(x_last) − x_(last−p)| ≤ tol on the same tails, which is the residual's "
+      "last term, and its other terms are exact re-throws of recorded states (or ≤ tol by the fixed-point search)"),
     M("A07", "analysis/recurrence.py", "lyap = float(np.mean(np.log(np.abs(sl)))) if finite",
       "lyap = float(np.mean(np.log(sl))) if finite", "cycle Lyapunov exponent without abs"),
     M("A08", "analysis/recurrence.py", "fate_step[alive[bad]] = t + 1", "fate_step[alive[bad]] = t",

@@ -150,3 +150,21 @@ def test_fixed_points_far_apart_are_different_attractors():
     assert _same_attractor(fp(0.2), fp(0.2 + 1e-9), 1e-6)
     assert not _same_attractor(fp(0.2), fp(0.8), 1e-6)
     assert not _same_attractor(fp(0.8), fp(0.2), 1e-6)
+
+
+def test_escape_step_counts_the_throw_that_escaped():
+    """A08: fate_step is the number of throws made, the escaping one included (1-based)."""
+    from throwmap.analysis.recurrence import run_orbits
+
+    def walk(x, s):
+        xn = x + 0.1
+        return xn, s, np.where(xn > 1.0, OFF_END, OK)
+
+    cmap = FunctionMap(walk, {0: (0.0, 1.0)}, name="walk")
+    x0 = np.array([0.05, 0.55, 0.95])
+    X, S, fate, step = run_orbits(cmap, x0, np.zeros(3, dtype=np.int64), 2, 20)
+    # x0 + 0.1 n > 1 first at n = 10, 5, 1
+    assert step.tolist() == [10, 5, 1]
+    assert fate.tolist() == [OFF_END] * 3
+    # recorded from throw 3 on: the first start rests after throws 3..9, i.e. 7 recorded states
+    assert np.isfinite(X[0]).sum() == 7 and np.isfinite(X[1]).sum() == 2 and np.isfinite(X[2]).sum() == 0
