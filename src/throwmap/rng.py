@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import InvalidStateError
+from .errors import InvalidStateError, shown
 
 __all__ = ["as_generator"]
 
@@ -19,5 +19,5 @@ def as_generator(rng=None, field: str = "rng") -> np.random.Generator:
     if rng is None:
         return np.random.default_rng()
     if isinstance(rng, bool) or not isinstance(rng, (int, np.integer)) or int(rng) < 0:
-        raise InvalidStateError(field, f"must be a non-negative integer seed, a numpy Generator or None, got {rng!r}")
+        raise InvalidStateError(field, f"must be a non-negative integer seed, a numpy Generator or None, got {shown(rng)}")
     return np.random.default_rng(int(rng))

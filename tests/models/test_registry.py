@@ -85,8 +85,10 @@ def test_feature_refusal_names_the_models_that_support_it():
 def test_options_instance_equals_keywords():
     a = tm.throw(TRI, ARM, 0.4, 1, 10.0, model="paper", options=PaperOptions(max_impacts=2))
     b = tm.throw(TRI, ARM, 0.4, 1, 10.0, model="paper", max_impacts=2)
-    c = tm.throw(TRI, ARM, 0.4, 1, 10.0, model="paper", options=PaperOptions(max_impacts=50), max_impacts=2)
+    c = tm.throw(TRI, ARM, 0.4, 1, 10.0, model="paper", options=PaperOptions(max_impacts=2), max_impacts=2)
     assert a.to_dict() == b.to_dict() == c.to_dict()
+    with pytest.raises(InvalidStateError, match="^max_impacts: given twice"):  # a contradiction is refused
+        tm.throw(TRI, ARM, 0.4, 1, 10.0, model="paper", options=PaperOptions(max_impacts=50), max_impacts=2)
     assert a.status == tm.Status.NO_REST  # the cap really reached the kernel
     assert tm.throw(TRI, ARM, 0.4, 1, 10.0, model="paper").status != tm.Status.NO_REST
 

@@ -22,7 +22,7 @@ from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 
 __all__ = ["Features", "ThrowModel", "BatchArrays", "NoOptions", "build_options"]
 
@@ -93,10 +93,19 @@ def _default_options(typ: type):
     return typ()
 
 
+def _same(a, b) -> bool:
+    """Whether an option given twice (in ``options`` and as a keyword) agrees."""
+    try:
+        return bool(a == b)
+    except Exception:  # e.g. arrays: compare by identity
+        return a is b
+
+
 def build_options(model: ThrowModel, options=None, overrides: dict | None = None):
     """The model's options value: ``options`` (an instance of its options type, or None
     for the defaults) with keyword ``overrides`` applied. Unknown keywords are refused
-    with the field named and the model's keywords listed."""
+    with the field named and the model's keywords listed; a keyword that contradicts
+    the same field of ``options`` is refused (the two would silently disagree)."""
     typ = model.options_type
     if options is None and not overrides:
         return _default_options(typ)
@@ -112,5 +121,11 @@ def build_options(model: ThrowModel, options=None, overrides: dict | None = None
             if key not in names:
                 known = ", ".join(sorted(names)) or "none"
                 raise InvalidStateError(key, f"unknown keyword for model {model.name!r} (its options: {known})")
+        if options is not None:
+            for key, val in overrides.items():
+                given = getattr(options, key)
+                if not _same(given, val):
+                    raise InvalidStateError(key, f"given twice with different values: options={typ.__name__}(…, {key}={shown(given)}) "
+                                                 f"and the keyword {key}={shown(val)}; give it once")
         opts = dataclasses.replace(opts, **overrides)
     return opts

@@ -3,13 +3,21 @@
 from __future__ import annotations
 
 import math
+import numbers
 import warnings
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..conventions import G
-from ..errors import InvalidArmError, RegimeWarning
+from ..errors import InvalidArmError, RegimeWarning, shown
 
 __all__ = ["Arm", "regime_problems", "warn_if_outside_regime"]
+
+
+def _is_real(value) -> bool:
+    """A real number (Python or NumPy, e.g. ``np.int64``, ``np.float32``), not a bool."""
+    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
 
 
 @dataclass(frozen=True, slots=True)
@@ -48,25 +56,25 @@ class Arm:
     def __post_init__(self):
         for name in ("h", "g"):
             val = getattr(self, name)
-            if isinstance(val, bool) or not isinstance(val, (int, float)):
-                raise InvalidArmError(f"arm.{name}", f"must be a number, got {val!r}")
+            if not _is_real(val):
+                raise InvalidArmError(f"arm.{name}", f"must be a number, got {shown(val)}")
             if not math.isfinite(val):
                 raise InvalidArmError(f"arm.{name}", f"must be finite, got {val}")
         if self.g <= 0:
             raise InvalidArmError("arm.g", f"must be positive (gravity acts along -y), got {self.g}")
         if self.length is not None:
             L = self.length
-            if isinstance(L, bool) or not isinstance(L, (int, float)) or not math.isfinite(L) or L <= 0:
-                raise InvalidArmError("arm.length", f"must be a positive finite number or None, got {L!r}")
+            if not _is_real(L) or not math.isfinite(L) or L <= 0:
+                raise InvalidArmError("arm.length", f"must be a positive finite number or None, got {shown(L)}")
         mu = self.mu
-        if isinstance(mu, bool) or not isinstance(mu, (int, float)) or math.isnan(mu) or mu < 0:
-            raise InvalidArmError("arm.mu", f"must be a number ≥ 0 (inf: no slip), got {mu!r}")
+        if not _is_real(mu) or math.isnan(mu) or mu < 0:
+            raise InvalidArmError("arm.mu", f"must be a number ≥ 0 (inf: no slip), got {shown(mu)}")
         object.__setattr__(self, "mu", float(mu))
         back = self.back
-        if isinstance(back, bool) or not isinstance(back, (int, float)):
-            raise InvalidArmError("arm.back", f"must be a number, got {back!r}")
+        if not _is_real(back):
+            raise InvalidArmError("arm.back", f"must be a number, got {shown(back)}")
         if not math.isfinite(back) or back < 0:
-            raise InvalidArmError("arm.back", f"must be a finite number ≥ 0, got {back!r}")
+            raise InvalidArmError("arm.back", f"must be a finite number ≥ 0, got {shown(back)}")
         object.__setattr__(self, "back", float(back))
         object.__setattr__(self, "h", float(self.h))
         object.__setattr__(self, "g", float(self.g))

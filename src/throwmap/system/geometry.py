@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from ..errors import InvalidPartError
+from ..errors import InvalidPartError, shown
 
 __all__ = [
     "as_finite_array",
@@ -31,7 +31,7 @@ def as_finite_array(value, field: str, shape: tuple | None = None) -> np.ndarray
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise InvalidPartError(field, f"must be numbers, got {value!r}") from None
+        raise InvalidPartError(field, f"must be numbers, got {shown(value)}") from None
     if shape is not None:
         ok = arr.ndim == len(shape) and all(s is None or s == a for s, a in zip(shape, arr.shape))
         if not ok:

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InvalidPartError, InvalidStateError
+from ..errors import InvalidPartError, InvalidStateError, shown
 from .geometry import (
     as_finite_array,
     check_convex_polygon,
@@ -160,7 +160,7 @@ class Part:
         try:
             m_plate = float(mass)
         except (TypeError, ValueError):
-            raise InvalidPartError("part.mass", f"must be a number, got {mass!r}") from None
+            raise InvalidPartError("part.mass", f"must be a number, got {shown(mass)}") from None
         if not (math.isfinite(m_plate) and m_plate > 0):
             raise InvalidPartError("part.mass", f"must be a positive finite number, got {mass}")
         area, centroid, j_area = polygon_mass_properties(v)
@@ -174,7 +174,7 @@ class Part:
             try:
                 mi = float(mi)
             except (TypeError, ValueError):
-                raise InvalidPartError(fld + ".mass", f"must be a number, got {mi!r}") from None
+                raise InvalidPartError(fld + ".mass", f"must be a number, got {shown(mi)}") from None
             if not (math.isfinite(mi) and mi > 0):
                 raise InvalidPartError(fld + ".mass", f"must be a positive finite number, got {mi}")
             p = as_finite_array(at, fld + ".at", (2,))
@@ -194,7 +194,7 @@ class Part:
             try:
                 rho = float(radius_of_gyration)
             except (TypeError, ValueError):
-                raise InvalidPartError("part.radius_of_gyration", f"must be a number, got {radius_of_gyration!r}") from None
+                raise InvalidPartError("part.radius_of_gyration", f"must be a number, got {shown(radius_of_gyration)}") from None
         return cls(
             vertices=tuple((float(a), float(b)) for a, b in v),
             mass=m_tot,
@@ -228,7 +228,7 @@ class Part:
     def check_side(self, side, require_stable: bool = True, field: str = "side") -> int:
         """Validate a side index, returning it as ``int``."""
         if isinstance(side, bool) or not isinstance(side, (int, np.integer)):
-            raise InvalidStateError(field, f"must be an integer side index, got {side!r}")
+            raise InvalidStateError(field, f"must be an integer side index, got {shown(side)}")
         k = int(side)
         if not 0 <= k < self.n_sides:
             raise InvalidStateError(field, f"side {k} does not exist (the part has sides 0..{self.n_sides - 1})")

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from .arm import Arm
 from .fixtures import Cavity, Wall
 
@@ -43,14 +43,14 @@ class System:
         try:
             fx = tuple(fx)
         except TypeError:
-            raise InvalidStateError("fixtures", f"must be a sequence of Wall/Cavity, got {fx!r}") from None
+            raise InvalidStateError("fixtures", f"must be a sequence of Wall/Cavity, got {shown(fx)}") from None
         for i, f in enumerate(fx):
             if not isinstance(f, (Wall, Cavity)):
                 raise InvalidStateError(f"fixtures[{i}]", f"must be a Wall or a Cavity, got {type(f).__name__}")
         object.__setattr__(self, "fixtures", fx)
         a = self.alpha
         if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a):
-            raise InvalidStateError("alpha", f"must be a finite angle in rad, got {a!r}")
+            raise InvalidStateError("alpha", f"must be a finite angle in rad, got {shown(a)}")
         object.__setattr__(self, "alpha", float(a))
 
     @property

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from ..models import DEFAULT_MODEL, build_options, check_model, get_model, model_names
 from ..system.arm import Arm, warn_if_outside_regime
@@ -73,11 +73,11 @@ def prepare(model, arm: Arm, fixtures=(), alpha: float = 0.0, options=None, opti
 
 def _check_scalar(value, field: str) -> float:
     if isinstance(value, (bool, str, bytes)):
-        raise InvalidStateError(field, f"must be a number, got {value!r}")
+        raise InvalidStateError(field, f"must be a number, got {shown(value)}")
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise InvalidStateError(field, f"must be a number, got {value!r}") from None
+        raise InvalidStateError(field, f"must be a number, got {shown(value)}") from None
     if not math.isfinite(v):
         raise InvalidStateError(field, f"must be finite, got {v}")
     return v
