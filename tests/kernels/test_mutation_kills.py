@@ -162,3 +162,27 @@ def test_impact_cap_allows_exactly_max_impacts(part):
     assert capped.ok and capped.x == o.x and capped.n_impacts == o.n_impacts
     short = tm.throw(part, arm, 0.3, part.stable_sides[0], 5.0, model="paper", max_impacts=o.n_impacts - 1)
     assert short.status.label == "no_rest"
+
+
+@pytest.mark.parametrize("model", ["small_angle", "small_angle2"])
+def test_small_angle_rest_puts_the_contact_vertex_where_it_touched(part, model):
+    """K35: Sec. V-A step 8: a jog rests with its left vertex at the contact x (x' = P_x − u_L); a flip over
+    the contact vertex onto the next side (all of the triangle's sides are stable) rests with that vertex,
+    now the side's right vertex, at P_x (x' = P_x − u_R)."""
+    assert all(part.stable)
+    arm = tm.Arm(h=-0.01)
+    flips = jogs = 0
+    for s in part.stable_sides:
+        for x in np.linspace(part.x_min(s) + 0.005, 0.3, 12):
+            for w in (1.0, 2.0, 3.0, 4.0, 5.0):
+                o = tm.throw(part, arm, float(x), s, w, model=model)
+                if not o.ok:
+                    continue
+                if o.n_flips:
+                    flips += 1
+                    assert o.side == (s + 1) % part.n_sides
+                    assert o.x + part.uR[o.side] == pytest.approx(o.contact_x, abs=1e-12)
+                else:
+                    jogs += 1
+                    assert o.x + part.uL[o.side] == pytest.approx(o.contact_x, abs=1e-12)
+    assert flips and jogs
