@@ -1,0 +1,142 @@
+"""The README works as pasted: every ```python block runs (in order, in one session, as a reader
+pasting them into one interpreter would), every part file shown in a ```toml block loads, and
+every command shown in a ```bash block exists with the options it uses (``throwmap <cmd> --help``).
+
+Shell examples meant to fail (bad input) are in ```console blocks and are not run.
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+ROOT = Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
+
+
+def blocks(lang: str, text: str | None = None) -> list[str]:
+    """The contents of every fenced block of language ``lang`` in the README (or ``text``)."""
+    text = README.read_text(encoding="utf-8") if text is None else text
+    return re.findall(rf"^```{lang}\n(.*?)^```", text, flags=re.S | re.M)
+
+
+def shell_commands(block: str) -> list[list[str]]:
+    """Each ``throwmap …`` / ``make …`` / ``python …`` line of a shell block as words, comments and
+    ``[optional]`` brackets removed (``[--plot funnels.png]`` → ``--plot funnels.png``)."""
+    out = []
+    for line in block.splitlines():
+        line = line.split(" #")[0].strip()
+        if line.startswith("$ "):
+            line = line[2:]
+        if not line or line.startswith("#"):
+            continue
+        line = line.replace("[", " ").replace("]", " ").replace("…", "x")
+        out.append(shlex.split(line))
+    return out
+
+
+def test_the_readme_has_the_blocks_this_test_reads():
+    assert len(blocks("python")) >= 3 and len(blocks("bash")) >= 3 and blocks("toml")
+
+
+def test_python_blocks_run_as_pasted(tmp_path, monkeypatch):
+    """All blocks in order in one namespace, in an empty folder (files they write go there)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    import sys
+    import types
+
+    monkeypatch.chdir(tmp_path)
+    module = types.ModuleType("__readme__")  # like __main__ of an interpreter: dataclasses look it up
+    monkeypatch.setitem(sys.modules, module.__name__, module)
+    namespace = module.__dict__
+    for i, code in enumerate(blocks("python")):
+        try:
+            exec(compile(code, f"README.md python block {i}", "exec"), namespace)
+        except Exception as err:  # pragma: no cover - the message is the point
+            pytest.fail(f"README python block {i} fails: {type(err).__name__}: {err}\n{code}")
+        finally:
+            plt.close("all")
+
+
+def test_toml_part_files_load(tmp_path):
+    from throwmap.io.config import load_config
+
+    files = [b for b in blocks("toml") if "[part]" in b]
+    assert files
+    for i, text in enumerate(files):
+        path = tmp_path / f"part{i}.toml"
+        path.write_text(text, encoding="utf-8")
+        loaded = load_config(path)
+        assert loaded.part.n_sides >= 3
+
+
+def _help(command: str) -> str:
+    from throwmap.cli.app import app
+
+    res = CliRunner().invoke(app, [command, "--help"], terminal_width=200, env={"COLUMNS": "200", "NO_COLOR": "1"})
+    assert res.exit_code == 0, f"`throwmap {command} --help` fails: {res.output}"
+    return res.output
+
+
+def _has_option(help_text: str, opt: str) -> bool:
+    return re.search(rf"(?<![\w-]){re.escape(opt)}(?![\w-])", help_text) is not None
+
+
+def _takes_value(help_text: str, opt: str) -> bool:
+    """Whether ``opt`` takes a value, from the help's metavar column (``<bool>`` and ``BOOLEAN``: a flag)."""
+    m = re.search(rf"(?<![\w-]){re.escape(opt)}(?![\w-])[ ,\w-]*?\s+(<\w+>|[A-Z]{{3,}})", help_text)
+    return m is not None and m.group(1) not in ("<bool>", "BOOLEAN")
+
+
+def test_shell_commands_exist_with_their_options():
+    commands = [c for b in blocks("bash") for c in shell_commands(b)]
+    assert commands
+    seen = set()
+    makefile = (ROOT / "Makefile").read_text(encoding="utf-8")
+    for words in commands:
+        if words[0] == "make":
+            assert re.search(rf"^{re.escape(words[1])}:", makefile, flags=re.M), f"no make target {words[1]!r}"
+            continue
+        if words[0] in ("python", "python3") and words[1].endswith(".py"):
+            assert (ROOT / words[1]).is_file(), f"no script {words[1]}"
+            continue
+        assert words[0] == "throwmap", f"unexpected command in a bash block: {' '.join(words)}"
+        cmd = words[1]
+        text = _help(cmd)
+        rest = words[2:]
+        for k, w in enumerate(rest):
+            if w.startswith("-") and not re.fullmatch(r"-?\d+(\.\d+)?", w):
+                assert _has_option(text, w.split("=")[0]), f"`throwmap {cmd}` has no option {w}"
+                if _takes_value(text, w) and "=" not in w:
+                    nxt = rest[k + 1] if k + 1 < len(rest) else ""
+                    assert nxt and not (nxt.startswith("-") and not re.fullmatch(r"-?\d+(\.\d+)?", nxt)), \
+                        f"`throwmap {cmd} … {w}` is shown without its value"
+        seen.add(cmd)
+    assert {"throw", "iterate", "compare", "validate", "animate", "demo", "limitset", "basins", "funnels"} <= seen
+
+
+def test_the_checker_catches_a_missing_option_and_a_missing_import():
+    assert not _has_option(_help("funnels"), "--x-maxx") and _has_option(_help("funnels"), "--x-max")
+    namespace: dict = {}
+    with pytest.raises(NameError):
+        exec(blocks("python", "```python\nx = np.zeros(3)\n```\n")[0], namespace)
+    assert _takes_value(_help("funnels"), "--plot") and not _takes_value(_help("funnels"), "--json")
+    assert _takes_value(_help("iterate"), "-n")
+    assert shell_commands("throwmap funnels --omega 3,4 [--plot f.png]  # note\n") == \
+        [["throwmap", "funnels", "--omega", "3,4", "--plot", "f.png"]]
+
+
+def test_the_readme_links_nothing_outside_the_repository():
+    text = README.read_text(encoding="utf-8")
+    assert "shared/paper" not in text and "../" not in text
+    for target in re.findall(r"\]\(([^)#]+)\)", text):
+        if not re.match(r"https?://", target):
+            assert (ROOT / target).exists(), f"README links to {target}, which is not in the repository"
