@@ -25,8 +25,8 @@ def rb(part, arm, x, k, om, mu, m=0, dt=0.005):
     rec = np.empty(C.NREC)
     traj = np.empty((m, 4))
     x1, k1, st_ = RB.throw_one_rigid_body(
-        x, k, om, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, mu, part.w, part.beta, part.d,
-        part.uL, part.uR, part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, rec, traj, dt)
+        x, k, om, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta,
+        part.d, part.uL, part.uR, part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, rec, traj, dt)
     return x1, k1, st_, rec, traj
 
 
@@ -54,8 +54,8 @@ def batch(part, arm, x, k, om, mu):
     sto = np.empty(n, np.int64)
     rec = np.empty((n, C.NREC))
     RB.throw_many_rigid_body(x, k, om, np.ones(n, bool), arm.h, arm.g, arm.length_or_inf, arm.back,
-                             part.radius_of_gyration**2, mu, part.w, part.beta, part.d, part.uL, part.uR, part.ell,
-                             part.stable, TOL, MAX_ITER, MAX_EVENTS, xo, so, sto, rec)
+                             part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta, part.d, part.uL, part.uR,
+                             part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, xo, so, sto, rec)
     return xo, so, sto, rec
 
 

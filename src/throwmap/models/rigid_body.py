@@ -1,7 +1,8 @@
 """Model "rigid_body": exact rigid-body dynamics of one polygon on the arm line (the default model).
 
 Drops the paper's two contact assumptions: the pivot may lift off and may slip
-(Coulomb friction ``Arm.mu``); Routh impacts, sticking and sliding pivots, flat
+(Coulomb friction ``Arm.mu``); Routh impacts (or, with option ``impact_law="velocity"``,
+the one-step velocity-level impacts of time-stepping engines), sticking and sliding pivots, flat
 slides and the Zeno rocking rule, as a hybrid automaton
 (:mod:`throwmap.kernels.rigid_body`). Validated against pymunk and MuJoCo
 (README, "Validation"). Plain arm only (no fixtures, α = 0) for now.
@@ -14,7 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernels import codes as C
-from ..kernels.rigid_body import count_samples, pick, throw_one_rigid_body
+from ..errors import InvalidStateError, shown
+from ..kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY, count_samples, pick, throw_one_rigid_body
 from ..throws.outcome import ThrowOutcome
 from ..throws.trajectory import Trajectory, world_vertices
 from ._checks import int_at_least, positive_float
@@ -26,6 +28,9 @@ __all__ = ["RigidBodyOptions", "RigidBodyModel", "MODEL", "NO_TRAJ"]
 NO_TRAJ = np.empty((0, 4))
 """An empty trajectory buffer: the kernel records nothing."""
 
+IMPACT_LAWS = {"routh": LAW_ROUTH, "velocity": LAW_VELOCITY}
+"""Option ``impact_law`` → the kernel's integer code (:mod:`throwmap.kernels.rigid_body.impact`)."""
+
 
 @dataclass(frozen=True, slots=True)
 class RigidBodyOptions:
@@ -34,25 +39,41 @@ class RigidBodyOptions:
     ``tol`` (dimensionless): contact tolerance of the first-contact search, relative to
     the size of the gap's terms (:func:`~throwmap.kernels.flight.touch_time`); ``max_iter``: cap on the
     contact-search and integration steps of one mode; ``max_impacts``: cap on mode
-    changes (events) in one throw (status NO_REST beyond).
+    changes (events) in one throw (status NO_REST beyond). ``impact_law``: the law of
+    the resets ``impact`` and ``land_side`` outside the friction cone (docstring of
+    :mod:`throwmap.kernels.rigid_body.impact`): ``"routh"`` (default; Routh's
+    compression-only process in impulse space, Stronge 2000 ch. 3–4) or ``"velocity"``
+    (the one-step velocity-level Coulomb impulse of Moreau, as time-stepping engines
+    such as pymunk compute it). The two differ only on impacts whose slip stops and
+    reverses, common at μ ≤ 0.6; with "velocity" rigid_body lands within about
+    0.5 mm of the pymunk engine at μ = 0.3 where "routh" differs by up to ~1 cm.
     """
 
     tol: float = 1e-14
     max_iter: int = 100_000
     max_impacts: int = 10_000
+    impact_law: str = "routh"
 
     def __post_init__(self):
         object.__setattr__(self, "tol", positive_float(self.tol, "tol"))
         object.__setattr__(self, "max_iter", int_at_least(self.max_iter, "max_iter", 1))
         object.__setattr__(self, "max_impacts", int_at_least(self.max_impacts, "max_impacts", 1))
+        if not isinstance(self.impact_law, str) or self.impact_law not in IMPACT_LAWS:
+            raise InvalidStateError("impact_law", f"must be one of {', '.join(map(repr, IMPACT_LAWS))}, "
+                                                  f"got {shown(self.impact_law)}")
+
+    @property
+    def law_code(self) -> int:
+        """``impact_law`` as the kernel's integer code."""
+        return IMPACT_LAWS[self.impact_law]
 
 
 def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt: float = 1.0):
     """One kernel call: ``(x', side', status, record)``; ``traj`` (M, 4) receives the sampled motion."""
     rec = np.empty(C.NREC)
     xn, kn, st = throw_one_rigid_body(x, side, omega, arm.h, arm.g, arm.length_or_inf, arm.back,
-                                      part.radius_of_gyration**2, arm.mu, part.w, part.beta, part.d, part.uL, part.uR,
-                                      part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, rec, traj, dt)
+                                      part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d,
+                                      part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, rec, traj, dt)
     return xn, kn, st, rec
 
 
@@ -71,8 +92,8 @@ class RigidBodyModel:
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
         pick(m)(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, arm.mu,
-                part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts,
-                out.x, out.side, out.status, out.records)
+                o.law_code, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter,
+                o.max_impacts, out.x, out.side, out.status, out.records)
         return out
 
     def assumptions(self, records, mu, status) -> str:

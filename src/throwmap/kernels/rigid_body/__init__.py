@@ -126,7 +126,7 @@ from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4
 from .batch import (PARALLEL_MIN, pick, throw_many_rigid_body, throw_many_rigid_body_rk4,
                     throw_many_rigid_body_rk4_serial, throw_many_rigid_body_serial)
 from .flight import departure_window
-from .impact import coulomb_impact
+from .impact import LAW_ROUTH, LAW_VELOCITY, coulomb_impact
 from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE,
                     EV_OFF_END, EV_SLIP, EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_SLIDE, IMP_STICK,
                     MODE_FLIGHT, MODE_REST, MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID, N_ARC, N_BISECT)
@@ -136,7 +136,7 @@ from .stick_exact import pivot_stick_exact
 from .swing import swing_time
 from .trajectory import count_samples
 
-__all__ = ["PARALLEL_MIN", "pick", "throw_many_rigid_body_serial", "throw_many_rigid_body_rk4_serial",
+__all__ = ["LAW_ROUTH", "LAW_VELOCITY", "PARALLEL_MIN", "pick", "throw_many_rigid_body_serial", "throw_many_rigid_body_rk4_serial",
            "count_samples", "coulomb_impact", "departure_window", "pivot_slide", "pivot_stick",
            "pivot_stick_exact", "run_throw", "select_contact_mode", "slide_rhs", "slide_sense",
            "stick_forces", "swing_time", "throw_many_rigid_body", "throw_many_rigid_body_rk4",

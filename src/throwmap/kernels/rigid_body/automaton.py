@@ -33,8 +33,8 @@ from .trajectory import _put, clear
 
 
 @njit(cache=True, inline='always')
-def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
-              max_events, rec, traj, traj_dt):
+def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, tol,
+              max_iter, max_events, rec, traj, traj_dt):
     """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`."""
     n = w.shape[0]
     start_record(rec)
@@ -92,7 +92,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, w, bet
             if status != C.OK:
                 return x, last_side, status
             # ---------------------------------------------------------- reset impact
-            vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vx, vy, om, rx, ry, rho2, mu)
+            vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vx, vy, om, rx, ry, rho2, mu, law)
             if jn0 < 0.0:
                 rec[C.N_PULL] += 1.0
             if kind == IMP_INCONSISTENT:
@@ -181,7 +181,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, w, bet
         # -------------------------------------------------------------- guard land: reset land_side
         (mode, status, x, y, vx, vy, om, phi, t, jp, px, theta, thdot, va, phi_off, j_ex, t_ex,
          last_side) = land_side(1 if ev == EV_LAND_B else -1, jp, px, thdot, va, phi, t, last_side, h, g, length,
-                                back, rho2, mu, w, beta, d, uL, uR, ell, stable, ta, tb, ru, rv, c0, traj, ts, rec)
+                                back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, ta, tb, ru, rv, c0, traj, ts,
+                                rec)
         if mode == MODE_REST:
             return x, last_side, status
         if mode == MODE_FLIGHT:
@@ -190,8 +191,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, w, bet
 
 
 @njit(cache=True)
-def throw_one_rigid_body(x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
-                         max_events, rec, traj, traj_dt):
+def throw_one_rigid_body(x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, tol,
+                         max_iter, max_events, rec, traj, traj_dt):
     """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s), model "rigid_body".
 
     Fills ``rec`` (layout :mod:`~throwmap.kernels.codes`) and ``traj`` (see
@@ -199,17 +200,19 @@ def throw_one_rigid_body(x0, side, omega, h, g, length, back, rho2, mu, w, beta,
     ``(x, side, status)``. ``length`` (m, inf: unbounded) and ``back`` (m, ``Arm.back``)
     bound the arm's surface: a contact at x ≤ −back is BEHIND_JOINT, beyond length
     OFF_END. ``mu`` is the Coulomb coefficient (``inf``: no slip, 0: frictionless),
+    ``law`` the impact law of resets ``impact`` and ``land_side`` (:data:`~.impact.LAW_ROUTH`,
+    the default of the model, or :data:`~.impact.LAW_VELOCITY`; :func:`~.impact.coulomb_impact`),
     ``max_iter`` caps the contact-search and integration steps of one mode,
     ``max_events`` the mode changes (status NO_REST beyond). The caller has
     checked the start. The sticking phase is closed form (:func:`pivot_stick_exact`).
     """
-    return run_throw(pivot_stick_exact, x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable,
-                     tol, max_iter, max_events, rec, traj, traj_dt)
+    return run_throw(pivot_stick_exact, x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
+                     stable, tol, max_iter, max_events, rec, traj, traj_dt)
 
 
 @njit(cache=True)
-def throw_one_rigid_body_rk4(x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol, max_iter,
-                             max_events, rec, traj, traj_dt):
+def throw_one_rigid_body_rk4(x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, tol,
+                             max_iter, max_events, rec, traj, traj_dt):
     """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`pivot_stick`): the reference it is checked against."""
-    return run_throw(pivot_stick, x0, side, omega, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol,
-                     max_iter, max_events, rec, traj, traj_dt)
+    return run_throw(pivot_stick, x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
+                     tol, max_iter, max_events, rec, traj, traj_dt)

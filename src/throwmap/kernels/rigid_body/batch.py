@@ -26,7 +26,7 @@ the cores are busy, up to milliseconds per call (issue 10: ``critical_points`` t
 
 
 @njit(cache=True)
-def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell,
+def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
                                  stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
@@ -34,7 +34,7 @@ def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, length, back, rho
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, w, beta, d, uL, uR,
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
                                         ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
@@ -42,19 +42,20 @@ def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, length, back, rho
 
 
 @njit(cache=True, parallel=True)
-def throw_many_rigid_body(x0, side, omega, valid, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable, tol,
-                          max_iter, max_events, x_out, side_out, status_out, rec_out):
+def throw_many_rigid_body(x0, side, omega, valid, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
+                          tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """Batch of independent throws (flat arrays), model "rigid_body"; invalid starts get INVALID_START.
 
     Fills ``x_out``, ``side_out``, ``status_out`` (n,) and ``rec_out`` (n, NREC) in
-    place; each throw as :func:`~.automaton.throw_one_rigid_body`.
+    place; each throw as :func:`~.automaton.throw_one_rigid_body` (``law``: the impact-law code,
+    :data:`~.impact.LAW_ROUTH` or :data:`~.impact.LAW_VELOCITY`).
     """
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, w, beta, d, uL, uR,
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
                                         ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
@@ -62,15 +63,15 @@ def throw_many_rigid_body(x0, side, omega, valid, h, g, length, back, rho2, mu, 
 
 
 @njit(cache=True, parallel=True)
-def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell, stable,
-                              tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
+def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
+                              stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body` with the RK4 sticking phase (:func:`~.automaton.throw_one_rigid_body_rk4`)."""
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, w, beta, d, uL,
+        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, law, w, beta, d, uL,
                                             uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
@@ -78,7 +79,7 @@ def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, back, rho2, 
 
 
 @njit(cache=True)
-def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell,
+def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
                                      stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body_rk4` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
@@ -86,7 +87,7 @@ def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, length, back,
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, w, beta, d, uL,
+        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, law, w, beta, d, uL,
                                             uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k

@@ -151,9 +151,12 @@ def tip_from_rest(k, x_cm, n, d, uL, uR):
 
 
 @njit(cache=True)
-def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back, rho2, mu, w, beta, d, uL, uR, ell,
-              stable, ta, tb, ru, rv, c0, traj, ts, rec):
+def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
+              ell, stable, ta, tb, ru, rv, c0, traj, ts, rec):
     """Reset ``land_side``: pivoting on A = w_jp, θ reached θb (``land_dir`` +1) or θa (−1) and B touches.
+
+    ``law`` is the impact law of the impulse at B (:data:`~.impact.LAW_ROUTH` or
+    :data:`~.impact.LAW_VELOCITY`, see :func:`~.impact.coulomb_impact`).
 
     Returns ``(mode, status, x, y, v_x, v_y, ω, φ, t, jp, px, θ, θ̇, v_A, phi_off, excl_j, excl_t, last_side)``:
     mode MODE_REST (``status`` decided, x the CM and ``last_side`` the side),
@@ -180,7 +183,7 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
     vym = -thdot * uA
     k_before = 0.5 * (vxm * vxm + vym * vym + rho2 * thdot * thdot)
     pxB = x_cm + uB
-    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vxm, vym, thdot, uB, -dk, rho2, mu)
+    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vxm, vym, thdot, uB, -dk, rho2, mu, law)
     lifts = kind != IMP_INCONSISTENT and (vyp + wp * uA) > 0.0
     status = leave_arm(pxB, back, length)
     if status != C.OK:
