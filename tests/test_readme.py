@@ -147,3 +147,14 @@ def test_the_readme_links_nothing_outside_the_repository():
     for target in re.findall(r"\]\(([^)#]+)\)", text):
         if not re.match(r"https?://", target):
             assert (ROOT / target).exists(), f"README links to {target}, which is not in the repository"
+
+
+def test_the_demo_files_listed_are_the_files_it_writes():
+    """The README's table of `make demo` outputs names exactly :data:`throwmap.studies.demo.OUTPUTS`
+    (which ``run_demo`` checks against what it wrote)."""
+    from throwmap.studies.demo import OUTPUTS
+
+    text = README.read_text(encoding="utf-8")
+    section = text[text.index("`make demo` (= `throwmap demo --out out`)"):text.index("## Use it")]
+    listed = re.findall(r"^\| `([\w.]+)` \|", section, flags=re.M)
+    assert sorted(listed) == sorted(OUTPUTS)

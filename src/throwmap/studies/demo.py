@@ -6,6 +6,7 @@ h = −0.01 m, thrown at ω = 4.0 rad/s. Writes into ``out_dir``:
 ``throw_map.png``         T(x) per side with the diagonal (Fig. 2 analogue; model paper);
 ``orbit.png``             300 throws from (0.12 m, side 0) (Fig. 5/7 analogue; model paper);
 ``model_comparison.png``  jog-length error of the small-angle models vs "paper";
+``model_comparison.txt``  the comparison table (x ≤ 0.6 m, 2000 starts per side, ω = 1…5 rad/s);
 ``limit_set.png``         the limit set along the arm with r_i, l_i and an orbit of
                           40 throws on it (Fig. 5 analogue; model rigid_body);
 ``throw_map_limits.png``  T(x) per side with r_i, l_i and the limit set (Fig. 2 analogue);
@@ -18,7 +19,8 @@ h = −0.01 m, thrown at ω = 4.0 rad/s. Writes into ``out_dir``:
                           the analysis: r_i and l_i (m), the limit set's kind and bands,
                           basin fractions with the certificate, the funnel order.
 
-Every file is written atomically (temp file + rename).
+Every file is written atomically (temp file + rename); :data:`OUTPUTS` names them all, and
+:func:`run_demo` checks that it wrote exactly those (the README's list is tested against it).
 """
 
 from __future__ import annotations
@@ -35,7 +37,11 @@ from ..throws.orbit import iterate
 from ..system.catalogue import triangle_30_60_90
 from ..throws.throw import throw
 
-__all__ = ["ANALYSIS", "DEMO", "run_demo"]
+__all__ = ["ANALYSIS", "DEMO", "OUTPUTS", "run_demo"]
+
+OUTPUTS = ("throw_map.png", "orbit.png", "model_comparison.png", "model_comparison.txt", "limit_set.png",
+           "throw_map_limits.png", "basins.png", "funnels.png", "summary.json")
+"""Every file :func:`run_demo` writes into its folder, in order."""
 
 DEMO = {"hypotenuse": 0.17, "h": -0.01, "omega": 4.0, "x0": 0.12, "side0": 0, "n_throws": 300, "model": "paper"}
 """Parameters of the built-in example (SI units)."""
@@ -121,6 +127,9 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
         "analysis": analysis,
         "files": [str(f) for f in files] + [str(out / "model_comparison.txt"), str(out / "summary.json")],
     }
+    written = [Path(f).name for f in summary["files"]]
+    if sorted(written) != sorted(OUTPUTS):  # the documented list (OUTPUTS, README) is the written one
+        raise RuntimeError(f"demo: writes {written}, but OUTPUTS lists {list(OUTPUTS)}")
     atomic_write_text(out / "model_comparison.txt", comp.table() + "\n")
     atomic_write_text(out / "summary.json", json.dumps(json_ready(summary), indent=2, allow_nan=False))
     return summary
