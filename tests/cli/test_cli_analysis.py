@@ -356,3 +356,13 @@ def test_limitset_and_basins_state_the_range_they_searched():
     assert "searched: x ≤ 60.0 cm" in out
     out = ok(invoke("basins", *TRIANGLE, "--omega", "4", "--grid", "100", "--x-max", "0.5")).stdout
     assert "unique and globally attractive for the valid starts with x ≤ 0.500 m" in out
+
+
+@pytest.mark.parametrize("cmd, opt", [("basins", "--grid"), ("limitset", "--starts"), ("limitset", "--seed"),
+                                      ("basins", "--max-throws")])
+def test_integer_options_take_whole_numbers_only(cmd, opt):
+    """One rule with the library: ``basins(grid=3.0)`` is refused, so is ``--grid 3.0``."""
+    result = invoke(cmd, *TRIANGLE, "--omega", "4", opt, "3.0")
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ") and "integer" in lines[0]

@@ -31,7 +31,7 @@ from ..errors import InvalidStateError, ThrowmapError
 from ..throws.throw import check_model
 from .options import (GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, OmegaOpt, PartOpt, arm_dict, check_finite,
                       check_out_dir, figure_format, guard, make_out_dir, parse_floats, part_and_arm, save_figure,
-                      to_json, write_bytes, write_text)
+                      strict_int, to_json, write_bytes, write_text)
 
 __all__ = ["register", "limitset_cmd", "basins_cmd", "funnels_cmd", "JSON_ARRAYS_MAX", "OPTION_FIELDS"]
 
@@ -45,14 +45,18 @@ OPTION_FIELDS = {"n_starts": "starts", "n_seeds": "starts", "n_record": "record"
 
 XMaxOpt = Annotated[float | None, typer.Option("--x-max", help="Outer end of the analysed configurations, m "
                                                               "(default: the arm length, else 0.6).")]
-SeedOpt = Annotated[int, typer.Option("--seed", help="Seed of the random starts and checks (same seed, same "
-                                                     "result).")]
-StartsOpt = Annotated[int, typer.Option("--starts", help="Starting configurations per stable side for the "
-                                                         "limit-set search (stratified, drawn with --seed).")]
-TransientOpt = Annotated[int | None, typer.Option("--transient", help="Throws discarded before recording "
-                                                                      f"(default {DEFAULT_CAPS['transient']}).")]
-RecordOpt = Annotated[int | None, typer.Option("--record", help="Throws recorded per orbit "
-                                                                f"(default {DEFAULT_CAPS['n_record']}).")]
+SeedOpt = Annotated[int, typer.Option("--seed", parser=strict_int, metavar="INTEGER",
+                                      help="Seed of the random starts and checks (same seed, same "
+                                           "result).")]
+StartsOpt = Annotated[int, typer.Option("--starts", parser=strict_int, metavar="INTEGER",
+                                        help="Starting configurations per stable side for the "
+                                             "limit-set search (stratified, drawn with --seed).")]
+TransientOpt = Annotated[int | None, typer.Option("--transient", parser=strict_int, metavar="INTEGER",
+                                                  help="Throws discarded before recording "
+                                                       f"(default {DEFAULT_CAPS['transient']}).")]
+RecordOpt = Annotated[int | None, typer.Option("--record", parser=strict_int, metavar="INTEGER",
+                                               help="Throws recorded per orbit "
+                                                    f"(default {DEFAULT_CAPS['n_record']}).")]
 MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the analysis may plan to hold, GB; "
                                                                     "above it the command refuses before starting.")]
 MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the analysis may plan to run, s (estimated "
@@ -125,8 +129,9 @@ def limitset_cmd(
     record: RecordOpt = None,
     tol: Annotated[float | None, typer.Option("--tol", help="Recurrence tolerance, m "
                                                             f"(default {DEFAULT_CAPS['tol']:g}).")] = None,
-    max_period: Annotated[int | None, typer.Option("--max-period", help="Longest cycle looked for "
-                                                                        f"(default {DEFAULT_CAPS['max_period']}).")]
+    max_period: Annotated[int | None, typer.Option("--max-period", parser=strict_int, metavar="INTEGER",
+                                                   help="Longest cycle looked for "
+                                                        f"(default {DEFAULT_CAPS['max_period']}).")]
     = None,
     seed: SeedOpt = 0,
     as_json: JsonOpt = False,
@@ -195,16 +200,19 @@ def basins_cmd(
     mu: MuOpt = None,
     model: ModelOpt = "rigid_body",
     x_max: XMaxOpt = None,
-    grid: Annotated[int, typer.Option("--grid", help="Configurations per stable side (≥ 2), evenly spaced "
-                                                     "up to --x-max.")] = 1000,
+    grid: Annotated[int, typer.Option("--grid", parser=strict_int, metavar="INTEGER",
+                                      help="Configurations per stable side (≥ 2), evenly spaced "
+                                           "up to --x-max.")] = 1000,
     method: Annotated[str, typer.Option("--method", help="auto (cells above 20 000 configurations), orbits "
                                                          "(exact orbits) or cells (cell-to-cell mapping).")]
     = "auto",
     seed: SeedOpt = 0,
-    max_throws: Annotated[int, typer.Option("--max-throws", help="Throw cap per orbit; beyond it an orbit is "
-                                                                 "unresolved (label -1).")] = 500,
-    check: Annotated[int, typer.Option("--check", help="Configurations checked by exact orbits "
-                                                       "(cells method; 0: none).")] = 1000,
+    max_throws: Annotated[int, typer.Option("--max-throws", parser=strict_int, metavar="INTEGER",
+                                            help="Throw cap per orbit; beyond it an orbit is "
+                                                 "unresolved (label -1).")] = 500,
+    check: Annotated[int, typer.Option("--check", parser=strict_int, metavar="INTEGER",
+                                       help="Configurations checked by exact orbits "
+                                            "(cells method; 0: none).")] = 1000,
     starts: StartsOpt = 64,
     transient: TransientOpt = None,
     record: RecordOpt = None,
@@ -269,8 +277,9 @@ def funnels_cmd(
     goal: Annotated[str | None, typer.Option("--goal", help="Goal configurations 'side:lo-hi, …' in m "
                                                             "(e.g. '0:0.50-0.90'); none: no priorities.")]
     = None,
-    grid: Annotated[int, typer.Option("--grid", help="Configurations per stable side for each map's basins "
-                                                     "(≥ 2).")] = 400,
+    grid: Annotated[int, typer.Option("--grid", parser=strict_int, metavar="INTEGER",
+                                      help="Configurations per stable side for each map's basins "
+                                           "(≥ 2).")] = 400,
     containment: Annotated[float, typer.Option("--containment", help="Share of a spout that must end in "
                                                                      "another funnel for an edge, in (0, 1].")]
     = 1.0,
