@@ -136,7 +136,8 @@ from .stick_exact import pivot_stick_exact
 from .swing import swing_time
 from .trajectory import count_samples
 
-__all__ = ["LAW_ROUTH", "LAW_VELOCITY", "PARALLEL_MIN", "pick", "throw_many_rigid_body_serial", "throw_many_rigid_body_rk4_serial",
+__all__ = ["LAW_ROUTH", "LAW_VELOCITY", "PARALLEL_MIN", "pick", "throw_many_rigid_body_serial",
+           "throw_many_rigid_body_rk4_serial",
            "count_samples", "coulomb_impact", "departure_window", "pivot_slide", "pivot_stick",
            "pivot_stick_exact", "run_throw", "select_contact_mode", "slide_rhs", "slide_sense",
            "stick_forces", "swing_time", "throw_many_rigid_body", "throw_many_rigid_body_rk4",
