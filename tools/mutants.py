@@ -408,7 +408,11 @@ def main(argv=None) -> int:
     ap.add_argument("--no-baseline", action="store_true", help="skip the unmutated runs of the test subsets")
     ap.add_argument("--tests", nargs="*", help="run these test paths for every mutant instead of its subset")
     a = ap.parse_args(argv)
-    chosen = [m for m in MUTANTS if not a.only or m.id in a.only]
+    by_id = {m.id: m for m in MUTANTS}
+    unknown = [i for i in a.only or () if i not in by_id]
+    if unknown:
+        ap.error(f"unknown mutant ids: {' '.join(unknown)}")
+    chosen = [by_id[i] for i in dict.fromkeys(a.only)] if a.only else list(MUTANTS)  # in the order given
     if a.list or a.check:
         bad = 0
         for m in chosen:

@@ -168,3 +168,16 @@ def test_escape_step_counts_the_throw_that_escaped():
     assert fate.tolist() == [OFF_END] * 3
     # recorded from throw 3 on: the first start rests after throws 3..9, i.e. 7 recorded states
     assert np.isfinite(X[0]).sum() == 7 and np.isfinite(X[1]).sum() == 2 and np.isfinite(X[2]).sum() == 0
+
+
+def test_hull_lower_end_waits_for_the_upper_end_to_settle():
+    """A16: the hull iteration stops only when both ends have settled. Here the first image of the whole
+    domain already starts at ~0 (a transient branch x > 0.9 lands next to the joint) while its upper end
+    is still moving; every orbit ends on the fixed point 0.4, so l = 0.4."""
+    from throwmap.analysis import critical_points
+
+    def f(x, s):
+        return np.where(x > 0.9, (x - 0.9) * 1e-7, 0.4 + 0.2 * (x - 0.4)), s, _ok(x)
+
+    cp = critical_points(FunctionMap(f, {0: (0.0, 1.0)}, name="transient branch"))
+    assert cp.l[0] == pytest.approx(0.4, abs=1e-5)
