@@ -29,9 +29,9 @@ from ..analysis.maps import ThrowMap
 from ..analysis.orbits import orbit_on_attractor
 from ..errors import InvalidStateError, ThrowmapError
 from ..throws.throw import check_model
-from .options import (GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, OmegaOpt, PartOpt, arm_dict, check_finite,
-                      check_out_dir, figure_format, guard, make_out_dir, parse_floats, part_and_arm, save_figure,
-                      strict_int, to_json, write_bytes, write_text)
+from .options import (GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt, arm_dict,
+                      check_finite, check_out_dir, figure_format, guard, make_out_dir, model_options, options_doc,
+                      parse_floats, part_and_arm, save_figure, strict_int, to_json, write_bytes, write_text)
 
 __all__ = ["register", "limitset_cmd", "basins_cmd", "funnels_cmd", "JSON_ARRAYS_MAX", "OPTION_FIELDS"]
 
@@ -123,6 +123,7 @@ def limitset_cmd(
     length: LengthOpt = None,
     mu: MuOpt = None,
     model: ModelOpt = "rigid_body",
+    model_option: ModelOptionOpt = None,
     x_max: XMaxOpt = None,
     starts: StartsOpt = 64,
     transient: TransientOpt = None,
@@ -149,31 +150,32 @@ def limitset_cmd(
     """Critical points r_i, l_i and the forward limit set(s) of the throw map T^ω (paper Sec. III-D)."""
     with guard():
         check_model(model)
+        opts = model_options(model_option, model)
         the_part, arm = part_and_arm(part, h, g, length, mu)
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         fmt_map = figure_format(plot_map, "plot_map")
         check_out_dir(out)
         limits = _limits(max_memory, max_time, force)
-        crit = critical_points(the_part, arm, omega, model, x_max=x_max, **limits)
+        crit = critical_points(the_part, arm, omega, model, x_max=x_max, **limits, **opts)
         with _option_names(), _progress() as bar:
-            limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, **limits,
+            limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, **limits, **opts,
                               transient=transient, n_record=record, tol=tol, max_period=max_period,
                               progress=lambda done, total: bar("iterating", done, total))
         if plot is not None:
             from ..viz.limit_set import plot_limit_set
 
-            orbit = orbit_on_attractor(the_part, arm, omega, model, limit)
+            orbit = orbit_on_attractor(the_part, arm, omega, model, limit, **opts)
             save_figure(plot_limit_set(limit, critical=crit, orbit=orbit), plot, fmt, "plot")
         if plot_map is not None:
             from ..throws.samples import sample_map
 
-            cmap = ThrowMap(the_part, arm, omega, model, x_max)
+            cmap = ThrowMap(the_part, arm, omega, model, x_max, dict(opts))
             save_figure(sample_map(cmap).plot(critical=crit, limit=limit), plot_map, fmt_map, "plot_map")
         doc = {"limit_set": limit.to_dict(), "critical_points": crit.to_dict(), "part": the_part.name,
                "arm": arm_dict(arm), "omega": omega, "model": model, "seed": seed,
                "plot": str(plot) if plot is not None else None,
-               "plot_map": str(plot_map) if plot_map is not None else None, "version": __version__}
+               "plot_map": str(plot_map) if plot_map is not None else None, "model_options": options_doc(opts), "version": __version__}
         written = [p for p in (plot, plot_map) if p is not None]
         if out is not None:
             make_out_dir(out)
@@ -199,6 +201,7 @@ def basins_cmd(
     length: LengthOpt = None,
     mu: MuOpt = None,
     model: ModelOpt = "rigid_body",
+    model_option: ModelOptionOpt = None,
     x_max: XMaxOpt = None,
     grid: Annotated[int, typer.Option("--grid", parser=strict_int, metavar="INTEGER",
                                       help="Configurations per stable side (≥ 2), evenly spaced "
@@ -227,13 +230,14 @@ def basins_cmd(
     """Basins of attraction over a grid of configurations, with a certificate of global attractivity."""
     with guard():
         check_model(model)
+        opts = model_options(model_option, model)
         the_part, arm = part_and_arm(part, h, g, length, mu)
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         check_out_dir(out)
         limits = _limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
-            result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, **limits,
+            result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, **limits, **opts,
                             max_throws=max_throws, n_check=check, n_seeds=starts, transient=transient,
                             n_record=record, x_max=x_max, progress=bar)
         if plot is not None:
@@ -241,7 +245,7 @@ def basins_cmd(
 
             save_figure(plot_basins(result), plot, fmt, "plot")
         extra = {"part": the_part.name, "arm": arm_dict(arm), "omega": omega, "model": model, "seed": seed,
-                 "plot": str(plot) if plot is not None else None, "version": __version__}
+                 "plot": str(plot) if plot is not None else None, "model_options": options_doc(opts), "version": __version__}
         written = [plot] if plot is not None else []
         if out is not None:
             import numpy as np
@@ -273,6 +277,7 @@ def funnels_cmd(
     length: LengthOpt = None,
     mu: MuOpt = None,
     model: ModelOpt = "rigid_body",
+    model_option: ModelOptionOpt = None,
     x_max: XMaxOpt = None,
     goal: Annotated[str | None, typer.Option("--goal", help="Goal configurations 'side:lo-hi, …' in m "
                                                             "(e.g. '0:0.50-0.90'); none: no priorities.")]
@@ -297,6 +302,7 @@ def funnels_cmd(
     """Funnels (mouth: basin, spout: attractor) of several throws and the priority order to a goal (Sec. I-A)."""
     with guard():
         check_model(model)
+        opts = model_options(model_option, model)
         the_part, arm = part_and_arm(part, h, g, length, mu)
         omegas = parse_floats(omega, "omega")
         target = None
@@ -311,7 +317,7 @@ def funnels_cmd(
         check_out_dir(out)
         limits = _limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
-            graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment, **limits,
+            graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment, **limits, **opts,
                             rng=seed, x_max=x_max, method=method, n_seeds=starts, progress=bar)
         if plot is not None:
             from ..viz.funnels import plot_funnel_graph
@@ -319,7 +325,7 @@ def funnels_cmd(
             save_figure(plot_funnel_graph(graph), plot, fmt, "plot")
         doc = {**graph.to_dict(), "part": the_part.name, "arm": arm_dict(arm), "omegas": omegas,
                "model": model, "seed": seed, "plot": str(plot) if plot is not None else None,
-               "version": __version__}
+               "model_options": options_doc(opts), "version": __version__}
         written = [plot] if plot is not None else []
         if out is not None:
             make_out_dir(out)

@@ -40,7 +40,8 @@ from ..system.arm import Arm
 from ..throws.throw import DEFAULT_MODEL, MODELS
 
 __all__ = [
-    "BackOpt", "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "MuOpt", "OmegaOpt", "PartOpt", "SideOpt", "XOpt",
+    "BackOpt", "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "ModelOptionOpt", "MuOpt", "OmegaOpt", "PartOpt",
+    "SideOpt", "XOpt", "model_options", "options_doc",
     "arm_dict", "check_directory", "check_finite", "check_out_dir", "check_output", "figure_format", "format_value",
     "guard", "make_out_dir", "parse_floats", "part_and_arm", "plot_format", "save_figure", "side_value", "stderr_line",
     "strict_int", "to_json",
@@ -89,6 +90,53 @@ SideOpt = Annotated[int, typer.Option("--side", parser=side_value, metavar="INTE
 OmegaOpt = Annotated[float, typer.Option("--omega", help="Release angular velocity ω, rad/s (≥ 0).")]
 ModelOpt = Annotated[str, typer.Option("--model", help=f"Throw model: {', '.join(MODELS)} (default {DEFAULT_MODEL}).")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON to stdout instead of a table.")]
+ModelOptionOpt = Annotated[list[str] | None, typer.Option(
+    "--model-option", "-O", metavar="KEY=VALUE",
+    help="A numerical option of the throw model, repeatable: e.g. -O impact_law=velocity (rigid_body), "
+         "-O tol=1e-12, -O max_impacts=50 (the model's options type lists them; unknown keys are refused).")]
+
+
+def _option_value(text: str):
+    """A ``--model-option`` value: an integer, a float (``inf`` too), ``true``/``false``, else the string."""
+    low = text.strip().lower()
+    if re.fullmatch(r"[+-]?[0-9]+", low):
+        return int(low)
+    if low in ("true", "false"):
+        return low == "true"
+    try:
+        return float(low)
+    except ValueError:
+        return text.strip()
+
+
+def model_options(values, model: str) -> dict:
+    """``{"options": <the model's options value>}`` from ``-O KEY=VALUE`` entries, checked before any work.
+
+    The options value goes to the library as ``options=`` (never as loose keywords, so a
+    model option such as ``tol`` cannot be mistaken for an analysis keyword of the same name).
+    Empty when no entry is given (the model's defaults)."""
+    if not values:
+        return {}
+    from ..models import get_model
+    from ..models.base import build_options
+
+    given = {}
+    for item in values:
+        key, sep, val = str(item).partition("=")
+        key = key.strip()
+        if not sep or not key or not val.strip():
+            raise InvalidStateError("model_option", f"must be KEY=VALUE, got {item!r}")
+        if key in given:
+            raise InvalidStateError(key, "given twice as --model-option")
+        given[key] = _option_value(val)
+    return {"options": build_options(get_model(model), None, given)}
+
+
+def options_doc(opts: dict) -> dict | None:
+    """The model options a run used, for its JSON record (None: the model's defaults)."""
+    if not opts:
+        return None
+    return json_ready(dataclasses.asdict(opts["options"]))
 
 
 # ------------------------------------------------------------------ errors

@@ -17,9 +17,9 @@ from .. import __version__
 from ..errors import InvalidStateError
 from ..throws.orbit import Orbit, iterate
 from ..throws.throw import DEFAULT_MODEL, check_model, throw
-from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt,
-                      arm_dict, check_finite, figure_format, format_value, guard, parse_floats, part_and_arm, save_figure,
-                      strict_int, to_json)
+from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt,
+                      SideOpt, XOpt, arm_dict, check_finite, figure_format, format_value, guard, model_options,
+                      options_doc, parse_floats, part_and_arm, save_figure, strict_int, to_json)
 
 __all__ = ["register", "throw_cmd", "iterate_cmd", "PROGRESS_THRESHOLD"]
 
@@ -39,18 +39,20 @@ def throw_cmd(
     mu: MuOpt = None,
     back: BackOpt = None,
     model: ModelOpt = DEFAULT_MODEL,
+    model_option: ModelOptionOpt = None,
     as_json: JsonOpt = False,
 ) -> None:
     """One throw from rest at (x, side): where the part lands and how."""
     with guard():
         check_model(model)
+        opts = model_options(model_option, model)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         check_finite(omega, "omega")
-        out = throw(the_part, arm, x, side, omega, model=model)
+        out = throw(the_part, arm, x, side, omega, model=model, **opts)
         if as_json:
-            doc = {**out.to_dict(), "part": the_part.name, "arm": arm_dict(arm), "version": __version__}
+            doc = {**out.to_dict(), "part": the_part.name, "arm": arm_dict(arm), "model_options": options_doc(opts), "version": __version__}
             typer.echo(to_json(doc))
             return
         from rich.console import Console
@@ -82,7 +84,7 @@ def throw_cmd(
 
 
 # ------------------------------------------------------------------ iterate
-def _iterate_with_progress(part, arm, state, omegas: list[float], model: str) -> Orbit:
+def _iterate_with_progress(part, arm, state, omegas: list[float], model: str, opts: dict) -> Orbit:
     """:func:`throwmap.iterate` with a Rich progress bar on stderr."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
@@ -90,7 +92,7 @@ def _iterate_with_progress(part, arm, state, omegas: list[float], model: str) ->
     with Progress(TextColumn("throwing"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
                   console=Console(stderr=True), transient=True) as bar:
         task = bar.add_task("throwing", total=len(omegas))
-        return iterate(part, arm, state, omegas, model=model,
+        return iterate(part, arm, state, omegas, model=model, **opts,
                        progress=lambda done: bar.update(task, completed=done))
 
 
@@ -143,27 +145,29 @@ def iterate_cmd(
     mu: MuOpt = None,
     back: BackOpt = None,
     model: ModelOpt = DEFAULT_MODEL,
+    model_option: ModelOptionOpt = None,
     as_json: JsonOpt = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a figure of the orbit (e.g. orbit.png).")] = None,
 ) -> None:
     """Repeated throws from (x, side): an orbit of the throw map."""
     with guard():
         check_model(model)
+        opts = model_options(model_option, model)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         omegas = _throw_rates(omega, n)
         fmt = figure_format(plot, "plot")
         if len(omegas) > PROGRESS_THRESHOLD:
-            orbit = _iterate_with_progress(the_part, arm, (x, side), omegas, model)
+            orbit = _iterate_with_progress(the_part, arm, (x, side), omegas, model, opts)
         else:
-            orbit = iterate(the_part, arm, (x, side), omegas, model=model)
+            orbit = iterate(the_part, arm, (x, side), omegas, model=model, **opts)
         summary = _orbit_summary(orbit, len(omegas))
         if plot is not None:
             save_figure(orbit.plot(part=the_part, arm=arm), plot, fmt, "plot")
         if as_json:
             doc = {**orbit.to_dict(), "summary": summary, "part": the_part.name, "arm": arm_dict(arm),
-                   "plot": str(plot) if plot is not None else None, "version": __version__}
+                   "plot": str(plot) if plot is not None else None, "model_options": options_doc(opts), "version": __version__}
             typer.echo(to_json(doc))
             return
         from rich.console import Console
