@@ -63,3 +63,11 @@ def test_bad_model_options_one_line(opt, field):
 def test_paper_model_refuses_rigid_body_options():
     res = invoke("throw", *TRI, *START, "--model", "paper", "-O", "impact_law=velocity")
     assert res.exit_code == 2 and "error: impact_law:" in res.stderr
+
+
+def test_animate_takes_model_options(tmp_path):
+    ok = invoke("animate", *TRI, *START, "--model", "rigid_body", "-O", "impact_law=velocity", "--fps", "5",
+                "--out", tmp_path / "a.gif")
+    assert ok.exit_code == 0, ok.output
+    bad = invoke("animate", *TRI, *START, "-O", "impact_law=x", "--out", tmp_path / "b.gif")
+    assert bad.exit_code == 2 and bad.stderr.startswith("error: impact_law:") and not (tmp_path / "b.gif").exists()

@@ -18,8 +18,8 @@ import typer
 from ..errors import InvalidStateError, ThrowmapError
 from ..models import DEFAULT_MODEL, model_names
 from ..throws.orbit_trajectory import orbit_trajectory, trajectory_models
-from .options import (BackOpt, GOpt, HOpt, LengthOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt, check_finite,
-                      check_output, guard, part_and_arm, strict_int)
+from .options import (BackOpt, GOpt, HOpt, LengthOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt,
+                      check_finite, check_output, guard, model_options, part_and_arm, strict_int)
 
 __all__ = ["register", "animate_cmd", "ANIMATE_MODELS", "PROGRESS_FRAMES"]
 
@@ -29,10 +29,10 @@ PROGRESS_FRAMES = 60
 """A progress bar (stderr, terminals only) is shown for animations with more frames than this."""
 
 
-def _trajectory(model, part, arm, x, side, omega, n):
+def _trajectory(model, part, arm, x, side, omega, n, opts=None):
     """The trajectory of ``n`` throws (:func:`~throwmap.throws.orbit_trajectory.orbit_trajectory`); raises
     :class:`ImportError` where the model's module is not installed."""
-    return orbit_trajectory(part, arm, x, side, omega, n, model=model)
+    return orbit_trajectory(part, arm, x, side, omega, n, model=model, **(opts or {}))
 
 
 def _summary(traj) -> tuple[str, str]:
@@ -66,6 +66,7 @@ def animate_cmd(
                                    help="Number of throws (> 1 animates an orbit).")] = 1,
     model: Annotated[str, typer.Option("--model", help=f"Model: {', '.join(ANIMATE_MODELS)} "
                                                        f"(default {DEFAULT_MODEL}).")] = DEFAULT_MODEL,
+    model_option: ModelOptionOpt = None,
     out: Annotated[Path, typer.Option("--out", help="Animation file, .gif or .mp4 (mp4 needs ffmpeg).")]
     = Path("out/throw.gif"),
     fps: Annotated[int, typer.Option("--fps", parser=strict_int, metavar="INTEGER", help="Frames per second.")] = 30,
@@ -77,6 +78,7 @@ def animate_cmd(
         if model not in ANIMATE_MODELS:
             what = f"model {model!r} records no trajectory" if model in model_names() else f"unknown model {model!r}"
             raise InvalidStateError("model", f"{what} (choose from {', '.join(ANIMATE_MODELS)})")
+        opts = model_options(model_option, model)
         if n < 1:
             raise InvalidStateError("n", f"must be a positive integer, got {n}")
         if fps < 1:
@@ -93,7 +95,7 @@ def animate_cmd(
         check_finite(omega, "omega")
         os.environ.setdefault("MPLBACKEND", "Agg")  # files only, never a window
         try:
-            traj = _trajectory(model, the_part, arm, x, side, omega, n)
+            traj = _trajectory(model, the_part, arm, x, side, omega, n, opts)
         except ImportError as err:
             missing = getattr(err, "name", None) or ""
             if missing.startswith("throwmap") or not missing:
