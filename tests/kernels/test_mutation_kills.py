@@ -186,3 +186,17 @@ def test_small_angle_rest_puts_the_contact_vertex_where_it_touched(part, model):
                     jogs += 1
                     assert o.x + part.uL[o.side] == pytest.approx(o.contact_x, abs=1e-12)
     assert flips and jogs
+
+
+@pytest.mark.parametrize("theta, mu", [(2.0, 0.05), (2.0, 1.0), (0.3, 0.05), (0.3, 1.0), (2.6, 0.3)])
+def test_contact_mode_sticks_exactly_inside_the_friction_cone(theta, mu):
+    """K51: from rest on a pivot (θ̇ = 0, v_A = 0) the contact sticks iff N > 0 and |F| ≤ μ N, with the
+    compound pendulum's forces N = 1 − k + k s², F = k s cos θ (units m g; k = ℓ²/I, e = s at rest)."""
+    from throwmap.kernels.rigid_body.modes import MODE_STICK
+    from throwmap.kernels.rigid_body.slide import select_contact_mode
+
+    ell, rho2 = 0.07, 0.07 ** 2  # k = 1/2
+    k, s = 0.5, math.sin(theta)
+    N, F = 1.0 - k + k * s * s, k * s * math.cos(theta)
+    mode, _ = select_contact_mode(theta, 0.0, 0.0, ell, rho2, G, mu, mu, False)
+    assert (mode == MODE_STICK) == (N > 0 and abs(F) <= mu * N)
