@@ -200,3 +200,19 @@ def test_contact_mode_sticks_exactly_inside_the_friction_cone(theta, mu):
     N, F = 1.0 - k + k * s * s, k * s * math.cos(theta)
     mode, _ = select_contact_mode(theta, 0.0, 0.0, ell, rho2, G, mu, mu, False)
     assert (mode == MODE_STICK) == (N > 0 and abs(F) <= mu * N)
+
+
+@pytest.mark.parametrize("theta", [0.3, 2.0, 2.6])
+def test_sticking_phase_outside_the_friction_cone_slips_at_once(theta):
+    """K52: a sticking phase entered with |F| > μ N (either sign of F) ends at once with the slip event."""
+    from throwmap.kernels.rigid_body.modes import EV_SLIP
+    from throwmap.kernels.rigid_body.stick import pivot_stick
+
+    ell = 0.07
+    I = 2 * ell * ell  # k = 1/2
+    k, s, mu = 0.5, math.sin(theta), 0.05
+    N, F = 1.0 - k + k * s * s, k * s * math.cos(theta)
+    assert N > 0 and abs(F) > mu * N  # the case this test is about
+    ev, th, _, t = pivot_stick(theta, 0.0, 0.25, 2.9, ell, I, G, mu, 0.0, 1000, 0.2, 0.0, 0.0, np.empty((0, 4)),
+                               np.zeros(8), _record())
+    assert ev == EV_SLIP and th == theta and t == 0.0
