@@ -8,7 +8,7 @@ import math
 from ..errors import InvalidPartError
 from .part import Part
 
-__all__ = ["triangle_30_60_90", "regular_polygon", "rectangle", "BUILTIN_PARTS", "builtin_part", "lead_name"]
+__all__ = ["BUILTIN_PARTS", "builtin_part", "lead_name", "rectangle", "regular_polygon", "triangle_30_60_90"]
 
 
 def lead_name(name: str, point_masses) -> str:
