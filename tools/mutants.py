@@ -121,7 +121,10 @@ MUTANTS: tuple[Mutant, ...] = (
     M("K14", "kernels/paper.py", "yc = h + dk + vy0 * t - 0.5 * g * t * t", "yc = h + dk + vy0 * t + 0.5 * g * t * t",
       "CM height at impact: sign of gravity"),
     M("K15", "kernels/paper.py", "        if x + uL[k] <= -back:\n            status = C.BEHIND_JOINT",
-      "        if x - uL[k] <= -back:\n            status = C.BEHIND_JOINT", "final behind-joint test: x − u_L"),
+      "        if x - uL[k] <= -back:\n            status = C.BEHIND_JOINT", "final behind-joint test: x − u_L",
+      "the cascade already returns BEHIND_JOINT whenever its pivot or landing vertex (the two support "
+      "vertices of the final side) is at x ≤ −back (kernels/roll.py, guard leave_arm), so an OK result has "
+      "x + u_L > −back and x − u_L > 0 > −back: this final check never fires either way"),
     M("K16", "kernels/paper.py", "rec[C.MU_IMPACT] = abs(jx) / jy", "rec[C.MU_IMPACT] = jx / jy",
       "impact friction ratio without abs"),
     M("K17", "kernels/paper.py", "b[j] = omega * (x0 + pu[j])", "b[j] = omega * (x0 - pu[j])",
