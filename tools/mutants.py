@@ -53,7 +53,8 @@ TESTS = (  # (path prefix under src/throwmap, test subset run for a mutant there
     ("kernels/rigid_body/", ("tests/kernels/test_rigid_body.py", "tests/kernels/test_impact_process.py",
                              "tests/kernels/test_rigid_body_stick.py", "tests/kernels/test_mu_zero.py", KILLS_K)),
     ("kernels/", ("tests/kernels/test_throw_physics.py", "tests/kernels/test_paper_record.py",
-                  "tests/kernels/test_contact_scale.py", "tests/kernels/test_mu_zero.py", KILLS_K)),
+                  "tests/kernels/test_contact_scale.py", "tests/kernels/test_mu_zero.py", KILLS_K,
+                  "tests/kernels/test_mutation_kills2.py")),
     ("analysis/critical.py", ("tests/analysis/test_critical.py", KILLS_A)),
     ("analysis/basins.py", ("tests/analysis/test_basins_funnels.py", "tests/analysis/test_budget.py", KILLS_A)),
     ("analysis/cellmap.py", ("tests/analysis/test_basins_funnels.py", KILLS_A)),
@@ -300,7 +301,10 @@ def _env(cache: str, pyc: str) -> dict:
 
 def run_tests(tests, cache: str, pyc: str, timeout: float) -> tuple[str, str, float]:
     """Run ``tests`` (pytest -x); returns (result, detail, seconds): result killed/survived/timeout/error."""
-    paths = [t for t in tests if (ROOT / t).exists()]
+    missing = [t for t in tests if not (ROOT / t.split("::")[0]).exists()]
+    if missing:  # never fall back to pytest's default paths (the whole suite) for a mistyped entry
+        raise SystemExit(f"error: tests: no such test file {missing[0]!r} (paths relative to the repository)")
+    paths = list(tests)
     cmd = ["nice", "-n", "10", sys.executable, "-m", "pytest", *PYTEST_ARGS, *paths]
     t0 = time.monotonic()
     try:
