@@ -23,7 +23,8 @@ from ..system.part import Part
 from ..system.system import System
 from .outcome import BatchOutcome, ThrowOutcome
 
-__all__ = ["MODELS", "DEFAULT_MODEL", "throw", "throw_batch", "check_model", "check_start", "prepare"]
+__all__ = ["MODELS", "DEFAULT_MODEL", "throw", "throw_batch", "check_model", "check_start", "prepare",
+           "start_interval"]
 
 MODELS = model_names()
 """The registered model names at import (see :func:`throwmap.models.model_names` for later registrations)."""
@@ -83,8 +84,43 @@ def _check_scalar(value, field: str) -> float:
     return v
 
 
+def _last_at_most(u: float, bound: float) -> float:
+    """The largest double ``x`` with ``x + u <= bound`` in floating point (``bound`` finite)."""
+    x = bound - u
+    while x + u > bound:
+        x = math.nextafter(x, -math.inf)
+    while math.nextafter(x, math.inf) + u <= bound:
+        x = math.nextafter(x, math.inf)
+    return x
+
+
+def start_interval(part: Part, arm: Arm, side: int) -> tuple[float, float]:
+    """The admissible starts (rests) on ``side``: ``x`` (m, CM) with ``lo < x <= hi``.
+
+    The rule (README "the arm"; :func:`throwmap.engine.rest.rest_status` for the engines' rests):
+    a part rests on the arm iff both support vertices are on it, −back < x + u_L and
+    x + u_R ≤ length. ``lo`` is the largest double with ``lo + u_L ≤ −back`` and ``hi``
+    the largest with ``hi + u_R ≤ length`` (``inf`` on an unbounded arm), so that
+    ``lo < x <= hi`` holds exactly for the x that :func:`check_start` accepts. The
+    interval is empty (``hi <= lo``) when the part is longer on this side than the arm.
+    ``side`` must be a stable side (:meth:`Part.check_side`).
+    """
+    if not isinstance(part, Part):
+        raise InvalidStateError("part", f"must be a Part (e.g. throwmap.triangle_30_60_90()), got {type(part).__name__}")
+    if not isinstance(arm, Arm):
+        raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
+    k = part.check_side(side)
+    lo = _last_at_most(float(part.uL[k]), -arm.back)
+    hi = math.inf if arm.length is None else _last_at_most(float(part.uR[k]), float(arm.length))
+    return lo, hi
+
+
 def check_start(part: Part, arm: Arm, x: float, side: int, omega: float) -> tuple[float, int, float]:
-    """Validate a throw's start; returns ``(x, side, omega)`` as Python scalars."""
+    """Validate a throw's start; returns ``(x, side, omega)`` as Python scalars.
+
+    Admissible: a stable side, finite ω ≥ 0 and both support vertices on the arm,
+    −back < x + u_L and x + u_R ≤ length (:func:`start_interval`).
+    """
     if not isinstance(part, Part):
         raise InvalidStateError("part", f"must be a Part (e.g. throwmap.triangle_30_60_90()), got {type(part).__name__}")
     if not isinstance(arm, Arm):
@@ -94,14 +130,18 @@ def check_start(part: Part, arm: Arm, x: float, side: int, omega: float) -> tupl
     omega = _check_scalar(omega, "omega")
     if omega < 0:
         raise InvalidStateError("omega", f"must be ≥ 0 (the arm throws upward), got {omega}")
-    x_min = -float(part.uL[k]) - arm.back
-    if x <= x_min:
+    if not x + float(part.uL[k]) > -arm.back:
+        x_min = -float(part.uL[k]) - arm.back
         edge = "the joint" if arm.back == 0.0 else f"the arm's edge behind the joint (arm.back = {arm.back:g} m)"
         raise InvalidStateError(
             "x", f"the left support vertex is behind {edge}: on side {k} x must exceed {x_min:.6g} m, got {x:.6g}"
         )
-    if arm.length is not None and x > arm.length:
-        raise InvalidStateError("x", f"the CM is beyond the arm's end ({arm.length:g} m), got {x:.6g}")
+    if arm.length is not None and not x + float(part.uR[k]) <= arm.length:
+        x_max = float(arm.length) - float(part.uR[k])
+        raise InvalidStateError(
+            "x", f"the right support vertex is beyond the arm's end ({arm.length:g} m): on side {k} x must be "
+                 f"≤ {x_max:.6g} m, got {x:.6g}"
+        )
     return x, k, omega
 
 
@@ -122,7 +162,8 @@ def throw(
 
     Returns a :class:`ThrowOutcome` (new ``x``, ``side``, ``status`` and the record).
     Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible start:
-    unknown or unstable side, a left support vertex at x ≤ −arm.back (x ≤ 0 by default), negative ω.
+    unknown or unstable side, a left support vertex at x ≤ −arm.back (x ≤ 0 by default), a right
+    support vertex beyond ``arm.length``, negative ω (:func:`start_interval` gives the admissible x).
 
     ``model`` is a registered model name (default ``"rigid_body"``, see
     :mod:`throwmap.models`). ``fixtures`` and ``alpha`` (rad) describe the
@@ -185,17 +226,18 @@ def throw_batch(
     xf = np.array(xb, dtype=float).ravel()
     of = np.array(ob, dtype=float).ravel()
     sraw = np.asarray(sb).ravel()
-    if sraw.size and not np.issubdtype(sraw.dtype, np.integer):
-        if not np.all(np.isfinite(sraw.astype(float))) or np.any(sraw.astype(float) != np.round(sraw.astype(float))):
-            raise InvalidStateError("side", "must be integer side indices")
+    if sraw.size and (sraw.dtype.kind == "b" or not np.issubdtype(sraw.dtype, np.integer)):
+        # the rule of :meth:`Part.check_side` (one throw): sides are integers, not 1.0 nor True
+        raise InvalidStateError("side", f"must be integer side indices, got {sraw.dtype} values")
     sf = sraw.astype(np.int64)
     n = part.n_sides
     in_range = (sf >= 0) & (sf < n)
     stable = np.zeros(sf.shape, dtype=bool)
     stable[in_range] = part.stable[sf[in_range]]
     uL = np.where(in_range, part.uL[np.clip(sf, 0, n - 1)], np.nan)
+    uR = np.where(in_range, part.uR[np.clip(sf, 0, n - 1)], np.nan)
     L = arm.length_or_inf
-    valid = stable & np.isfinite(xf) & np.isfinite(of) & (of >= 0) & (xf + uL > -arm.back) & (xf <= L)
+    valid = stable & np.isfinite(xf) & np.isfinite(of) & (of >= 0) & (xf + uL > -arm.back) & (xf + uR <= L)
     if on_invalid == "raise" and not np.all(valid):
         i = int(np.flatnonzero(~valid)[0])
         idx = np.unravel_index(i, shape) if shape else ()
