@@ -39,7 +39,7 @@ __all__ = [
 ]
 
 
-def plot_throw_map(part, arm, omega, *, model: str = "paper", sides=None, x_max=None, n: int = 1500, axes=None,
+def plot_throw_map(part, arm, omega, *, model: str = DEFAULT_MODEL, sides=None, x_max=None, n: int = 1500, axes=None,
                    unit: str = "cm", **throw_options):
     """T(x) against x, one panel per starting side, with the diagonal (paper Fig. 2); returns the Figure.
 

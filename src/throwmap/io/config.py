@@ -3,11 +3,11 @@
 Schema (SI units, see :mod:`throwmap.conventions`)::
 
     [part]
-    name = "my part"              # optional (default: the file's stem)
+    name = "my part"              # optional (default: the file's stem, plus its lead weights)
     vertices = [[x, y], ...]      # m, a convex polygon in either orientation
     mass = 0.05                   # kg, mass of the uniform plate
-    com = [x, y]                  # m, optional (default: computed)
-    radius_of_gyration = 0.04     # m, optional (default: computed)
+    com = [x, y]                  # m, optional (default: computed; written only when overridden)
+    radius_of_gyration = 0.04     # m, optional (default: computed; written only when overridden)
 
     [[part.point_masses]]         # optional, repeatable: lead weights
     mass = 0.01                   # kg
@@ -52,7 +52,7 @@ from ..conventions import G
 from ..errors import ConfigError, InvalidPartError
 from .files import atomic_write_text
 from ..system.part import Part
-from ..system.catalogue import BUILTIN_PARTS, builtin_part
+from ..system.catalogue import BUILTIN_PARTS, builtin_part, lead_name
 
 __all__ = [
     "LoadedConfig",
@@ -63,6 +63,7 @@ __all__ = [
     "part_to_toml",
     "part_document",
     "arm_document",
+    "overrides",
     "save_part",
     "save_part_toml",
 ]
@@ -189,15 +190,21 @@ def _validate(model: type[_Spec], data: Any, prefix: str, source: Path | None = 
 
 
 # ----------------------------------------------------------------- build objects
-def _build_part(spec: PartSpec, default_name: str = "") -> Part:
-    return Part.from_vertices(
+def _build_part(spec: PartSpec, default_name: str | None = None) -> Part:
+    """The part of a ``[part]`` table. Without a ``name`` key: ``default_name`` (a file's stem) with
+    its lead weights appended (:func:`~throwmap.system.catalogue.lead_name`), or, with no
+    ``default_name``, the descriptive default of :meth:`Part.from_vertices`."""
+    part = Part.from_vertices(
         spec.vertices,
         mass=spec.mass,
         com=spec.com,
         radius_of_gyration=spec.radius_of_gyration,
         point_masses=[(pm.mass, pm.at) for pm in spec.point_masses],
-        name=spec.name if spec.name is not None else default_name,
+        name=spec.name,
     )
+    if spec.name is None and default_name is not None:
+        part = dataclasses.replace(part, name=lead_name(default_name, part.point_masses))
+    return part
 
 
 def _build_arm(spec: ArmSpec) -> Arm:
@@ -279,7 +286,8 @@ def _read_document(path: Path) -> Any:
 def load_config(path) -> LoadedConfig:
     """Read and validate a part/arm file (``.toml`` or ``.json``).
 
-    The part's name defaults to the file's stem. Raises :class:`ConfigError`
+    The part's name defaults to the file's stem, with its lead weights appended
+    (``"bracket+lead(12 g at (9, 1) cm)"``). Raises :class:`ConfigError`
     (``field="file"`` for unreadable or malformed files, the dotted key path
     otherwise), or the :class:`InvalidPartError` / :class:`InvalidArmError` of an
     invalid part or arm.
@@ -356,15 +364,40 @@ def _plate_mass(part: Part) -> float:
     return plate  # pragma: no cover - within one ulp of exact
 
 
+def overrides(part: Part) -> dict:
+    """The mass properties of ``part`` that its vertices, plate mass and point masses do not give:
+    ``{"com": (x, y), "radius_of_gyration": ρ}``, each present only when it was an override.
+
+    A part file writes only these, so editing its vertices, mass or point masses moves the CM
+    and ρ (paper Sec. V: lead weights move the CM and inertia consistently), while a part built
+    with a given ``com`` or ``radius_of_gyration`` still reads back equal. The check repeats the
+    loader's own computation (:meth:`Part.from_vertices` on the written numbers), so it is exact.
+    """
+    vertices, plate = [tuple(v) for v in part.vertices], _plate_mass(part)
+    pms = [(m, tuple(at)) for m, at in part.point_masses]
+    out = {}
+    try:
+        computed = Part.from_vertices(vertices, mass=plate, point_masses=pms).com
+    except InvalidPartError:  # pragma: no cover - the plate-plus-lead CM of a convex part is a valid CM
+        computed = None
+    if computed != part.com:
+        out["com"] = part.com
+    rho = Part.from_vertices(vertices, mass=plate, point_masses=pms, com=part.com).radius_of_gyration
+    if rho != part.radius_of_gyration:
+        out["radius_of_gyration"] = part.radius_of_gyration
+    return out
+
+
 def part_to_toml(part: Part, arm: Arm | None = None) -> str:
     """The TOML text of a part file that :func:`load_config` reads back to an equal part.
 
-    The centre of mass and radius of gyration are written explicitly, so the
-    file reproduces the part exactly; ``mass`` is the plate mass without the
-    point masses (the part's total mass is their sum).
+    ``mass`` is the plate mass without the point masses (the part's total mass is their
+    sum). ``com`` and ``radius_of_gyration`` are written only when they were overrides
+    (:func:`overrides`), so editing the file's vertices, mass or point masses moves them.
     """
     from .. import __version__
 
+    given = overrides(part)
     lines = [
         f"# throwmap {__version__} part file; SI units (m, kg, s), see throwmap.conventions",
         "",
@@ -374,9 +407,11 @@ def part_to_toml(part: Part, arm: Arm | None = None) -> str:
         *(f"    {_toml_point(v)}," for v in part.vertices),
         "]",
         f"mass = {_toml_float(_plate_mass(part))}  # kg, plate only (total {part.mass:.6g} kg)",
-        f"com = {_toml_point(part.com)}  # m",
-        f"radius_of_gyration = {_toml_float(part.radius_of_gyration)}  # m, about the CM",
     ]
+    if "com" in given:
+        lines.append(f"com = {_toml_point(part.com)}  # m, given (not the plate-plus-lead CM)")
+    if "radius_of_gyration" in given:
+        lines.append(f"radius_of_gyration = {_toml_float(part.radius_of_gyration)}  # m, about the CM, given")
     for m, at in part.point_masses:
         lines += ["", "[[part.point_masses]]", f"mass = {_toml_float(m)}  # kg", f"at = {_toml_point(at)}  # m"]
     if arm is not None:
@@ -407,13 +442,13 @@ def arm_document(arm: Arm) -> dict:
 
 def part_document(part: Part, arm: Arm | None = None) -> dict:
     """The part file as a document (``{"part": {...}, "arm": {...}}``) that :func:`load_config`
-    reads back to an equal part and arm; ``mass`` is the plate mass without the point masses."""
+    reads back to an equal part and arm; ``mass`` is the plate mass without the point masses,
+    ``com`` / ``radius_of_gyration`` are present only when they were overrides (:func:`overrides`)."""
     doc = {"part": {
         "name": part.name,
         "vertices": [list(v) for v in part.vertices],
         "mass": _plate_mass(part),
-        "com": list(part.com),
-        "radius_of_gyration": part.radius_of_gyration,
+        **{k: (list(v) if k == "com" else v) for k, v in overrides(part).items()},
         "point_masses": [{"mass": m, "at": list(at)} for m, at in part.point_masses],
     }}
     if arm is not None:

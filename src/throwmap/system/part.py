@@ -22,7 +22,19 @@ from .geometry import (
     side_table,
 )
 
-__all__ = ["Part", "Side"]
+__all__ = ["Part", "Side", "default_name"]
+
+
+def default_name(n_vertices: int, plate_mass: float, point_masses=()) -> str:
+    """The name of a part built without one: ``"polygon(5 vertices, 50 g)"`` (the plate's
+    vertex count and mass, kg shown in g), with its lead weights appended as
+    :func:`throwmap.system.catalogue.lead_name` does (``"…+lead(12 g at (9, 1) cm)"``),
+    so a figure's title always says which part it shows."""
+    name = f"polygon({n_vertices} vertices, {1000 * plate_mass:.4g} g)"
+    if not point_masses:
+        return name
+    items = "; ".join(f"{1000 * m:.4g} g at ({100 * x:.4g}, {100 * y:.4g}) cm" for m, (x, y) in point_masses)
+    return f"{name}+lead({items})"
 
 
 @dataclass(frozen=True, slots=True)
@@ -132,7 +144,7 @@ class Part:
         com=None,
         radius_of_gyration: float | None = None,
         point_masses=(),
-        name: str = "",
+        name: str | None = None,
     ) -> "Part":
         """Build a part from a convex polygon and its mass properties.
 
@@ -152,6 +164,9 @@ class Part:
             Lead weights (kg, m) inside or on the polygon. They add to the total
             mass and move the CM and inertia consistently (the reviewer's question
             in paper Sec. V): no separate CM and inertia can be incompatible.
+        name : str, optional
+            Free label. Default (None): :func:`default_name`, e.g. ``"polygon(4 vertices, 70 g)"``
+            plus the lead weights; an explicit ``""`` stays empty.
 
         Explicit ``com``/``radius_of_gyration`` override the computed values.
         """
@@ -201,7 +216,7 @@ class Part:
             com=(float(c[0]), float(c[1])),
             radius_of_gyration=rho,
             point_masses=tuple(pms),
-            name=name,
+            name=default_name(len(v), m_plate, pms) if name is None else name,
         )
 
     # -------------------------------------------------------------- queries

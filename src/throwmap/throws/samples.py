@@ -22,6 +22,7 @@ from ..errors import InvalidStateError, shown
 from ..system.arm import Arm
 from ..system.part import Part
 from .outcome import Status
+from ..models import DEFAULT_MODEL
 from .throw import throw_batch
 
 __all__ = ["MapSamples", "sample_map", "throw_map_samples"]
@@ -170,7 +171,7 @@ def sample_map(cmap, n: int = DEFAULT_N) -> MapSamples:
                       label=str(cmap.label), info=info)
 
 
-def throw_map_samples(part: Part, arm: Arm, omega: float, *, model: str = "paper", sides=None, x_max=None,
+def throw_map_samples(part: Part, arm: Arm, omega: float, *, model: str = DEFAULT_MODEL, sides=None, x_max=None,
                       n: int = DEFAULT_N, **throw_options) -> MapSamples:
     """The throw map T^ω of ``part`` on ``arm`` (paper Sec. III-D, Fig. 2) at ``n`` x per side.
 

@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from ..throws.trajectory import Trajectory, world_vertices
+from .style import part_label
 
 __all__ = ["Scene", "frame_label", "sample_frames", "scale_bar_length"]
 
@@ -103,7 +104,7 @@ def _default_title(traj: Trajectory) -> str:
     """Part(s), h, ω and the model (or source) of a trajectory: what every figure's title names."""
     from .style import describe_setting
 
-    names = " + ".join(dict.fromkeys(p.name or "part" for p in traj.parts))
+    names = " + ".join(dict.fromkeys(part_label(p) or "part" for p in traj.parts))
     outs = traj.meta.get("outcomes", ()) if isinstance(traj.meta, dict) else ()
     omegas = list(dict.fromkeys(float(o.omega) for o in outs if hasattr(o, "omega")))
     models = list(dict.fromkeys(str(o.model) for o in outs if getattr(o, "model", None)))

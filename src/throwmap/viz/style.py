@@ -11,7 +11,7 @@ import math
 
 from ..errors import InvalidStateError
 
-__all__ = ["ESCAPE_COLOR", "UNITS", "attractor_colors", "describe_setting", "map_title", "save_figure", "scale",
+__all__ = ["ESCAPE_COLOR", "UNITS", "attractor_colors", "describe_setting", "part_label", "map_title", "save_figure", "scale",
            "side_colors", "wrap_setting", "x_range_text"]
 
 UNITS = {"cm": 100.0, "m": 1.0}
@@ -60,6 +60,19 @@ def _omegas_text(omegas) -> str:
     return "ω = " + ", ".join(f"{w:g}" for w in om) + " rad/s" if om else "ω = ?"
 
 
+def part_label(part) -> str:
+    """A part's name for a title: ``part.name``, or for a :class:`~throwmap.system.part.Part` with an
+    empty name its descriptive default (:func:`~throwmap.system.part.default_name`:
+    ``"polygon(4 vertices, 70 g)+lead(…)"``); a plain string as it is; ``""`` when unknown."""
+    name = getattr(part, "name", part)
+    if not name and hasattr(part, "point_masses") and hasattr(part, "vertices"):
+        from ..system.part import default_name
+
+        added = sum(m for m, _ in part.point_masses)
+        return default_name(len(part.vertices), part.mass - added, part.point_masses)
+    return "" if name is None else str(name)
+
+
 def describe_setting(part=None, h=None, omegas=(), model=None, mu=None) -> str:
     """What a figure shows, for its title: ``"<part>, h = -0.01 m, ω = 4 rad/s, model 'paper'"``.
 
@@ -68,7 +81,7 @@ def describe_setting(part=None, h=None, omegas=(), model=None, mu=None) -> str:
     friction (shown when finite). A piece that is not known is shown as ``?`` rather than
     left out, so a title never silently omits the part, h, ω or the model.
     """
-    name = getattr(part, "name", part)
+    name = part_label(part)
     if isinstance(omegas, (int, float)):
         omegas = (omegas,)
     bits = [str(name) if name else "part ?", f"h = {h:g} m" if h is not None else "h = ?", _omegas_text(omegas or ())]

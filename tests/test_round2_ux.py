@@ -1,0 +1,110 @@
+"""Round-2 outsider defects (usability): part files stay editable, defaults, names, paths, JSON, suggestions."""
+
+from __future__ import annotations
+
+import inspect
+import json
+import math
+import re
+
+import pytest
+
+import throwmap as tm
+from throwmap.io.config import load_config, part_document, save_part
+from throwmap.viz.style import describe_setting
+
+BRACKET = [[0.0, 0.0], [0.11, 0.0], [0.13, 0.035], [0.02, 0.05]]
+
+
+def _bracket(**kw) -> tm.Part:
+    return tm.Part.from_vertices(BRACKET, mass=0.07, point_masses=[(0.012, (0.09, 0.01))], name="bracket", **kw)
+
+
+# ------------------------------------------------------------ 1. editable part files
+@pytest.mark.parametrize("suffix", [".toml", ".json"])
+def test_edited_point_mass_moves_cm_and_rho(tmp_path, suffix):
+    """Raising the lead weight in a saved file moves the CM toward it and changes ρ, exactly as
+    building the edited part directly does (the file holds no stale com/ρ)."""
+    path = save_part(_bracket(), None, tmp_path / f"bracket{suffix}")
+    text = path.read_text()
+    edited = re.sub(r"(\bmass\"?\s*[=:]\s*)0\.012\b", r"\g<1>0.5", text)
+    assert edited != text
+    path.write_text(edited)
+    loaded = load_config(path).part
+    heavy = tm.Part.from_vertices(BRACKET, mass=0.07, point_masses=[(0.5, (0.09, 0.01))], name="bracket")
+    assert loaded == heavy
+    before = _bracket()
+    assert loaded.com != before.com and loaded.radius_of_gyration != before.radius_of_gyration
+    # the CM moved toward the lead weight at (0.09, 0.01)
+    assert math.dist(loaded.com, (0.09, 0.01)) < math.dist(before.com, (0.09, 0.01))
+
+
+def test_only_overrides_are_written():
+    assert "com" not in part_document(_bracket())["part"]
+    assert "radius_of_gyration" not in part_document(_bracket())["part"]
+    doc = part_document(_bracket(com=(0.061, 0.024)))["part"]
+    assert doc["com"] == [0.061, 0.024] and "radius_of_gyration" not in doc  # ρ follows the given CM
+    doc = part_document(_bracket(radius_of_gyration=0.0375))["part"]
+    assert doc["radius_of_gyration"] == 0.0375 and "com" not in doc
+
+
+@pytest.mark.parametrize("kw", [{}, {"com": (0.061, 0.024)}, {"radius_of_gyration": 0.0375},
+                                {"com": (0.061, 0.024), "radius_of_gyration": 0.0375}])
+@pytest.mark.parametrize("suffix", [".toml", ".json"])
+def test_round_trip_exact_with_and_without_overrides(tmp_path, kw, suffix):
+    part = _bracket(**kw)
+    assert load_config(save_part(part, None, tmp_path / f"p{suffix}")).part == part
+
+
+def test_given_override_survives_an_edit(tmp_path):
+    """A com that was given stays given after the point mass is edited (the file keeps it)."""
+    path = save_part(_bracket(com=(0.061, 0.024)), None, tmp_path / "b.toml")
+    path.write_text(path.read_text().replace("mass = 0.012", "mass = 0.5"))
+    assert load_config(path).part.com == (0.061, 0.024)
+
+
+# ------------------------------------------------------------ 3. default model
+def test_throw_map_defaults_are_rigid_body():
+    from throwmap.throws.samples import throw_map_samples
+
+    for fn in (tm.plot_throw_map, throw_map_samples):
+        assert inspect.signature(fn).parameters["model"].default == tm.DEFAULT_MODEL == "rigid_body", fn.__name__
+
+
+def test_no_public_plot_or_sample_function_defaults_to_paper():
+    import throwmap.throws.samples as samples
+    import throwmap.viz as viz
+
+    mods = [tm, samples, viz] + [getattr(viz, m) for m in ("throw_map", "orbit", "limit_set", "basins", "funnels",
+                                                            "comparison", "animation", "frames", "style")
+                                 if hasattr(viz, m)]
+    for mod in mods:
+        for name, fn in vars(mod).items():
+            if callable(fn) and not name.startswith("_"):
+                try:
+                    params = inspect.signature(fn).parameters
+                except (TypeError, ValueError):
+                    continue
+                if "model" in params:
+                    assert params["model"].default != "paper", f"{mod.__name__}.{name}"
+
+
+# ------------------------------------------------------------ 4. names of unnamed parts
+def test_unnamed_part_gets_a_descriptive_name():
+    plain = tm.Part.from_vertices(BRACKET, mass=0.05)
+    assert plain.name == "polygon(4 vertices, 50 g)"
+    lead = tm.Part.from_vertices(BRACKET, mass=0.07, point_masses=[(0.012, (0.09, 0.01))])
+    assert lead.name == "polygon(4 vertices, 70 g)+lead(12 g at (9, 1) cm)"
+    assert "part ?" not in describe_setting(lead, -0.01, 4.0, "rigid_body")
+    # an explicit empty name stays empty, and a title still describes the part
+    empty = tm.Part.from_vertices(BRACKET, mass=0.05, name="")
+    assert empty.name == "" and describe_setting(empty, -0.01, 4.0, "rigid_body").startswith("polygon(4 vertices")
+
+
+def test_nameless_part_file_is_named_by_stem_and_lead(tmp_path):
+    path = tmp_path / "bracket.toml"
+    path.write_text('[part]\nvertices = [[0, 0], [0.11, 0], [0.13, 0.035], [0.02, 0.05]]\nmass = 0.07\n'
+                    '[[part.point_masses]]\nmass = 0.012\nat = [0.09, 0.01]\n')
+    assert load_config(path).part.name == "bracket+lead(12 g at (9, 1) cm)"
+    path.write_text('[part]\nvertices = [[0, 0], [0.11, 0], [0.13, 0.035], [0.02, 0.05]]\nmass = 0.07\n')
+    assert load_config(path).part.name == "bracket"
