@@ -119,13 +119,21 @@ def test_folder_that_is_not_writable_refused_before_work(tmp_path, no_work, monk
         assert_refused(result, field, "not writable", "Permission denied")
 
 
-def test_missing_folder_of_a_file_is_refused_before_work(tmp_path, no_work):
-    """A figure or result file needs its folder (as the library's writers do); an --out directory does not."""
+def test_missing_folder_of_a_file_is_created(tmp_path, monkeypatch):
+    """One rule for every output: a missing folder (however deep) of a figure, result file or
+    animation is made, as ``--out`` directories are; the check itself creates nothing."""
     for args, name, field in FILE_COMMANDS:
-        if args[0] == "animate":  # an animation's folder is made (below)
-            continue
-        result = runner.invoke(app, [str(a) for a in [*args, tmp_path / "missing" / name]])
-        assert_refused(result, field, "does not exist")
+        cli_options.check_output(tmp_path / "new" / "deep" / name, field)
+    assert list(tmp_path.iterdir()) == []
+    for args, name in ((["iterate", *ARM, *START, "-n", "5", "--plot"], "x.png"),
+                       (["limitset", *ARM, "--omega", "4", "--starts", "4", "--plot"], "ls.png"),
+                       (["basins", *ARM, "--omega", "4", "--grid", "40", "--plot"], "b.png"),
+                       (["compare", *ARM, "--omegas", "4", "--n-x", "5", "--out"], "cmp.json")):
+        target = tmp_path / args[0] / "new" / "deep" / name
+        result = runner.invoke(app, [str(a) for a in [*args, target]])
+        assert result.exit_code == 0, (args[0], result.output)
+        assert target.is_file() and target.stat().st_size > 0, args[0]
+        assert sorted(p.name for p in target.parent.iterdir()) == [name]  # no probe file left behind
 
 
 def test_missing_folders_are_created(tmp_path):

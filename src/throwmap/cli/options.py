@@ -9,8 +9,8 @@
 - Writing: :func:`to_json` (strict JSON: non-finite numbers become ``null``), files
   written atomically (:mod:`throwmap.io.files`). Every output path is checked before any
   work (:func:`check_output`, :func:`check_out_dir`, :func:`figure_format`): not a directory
-  where a file goes, its folder existing and writable; an ``--out`` directory (and an
-  animation's folder) writable or creatable, and made when written.
+  where a file goes; its folder (or an ``--out`` directory) writable, or missing and creatable
+  (the nearest existing folder above it writable), and then made when the output is written.
 
 Nothing here imports another ``throwmap.cli`` module; the command modules import this one.
 """
@@ -252,16 +252,17 @@ def check_directory(directory: Path, field: str, target: Path | None = None) -> 
     _probe_directory(above, field, target)
 
 
-def check_output(path: Path, field: str, *, create: bool = False) -> None:
+def check_output(path: Path, field: str, *, create: bool = True) -> None:
     """Refuse, before any work, an output file that cannot be written: a directory where the
-    file should be, a folder for it that is missing (unless ``create``: then it must be
-    creatable, and is made when the file is written), not a folder, or not writable."""
+    file should be, or a folder for it that exists as something else, is not writable, or is
+    missing and cannot be created (the nearest existing folder above it is a file or is not
+    writable). A missing folder is made when the file is written — the one rule for every
+    output (figures, result files, animations, ``--out``). ``create`` is accepted for older
+    callers and changes nothing."""
     path = Path(path)
     if path.is_dir():
         raise ConfigError(field, f"cannot write {path}: it is a directory")
     parent = path.parent if str(path.parent) else Path(".")
-    if not create and not parent.exists():
-        raise ConfigError(field, f"cannot write {path}: directory {parent} does not exist")
     check_directory(parent, field, path)
 
 
@@ -316,7 +317,7 @@ def plot_format(path: Path) -> str:
 
 
 def figure_format(path: Path | None, field: str) -> str | None:
-    """Check a figure path (directory exists, image type known) before any work; its format."""
+    """Check a figure path (its folder writable or creatable, image type known) before any work; its format."""
     if path is None:
         return None
     check_output(path, field)
