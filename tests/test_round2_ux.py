@@ -108,3 +108,40 @@ def test_nameless_part_file_is_named_by_stem_and_lead(tmp_path):
     assert load_config(path).part.name == "bracket+lead(12 g at (9, 1) cm)"
     path.write_text('[part]\nvertices = [[0, 0], [0.11, 0], [0.13, 0.035], [0.02, 0.05]]\nmass = 0.07\n')
     assert load_config(path).part.name == "bracket"
+
+
+# ------------------------------------------------------------ 6. μ = ∞ in JSON
+@pytest.mark.parametrize("arm", [tm.Arm(h=-0.01), tm.Arm(h=-0.02, mu=0.3, length=0.5, back=0.01, g=9.7)])
+def test_json_arm_reads_back(arm):
+    """The ``"arm"`` object of ``--json`` output (null = ∞ for μ, null = unbounded for length) reads back equal."""
+    from throwmap.cli.options import arm_dict, to_json
+    from throwmap.io.config import arm_from_spec
+
+    doc = json.loads(to_json({"arm": arm_dict(arm)}))["arm"]
+    assert arm_from_spec(doc) == arm
+    if math.isinf(arm.mu):
+        assert doc["mu"] is None and "null" in arm_dict.__doc__
+        assert arm_from_spec({**doc, "mu": "inf"}) == arm  # the text "inf" is ∞ too (JSON part files)
+
+
+def test_json_part_file_takes_mu_inf_text(tmp_path):
+    path = tmp_path / "p.json"
+    path.write_text(json.dumps({"part": {"vertices": BRACKET, "mass": 0.05}, "arm": {"h": -0.01, "mu": "inf"}}))
+    assert math.isinf(load_config(path).arm.mu)
+    path.write_text(json.dumps({"part": {"vertices": BRACKET, "mass": 0.05}, "arm": {"h": -0.01, "mu": "lots"}}))
+    with pytest.raises(tm.ConfigError) as err:
+        load_config(path)
+    assert err.value.field == "arm.mu"
+
+
+# ------------------------------------------------------------ 7. suggestions for unknown options
+def test_unknown_option_suggests_only_close_names():
+    from typer.testing import CliRunner
+
+    from throwmap.cli.app import app
+
+    base = ["throw", "--part", "triangle", "--h", "-0.01", "--x", "0.2", "--side", "0", "--omega", "4"]
+    res = CliRunner().invoke(app, [*base, "--bogus", "1"])
+    assert res.exit_code == 2 and "did you mean" not in res.stderr and "'--bogus'" in res.stderr
+    res = CliRunner().invoke(app, [*base[:-2], "--omeg", "4"])
+    assert res.exit_code == 2 and "did you mean --omega?" in res.stderr, res.stderr

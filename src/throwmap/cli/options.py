@@ -207,7 +207,10 @@ def to_json(obj: Any) -> str:
 
 
 def arm_dict(arm: Arm) -> dict:
-    """The arm for JSON output: every :class:`Arm` field (``mu`` = inf becomes ``None``)."""
+    """The arm for JSON output: every :class:`Arm` field. JSON has no infinity, so ``null`` is
+    the field's unbounded value: ``"mu": null`` is μ = ∞ (no slip), ``"length": null`` an
+    unbounded arm — as in a part file, where both are left out.
+    :func:`throwmap.io.config.arm_from_spec` reads the object back to an equal :class:`Arm`."""
     out = {f.name: getattr(arm, f.name) for f in dataclasses.fields(arm)}
     out["mu"] = arm.mu if math.isfinite(arm.mu) else None
     return out

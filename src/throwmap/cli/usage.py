@@ -85,6 +85,18 @@ def _bad_value(err, args: Sequence[str]) -> tuple[str, str]:
     return field, _tidy(message) + (got if raw is not None and repr(raw) not in message else "")
 
 
+SUGGEST_CUTOFF = 0.6
+"""Least :class:`difflib.SequenceMatcher` ratio, on option names without their dashes, for a suggestion."""
+
+
+def _close_options(name: str, candidates) -> list[str]:
+    """The options of ``candidates`` close to the unknown ``name``, compared without the leading
+    dashes (the parser's own matching counts them, so ``--bogus`` would suggest ``--g``)."""
+    bare = str(name).lstrip("-").lower()
+    ratio = {c: difflib.SequenceMatcher(None, bare, str(c).lstrip("-").lower()).ratio() for c in candidates}
+    return sorted((c for c, r in ratio.items() if r >= SUGGEST_CUTOFF), key=lambda c: (-ratio[c], c))
+
+
 def usage_line(err, args: Sequence[str] = (), prog: str = "throwmap") -> tuple[str, str]:
     """``(field, reason)`` for a usage error of the option parser; ``args``: the command line."""
     ctx = getattr(err, "ctx", None)
@@ -103,9 +115,8 @@ def usage_line(err, args: Sequence[str] = (), prog: str = "throwmap") -> tuple[s
         return _bad_value(err, args)
     if isinstance(err, _cx.NoSuchOption):
         name = err.option_name
-        hint = ""
-        if err.possibilities:
-            hint = f"did you mean {' or '.join(sorted(err.possibilities))}? "
+        close = _close_options(name, err.possibilities or ())
+        hint = f"did you mean {' or '.join(close)}? " if close else ""
         return "option", f"unknown option {name!r} for '{path}' ({hint}see '{path} --help')"
     if isinstance(err, _cx.BadOptionUsage):
         name = err.option_name

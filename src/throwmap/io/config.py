@@ -17,7 +17,8 @@ Schema (SI units, see :mod:`throwmap.conventions`)::
     h = -0.01                     # m, surface height (below the joint: h < 0)
     g = 9.81                      # m/s², optional
     length = 0.5                  # m, optional (default: unbounded)
-    mu = 0.8                      # arm–part friction, optional (default: inf = no slip)
+    mu = 0.8                      # arm–part friction, optional (default: inf = no slip;
+                                  # in JSON, where there is no inf: null or "inf")
     back = 0.0                    # m, surface behind the joint, optional (default 0)
 
 The JSON form is the same document as an object: ``{"part": {...}, "arm": {...}}``.
@@ -45,7 +46,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 from ..system.arm import Arm
 from ..conventions import G
@@ -107,6 +108,14 @@ class ArmSpec(_Spec):
     length: FiniteFloat | None = None
     mu: Annotated[float, Field(strict=True)] | None = None
     back: FiniteFloat = 0.0
+
+    @field_validator("mu", mode="before")
+    @classmethod
+    def _mu_inf_text(cls, value):
+        """JSON has no infinity: ``null`` (as ``--json`` writes it) or the text ``"inf"`` is μ = ∞."""
+        if isinstance(value, str) and value.strip().lower() in ("inf", "+inf", "infinity"):
+            return math.inf
+        return value
 
 
 class FileSpec(_Spec):
@@ -226,6 +235,9 @@ def part_from_spec(spec: dict) -> Part:
 
 def arm_from_spec(spec: dict) -> Arm:
     """An :class:`Arm` from the contents of an ``[arm]`` table (a dict).
+
+    Reads back the ``"arm"`` object of every ``--json`` output, where JSON's ``null`` stands
+    for ``length`` = unbounded and ``mu`` = ∞ (no slip); ``"mu": "inf"`` is read as ∞ too.
 
     Raises :class:`ConfigError` (fields ``arm.…``) for schema problems and
     :class:`InvalidArmError` for an invalid arm.
