@@ -60,8 +60,9 @@ class Placement:
 class Scene:
     """Parts on an arm with fixtures; ``alpha`` is the arm's rest angle (rad, CCW +; Sec. VI).
 
-    ``length`` of the simulated arm is ``arm.length`` or, when that is None,
-    :attr:`EngineSettings.default_length` beyond the farthest part.
+    ``length`` of the simulated arm is ``arm.length`` or, when that is None, long
+    enough for the throw: the bound on the parts' flight plus
+    :attr:`EngineSettings.default_length`, longer on reruns (:mod:`throwmap.engine.reach`).
     """
 
     arm: Arm
@@ -96,11 +97,12 @@ class Scene:
     def parts(self) -> tuple:
         return tuple(p.part for p in self.placements)
 
-    def length(self, default_length: float) -> float:
-        if self.arm.length is not None:
-            return self.arm.length
-        far = max(p.arm_pose(self.arm.h)[0] for p in self.placements)
-        return max(far, 0.0) + default_length
+    def length(self, default_length: float, realisation=None, t_max: float = 10.0) -> float:
+        """Length of the simulated arm (m): ``arm.length``, or for an unbounded arm the first length
+        :func:`throwmap.engine.reach.lengths` tries for ``realisation`` (None: the parts just settle)."""
+        from .reach import lengths
+
+        return lengths(self, realisation, default_length, t_max)[0]
 
     def mu(self, which: str) -> float:
         """The pair friction μ for ``"arm"``, ``"wall"`` or ``"part"`` contacts."""

@@ -39,8 +39,10 @@ class EngineSettings:
     retries : a run that lost a contact is repeated this many times, each with
         half the previous step (0: report the failure at once).
     arm_thickness : thickness of the arm's solid below its surface, m.
-    default_length : arm length simulated when ``Arm.length`` is None, m beyond
-        the farthest part.
+    default_length : when ``Arm.length`` is None, the simulated arm reaches this
+        far (m) beyond the bound on the parts' flight; a part that reaches its end
+        reruns with 4×, 16×, 64× this margin, and beyond that is refused as
+        ``unresolved`` (:mod:`throwmap.engine.reach`).
     record_dt : sampling interval of recorded trajectories, s.
     verify, agreement : rerun hard runs (deep penetration, repeated side changes,
         energy gain, timeout) at half the step and refuse them (status

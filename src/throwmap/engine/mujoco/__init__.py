@@ -29,7 +29,8 @@ moments are set equal to it; the joints make them irrelevant). The mesh's own
 volume never enters.
 
 *Arm.* A static box whose top face is z = h over 0 ≤ x ≤ L (L = ``arm.length``,
-or ``x + 2 m`` when the arm is unbounded), friction ``arm.mu`` with condim 3
+or, when the arm is unbounded, the bound on the flight plus 2 m, longer on
+reruns: :mod:`throwmap.engine.reach`), friction ``arm.mu`` with condim 3
 (μ = 0 becomes condim 1, frictionless). Gravity is −g along z.
 
 *μ = ∞* becomes :data:`NO_SLIP_MU` = 10, not a huge number: MuJoCo needs a
@@ -92,7 +93,8 @@ Status: ``PENETRATION`` as soon as a vertex is deeper than ``penetration_tol``
 (the run stops; the result is refused); ``BEHIND_JOINT``/``OFF_END`` as soon as
 a vertex is below the surface line past an edge of the arm (x < −back, the arm's
 extent behind the joint, :attr:`throwmap.Arm.back`; x > L) or every vertex is
-below the arm's top; ``TIMEOUT`` when it has not settled by ``t_max``. A settled
+below the arm's top (on an unbounded arm a part past the simulated end reruns on
+a longer arm and, past the longest, is ``UNRESOLVED``); ``TIMEOUT`` when it has not settled by ``t_max``. A settled
 part is ``OK`` only as :func:`throwmap.engine.rest.rest_status` reads it, the same
 rule as the pymunk engine and the analytic models: flat on a stable side with
 both support vertices on the arm (else ``BEHIND_JOINT``/``OFF_END``, or

@@ -25,12 +25,13 @@ def arm_length(arm: Arm, x: float | None) -> float:
 
 
 def mujoco_model_xml(part: Part, arm: Arm, settings: MujocoSettings = MujocoSettings(), x: float | None = None,
-                     side: int | None = None) -> str:
+                     side: int | None = None, length: float | None = None) -> str:
     """MJCF text of the part on the arm (see the module docstring).
 
-    ``x`` (m) sets the simulated length of an unbounded arm (``x + 2 m``); with
-    ``x`` and ``side`` the model also has a keyframe ``"rest"``: the part at rest
-    on ``side`` with its CM at ``x``. Needs no MuJoCo installed.
+    ``length`` (m) is the simulated length of an unbounded arm (None: ``x + 2 m``,
+    :func:`arm_length`; :func:`throwmap.engine.mujoco.mujoco_throw` sizes it for the
+    throw); with ``x`` and ``side`` the model also has a keyframe ``"rest"``: the
+    part at rest on ``side`` with its CM at ``x``. Needs no MuJoCo installed.
     """
     if not isinstance(part, Part):
         raise InvalidStateError("part", f"must be a Part, got {type(part).__name__}")
@@ -41,7 +42,7 @@ def mujoco_model_xml(part: Part, arm: Arm, settings: MujocoSettings = MujocoSett
     if x is not None:
         x = finite(x, "x")
     s = settings
-    L = arm_length(arm, x)
+    L = arm_length(arm, x) if length is None or arm.length is not None else finite(length, "length")
     t2 = 0.5 * s.thickness
     verts = " ".join(f"{_f(wx)} {_f(sy)} {_f(wy)}" for wx, wy in part.w for sy in (-t2, t2))
     inertia = part.moment_of_inertia

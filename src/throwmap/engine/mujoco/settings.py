@@ -16,7 +16,8 @@ MODEL_NAME = "engine:mujoco"
 NO_SLIP_MU = 10.0
 """Friction coefficient given to MuJoCo for μ = ∞ (MuJoCo needs a finite number)."""
 UNBOUNDED_EXTRA = 2.0
-"""Arm length simulated beyond the start x when ``Arm.length`` is None, m."""
+"""Arm length simulated beyond the bound on the flight when ``Arm.length`` is None, m (× 4 per rerun,
+:mod:`throwmap.engine.reach`)."""
 ARM_DEPTH = 0.05
 """Depth of the arm box below its top face, m."""
 POST_SPEED_FRACTION = 0.05

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -14,8 +15,11 @@ from ...throws.outcome import Status, ThrowOutcome
 from ...throws.throw import check_start
 from ...throws.trajectory import Trajectory, pose_at_rest, state_from_pose
 from ..rest import edge_status, rest_status
-from .model import arm_length, mujoco_model_xml
-from .settings import MODEL_NAME, POST_SPEED_FRACTION, POST_WINDOW, TOUCH_HYSTERESIS, MujocoSettings
+from ..reach import lengths, unbounded_message
+from ..realisation import ImpulseThrow
+from ..scene import Placement, Scene
+from .model import mujoco_model_xml
+from .settings import MODEL_NAME, POST_SPEED_FRACTION, POST_WINDOW, TOUCH_HYSTERESIS, UNBOUNDED_EXTRA, MujocoSettings
 
 __all__ = ["mujoco_throw"]
 
@@ -43,6 +47,10 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
     step. Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible
     start (as :func:`throwmap.throws.throw` does) and :class:`~throwmap.errors.ThrowmapError`
     when MuJoCo is not installed. Deterministic: same inputs, same result.
+
+    An unbounded arm is simulated as long as the throw needs
+    (:mod:`throwmap.engine.reach`); a part at the end of the longest simulated arm
+    is refused as ``unresolved``, never ``off_end``.
     """
     if not isinstance(part, Part):
         raise InvalidStateError("part", f"must be a Part, got {type(part).__name__}")
@@ -52,11 +60,29 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
         raise InvalidStateError("settings", f"must be MujocoSettings, got {type(settings).__name__}")
     x0, k0, om = check_start(part, arm, x, side, omega)
     mujoco = _mujoco()
-    s = settings
-    model = mujoco.MjModel.from_xml_string(mujoco_model_xml(part, arm, s, x0, k0))
+    # an unbounded arm is simulated long enough for the throw (:mod:`throwmap.engine.reach`); a part that
+    # reaches the simulated end reruns on a longer one, and at the end of the longest is refused (unresolved)
+    tried = lengths(Scene(arm, (Placement(part, x=x0, side=k0),)), ImpulseThrow(om), UNBOUNDED_EXTRA, settings.t_max)
+    for n, L in enumerate(tried):
+        res = _run(mujoco, part, arm, x0, k0, om, settings, record, L)
+        out = res[0] if record else res
+        if arm.length is None and out.status == Status.OFF_END:
+            if n + 1 < len(tried):
+                continue
+            out = replace(out, status=Status.UNRESOLVED)
+            if "message" in ThrowOutcome.__dataclass_fields__:
+                out = replace(out, message=unbounded_message(L, tried))
+            return (out, res[1]) if record else out
+        return res
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def _run(mujoco, part, arm, x0, k0, om, s, record, L):
+    """One MuJoCo run of the throw on an arm ``L`` m long (see :func:`mujoco_throw`)."""
+    model = mujoco.MjModel.from_xml_string(mujoco_model_xml(part, arm, s, x0, k0, length=L))
     data = mujoco.MjData(model)
 
-    h, g, L, back = arm.h, arm.g, arm_length(arm, x0), arm.back
+    h, g, back = arm.h, arm.g, arm.back
     rho2 = part.radius_of_gyration**2
     w = np.asarray(part.w, dtype=float)
     n = w.shape[0]

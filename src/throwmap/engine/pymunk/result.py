@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -62,13 +62,17 @@ class EngineRun:
     verified: bool = False
 
     def outcome(self, i: int = 0, *, x0=None, side0=None, omega=0.0, model="engine") -> ThrowOutcome:
-        """Part ``i``'s result as a :class:`~throwmap.ThrowOutcome`."""
+        """Part ``i``'s result as a :class:`~throwmap.ThrowOutcome` (with the run's ``message`` when
+        part ``i`` was refused, once ThrowOutcome has that field)."""
         part = self.scene.placements[i].part
         pl = self.scene.placements[i]
         if x0 is None:
             x0, side0, _ = state_from_pose(part, pl.arm_pose(self.scene.arm.h))
         x, side, _ = self.states[i]
-        return ThrowOutcome.from_record(part, x0, side0, omega, model, x, side, self.statuses[i], self.records[i])
+        out = ThrowOutcome.from_record(part, x0, side0, omega, model, x, side, self.statuses[i], self.records[i])
+        if self.message and self.statuses[i] != Status.OK and "message" in ThrowOutcome.__dataclass_fields__:
+            out = replace(out, message=self.message)  # why the result was refused (unconverged, unresolved, …)
+        return out
 
     def next_scene(self, **changes) -> Scene:
         """A scene starting from this run's end (final poses at rest, arm at ``alpha``)."""

@@ -9,6 +9,7 @@ from ...errors import InvalidStateError, shown
 from ...kernels import codes as C
 from ...throws.outcome import Status
 from ..realisation import ImpulseThrow, check_realisation
+from ..reach import lengths, unbounded_message
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
@@ -45,25 +46,36 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
     timeout; :mod:`.verify`) is rerun at half the step, and where the two
     disagree the run is refused with status ``unconverged`` (its message says
     how they differ); where they agree the first run is returned, ``verified``.
+
+    An unbounded arm (``Arm.length`` None) is simulated as long as the throw
+    needs (:mod:`throwmap.engine.reach`); a part that reaches the simulated end is
+    rerun on a longer arm, and at the end of the longest it is refused as
+    ``unresolved`` (message: the lengths tried), never ``off_end``.
     """
     settings = EngineSettings() if settings is None else settings
     if not isinstance(settings, EngineSettings):
         raise InvalidStateError(
             "settings", f"must be a throwmap.engine.EngineSettings (or None: the defaults), got {type(settings).__name__}")
-    run = _simulate_once(scene, realisation, settings, record, progress, run_for)
-    tries = 0
-    while run.status == Status.PENETRATION and tries < settings.retries:
-        tries += 1
-        finer = replace(settings, dt=settings.dt / 2**tries, settle_hold=max(settings.settle_hold, 4 * settings.dt))
-        first = run.message
-        run = _simulate_once(scene, realisation, finer, record, progress, run_for)
-        run = replace(run, message=(run.message + "; " if run.message else "")
-                      + f"retried at dt = {finer.dt:g} s after: {first}", retries=tries)
+    if not isinstance(scene, Scene):
+        raise InvalidStateError("scene", f"must be a throwmap.engine.Scene, got {type(scene).__name__}")
+    realisation = ImpulseThrow(0.0) if realisation is None else check_realisation(realisation)
+    t_max = settings.t_max  # the run's length (run_for is checked by _simulate_once)
+    if isinstance(run_for, (int, float)) and not isinstance(run_for, bool) and math.isfinite(run_for):
+        t_max = max(t_max, float(run_for))
+    # an unbounded arm is simulated long enough for the throw; a part reaching its end reruns on a longer one
+    tried = lengths(scene, realisation, settings.default_length, t_max)
+    for n, L in enumerate(tried):
+        run = _with_retries(scene, realisation, settings, record, progress, run_for, L)
+        if scene.arm.length is None and Status.OFF_END in run.statuses:
+            if n + 1 < len(tried):
+                continue
+            return _refuse_unbounded(run, L, tried)
+        break
     if settings.verify and run_for is None and run.status != Status.PENETRATION:
         why = flags(run, settings)
         if why:
             half = replace(settings, dt=run.dt / 2, coarse_dt=max(settings.coarse_dt / 2, run.dt / 2))
-            again = _simulate_once(scene, realisation, half, False, None, None)
+            again = _simulate_once(scene, realisation, half, False, None, None, length=L)
             diff = disagreement(run, again, settings)
             if diff:
                 n = len(run.statuses)
@@ -75,8 +87,32 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
     return run
 
 
-def _simulate_once(scene, realisation, settings, record, progress, run_for, *, raw: bool = True) -> EngineRun:
-    """One attempt of :func:`simulate` (no retries); ``raw=False`` calls pymunk's public API only."""
+def _with_retries(scene, realisation, settings, record, progress, run_for, L) -> EngineRun:
+    """One run on an arm of length ``L`` (m), repeated at half the step after a lost contact (``settings.retries``)."""
+    run = _simulate_once(scene, realisation, settings, record, progress, run_for, length=L)
+    tries = 0
+    while run.status == Status.PENETRATION and tries < settings.retries:
+        tries += 1
+        finer = replace(settings, dt=settings.dt / 2**tries, settle_hold=max(settings.settle_hold, 4 * settings.dt))
+        first = run.message
+        run = _simulate_once(scene, realisation, finer, record, progress, run_for, length=L)
+        run = replace(run, message=(run.message + "; " if run.message else "")
+                      + f"retried at dt = {finer.dt:g} s after: {first}", retries=tries)
+    return run
+
+
+def _refuse_unbounded(run: EngineRun, L: float, tried: list) -> EngineRun:
+    """``run`` on an unbounded arm with a part at the simulated end ``L`` (m): that part ``unresolved``, with the reason."""
+    why = unbounded_message(L, tried)
+    statuses = tuple(Status.UNRESOLVED if st == Status.OFF_END else st for st in run.statuses)
+    status = Status.UNRESOLVED if run.status == Status.OFF_END else run.status
+    return replace(run, status=status, statuses=statuses, message=(run.message + "; " if run.message else "") + why)
+
+
+def _simulate_once(scene, realisation, settings, record, progress, run_for, *, raw: bool = True,
+                   length: float | None = None) -> EngineRun:
+    """One attempt of :func:`simulate` (no retries) on an arm ``length`` m long (None: :meth:`Scene.length`);
+    ``raw=False`` calls pymunk's public API only."""
     if not isinstance(scene, Scene):
         raise InvalidStateError("scene", f"must be a throwmap.engine.Scene, got {type(scene).__name__}")
     realisation = ImpulseThrow(0.0) if realisation is None else check_realisation(realisation)
@@ -86,7 +122,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 or not math.isfinite(run_for):
             raise InvalidStateError("run_for", f"must be a positive number of seconds, got {shown(run_for)}")
         t_max = float(run_for)
-    w = build_world(scene, realisation, settings, raw=raw)
+    w = build_world(scene, realisation, settings, raw=raw, length=length)
     contacts = Contacts(w)
     tracks, events = contacts.tracks, contacts.events
     recorder = Recorder(w) if record else None

@@ -114,8 +114,10 @@ class World:
         return len(self.bodies)
 
 
-def build_world(scene, realisation, settings, *, raw: bool = True) -> World:
+def build_world(scene, realisation, settings, *, raw: bool = True, length: float | None = None) -> World:
     """Build the space of ``scene`` at t = 0: arm at α + θ(0), parts at their poses with their start velocities.
+
+    ``length``: the simulated arm's length (m); None: :meth:`Scene.length <throwmap.engine.Scene.length>`.
 
     An impulsive realisation gives each part the velocity of the arm point at its
     CM, ω × r, and spin ω (paper Sec. III-B); otherwise parts start with their
@@ -127,7 +129,7 @@ def build_world(scene, realisation, settings, *, raw: bool = True) -> World:
     w.pm, w.cp = pm, cp
     arm = scene.arm
     w.h, w.g = arm.h, arm.g
-    w.L = L = scene.length(settings.default_length)
+    w.L = L = scene.length(settings.default_length, realisation, settings.t_max) if length is None else float(length)
     space = pm.Space()
     space.gravity = (0.0, -arm.g)
     space.iterations = int(settings.iterations)
