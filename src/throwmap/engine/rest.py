@@ -15,7 +15,7 @@ import numpy as np
 from ..throws.outcome import Status
 from ..throws.trajectory import world_vertices
 
-__all__ = ["EDGE_EPS", "FLAT_TILT", "UNCONVERGED", "edge_status", "rest_status"]
+__all__ = ["EDGE_EPS", "FLAT_TILT", "UNCONVERGED", "edge_status", "rest_status", "tilted_message"]
 
 UNCONVERGED = Status.UNCONVERGED
 """Status of a run refused as not converged (code 10 of :mod:`throwmap.kernels.codes`)."""
@@ -58,3 +58,9 @@ def rest_status(part, pose_a, x: float, k: int, tilt: float, h: float, L: float,
     if plain and not flat:
         return UNCONVERGED
     return Status.OK
+
+
+def tilted_message(i: int, tilt: float, side: int) -> str:
+    """Why part ``i`` settled tilted by ``tilt`` (rad) from ``side`` on a bare arm is ``unconverged``."""
+    return (f"part {i}: came to rest {tilt:.3g} rad off side {side} on the bare arm, where nothing can hold it "
+            f"tilted (flat within {FLAT_TILT:g} rad): result refused")

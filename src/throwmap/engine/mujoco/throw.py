@@ -14,7 +14,7 @@ from ...system.part import Part
 from ...throws.outcome import Status, ThrowOutcome
 from ...throws.throw import check_start
 from ...throws.trajectory import Trajectory, pose_at_rest, state_from_pose
-from ..rest import edge_status, rest_status
+from ..rest import edge_status, rest_status, tilted_message
 from ..reach import lengths, unbounded_message
 from ..realisation import ImpulseThrow
 from ..scene import Placement, Scene
@@ -113,6 +113,7 @@ def _run(mujoco, part, arm, x0, k0, om, s, record, L):
     gap_prev = math.inf
     calm = 0
     status = None
+    message = ""
     t_event = 0.0
     ts, poses, contacts, events = [], [], [], []
 
@@ -135,6 +136,8 @@ def _run(mujoco, part, arm, x0, k0, om, s, record, L):
             contacts.append(np.array(pts, dtype=float).reshape(-1, 2))
         if pen_now > s.penetration_tol:
             status, t_event = Status.PENETRATION, t
+            message = (f"a vertex sank {pen_now * 1e3:.2f} mm into the arm at t = {t:.4f} s "
+                       f"(> penetration_tol {s.penetration_tol * 1e3:g} mm); result refused")
             events.append((t, "penetration"))
             break
         gmin = float(gap.min())
@@ -197,6 +200,7 @@ def _run(mujoco, part, arm, x0, k0, om, s, record, L):
             break
         if step >= n_max:
             status, t_event = Status.TIMEOUT, t
+            message = f"not settled after {s.t_max:g} s"
             events.append((t, "timeout"))
             break
         mujoco.mj_step(model, data)
@@ -210,7 +214,11 @@ def _run(mujoco, part, arm, x0, k0, om, s, record, L):
             status = Status.BEHIND_JOINT if xe <= -back else Status.OFF_END
         else:
             status = rest_status(part, tuple(q), xe, ke, tilt, h, L, back, True)
+            if status == Status.UNCONVERGED:
+                message = tilted_message(0, tilt, ke)
     out = ThrowOutcome.from_record(part, x0, k0, om, MODEL_NAME, xe, ke, status, rec)
+    if message and "message" in ThrowOutcome.__dataclass_fields__:
+        out = replace(out, message=message)  # why the result was refused
     if not record:
         return out
     traj = Trajectory(
