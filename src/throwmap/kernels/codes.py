@@ -6,16 +6,17 @@ gives them names.
 
 OK = 0  # came to rest on a stable side, on the arm
 BEHIND_JOINT = 1  # a contact or a resting support vertex at x <= -arm.back (x <= 0 by default)
-OFF_END = 2  # a contact beyond the arm's end, or the resting CM beyond it
+OFF_END = 2  # a contact beyond the arm's end, or a resting support vertex beyond it (x + u_R > length)
 NO_REST = 3  # the impact cap was reached before rest, or (μ = 0, unbounded arm) the part slides outward for ever
 INVALID_START = 4  # the start was not admissible (batch with on_invalid="status")
-NO_CONTACT = 5  # the contact search hit its iteration cap (should not happen)
+NO_CONTACT = 5  # retired: no model returns it (a search that hits its cap is UNRESOLVED with CAP_HIT = 1)
 TIMEOUT = 6  # an engine run did not settle within its time limit
 PENETRATION = 7  # an engine lost a contact: a vertex sank deeper than the tolerance (result refused)
 INCONSISTENT = 8  # rigid-body Coulomb contact has no consistent solution here (Painlevé)
 UNRESOLVED = 9  # the model cannot resolve this throw: its flight leaves the range it resolves (result refused)
 # (spin angle ω t at first contact beyond kernels.flight.MAX_SPIN_ANGLE, where double precision no
-# longer fixes the orientation; for "small_angle2" also g <= d ω², where its expansion has no contact)
+# longer fixes the orientation; for "small_angle2" also g <= d ω², where its expansion has no contact;
+# for "paper" and "rigid_body" also a contact search or integration that used its max_iter steps: CAP_HIT = 1)
 UNCONVERGED = 10  # an engine run disagreed with its half-step rerun (result refused)
 
 # record layout: one float64 row per throw (energies per unit mass, J/kg; impulses per unit mass, m/s)
@@ -47,4 +48,5 @@ N_SLIPS = 24  # sliding impacts and sliding contact phases (impulse or force out
 SLIP_DISTANCE = 25  # total distance contact points slid along the arm, m
 T_REST = 26  # time from release until at rest, s (nan where a model does not resolve time)
 PENETRATION_MAX = 27  # deepest penetration of any vertex into the arm or a fixture, m (engines; 0 for rigid models)
-NREC = 28
+CAP_HIT = 28  # 1: the throw was refused (UNRESOLVED) because a search or integration used its max_iter steps; else 0
+NREC = 29

@@ -70,7 +70,9 @@ def _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, s
     if jc < 0:
         if record:
             R.release_flight_rows(traj, tags, ts, R.ESCAPE_FALL_TIME, x0, dk, h, omega, g, phi0, R.FLIGHT)
-        return x0, side, (C.UNRESOLVED if jc == UNRESOLVED_J else C.NO_CONTACT)
+        if jc != UNRESOLVED_J:
+            rec[C.CAP_HIT] = 1.0  # max_iter steps without contact: not resolved, not a missed contact
+        return x0, side, C.UNRESOLVED
     # state just before impact (Eq. 1)
     phi = omega * t
     xc = x0 + vx * t
@@ -122,7 +124,7 @@ def _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, s
     if status == C.OK:
         if x + uL[k] <= -back:
             status = C.BEHIND_JOINT
-        elif x > length:
+        elif x + uR[k] > length:
             status = C.OFF_END
     return x, k, status
 

@@ -138,7 +138,7 @@ def throw_one_small_angle(x0, side, omega, h, g, length, back, rho2, d, uL, uR, 
     rec[C.E_FINAL] = g * d[k]
     if x + uL[k] <= -back:
         return x, k, C.BEHIND_JOINT
-    if x > length:
+    if x + uR[k] > length:
         return x, k, C.OFF_END
     return x, k, C.OK
 

@@ -13,6 +13,20 @@ def positive_float(value, field: str) -> float:
     return float(value)
 
 
+TOL_MAX = 1e-6
+"""Largest contact tolerance (dimensionless, relative to the gap's terms) the analytic models accept: a
+looser one stops the first-contact search visibly early and silently moves the result."""
+
+
+def tolerance(value, field: str = "tol") -> float:
+    """A dimensionless relative tolerance, 0 < value ≤ :data:`TOL_MAX`."""
+    v = positive_float(value, field)
+    if v > TOL_MAX:
+        raise InvalidStateError(field, f"must be ≤ {TOL_MAX:g} (a relative tolerance; the default is 1e-14), "
+                                       f"got {shown(value)}")
+    return v
+
+
 def int_at_least(value, field: str, lo: int) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < lo:
         raise InvalidStateError(field, f"must be an integer ≥ {lo}, got {shown(value)}")

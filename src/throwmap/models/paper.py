@@ -17,7 +17,7 @@ from ..kernels.paper import PARALLEL_MIN, throw_many, throw_many_serial, throw_o
 from ..kernels.record import FLIGHT
 from ..throws.outcome import Status, ThrowOutcome
 from ..throws.trajectory import NO_CONTACT, Trajectory, contact_points, drawn_length, world_vertices
-from ._checks import int_at_least, positive_float
+from ._checks import int_at_least, tolerance
 from .base import BatchArrays, Features
 from .registry import register
 
@@ -28,10 +28,10 @@ __all__ = ["PaperOptions", "PaperModel", "MODEL"]
 class PaperOptions:
     """Numerical options of the "paper" kernel.
 
-    ``tol`` (dimensionless): contact tolerance of the first-contact search, relative to
+    ``tol`` (dimensionless, 0 < tol ≤ 1e-6): contact tolerance of the first-contact search, relative to
     the size of the gap's terms (:func:`~throwmap.kernels.flight.touch_time`), so that
     tiny flights near x_min and long flights at high ω are both resolved to rounding;
-    ``max_iter``: cap on its steps (status NO_CONTACT beyond); ``max_impacts``: cap on plastic impacts in one
+    ``max_iter``: cap on its steps (beyond: status UNRESOLVED, record ``CAP_HIT`` = 1); ``max_impacts``: cap on plastic impacts in one
     throw (status NO_REST beyond); ``n_samples``: points per pivot swing at which the
     friction demand (record ``friction_ratio_max``) is sampled.
     """
@@ -42,7 +42,7 @@ class PaperOptions:
     n_samples: int = 16
 
     def __post_init__(self):
-        object.__setattr__(self, "tol", positive_float(self.tol, "tol"))
+        object.__setattr__(self, "tol", tolerance(self.tol, "tol"))
         object.__setattr__(self, "max_iter", int_at_least(self.max_iter, "max_iter", 1))
         object.__setattr__(self, "max_impacts", int_at_least(self.max_impacts, "max_impacts", 1))
         object.__setattr__(self, "n_samples", int_at_least(self.n_samples, "n_samples", 2))
@@ -128,7 +128,7 @@ def record_trajectory(part, arm, x0, k0, om, dt, o: PaperOptions):
     t = rows[:, 0]
     events = [(0.0, "release")]
     status = Status(int(st))
-    if om != 0.0 and status != Status.NO_CONTACT:
+    if om != 0.0 and int(rec[C.CONTACT_VERTEX]) >= 0:  # a first contact was found
         t_f = float(rec[C.T_FLIGHT])
         events.append((t_f, f"impact v{part.user_vertex(int(rec[C.CONTACT_VERTEX]))}"))
         if int(rec[C.N_IMPACTS]) == 1 and status in (Status.BEHIND_JOINT, Status.OFF_END):

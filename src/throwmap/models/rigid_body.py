@@ -19,7 +19,7 @@ from ..errors import InvalidStateError, shown
 from ..kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY, count_samples, pick, throw_one_rigid_body
 from ..throws.outcome import ThrowOutcome
 from ..throws.trajectory import Trajectory, world_vertices
-from ._checks import int_at_least, positive_float
+from ._checks import int_at_least, tolerance
 from .base import BatchArrays, Features
 from .registry import register
 
@@ -36,9 +36,9 @@ IMPACT_LAWS = {"routh": LAW_ROUTH, "velocity": LAW_VELOCITY}
 class RigidBodyOptions:
     """Numerical options of the "rigid_body" kernel.
 
-    ``tol`` (dimensionless): contact tolerance of the first-contact search, relative to
+    ``tol`` (dimensionless, 0 < tol ≤ 1e-6): contact tolerance of the first-contact search, relative to
     the size of the gap's terms (:func:`~throwmap.kernels.flight.touch_time`); ``max_iter``: cap on the
-    contact-search and integration steps of one mode; ``max_impacts``: cap on mode
+    contact-search and integration steps of one mode (beyond: status UNRESOLVED, record ``CAP_HIT`` = 1); ``max_impacts``: cap on mode
     changes (events) in one throw (status NO_REST beyond). ``impact_law``: the law of
     the resets ``impact`` and ``land_side`` outside the friction cone (docstring of
     :mod:`throwmap.kernels.rigid_body.impact`): ``"routh"`` (default; Routh's
@@ -55,7 +55,7 @@ class RigidBodyOptions:
     impact_law: str = "routh"
 
     def __post_init__(self):
-        object.__setattr__(self, "tol", positive_float(self.tol, "tol"))
+        object.__setattr__(self, "tol", tolerance(self.tol, "tol"))
         object.__setattr__(self, "max_iter", int_at_least(self.max_iter, "max_iter", 1))
         object.__setattr__(self, "max_impacts", int_at_least(self.max_impacts, "max_impacts", 1))
         if not isinstance(self.impact_law, str) or self.impact_law not in IMPACT_LAWS:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 from dataclasses import dataclass
 
@@ -18,19 +19,23 @@ class Status(enum.IntEnum):
 
     ``OK``: at rest on a stable side on the arm. ``BEHIND_JOINT``: a contact, or a
     resting support vertex, at x ≤ −arm.back (x ≤ 0 by default). ``OFF_END``: a
-    contact beyond the arm's length, or the resting CM beyond it. ``NO_REST``: the
+    contact beyond the arm's length, or a resting support vertex beyond it (x + u_R > length,
+    the rule of :func:`~throwmap.throws.throw.start_interval`). ``NO_REST``: the
     impact cap was reached, or (rigid_body, μ = 0 on an unbounded arm) the part slides
     outward for ever and never comes to rest.
     ``INVALID_START``: not thrown (batch with ``on_invalid="status"``).
-    ``NO_CONTACT``: the contact search hit its cap (a bug if ever seen).
+    ``NO_CONTACT``: retired, no model returns it (kept so that the codes stay fixed); a
+    contact search that runs out of steps is ``UNRESOLVED`` with ``cap_hit``.
     ``TIMEOUT``: an engine run did not settle within its time limit.
     ``PENETRATION``: an engine lost a contact (a vertex sank deeper than the
     tolerance); the engine's result is refused, not returned.
     ``INCONSISTENT``: rigid-body Coulomb contact has no consistent solution there
     (Painlevé's paradox); the model says so instead of giving a number.
-    ``UNRESOLVED``: the flight leaves the range the model resolves (a spin angle at
-    first contact beyond double precision, or small_angle2 with g ≤ d ω²): refused
-    rather than a wrong number. ``UNCONVERGED``: an engine run disagreed with its
+    ``UNRESOLVED``: the model cannot resolve the throw and refuses it rather than give a
+    wrong number: the flight leaves the range it resolves (a spin angle at first contact
+    beyond double precision, or small_angle2 with g ≤ d ω²), or (paper, rigid_body) a
+    contact search or integration used its ``max_iter`` steps
+    (:attr:`ThrowOutcome.cap_hit`; raise ``max_iter``). ``UNCONVERGED``: an engine run disagreed with its
     half-step rerun; its result is refused.
 
     ``str(status)`` and ``f"{status}"`` give the label (``ok``, ``behind_joint``…);
@@ -98,7 +103,9 @@ class ThrowOutcome:
     Models that resolve them also fill ``n_lift_offs`` (contact phases ended by a
     vanishing normal force), ``n_slips`` (sliding impacts and sliding phases),
     ``slip_distance`` (m), ``t_rest`` (s from release to rest; nan where not
-    resolved) and ``penetration_max`` (m, engines).
+    resolved) and ``penetration_max`` (m, engines). ``cap_hit``: the throw is
+    ``unresolved`` because a search or integration used its ``max_iter`` steps
+    (record ``CAP_HIT``).
     """
 
     x: float
@@ -132,6 +139,7 @@ class ThrowOutcome:
     slip_distance: float = 0.0
     t_rest: float = float("nan")
     penetration_max: float = 0.0
+    cap_hit: bool = False
 
     def __repr__(self) -> str:
         end = (f"(x={self.x:.4g} m, side {self.side}), {self.kind}" if self.ok
@@ -190,6 +198,7 @@ class ThrowOutcome:
             r[C.SLIP_DISTANCE],
             r[C.T_REST],
             r[C.PENETRATION_MAX],
+            r[C.CAP_HIT] == 1.0,
         )
 
     def to_record(self, part) -> np.ndarray:
@@ -210,6 +219,7 @@ class ThrowOutcome:
         r[C.N_PULL] = 1.0 if self.pull_impulse else 0.0
         r[C.N_LIFTOFFS], r[C.N_SLIPS], r[C.SLIP_DISTANCE] = self.n_lift_offs, self.n_slips, self.slip_distance
         r[C.T_REST], r[C.PENETRATION_MAX] = self.t_rest, self.penetration_max
+        r[C.CAP_HIT] = 1.0 if self.cap_hit else 0.0
         return r
 
     def to_dict(self) -> dict:
@@ -225,7 +235,9 @@ class ThrowOutcome:
     def from_dict(cls, d: dict) -> "ThrowOutcome":
         """Inverse of :meth:`to_dict` (non-finite numbers, written as ``None``, come back as nan)."""
         kw = {}
-        for name in cls.__dataclass_fields__:
+        for name, f in cls.__dataclass_fields__.items():
+            if name not in d and f.default is not dataclasses.MISSING:
+                continue  # a field added later (e.g. cap_hit): its default
             v = d[name]
             if name == "status":
                 v = Status.from_label(v)
@@ -301,6 +313,8 @@ class BatchOutcome:
     def from_dict(cls, d: dict) -> "BatchOutcome":
         shape = tuple(d["shape"])
         rec = np.array([[np.nan if v is None else v for v in row] for row in d["records"]], dtype=float)
+        if rec.ndim == 2 and rec.shape[1] < C.NREC:  # written before later record columns (e.g. CAP_HIT) existed
+            rec = np.hstack([rec, np.full((rec.shape[0], C.NREC - rec.shape[1]), np.nan)])
         return cls(x=np.array([np.nan if v is None else v for v in d["x"]], dtype=float).reshape(shape),
                    side=np.array(d["side"], dtype=np.int64).reshape(shape),
                    status=np.array(d["status"], dtype=np.int64).reshape(shape),

@@ -48,7 +48,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
         ts[1] = ts[2]
     if omega == 0.0:
         rec[C.N_MIN] = 1.0
-        return rest(x0, side, 0.0, h, g, d, uL, beta, length, back, beta[side], traj, ts, rec)
+        return rest(x0, side, 0.0, h, g, d, uL, uR, beta, length, back, beta[side], traj, ts, rec)
     # ------------------------------------------------------------------ reset release (Eq. 1)
     vx, vy, om = release_state(x0, dk, h, omega)
     x = x0
@@ -83,7 +83,9 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
             jc, t, x, y, vy, phi, rx, ry = fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol,
                                                max_iter, traj, ts)
             if jc < 0:
-                return x, last_side, (C.UNRESOLVED if jc == UNRESOLVED_J else C.NO_CONTACT)
+                if jc != UNRESOLVED_J:
+                    rec[C.CAP_HIT] = 1.0  # max_iter steps without contact: not resolved, not a missed contact
+                return x, last_side, C.UNRESOLVED
             pxc = x + rx
             k_pre = 0.5 * (vx * vx + vy * vy + rho2 * om * om)
             if first:
@@ -164,7 +166,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
                 continue
             ev = EV_LIFT_OFF
         if ev == EV_STEP_CAP:
-            return px + lj * math.cos(theta), last_side, C.NO_REST
+            rec[C.CAP_HIT] = 1.0  # max_iter integration steps in one contact mode: not resolved
+            return px + lj * math.cos(theta), last_side, C.UNRESOLVED
         phi = theta + phi_off
         if ev == EV_LIFT_OFF:
             # ---------------------------------------------------------- reset lift

@@ -59,16 +59,17 @@ def arc_ok(th_from, E, lj, I, g, mu, towards_peak):
 
 
 @njit(cache=True)
-def rest(x, k, t, h, g, d, uL, beta, length, back, phi, traj, ts, rec):
+def rest(x, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec):
     """Terminal mode REST flat on side k with the CM at x (m): status BEHIND_JOINT if the left support
-    vertex is at x ≤ −back, OFF_END if the CM is beyond ``length``, else OK."""
+    vertex is at x ≤ −back, OFF_END if the right one is beyond ``length`` (x + u_R > length), else OK
+    (the rest rule of :func:`throwmap.throws.throw.start_interval`)."""
     rec[C.E_FINAL] = g * d[k]
     rec[C.T_REST] = t
     m = round((phi - beta[k]) / TWO_PI)
     _put_final(traj, ts, t, x, h + d[k], beta[k] + TWO_PI * m)
     if x + uL[k] <= -back:
         return x, k, C.BEHIND_JOINT
-    if x > length:
+    if x + uR[k] > length:
         return x, k, C.OFF_END
     return x, k, C.OK
 
@@ -203,14 +204,14 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
             # frictionless Zeno rule: the CM's horizontal motion is free (no friction), the rocking
             # relative to it is below both topple barriers and dies out: flat on side k, sliding at v_x
             if vxp == 0.0:
-                x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, back, phi, traj, ts, rec)
+                x, k, status = rest(x_cm, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec)
             else:
                 x, status, t = slide_away(x_cm, vxp, t, k, uL, uR, length, back, h + dk, phi, traj, ts, rec)
             return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
         if kind == IMP_STICK and stable[k]:
             th_A = tb if land_dir > 0 else ta
             if rocking_rest(th_new, th_A, k_after, ell[jp], ell[jB], rho2, dk, g, mu, land_dir):
-                x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, back, phi, traj, ts, rec)
+                x, k, status = rest(x_cm, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec)
                 return (MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0,
                         last_side)
         phi_off = phi - th_new
@@ -248,7 +249,7 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
     if vx_after != 0.0:
         x_cm, t = flat_slide(x_cm, vx_after, t, mu, g, h + dk, phi, traj, ts, rec)
     if stable[k]:
-        x, k, status = rest(x_cm, k, t, h, g, d, uL, beta, length, back, phi, traj, ts, rec)
+        x, k, status = rest(x_cm, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec)
         return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
     # flat on an unstable side: tips over the vertex its CM overhangs, from rest
     jt_, px_t, theta = tip_from_rest(k, x_cm, n, d, uL, uR)
