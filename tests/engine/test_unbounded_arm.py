@@ -135,3 +135,11 @@ def test_cli_engine_throw_on_unbounded_arm():
                                    "--x", "5.973", "--side", "2", "--model", "engine"])
     assert res.exit_code == 0, res.output
     assert "off_end" not in res.output
+
+
+def test_flight_longer_than_t_max_times_out_and_says_so():
+    """A flight longer than t_max (x = 20 m, ω = 5 rad/s: about 20 s up and down) is a timeout whose
+    message says the part never landed, not an escape (the arm reaches past the whole flight)."""
+    run = engine_run(TRI, tm.Arm(h=-0.01, mu=1.0), 20.0, 0, 5.0)
+    assert run.status == Status.TIMEOUT
+    assert "first flight" in run.message and "t_max" in run.message

@@ -162,7 +162,10 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             if run_for is not None:
                 break
             status = Status.TIMEOUT
-            message = f"not settled after {settings.t_max:g} s"
+            message = f"not settled after {t_max:g} s"
+            flying = [str(i) for i, tr in enumerate(tracks) if tr.fell is None and not tr.ever and tr.n_contacts == 0]
+            if flying:
+                message += f" (part {', '.join(flying)} still in its first flight: raise EngineSettings.t_max)"
             for tr in tracks:
                 if tr.fell is None:
                     tr.status = Status.TIMEOUT
