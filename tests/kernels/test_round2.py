@@ -25,6 +25,18 @@ def test_search_cap_is_unresolved_not_no_contact(model, max_iter):
     assert o.status == Status.UNRESOLVED and o.cap_hit
     back = ThrowOutcome.from_dict(o.to_dict())
     assert back.cap_hit and back.status == Status.UNRESOLVED
+    assert "max_iter" in o.message and f"reason: {o.message}" in o.table() and "none resolved" in o.table()
+
+
+def test_unresolved_says_why_and_other_statuses_say_nothing():
+    o = tm.throw(PART, ARM, 2e8, 0, 1e6, model="rigid_body")
+    assert o.status == Status.UNRESOLVED and not o.cap_hit and "spin angle" in o.message
+    o = tm.throw(PART, ARM, 0.2, 0, 4.0)
+    assert o.ok and o.message == "" and "reason" not in o.table()
+    d = o.to_dict()
+    del d["message"], d["cap_hit"]  # JSON written before these fields existed
+    old = ThrowOutcome.from_dict(d)
+    assert old.message == "" and not old.cap_hit and old.x == o.x
 
 
 @pytest.mark.parametrize("model", ["paper", "rigid_body"])
@@ -69,7 +81,7 @@ def test_cli_max_iter_and_tol():
     r = _cli(*base, "-O", "max_iter=1", "--json")
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
-    assert d["status"] == "unresolved" and d["cap_hit"] is True
+    assert d["status"] == "unresolved" and d["cap_hit"] is True and "max_iter" in d["message"]
     r = _cli(*base, "-O", "tol=1e300")
     assert r.returncode == 2 and "tol" in r.stderr and "Traceback" not in r.stderr
 

@@ -78,6 +78,23 @@ class Status(enum.IntEnum):
 _STATUS = tuple(Status(c) for c in range(len(Status)))
 
 
+def _why(status: int, cap_hit: bool, model: str) -> str:
+    """The analytic models' reason for an UNRESOLVED throw ("" for every other status)."""
+    if status != C.UNRESOLVED:
+        return ""
+    if cap_hit:
+        return ("a contact search or integration used all its max_iter steps without an event: "
+                "not resolved (raise the model option max_iter)")
+    from ..kernels.flight import MAX_SPIN_ANGLE
+
+    spin = (f"the spin angle ω t at first contact passes {MAX_SPIN_ANGLE:g} rad, beyond what double "
+            "precision resolves")
+    if model.startswith("small_angle"):
+        return ("the closed forms give no answer here: " + spin
+                + (", or g ≤ d ω² (the second-order expansion has no contact)" if model == "small_angle2" else ""))
+    return spin
+
+
 def _count(v: float) -> int:
     return int(v) if v == v else 0
 
@@ -105,7 +122,9 @@ class ThrowOutcome:
     ``slip_distance`` (m), ``t_rest`` (s from release to rest; nan where not
     resolved) and ``penetration_max`` (m, engines). ``cap_hit``: the throw is
     ``unresolved`` because a search or integration used its ``max_iter`` steps
-    (record ``CAP_HIT``).
+    (record ``CAP_HIT``). ``message``: why the result was refused or what limited it
+    (``unresolved``, and the engines' ``unconverged``, ``penetration``, ``timeout``…);
+    ``""`` when there is nothing to say.
     """
 
     x: float
@@ -140,6 +159,7 @@ class ThrowOutcome:
     t_rest: float = float("nan")
     penetration_max: float = 0.0
     cap_hit: bool = False
+    message: str = ""
 
     def __repr__(self) -> str:
         end = (f"(x={self.x:.4g} m, side {self.side}), {self.kind}" if self.ok
@@ -199,6 +219,7 @@ class ThrowOutcome:
             r[C.T_REST],
             r[C.PENETRATION_MAX],
             r[C.CAP_HIT] == 1.0,
+            _why(int(status), r[C.CAP_HIT] == 1.0, model),
         )
 
     def to_record(self, part) -> np.ndarray:
@@ -254,10 +275,13 @@ class ThrowOutcome:
         head = f"model {self.model}: (x = {self.x0:.6g} m, side {self.side0}), ω = {om} → "
         head += (f"(x = {self.x:.6g} m, side {self.side}), {self.kind}" if self.ok
                  else f"{self.status.label} at x = {self.x:.6g} m")
-        lines = [head,
-                 f"  first impact: t = {self.t_flight:.6g} s, vertex {self.contact_vertex}, x = {self.contact_x:.6g} m",
+        first = (f"  first impact: t = {self.t_flight:.6g} s, vertex {self.contact_vertex}, x = {self.contact_x:.6g} m"
+                 if self.contact_vertex >= 0 or self.omega == 0.0 else "  first impact: none resolved")
+        lines = [head, first,
                  f"  impacts {self.n_impacts}, flips {self.n_flips}, lift-offs {self.n_lift_offs}, slips {self.n_slips},"
                  f" friction needed {self.friction_ratio_max:.3g}"]
+        if self.message:
+            lines.append(f"  reason: {self.message}")
         return "\n".join(lines)
 
 
