@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["GROWTH", "EXTENSIONS", "flight_reach", "lengths", "reach_bound", "travel_bound", "unbounded_message"]
+__all__ = ["EXTENSIONS", "GROWTH", "flight_reach", "lengths", "reach_bound", "travel_bound", "unbounded_message"]
 
 GROWTH = 4.0
 """Factor by which the margin beyond the flight bound grows on each rerun."""

@@ -14,12 +14,19 @@ from ...system.part import Part
 from ...throws.outcome import Status, ThrowOutcome
 from ...throws.throw import check_start
 from ...throws.trajectory import Trajectory, pose_at_rest, state_from_pose
-from ..rest import edge_status, rest_status, tilted_message
 from ..reach import lengths, unbounded_message
 from ..realisation import ImpulseThrow
+from ..rest import edge_status, rest_status, tilted_message
 from ..scene import Placement, Scene
 from .model import mujoco_model_xml
-from .settings import MODEL_NAME, POST_SPEED_FRACTION, POST_WINDOW, TOUCH_HYSTERESIS, UNBOUNDED_EXTRA, MujocoSettings
+from .settings import (
+    MODEL_NAME,
+    POST_SPEED_FRACTION,
+    POST_WINDOW,
+    TOUCH_HYSTERESIS,
+    UNBOUNDED_EXTRA,
+    MujocoSettings,
+)
 
 __all__ = ["mujoco_throw"]
 

@@ -8,8 +8,8 @@ from dataclasses import replace
 from ...errors import InvalidStateError, shown
 from ...kernels import codes as C
 from ...throws.outcome import Status
-from ..realisation import ImpulseThrow, check_realisation
 from ..reach import lengths, unbounded_message
+from ..realisation import ImpulseThrow, check_realisation
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
@@ -20,7 +20,7 @@ from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
 from .verify import disagreement, flags
 from .world import build_world
 
-__all__ = ["simulate", "CHECK_EVERY"]
+__all__ = ["CHECK_EVERY", "simulate"]
 
 CHECK_EVERY = 1e-3
 """s between penetration/clearance checks while stepping at ``dt``."""
