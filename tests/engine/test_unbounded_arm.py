@@ -143,3 +143,10 @@ def test_flight_longer_than_t_max_times_out_and_says_so():
     run = engine_run(TRI, tm.Arm(h=-0.01, mu=1.0), 20.0, 0, 5.0)
     assert run.status == Status.TIMEOUT
     assert "first flight" in run.message and "t_max" in run.message
+
+
+def test_batch_failures_count_unresolved():
+    from throwmap.models.engine import engine_failures
+
+    assert "unresolved" not in engine_failures(np.array([int(Status.OK), int(Status.TIMEOUT)]))
+    assert "unresolved refused 1/2" in engine_failures(np.array([int(Status.OK), int(Status.UNRESOLVED)]))

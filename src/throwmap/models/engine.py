@@ -50,10 +50,13 @@ class EngineOptions:
 
 
 def engine_failures(status) -> str:
-    """``"timeouts a/n, penetration refused b/n, unconverged refused c/n"`` over a batch's status codes."""
+    """``"timeouts a/n, penetration refused b/n, unconverged refused c/n"`` over a batch's status codes,
+    and ``", unresolved refused d/n"`` where throws reached the end of a simulated unbounded arm."""
     n = max(len(status), 1)
-    return (f"timeouts {int((status == C.TIMEOUT).sum())}/{n}, penetration refused {int((status == C.PENETRATION).sum())}/{n}, "
+    text = (f"timeouts {int((status == C.TIMEOUT).sum())}/{n}, penetration refused {int((status == C.PENETRATION).sum())}/{n}, "
             f"unconverged refused {int((status == C.UNCONVERGED).sum())}/{n}")
+    unresolved = int((status == C.UNRESOLVED).sum())
+    return text + (f", unresolved refused {unresolved}/{n}" if unresolved else "")
 
 
 class EngineModel:
