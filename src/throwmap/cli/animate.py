@@ -20,6 +20,7 @@ from ..models import DEFAULT_MODEL, model_names
 from ..throws.orbit_trajectory import orbit_trajectory, trajectory_models
 from .options import (BackOpt, GOpt, HOpt, LengthOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt,
                       check_finite, check_output, guard, model_options, part_and_arm, strict_int)
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 
 __all__ = ["register", "animate_cmd", "ANIMATE_MODELS", "PROGRESS_FRAMES"]
 
@@ -28,11 +29,18 @@ ANIMATE_MODELS = trajectory_models()
 PROGRESS_FRAMES = 60
 """A progress bar (stderr, terminals only) is shown for animations with more frames than this."""
 
+# the work guard's options (as ``limitset``/``basins``; :mod:`throwmap.budget`)
+MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the command may plan to hold, GB; "
+                                                                    "above it the command refuses before starting.")]
+MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the command may plan to run, s (estimated "
+                                                              "from throws timed at the start).")]
+ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
 
-def _trajectory(model, part, arm, x, side, omega, n, opts=None):
+
+def _trajectory(model, part, arm, x, side, omega, n, opts=None, limits=None):
     """The trajectory of ``n`` throws (:func:`~throwmap.throws.orbit_trajectory.orbit_trajectory`); raises
     :class:`ImportError` where the model's module is not installed."""
-    return orbit_trajectory(part, arm, x, side, omega, n, model=model, **(opts or {}))
+    return orbit_trajectory(part, arm, x, side, omega, n, model=model, **(opts or {}), **(limits or {}))
 
 
 def _summary(traj) -> tuple[str, str]:
@@ -72,6 +80,9 @@ def animate_cmd(
     fps: Annotated[int, typer.Option("--fps", parser=strict_int, metavar="INTEGER", help="Frames per second.")] = 30,
     speed: Annotated[float, typer.Option("--speed", help="Playback speed relative to real time "
                                                          "(0.25: four times slower).")] = 0.25,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Draw a throw (or -n throws: an orbit) as an animation."""
     with guard():
@@ -85,6 +96,7 @@ def animate_cmd(
             raise ThrowmapError("fps", f"must be a positive integer, got {fps}")
         if not (math.isfinite(speed) and speed > 0):
             raise ThrowmapError("speed", f"must be a positive finite number, got {speed}")
+        limits = work_limits(max_memory, max_time, force)
         from ..viz.animation import animate, check_animation_path, frame_times
 
         check_animation_path(out, need_directory=False)  # before any work; the directory is made below
@@ -95,7 +107,7 @@ def animate_cmd(
         check_finite(omega, "omega")
         os.environ.setdefault("MPLBACKEND", "Agg")  # files only, never a window
         try:
-            traj = _trajectory(model, the_part, arm, x, side, omega, n, opts)
+            traj = _trajectory(model, the_part, arm, x, side, omega, n, opts, limits)
         except ImportError as err:
             missing = getattr(err, "name", None) or ""
             if missing.startswith("throwmap") or not missing:

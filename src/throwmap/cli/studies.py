@@ -22,11 +22,19 @@ from ..throws.throw import check_model
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, arm_dict, check_finite,
                       check_out_dir, check_output, guard, make_out_dir, parse_floats, part_and_arm, stderr_line,
                       strict_int, to_json, write_text)
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 
 __all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "ENGINES"]
 
 ENGINES = ("pymunk", "mujoco")
 """Engines ``validate`` can use; pymunk is the reference and always runs."""
+
+# the work guard's options (as ``limitset``/``basins``; :mod:`throwmap.budget`)
+MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the command may plan to hold, GB; "
+                                                                    "above it the command refuses before starting.")]
+MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the command may plan to run, s (estimated "
+                                                              "from throws timed at the start).")]
+ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
 
 
 # ------------------------------------------------------------------ demo
@@ -90,6 +98,9 @@ def compare_cmd(
     as_json: JsonOpt = False,
     out: Annotated[Path | None, typer.Option("--out", help="Also write the result: JSON if FILE ends in .json, "
                                                            "else the table as text.")] = None,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Accuracy of the small-angle models against the exact 'paper' model."""
     from ..studies import compare
@@ -97,9 +108,10 @@ def compare_cmd(
     with guard():
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         kwargs = _compare_kwargs(omegas, n_x, models, x_min, x_max)
+        limits = work_limits(max_memory, max_time, force)
         if out is not None:
             check_output(out, "out")
-        result = compare.compare_models(the_part, arm, **kwargs)
+        result = compare.compare_models(the_part, arm, **kwargs, **limits)
         doc = {**result.to_dict(), "arm": arm_dict(arm), "version": __version__}
         if out is not None:
             write_text(out, to_json(doc) + "\n" if out.suffix.lower() == ".json" else result.table() + "\n", "out")
@@ -159,12 +171,16 @@ def validate_cmd(
                                                    "impulse on this many throws (0: skip).")] = 40,
     out: Annotated[Path, typer.Option("--out", help="Directory for validation.json and validation.md.")] = Path("out"),
     as_json: JsonOpt = False,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Analytic models against full rigid-body simulation: side agreement, |Δx|, where assumptions fail."""
     from ..studies.validation import validate
 
     with guard():
         eng, mods = _validate_settings(n, grid, engines, models, mu, realisations)
+        limits = work_limits(max_memory, max_time, force)
         check_out_dir(out)
         parts = _validation_parts(part)
         if "mujoco" in eng:
@@ -180,7 +196,7 @@ def validate_cmd(
             task = bar.add_task("engine", total=None)
             report = validate(parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, workers=workers,
                               progress=lambda done, total: bar.update(task, completed=done, total=total),
-                              n_realisations=realisations)
+                              n_realisations=realisations, **limits)
         make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "validation.json", to_json(doc) + "\n", "out")

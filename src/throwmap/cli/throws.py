@@ -20,11 +20,19 @@ from ..throws.throw import DEFAULT_MODEL, check_model, throw
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt,
                       SideOpt, XOpt, arm_dict, check_finite, figure_format, format_value, guard, model_options,
                       options_doc, parse_floats, part_and_arm, save_figure, strict_int, to_json)
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 
 __all__ = ["register", "throw_cmd", "iterate_cmd", "PROGRESS_THRESHOLD"]
 
 PROGRESS_THRESHOLD = 200
 """``iterate`` shows a progress bar (on stderr) for more throws than this."""
+
+# the work guard's options (as ``limitset``/``basins``; :mod:`throwmap.budget`)
+MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the command may plan to hold, GB; "
+                                                                    "above it the command refuses before starting.")]
+MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the command may plan to run, s (estimated "
+                                                              "from throws timed at the start).")]
+ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
 
 
 # ------------------------------------------------------------------ throw
@@ -84,15 +92,15 @@ def throw_cmd(
 
 
 # ------------------------------------------------------------------ iterate
-def _iterate_with_progress(part, arm, state, omegas: list[float], model: str, opts: dict) -> Orbit:
-    """:func:`throwmap.iterate` with a Rich progress bar on stderr."""
+def _iterate_with_progress(part, arm, state, omegas, n, total: int, model: str, opts: dict) -> Orbit:
+    """:func:`throwmap.iterate` with a Rich progress bar on stderr (``total`` throws planned)."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
     with Progress(TextColumn("throwing"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
                   console=Console(stderr=True), transient=True) as bar:
-        task = bar.add_task("throwing", total=len(omegas))
-        return iterate(part, arm, state, omegas, model=model, **opts,
+        task = bar.add_task("throwing", total=total)
+        return iterate(part, arm, state, omegas, n, model=model, **opts,
                        progress=lambda done: bar.update(task, completed=done))
 
 
@@ -117,18 +125,19 @@ def _orbit_summary(orbit: Orbit, requested: int) -> dict:
     }
 
 
-def _throw_rates(omega: list[str], n: int | None) -> list[float]:
-    """The release rates of ``--omega`` (one per throw, or one repeated ``-n`` times)."""
+def _throw_rates(omega: list[str], n: int | None) -> tuple[float | list[float], int | None, int]:
+    """The release rates of ``--omega`` for :func:`throwmap.iterate`: ``(ω, n, n)`` for one ω
+    repeated ``-n`` times (never expanded here: the library guards the size), or ``(ωs, None, len)``."""
     omegas = parse_floats(omega, "omega")
     if len(omegas) == 1:
         if n is None:
             raise InvalidStateError("n", "give -n/--n, the number of throws, with a single --omega")
         if n < 0:
             raise InvalidStateError("n", f"must be a non-negative integer, got {n}")
-        return omegas * n
+        return omegas[0], n, n
     if n is not None and n != len(omegas):
         raise InvalidStateError("n", f"got n = {n} but {len(omegas)} omegas")
-    return omegas
+    return omegas, None, len(omegas)
 
 
 def iterate_cmd(
@@ -148,6 +157,9 @@ def iterate_cmd(
     model_option: ModelOptionOpt = None,
     as_json: JsonOpt = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a figure of the orbit (e.g. orbit.png).")] = None,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Repeated throws from (x, side): an orbit of the throw map."""
     with guard():
@@ -156,13 +168,14 @@ def iterate_cmd(
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
-        omegas = _throw_rates(omega, n)
+        omegas, n_lib, planned = _throw_rates(omega, n)
+        limits = work_limits(max_memory, max_time, force)
         fmt = figure_format(plot, "plot")
-        if len(omegas) > PROGRESS_THRESHOLD:
-            orbit = _iterate_with_progress(the_part, arm, (x, side), omegas, model, opts)
+        if planned > PROGRESS_THRESHOLD:
+            orbit = _iterate_with_progress(the_part, arm, (x, side), omegas, n_lib, planned, model, {**opts, **limits})
         else:
-            orbit = iterate(the_part, arm, (x, side), omegas, model=model, **opts)
-        summary = _orbit_summary(orbit, len(omegas))
+            orbit = iterate(the_part, arm, (x, side), omegas, n_lib, model=model, **opts, **limits)
+        summary = _orbit_summary(orbit, planned)
         if plot is not None:
             save_figure(orbit.plot(part=the_part, arm=arm), plot, fmt, "plot")
         if as_json:

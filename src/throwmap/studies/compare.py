@@ -2,16 +2,24 @@
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..system.arm import Arm
 from ..throws.outcome import Status
 from ..system.part import Part
 from ..throws.throw import check_model, throw_batch
 
-__all__ = ["ModelComparison", "compare_models"]
+__all__ = ["ModelComparison", "compare_models", "BYTES_PER_START"]
+
+BYTES_PER_START = 1000
+"""Memory a comparison holds per start configuration, bytes: the starts and two models' batch
+results with their records at one ω (≈ 970 bytes measured at ``n_x`` = 20 000)."""
+TIMED_STARTS = 64
+"""Starts thrown once per model to measure the time per throw before a comparison."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -100,7 +108,8 @@ class ModelComparison:
 
 def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), n_x: int = 200,
                    x_max: float | None = None, models=("small_angle", "small_angle2"),
-                   reference: str = "paper", x_min: float | None = None) -> ModelComparison:
+                   reference: str = "paper", x_min: float | None = None, *, max_memory: float = DEFAULT_MAX_MEMORY,
+                   max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False) -> ModelComparison:
     """Compare ``models`` with ``reference`` over x ∈ (lo, x_max] on every stable side, for each ω.
 
     lo is the side's smallest admissible start x_min (m), or ``x_min`` where that is
@@ -108,6 +117,11 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
     side's lo. Also records, per ω and side, the first grid x at which each model's
     throw is not a jog (the switch r_i, Sec. III-D), with the grid's resolution
     (x_max − lo)/n_x. The result's ``settings`` (and its table) state the range.
+
+    Work guard (:mod:`throwmap.budget`): memory :data:`BYTES_PER_START` per start
+    (``n_x`` per stable side) and time from :data:`TIMED_STARTS` throws of each model
+    measured now (every start is thrown once per ω and model); above ``max_memory``
+    (bytes) or ``max_seconds`` (s) it is refused with one line on ``n_x``, unless ``force``.
     """
     from ..errors import InvalidStateError
 
@@ -123,6 +137,27 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
     if x_max <= max(los.values()):
         raise InvalidStateError("x_max", f"must exceed the largest start bound {max(los.values()):.4g} m, "
                                          f"got {x_max:g}")
+    n_x = check_count("n_x", n_x, minimum=1)
+    omegas = tuple(np.atleast_1d(np.asarray(omegas, dtype=float)))
+    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
+    n_starts = n_x * len(part.stable_sides)
+
+    def seconds_per_throw() -> float:
+        lo = max(los.values())
+        xt = np.linspace(lo, x_max, TIMED_STARTS + 1)[1:]
+        st = np.full(xt.shape, part.stable_sides[0])
+        w = omegas[0] if omegas else 1.0
+        total = 0.0
+        for m in (reference, *models):
+            throw_batch(part, arm, xt[:2], st[:2], w, model=m, on_invalid="status")  # warm the kernels
+            t0 = time.perf_counter()
+            throw_batch(part, arm, xt, st, w, model=m, on_invalid="status")
+            total += time.perf_counter() - t0
+        return total / (xt.size * (1 + len(models)))
+
+    guard_work(f"compare (n_x = {n_x:,} per stable side)", "n_x", n_starts, BYTES_PER_START, max_memory, max_seconds, force,
+               throws_per_config=len(omegas) * (1 + len(models)), timer=seconds_per_throw,
+               hint="a smaller n_x (--n-x)", unit="starts")
     xs, ss = [], []
     for s in part.stable_sides:
         x = np.linspace(los[s], x_max, n_x + 1)[1:]

@@ -11,10 +11,13 @@ agreement, and where each model's assumptions failed. The report is a frozen
 from __future__ import annotations
 
 import math
+import os
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..system.arm import Arm
 from ..kernels import codes as C
 from ..throws.outcome import Status
@@ -36,6 +39,11 @@ X_MAX = 0.45
 MU_ROWS = (0.3, 0.6, 1.0, 2.0, math.inf)
 """Arm frictions of the table's extra rows: rigid_body vs pymunk on the same cases at each μ
 (at μ ≤ 0.6 the impact law decides, :mod:`throwmap.kernels.rigid_body.impact`)."""
+BYTES_PER_CASE_MODEL = 600
+"""Memory a validation holds per case and model (engines included), bytes: x, side, status, μ and the
+kernel record (:data:`throwmap.kernels.codes.NREC` floats), ≈ 270 bytes, twice while the pieces are joined."""
+TIMED_ENGINE_THROWS = 3
+"""Engine throws timed (after one that warms it) to estimate a validation's time."""
 
 
 def default_parts() -> dict[str, Part]:
@@ -218,11 +226,38 @@ def realisation_departures(part: Part, arm: Arm, n: int = 40, seed: int = 0, *, 
     return tuple(rows)
 
 
+def _guard_validation(parts, n, grid, models, engines, mu, hs, omega_range, workers, engine_settings,
+                      n_realisations, mu_rows, max_memory, max_seconds, force) -> dict:
+    """The work guard of :func:`validate` (:func:`throwmap.budget.guard_work` on ``n``)."""
+    n_grid = sum(12 * len(p.stable_sides) for p in parts.values()) if grid else 0
+    n_cases = n + n_grid
+    n_models = len(tuple(models)) + 1 + ("mujoco" in engines)
+    workers_n = (os.cpu_count() or 1) if workers in (0, None) else max(1, int(workers))
+    engine_per_case = (1 + ("mujoco" in engines)) / workers_n + 3 * n_realisations / max(n_cases, 1)
+
+    def seconds_per_engine_throw() -> float:
+        case = make_cases(dict([next(iter(parts.items()))]), 0, grid=True, hs=hs, omega_range=omega_range)[0]
+        part = parts[case.part_name]
+        k = min(1 + TIMED_ENGINE_THROWS, case.x.size)
+        kw = {"settings": engine_settings} if engine_settings else {}
+        arm = Arm(h=float(case.h[0]), mu=mu)
+        throw_batch(part, arm, case.x[:1], case.side[:1], case.omega[:1], model="engine", on_invalid="status", **kw)
+        t0 = time.perf_counter()
+        throw_batch(part, arm, case.x[1:k], case.side[1:k], case.omega[1:k], model="engine", on_invalid="status",
+                    **kw)
+        return (time.perf_counter() - t0) / max(k - 1, 1)
+
+    return guard_work("validate", "n", n_cases, BYTES_PER_CASE_MODEL * n_models, max_memory, max_seconds, force,
+                      throws_per_config=engine_per_case, timer=seconds_per_engine_throw,
+                      hint="fewer random throws (--n)", unit="cases")
+
+
 def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 0, grid: bool = True,
              models=("paper", "small_angle", "rigid_body"), engines=("pymunk",), mu: float = DEFAULT_MU,
              hs=DEFAULT_H, omega_range=DEFAULT_OMEGA, workers: int | None = 0, engine_settings=None,
              mujoco_settings=None, progress=None, n_realisations: int = 0,
-             mu_rows=MU_ROWS) -> ValidationReport:
+             mu_rows=MU_ROWS, max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
+             force: bool = False) -> ValidationReport:
     """Throw the validation set through ``models`` and ``engines``; compare each with pymunk.
 
     The rows are at arm friction ``mu``; then, for each μ in ``mu_rows`` (default
@@ -234,6 +269,11 @@ def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 
     ``n_realisations`` > 0 also compares finite arm motions with the impulse on
     that many throws of the first part (:func:`realisation_departures`).
     ``progress(done, total)`` is called as engine throws finish.
+
+    Work guard (:mod:`throwmap.budget`): memory :data:`BYTES_PER_CASE_MODEL` per case
+    and model, time from :data:`TIMED_ENGINE_THROWS` engine throws measured now (the
+    engine throws dominate; shared over ``workers``); above ``max_memory`` (bytes) or
+    ``max_seconds`` (s) it is refused with one line on ``n``, unless ``force``.
     """
     parts = default_parts() if parts is None else parts
     engines = tuple(engines)
@@ -242,6 +282,8 @@ def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 
             from ..errors import ThrowmapError
 
             raise ThrowmapError("engines", f"unknown engine {e!r} (choose from pymunk, mujoco)")
+    _guard_validation(parts, check_count("n", n), grid, models, engines, mu, hs, omega_range, workers,
+                      engine_settings, n_realisations, mu_rows, *check_limits(max_memory, max_seconds, force))
     cases = make_cases(parts, n, seed, grid=grid, hs=hs, omega_range=omega_range)
     total = sum(c.x.size for c in cases) * (1 + ("mujoco" in engines))
     done = [0]

@@ -6,13 +6,23 @@ from dataclasses import dataclass
 
 import numpy as np
 
+import time
+
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..system.arm import Arm
 from ..errors import InvalidStateError, shown
 from .outcome import Status, ThrowOutcome
 from ..system.part import Part
 from .throw import DEFAULT_MODEL, throw
 
-__all__ = ["Orbit", "iterate"]
+__all__ = ["Orbit", "iterate", "BYTES_PER_THROW", "TIMED_THROWS", "ThrowGuard", "planned_throws", "throw_rates"]
+
+BYTES_PER_THROW = 1200
+"""Memory an orbit holds per throw, bytes: its :class:`ThrowOutcome` (≈ 1 kB measured) and the x, side, ω entries."""
+TIMED_THROWS = 8
+"""Throws of an orbit timed (after :data:`WARM_THROWS` that warm the kernels) to estimate the whole orbit's time."""
+WARM_THROWS = 2
+"""Throws at the start of a run not counted in its time estimate (first calls compile or warm caches)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -104,12 +114,7 @@ def throw_rates(omegas, n=None, *, min_n: int = 0) -> np.ndarray:
     if om.ndim != 1:
         raise InvalidStateError("omegas", "must be a number or a 1-D sequence")
     if np.ndim(omegas) == 0:
-        if n is None:
-            raise InvalidStateError("n", "the number of throws is required with a single omega")
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < min_n:
-            kind = "positive" if min_n >= 1 else "non-negative"
-            raise InvalidStateError("n", f"must be a {kind} integer, got {shown(n)}")
-        om = np.full(int(n), float(om[0]))
+        om = np.full(planned_throws(omegas, n, min_n=min_n), float(om[0]))
     elif n is not None and n != len(om):
         raise InvalidStateError("n", f"got n = {n} but {len(om)} omegas")
     if om.size < min_n:
@@ -117,7 +122,49 @@ def throw_rates(omegas, n=None, *, min_n: int = 0) -> np.ndarray:
     return om
 
 
+def planned_throws(omegas, n, *, min_n: int = 0) -> int:
+    """How many throws ``(omegas, n)`` ask for, without building the rates.
+
+    With a single ω, ``n`` must be an integer from ``min_n`` to 2^63 − 1 (else
+    :class:`InvalidStateError` on ``n``); with a sequence, its length.
+    """
+    if np.ndim(omegas) != 0:
+        return int(np.size(omegas))
+    if n is None:
+        raise InvalidStateError("n", "the number of throws is required with a single omega")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < min_n:
+        kind = "positive" if min_n >= 1 else "non-negative"
+        raise InvalidStateError("n", f"must be a {kind} integer, got {shown(n)}")
+    return check_count("n", n, minimum=min_n)
+
+
+class ThrowGuard:
+    """The work guard of a run of ``n_planned`` throws (:mod:`throwmap.budget`), field ``field``.
+
+    Construction checks the memory (``bytes_per_throw`` each) at once; call
+    :meth:`tick` after each throw: after :data:`TIMED_THROWS` timed throws (the first
+    :data:`WARM_THROWS`, which warm the kernels, are not counted) it checks the time of the whole run.
+    """
+
+    def __init__(self, what: str, field: str, n_planned: int, bytes_per_throw: float, max_memory, max_seconds,
+                 force, hint: str):
+        self.args = (what, field, n_planned, bytes_per_throw, *check_limits(max_memory, max_seconds, force))
+        self.hint = hint
+        self.done = 0
+        self.t0 = None
+        guard_work(*self.args, hint=hint, unit="throws")
+
+    def tick(self) -> None:
+        self.done += 1
+        if self.done == WARM_THROWS:
+            self.t0 = time.perf_counter()
+        elif self.done == WARM_THROWS + TIMED_THROWS and self.args[2] > self.done:
+            per = (time.perf_counter() - self.t0) / TIMED_THROWS
+            guard_work(*self.args, throws_per_config=1.0, timer=lambda: per, hint=self.hint, unit="throws")
+
+
 def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: str = DEFAULT_MODEL, *, progress=None,
+            max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False,
             **throw_kwargs) -> Orbit:
     """Throw repeatedly from ``state = (x, side)``.
 
@@ -125,11 +172,18 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     (then ``n`` may be omitted, or must equal its length). Stops early, with the
     escape's status, if a throw leaves the arm or does not come to rest.
     ``progress``, if given, is called with the number of throws done after each throw.
+
+    Work guard (:mod:`throwmap.budget`): the orbit's memory (:data:`BYTES_PER_THROW`
+    per throw) is checked before any throw, its time from the first throws
+    (:data:`TIMED_THROWS`, timed now); above ``max_memory`` (bytes) or ``max_seconds``
+    (s) it is refused with one line on ``n``, unless ``force``.
     """
     try:
         x0, s0 = state
     except (TypeError, ValueError):
         raise InvalidStateError("state", f"must be a pair (x, side), got {shown(state)}") from None
+    gd = ThrowGuard("iterate", "n", planned_throws(omegas, n), BYTES_PER_THROW, max_memory, max_seconds, force,
+                      hint="fewer throws (-n)")
     om = throw_rates(omegas, n)
     xs = [float(x0)]
     ss = [part.check_side(s0)]
@@ -138,6 +192,7 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     for w in om:
         o: ThrowOutcome = throw(part, arm, xs[-1], ss[-1], float(w), model=model, **throw_kwargs)
         outs.append(o)
+        gd.tick()
         if progress is not None:
             progress(len(outs))
         if o.status != Status.OK:

@@ -17,13 +17,18 @@ from ..errors import InvalidStateError, shown
 from ..models import DEFAULT_MODEL, model_names
 from ..system.arm import Arm
 from ..system.part import Part
-from .orbit import throw_rates
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
+from .orbit import ThrowGuard, planned_throws, throw_rates
 from .outcome import Status, ThrowOutcome
 from .throw import check_start, prepare
 from .trajectory import DEFAULT_DT, Trajectory, check_dt, drawn_length
 
 __all__ = ["throw_trajectory", "paper_trajectory", "paper_throw_trajectory", "orbit_trajectory", "trajectory_models",
-           "DEFAULT_DT"]
+           "DEFAULT_DT", "TRAJECTORY_BYTES_PER_THROW"]
+
+TRAJECTORY_BYTES_PER_THROW = 48_000
+"""Memory an orbit's trajectory needs per throw, bytes: ≈ 130 samples (the throw at ``dt`` = 1/240 s and its
+pause) of ≈ 120 bytes kept (≈ 16 kB measured), doubled while successive throws are joined, plus one throw's work."""
 
 
 def trajectory_models() -> tuple[str, ...]:
@@ -113,7 +118,8 @@ def _dedupe(traj: Trajectory) -> Trajectory:
 
 def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int | None = None,
                      model: str = DEFAULT_MODEL, pause: float = 0.3, *, dt: float = DEFAULT_DT, progress=None,
-                     **throw_kw) -> Trajectory:
+                     max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
+                     force: bool = False, **throw_kw) -> Trajectory:
     """Successive throws from ``(x, side)`` as one trajectory, with a still ``pause`` (s) between throws.
 
     ``omegas`` is one release rate (then ``n`` throws) or one per throw (as
@@ -123,7 +129,17 @@ def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int |
     (``fixtures``, ``alpha``, model options). ``progress``, if given, is called with the number
     of throws done after each. ``meta["outcomes"]`` holds each throw's
     :class:`ThrowOutcome`; ``meta["throw_starts"]`` each release time (s).
+
+    Work guard (:mod:`throwmap.budget`, as :func:`throwmap.iterate`): the memory
+    (:data:`TRAJECTORY_BYTES_PER_THROW` per throw at the default ``dt``) is checked
+    before any throw, the time from the first throws; above ``max_memory`` (bytes) or
+    ``max_seconds`` (s) it is refused with one line on ``n``, unless ``force``.
     """
+    planned = planned_throws(omegas, n, min_n=1)
+    per_throw = TRAJECTORY_BYTES_PER_THROW * max(1.0, DEFAULT_DT / float(dt)) if isinstance(dt, (int, float)) \
+        and math.isfinite(dt) and dt > 0 else TRAJECTORY_BYTES_PER_THROW
+    gd = ThrowGuard("orbit trajectory", "n", planned, per_throw, max_memory, max_seconds, force,
+                    hint="fewer throws (-n)")
     om = throw_rates(omegas, n, min_n=1)
     pause = float(pause)
     if not (math.isfinite(pause) and pause >= 0):
@@ -136,6 +152,7 @@ def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int |
     for w in om:
         out, piece = throw_trajectory(part, arm, xs, ss, float(w), model, dt=dt, **throw_kw)
         outcomes.append(out)
+        gd.tick()
         if traj is None:
             starts.append(0.0)
             traj = piece
