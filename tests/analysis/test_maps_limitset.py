@@ -92,7 +92,7 @@ def test_composed_throw_map_applies_throws_in_order_and_stops_at_the_first_escap
     omegas = (4.0, 3.0, 5.6)
     cmap = ThrowMap(triangle, short, omegas, "paper")
     assert cmap.throws_per_step == 3 and cmap.x_max == 0.45
-    x = np.linspace(0.12, 0.45, 60)
+    x = np.linspace(0.12, cmap.x_hi[0], 60)  # starts throw() accepts: the right vertex on the arm
     s = np.zeros(60, dtype=np.int64)
     xn, sn, st_ = cmap(x, s)
     cx, cs, cst = x.copy(), s.copy(), np.zeros(60, dtype=np.int64)

@@ -365,3 +365,55 @@ def test_integer_options_take_whole_numbers_only(cmd, opt):
     assert result.exit_code == 2
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ") and "integer" in lines[0]
+
+
+# ---------------------------------------------------------------- round 2 (outside tester)
+RB = ["--part", "triangle", "--h", "-0.01"]  # the default model, rigid_body
+
+
+@pytest.mark.parametrize("cmd, extra", [("limitset", CAPS), ("basins", ["--grid", "30"]),
+                                        ("funnels", ["--grid", "30", "--starts", "8"])])
+def test_back_option_reaches_the_analysed_domain(cmd, extra):
+    """``--back`` (as on throw/iterate) widens the domain behind the joint to the starts throw() accepts."""
+    doc = strict_json(ok(invoke(cmd, *RB, "--omega", "4", "--back", "0.05", *extra, "--json")).stdout)
+    assert doc["arm"]["back"] == 0.05
+    maps = doc["map"]["maps"] if cmd == "funnels" else [doc["limit_set"]["map"] if cmd == "limitset" else doc["map"]]
+    lo, _ = tm.throws.throw.start_interval(tm.triangle_30_60_90(), tm.Arm(h=-0.01, back=0.05), 1)
+    for m in maps:
+        assert m["domain_m"]["1"][0] == lo < tm.triangle_30_60_90().x_min(1)
+
+
+def test_basins_certificate_with_back_in_the_part_file(tmp_path):
+    """The tester's file with ``[arm] back = 0.05``: the fixed points near the joint break uniqueness."""
+    path = tmp_path / "backf.toml"
+    path.write_text("[part]\nvertices = [[0.1472, 0.0], [0.0, 0.085], [0.0, 0.0]]\nmass = 0.05\n"
+                    "[arm]\nh = -0.01\nback = 0.05\n")
+    doc = strict_json(ok(invoke("basins", "--part", path, "--omega", "4", "--grid", "60", "--json")).stdout)
+    assert doc["arm"]["back"] == 0.05
+    assert doc["certificate"]["unique"] is False
+    plain = strict_json(ok(invoke("basins", "--part", path, "--back", "0", "--omega", "4", "--grid", "60",
+                                  "--json")).stdout)
+    old_lo = {k: v[0] for k, v in plain["map"]["domain_m"].items()}
+    assert any(a["kind"] == "fixed_point" and any(b["lo_m"] < old_lo[str(b["side"])] for b in a["bands"])
+               for a in doc["attractors"])
+
+
+def test_funnels_take_model_options():
+    doc = strict_json(ok(invoke("funnels", *RB, "--omega", "3,4", "--mu", "0.3", "-O", "impact_law=velocity",
+                                "--grid", "30", "--starts", "8", "--json")).stdout)
+    assert doc["model_options"]["impact_law"] == "velocity"
+
+
+def test_long_transient_and_max_transient_options():
+    doc = strict_json(ok(invoke("limitset", *RB, "--omega", "4", "--starts", "2", "--transient", "6000",
+                                "--json")).stdout)
+    assert doc["limit_set"]["caps"]["max_transient"] >= 6000
+    doc = strict_json(ok(invoke("limitset", *RB, "--omega", "4", "--starts", "2", "--transient", "100",
+                                "--max-transient", "900", "--json")).stdout)
+    assert doc["limit_set"]["caps"]["max_transient"] == 900
+    assert_one_error(invoke("limitset", *RB, "--omega", "4", "--transient", "300", "--max-transient", "200"),
+                     "max_transient")
+
+
+def test_a_huge_record_names_the_record():
+    assert_one_error(invoke("limitset", *RB, "--omega", "4", "--record", "100000000"), "record")

@@ -36,7 +36,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 from ..rng import as_generator
-from .attractors import (LABEL_ESCAPE, Attractor, attractor_table, domain_text, escape_fractions, map_short,
+from .attractors import (LABEL_ESCAPE, Attractor, attractor_table, domain_of, domain_text, escape_fractions, map_short,
                          range_short)
 from .caps import RecurrenceCaps, check_int, check_length, resolve_caps, split_options
 from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_limits, guard_work
@@ -189,8 +189,18 @@ class Basins:
         return "\n".join(lines)
 
     def table(self) -> str:
-        """One row per attractor (basin share) and per escape fate, then the certificate's statement."""
-        return attractor_table(self.attractors, self.escapes, share="basin %") + "\n" + self.certificate.statement
+        """The range of the grid, one row per attractor (basin share) and per escape fate, then the
+        certificate's statement."""
+        return (f"grid over the {self.range_text} (not beyond)\n"
+                + attractor_table(self.attractors, self.escapes, share="basin %") + "\n" + self.certificate.statement)
+
+    @property
+    def range_text(self) -> str:
+        """The configurations the grid covers, in words (e.g. ``"valid starts with x ≤ 0.600 m"``)."""
+        dom, valid = domain_of(self.map_info)
+        if dom:
+            return domain_text(dom, valid)
+        return self.certificate.range_text or "analysed grid (range not recorded)"
 
     def to_dict(self, arrays: bool = True) -> dict:
         d = {

@@ -57,7 +57,10 @@ class RecurrenceCaps:
         Throws (map steps) discarded before recording, and per extension block (200).
     max_transient : int
         Most throws discarded in all while the recorded tails are not yet stationary,
-        still converging or leaking (5000); at least ``transient``.
+        still converging or leaking (5000); at least ``transient``. When ``transient`` is
+        given without it (:meth:`replace`, so every ``transient=`` keyword and the CLI's
+        ``--transient``), it becomes ``max(5000, 3 × transient + 2 × n_record)``: room for
+        two extension blocks after the first transient.
     n_record : int
         Throws recorded per orbit (400); at least 2 × ``max_period``.
     tol : float
@@ -115,6 +118,12 @@ class RecurrenceCaps:
             if k not in names:
                 raise InvalidStateError(k, f"unknown cap (caps: {', '.join(names)})")
         given = {k: v for k, v in overrides.items() if v is not None}
+        if "transient" in given and "max_transient" not in given:
+            # raising the transient raises its ceiling with it, leaving room for two extension
+            # blocks (transient + n_record each) as the defaults do; invalid values are refused below
+            t, r = given["transient"], given.get("n_record", self.n_record)
+            if all(not isinstance(v, bool) and isinstance(v, (int, np.integer)) for v in (t, r)):
+                given["max_transient"] = max(self.max_transient, 3 * int(t) + 2 * int(r))
         return dataclasses.replace(self, **given) if given else self
 
     def to_dict(self) -> dict:

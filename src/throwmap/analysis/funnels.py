@@ -14,6 +14,7 @@ Goals, mouths and spouts are sets of configurations (:class:`~throwmap.analysis.
 
 from __future__ import annotations
 
+import inspect
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,6 +22,7 @@ import numpy as np
 from ..errors import InvalidStateError, shown
 from .attractors import Attractor, domain_text
 from .basins import Basins, basins
+from .caps import RecurrenceCaps
 from .cellmap import map_to_attractors
 from .maps import DEFAULT_MODEL, as_map
 from .sets import ConfigSet, SetImage, push
@@ -204,6 +206,12 @@ def _ranks(n: int, edges, rank0: set) -> dict:
     return rank
 
 
+_BASIN_KEYWORDS = frozenset(
+    name for name, p in inspect.signature(basins).parameters.items() if p.kind is p.KEYWORD_ONLY
+) | frozenset(RecurrenceCaps.names())
+"""Keywords that :func:`funnels` hands to :func:`basins` (its own and the recurrence caps); others are throw options."""
+
+
 def funnels(part, arm=None, omegas=None, model: str = DEFAULT_MODEL, *, maps=None, goal=None, grid=400,
             containment: float = 1.0, spout_samples: int = 200, reach_tol: float = 1e-6, max_throws: int = 500,
             rng=0, x_max=None, progress=None, **basin_options) -> FunnelGraph:
@@ -228,7 +236,11 @@ def funnels(part, arm=None, omegas=None, model: str = DEFAULT_MODEL, *, maps=Non
     reach_tol, max_throws
         As in :func:`~throwmap.analysis.basins.basins`, for mapping spout samples.
     basin_options
-        Passed on to :func:`~throwmap.analysis.basins.basins` (caps, ``method``, ``n_check``…).
+        Keywords of :func:`~throwmap.analysis.basins.basins` (caps, ``method``, ``n_check``…)
+        go to each map's basins; any other keyword is a throw option of every map
+        (model options such as ``options=RigidBodyOptions(...)`` or ``impact_law="velocity"``,
+        ``fixtures``…; refused by :func:`throwmap.throw_batch` when the model does not take it).
+        With ``maps`` given, only basins keywords are taken.
     progress
         ``progress(stage, done, total)``.
     """
@@ -238,7 +250,9 @@ def funnels(part, arm=None, omegas=None, model: str = DEFAULT_MODEL, *, maps=Non
         oms = list(omegas) if np.ndim(omegas) else [omegas]
         if not oms:
             raise InvalidStateError("omegas", "needs at least one throw speed")
-        maps = [as_map(part, arm, w, model, x_max=x_max) for w in oms]
+        throw_options = {k: v for k, v in basin_options.items() if k not in _BASIN_KEYWORDS}
+        basin_options = {k: v for k, v in basin_options.items() if k in _BASIN_KEYWORDS}
+        maps = [as_map(part, arm, w, model, x_max=x_max, **throw_options) for w in oms]
     else:
         maps = [as_map(m) for m in maps]
         if not maps:

@@ -140,8 +140,10 @@ class LimitSet:
         return "\n".join(lines)
 
     def table(self) -> str:
-        """One row per attractor and per escape fate: kind, period, multiplier, Lyapunov exponent, share of starts."""
-        return attractor_table(self.attractors, self.escapes, share="starts %")
+        """The range searched, then one row per attractor and per escape fate: kind, period,
+        multiplier, Lyapunov exponent, share of starts."""
+        return (f"searched: {self.range_text} (not beyond)\n"
+                + attractor_table(self.attractors, self.escapes, share="starts %"))
 
     def to_dict(self) -> dict:
         return {
@@ -221,7 +223,13 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
         n_planned = int(n_starts) * len(cmap.sides) if valid else 0  # start_grid refuses the rest
     else:
         n_planned = int(np.size(starts[0])) if isinstance(starts, (tuple, list)) and len(starts) == 2 else 1
-    guard_work("limit set", "n_starts", n_planned, 16 * rc.n_record + 64, max_memory, max_seconds, force,
+    # name the knob that is furthest above its default (a huge record is not the starts' fault)
+    field = "n_starts" if starts is None else "starts"
+    per_side = n_planned / max(1, len(cmap.sides))
+    ratios = {field: per_side / 64, "n_record": rc.n_record / DEFAULT_CAPS["n_record"],
+              "transient": rc.transient / max(1, DEFAULT_CAPS["transient"])}
+    field = max(ratios, key=lambda k: ratios[k])
+    guard_work("limit set", field, n_planned, 16 * rc.n_record + 64, max_memory, max_seconds, force,
                throws_per_config=rc.transient + rc.n_record, cmap=cmap if n_planned * (rc.transient + rc.n_record)
                > 10**6 else None, hint="fewer starts or a shorter record")
     if starts is None:

@@ -15,7 +15,11 @@ Two kinds are provided:
                       attractors (tests, teaching) or a user's own model.
 
 Both carry the domain on which "all initial configurations" are drawn: for every
-side in :attr:`sides` the open interval ``(x_lo[side], x_hi[side]]``.
+side in :attr:`sides` the interval ``(x_lo[side], x_hi[side]]``. For a throw map it is
+exactly the starts :func:`throwmap.throw` accepts on that side
+(:func:`throwmap.throws.throw.start_interval`, the start check's own rule:
+the left support vertex ahead of the arm's edge behind the joint, ``x + u_L > −arm.back``,
+and the right one on the arm, ``x + u_R ≤ arm.length``), cut at ``x_max``.
 """
 
 from __future__ import annotations
@@ -31,7 +35,7 @@ from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from ..models import DEFAULT_MODEL, check_model  # DEFAULT_MODEL re-exported here for the analysis modules
 from ..system.part import Part
-from ..throws.throw import throw_batch
+from ..throws.throw import start_interval, throw_batch
 
 __all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid"]
 
@@ -107,8 +111,11 @@ class ThrowMap(ConfigMap):
     the registered models (:func:`throwmap.models.model_names`; default
     :data:`throwmap.models.DEFAULT_MODEL`, ``"rigid_body"``); ``throw_options`` go
     to :func:`throwmap.throw_batch` (e.g. ``fixtures``, ``settings`` for the engine).
-    The domain is every stable side, ``x_lo = part.x_min(side)`` (exclusive) to
-    ``x_max`` (default: the arm length, else :data:`DEFAULT_X_MAX`).
+    The domain is every stable side with valid starts, from
+    :func:`throwmap.throws.throw.start_interval`
+    (the starts ``throw()`` accepts, ``arm.back`` included): ``x_lo`` (exclusive) to
+    ``min(x_max, arm.length − u_R)`` (``x_max`` default: the arm length, else
+    :data:`DEFAULT_X_MAX`).
     """
 
     part: Part
@@ -128,13 +135,16 @@ class ThrowMap(ConfigMap):
         if np.any(om < 0):
             raise InvalidStateError("omega", f"must be ≥ 0 (the arm throws upward), got {om.tolist()}")
         object.__setattr__(self, "omegas", tuple(float(w) for w in om))
-        sides = self.part.stable_sides
-        lo = {s: self.part.x_min(s) for s in sides}
-        x_hi = _check_x_max(self.x_max, max(lo.values()), self.arm.length)
+        iv = {s: start_interval(self.part, self.arm, s) for s in self.part.stable_sides}
+        x_hi = _check_x_max(self.x_max, max(lo for lo, _ in iv.values()), self.arm.length)
+        sides = tuple(s for s in self.part.stable_sides if min(x_hi, iv[s][1]) > iv[s][0])
+        if not sides:
+            raise InvalidStateError("arm", "no stable side has a valid start up to "
+                                             f"x_max = {x_hi:.6g} m (arm length {shown(self.arm.length)} m)")
         object.__setattr__(self, "x_max", x_hi)
         object.__setattr__(self, "sides", sides)
-        object.__setattr__(self, "x_lo", lo)
-        object.__setattr__(self, "x_hi", {s: x_hi for s in sides})
+        object.__setattr__(self, "x_lo", {s: iv[s][0] for s in sides})
+        object.__setattr__(self, "x_hi", {s: min(x_hi, iv[s][1]) for s in sides})
         object.__setattr__(self, "throws_per_step", len(self.omegas))
         w = ", ".join(f"{v:g}" for v in self.omegas)
         object.__setattr__(self, "label", f"{self.part.name or 'part'}, ω = {w} rad/s, model {self.model}")

@@ -29,7 +29,7 @@ from ..analysis.maps import ThrowMap
 from ..analysis.orbits import orbit_on_attractor
 from ..errors import InvalidStateError, ThrowmapError
 from ..throws.throw import check_model
-from .options import (GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt, arm_dict,
+from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt, arm_dict,
                       check_finite, check_out_dir, figure_format, guard, make_out_dir, model_options, options_doc,
                       parse_floats, part_and_arm, save_figure, strict_int, to_json, write_bytes, write_text)
 
@@ -54,6 +54,11 @@ StartsOpt = Annotated[int, typer.Option("--starts", parser=strict_int, metavar="
 TransientOpt = Annotated[int | None, typer.Option("--transient", parser=strict_int, metavar="INTEGER",
                                                   help="Throws discarded before recording "
                                                        f"(default {DEFAULT_CAPS['transient']}).")]
+MaxTransientOpt = Annotated[int | None, typer.Option("--max-transient", parser=strict_int, metavar="INTEGER",
+                                                     help="Most throws discarded in all while the orbits have not "
+                                                          "settled (default "
+                                                          f"{DEFAULT_CAPS['max_transient']}, raised with --transient "
+                                                          "to 3 × transient + 2 × record).")]
 RecordOpt = Annotated[int | None, typer.Option("--record", parser=strict_int, metavar="INTEGER",
                                                help="Throws recorded per orbit "
                                                     f"(default {DEFAULT_CAPS['n_record']}).")]
@@ -122,11 +127,13 @@ def limitset_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
+    back: BackOpt = None,
     model: ModelOpt = "rigid_body",
     model_option: ModelOptionOpt = None,
     x_max: XMaxOpt = None,
     starts: StartsOpt = 64,
     transient: TransientOpt = None,
+    max_transient: MaxTransientOpt = None,
     record: RecordOpt = None,
     tol: Annotated[float | None, typer.Option("--tol", help="Recurrence tolerance, m "
                                                             f"(default {DEFAULT_CAPS['tol']:g}).")] = None,
@@ -151,7 +158,7 @@ def limitset_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
-        the_part, arm = part_and_arm(part, h, g, length, mu)
+        the_part, arm = part_and_arm(part, h, g, length, mu, back)
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         fmt_map = figure_format(plot_map, "plot_map")
@@ -160,7 +167,7 @@ def limitset_cmd(
         crit = critical_points(the_part, arm, omega, model, x_max=x_max, **limits, **opts)
         with _option_names(), _progress() as bar:
             limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, **limits, **opts,
-                              transient=transient, n_record=record, tol=tol, max_period=max_period,
+                              transient=transient, max_transient=max_transient, n_record=record, tol=tol, max_period=max_period,
                               progress=lambda done, total: bar("iterating", done, total))
         if plot is not None:
             from ..viz.limit_set import plot_limit_set
@@ -200,6 +207,7 @@ def basins_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
+    back: BackOpt = None,
     model: ModelOpt = "rigid_body",
     model_option: ModelOptionOpt = None,
     x_max: XMaxOpt = None,
@@ -218,6 +226,7 @@ def basins_cmd(
                                             "(cells method; 0: none).")] = 1000,
     starts: StartsOpt = 64,
     transient: TransientOpt = None,
+    max_transient: MaxTransientOpt = None,
     record: RecordOpt = None,
     as_json: JsonOpt = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="Write the basin map, e.g. basins.png.")] = None,
@@ -231,7 +240,7 @@ def basins_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
-        the_part, arm = part_and_arm(part, h, g, length, mu)
+        the_part, arm = part_and_arm(part, h, g, length, mu, back)
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         check_out_dir(out)
@@ -239,7 +248,7 @@ def basins_cmd(
         with _option_names(), _progress() as bar:
             result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, **limits, **opts,
                             max_throws=max_throws, n_check=check, n_seeds=starts, transient=transient,
-                            n_record=record, x_max=x_max, progress=bar)
+                            max_transient=max_transient, n_record=record, x_max=x_max, progress=bar)
         if plot is not None:
             from ..viz.basins import plot_basins
 
@@ -276,6 +285,7 @@ def funnels_cmd(
     g: GOpt = None,
     length: LengthOpt = None,
     mu: MuOpt = None,
+    back: BackOpt = None,
     model: ModelOpt = "rigid_body",
     model_option: ModelOptionOpt = None,
     x_max: XMaxOpt = None,
@@ -303,7 +313,7 @@ def funnels_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
-        the_part, arm = part_and_arm(part, h, g, length, mu)
+        the_part, arm = part_and_arm(part, h, g, length, mu, back)
         omegas = parse_floats(omega, "omega")
         target = None
         if goal is not None:
