@@ -145,3 +145,33 @@ def test_unknown_option_suggests_only_close_names():
     assert res.exit_code == 2 and "did you mean" not in res.stderr and "'--bogus'" in res.stderr
     res = CliRunner().invoke(app, [*base[:-2], "--omeg", "4"])
     assert res.exit_code == 2 and "did you mean --omega?" in res.stderr, res.stderr
+
+
+# ------------------------------------------------------------ 5. figure titles: whole, with their x range
+def test_basins_title_is_whole_and_states_the_range():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from throwmap.viz.basins import plot_basins
+
+    part, arm = tm.triangle_30_60_90(0.17), tm.Arm(h=-0.01)
+    bas = tm.basins(part, arm, 4.0, grid=40, x_max=0.6, rng=1)
+    title = plot_basins(bas).axes[0].get_title()
+    flat = " ".join(title.split())
+    assert "…" not in title and "x ≤ 60 cm" in flat
+    assert " ".join(bas.certificate.statement.split()) in flat  # the whole statement, only wrapped
+    assert max(len(line) for line in title.splitlines()) <= 110
+
+
+def test_throw_map_title_states_the_sampled_range():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    part = tm.triangle_30_60_90(0.17)
+    fig = tm.plot_throw_map(part, tm.Arm(h=-0.01), 4.0, n=30)
+    assert "x ≤ 50 cm" in fig._suptitle.get_text() and "rigid_body" in fig._suptitle.get_text()
+    fig = tm.plot_throw_map(part, tm.Arm(h=-0.01, length=0.4), 4.0, n=30, unit="m")
+    assert "x ≤ 0.4 m" in fig._suptitle.get_text()
+    plt.close("all")

@@ -64,7 +64,7 @@ def test_compact_look_is_fig2(samples):
     assert type(fig.get_layout_engine()).__name__ != "ConstrainedLayoutEngine"
     assert tuple(fig.get_size_inches()) == pytest.approx((4.2 * 3, 4))
     assert fig._suptitle.get_text() == ("throw map T(x): triangle_30_60_90(hypotenuse=0.17), h = -0.01 m, "
-                                        "ω = 4 rad/s, model 'paper'")
+                                        "ω = 4 rad/s, model 'rigid_body', sampled for x ≤ 60 cm")
     for ax, s in zip(fig.axes, samples.sides):
         assert ax.get_xlim() == pytest.approx((0.0, 60.0)) == ax.get_ylim()  # the sampled domain only
         labels = [t.get_text() for t in ax.get_legend().get_texts()]

@@ -14,8 +14,9 @@ import pytest
 VIZ = Path(__file__).resolve().parents[2] / "src" / "throwmap" / "viz"
 
 ALLOWED = ("throwmap.viz", "throwmap.errors", "throwmap.conventions", "throwmap.io",
-           "throwmap.throws.outcome", "throwmap.throws.trajectory")
-"""Package modules a figure module may import (each with its submodules)."""
+           "throwmap.throws.outcome", "throwmap.throws.trajectory", "throwmap.system.part")
+"""Package modules a figure module may import (each with its submodules); ``system.part``: the
+part's type and its descriptive name for titles (:func:`throwmap.system.part.default_name`), no throws."""
 
 PHYSICS_NAMES = {"throw", "throw_batch", "iterate", "engine_batch", "as_map", "sample_map", "throw_map_samples",
                  "limit_set", "critical_points", "basins", "funnels", "push", "compare_models", "kernels"}

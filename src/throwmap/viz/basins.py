@@ -8,6 +8,7 @@ columns so that 10⁶ of them draw quickly. Matplotlib is imported on first use.
 from __future__ import annotations
 
 import math
+import re
 import textwrap
 
 import numpy as np
@@ -22,10 +23,11 @@ from .style import (
     map_title,
     scale,
     side_colors,
+    wrap_setting,
     x_range_text,
 )
 
-__all__ = ["plot_basins", "shade"]
+__all__ = ["basins_title", "plot_basins", "shade"]
 
 FADE = 0.8
 """Share of white blended into a label's colour at the largest throw count."""
@@ -96,7 +98,7 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     throws = np.asarray(basins.throws)
     sides = [int(s) for s in np.unique(side)] if side.size else []
     if ax is None:
-        fig, ax = plt.subplots(figsize=(10, 1.0 * max(len(sides), 1) + 2.2))
+        fig, ax = plt.subplots(figsize=(10, 1.0 * max(len(sides), 1) + 2.6))  # + room for a 4-line title
     fig = ax.figure
     label_values = np.unique(labels) if labels.size else np.zeros(0, dtype=np.int64)
     ids = [a.id for a in basins.attractors]
@@ -177,7 +179,22 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
 
     label = map_title(basins.map_info, basins.map_info.get("label", "map"))
     rng = x_range_text(basins.map_info)
-    statement = textwrap.shorten(str(basins.certificate.statement), width=120, placeholder=" …")
-    ax.set_title(f"basins: {label}\n{x.size} configurations{', ' + rng if rng else ''}; {statement}", fontsize=8)
+    ax.set_title(basins_title(label, x.size, rng, str(basins.certificate.statement)), fontsize=8)
     layout(fig)
     return fig
+
+
+TITLE_WIDTH = 110
+"""Characters per title line of a basin map (fontsize 8 fits about 130 across its axes)."""
+
+
+def basins_title(label: str, n_configs: int, range_text: str, statement: str, width: int = TITLE_WIDTH) -> str:
+    """The basin map's title, whole (never cut): ``basins: <setting>`` broken at its settings
+    (:func:`~throwmap.viz.style.wrap_setting`), then the number of configurations and the
+    analysed range, then the certificate's statement wrapped on lines of about ``width``
+    characters."""
+    head = wrap_setting(f"basins: {label}", width)
+    body = f"{n_configs} configurations{', ' + range_text if range_text else ''}; {statement}"
+    body = re.sub(r"(\d) (m|cm|rad/s)\b", "\\1\0\\2", body)  # a number keeps its unit on its line
+    lines = textwrap.wrap(body, width=width, break_long_words=False, break_on_hyphens=False)
+    return head + "\n" + "\n".join(line.replace("\0", " ") for line in lines)

@@ -115,11 +115,11 @@ def map_title(info: dict, fallback: str = "map") -> str:
 
 def wrap_setting(text: str, width: int) -> str:
     """``text`` from :func:`describe_setting` on lines of about ``width`` characters, broken only
-    at the comma before a setting (``h =``, ``ω =``, ``μ =``, ``model``, ``analysed``, ``x ≤``), never
+    at the comma before a setting (``h =``, ``ω =``, ``μ =``, ``model``, ``analysed``, ``sampled``, ``x ≤``), never
     inside a list of ω or a part's name."""
     import re
 
-    pieces = re.split(r", (?=h = |ω = |μ = |model |analysed |x ≤ )", text)
+    pieces = re.split(r", (?=h = |ω = |μ = |model |analysed |sampled |x ≤ )", text)
     lines: list[str] = []
     for p in pieces:
         if lines and len(lines[-1]) + 2 + len(p) <= width:

@@ -16,9 +16,16 @@ import math
 import numpy as np
 
 from ..errors import InvalidStateError
-from .style import _plt, layout, map_title, scale, side_colors
+from .style import _plt, layout, map_title, scale, side_colors, wrap_setting
 
-__all__ = ["plot_map"]
+__all__ = ["plot_map", "sampled_range"]
+
+
+def sampled_range(samples, unit: str = "cm") -> str:
+    """``"sampled for x ≤ 60 cm"``: the outer end of the x range a map was sampled (and, for
+    the demo's limits, analysed) over, in ``unit``; each side starts at its own ``x_lo`` (its panel)."""
+    hi = [float(v) for v in samples.x_hi if math.isfinite(float(v))]
+    return f"sampled for x ≤ {scale(unit) * max(hi):.4g} {unit}" if hi else "x range ?"
 
 
 def _draw_limit_set(ax, limit, s: int, k: float, colors, n_col: int, key) -> None:
@@ -160,7 +167,8 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
             ax.legend(handles=list(panel.values()), loc="upper left", fontsize=7)
     if title is None:
         setting = map_title(samples.info, "")
-        title = f"throw map T(x): {setting}" if setting else samples.label
+        title = f"throw map T(x): {setting}" if setting else str(samples.label)
+        title = wrap_setting(f"{title}, {sampled_range(samples, unit)}", 150 if compact else 120)
     fig.suptitle(title, **({} if compact else {"fontsize": 10}))
     if not compact:
         handles = sorted(legend.values(), key=lambda h: not h.get_label().startswith("lands on"))  # stable
