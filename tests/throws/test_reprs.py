@@ -46,7 +46,7 @@ def test_orbit_with_varying_omegas_and_escape(part, arm):
     orbit = tm.iterate(part, arm, (0.12, 0), [3.0, 5.0, 4.0], model="paper")
     assert orbit.n_throws == 3  # the premise: every rate used
     assert_short(orbit, "omega∈[3, 5] rad/s", "3 throws")
-    escape = tm.iterate(part, tm.Arm(h=-0.01, length=0.3), (0.25, 0), [3.0, 20.0, 4.0], model="paper")
+    escape = tm.iterate(part, tm.Arm(h=-0.01, length=0.3), (0.2, 0), [3.0, 20.0, 4.0], model="paper")
     assert escape.escaped  # the premise
     assert_short(escape, escape.status.label, f"{escape.n_throws} throws")
 

@@ -16,7 +16,7 @@ OMEGA = 4.0
 
 @pytest.fixture(scope="module")
 def samples(triangle, arm):
-    return throw_map_samples(triangle, arm, OMEGA, x_max=0.6, n=40)
+    return throw_map_samples(triangle, arm, OMEGA, model="paper", x_max=0.6, n=40)
 
 
 def test_grid_per_side_excludes_the_lower_end(samples, triangle):
