@@ -150,3 +150,15 @@ def test_batch_failures_count_unresolved():
 
     assert "unresolved" not in engine_failures(np.array([int(Status.OK), int(Status.TIMEOUT)]))
     assert "unresolved refused 1/2" in engine_failures(np.array([int(Status.OK), int(Status.UNRESOLVED)]))
+
+
+def test_refusal_reason_reaches_throw_and_json():
+    """The reason of a refused engine throw is on the ThrowOutcome from tm.throw and in its JSON."""
+    with pytest.warns(tm.RegimeWarning):  # h = -0.05 m is below -min d: outside the paper's regime
+        out = tm.throw(TRI, tm.Arm(**SLIDE_ARM), SLIDE["x"], SLIDE["side"], SLIDE["omega"], model="engine",
+                       settings=EngineSettings(default_length=TINY))
+    assert out.status == Status.UNRESOLVED
+    assert "unbounded" in out.message and "unbounded" in out.to_dict()["message"]
+    assert "reason: " in out.table()
+    late = tm.throw(TRI, tm.Arm(h=-0.01, mu=1.0), 20.0, 0, 5.0, model="engine")
+    assert late.status == Status.TIMEOUT and "first flight" in late.message
