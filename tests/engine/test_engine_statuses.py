@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from throwmap import Arm, throw
+from throwmap.errors import InvalidStateError
 from throwmap.engine import Placement, Scene, engine_run, simulate
 from throwmap.system.catalogue import triangle_30_60_90
 from throwmap.throws.outcome import Status
@@ -57,13 +58,23 @@ def test_part_falling_behind_the_joint_is_behind_joint_at_once():
     assert run.t_end < 1.0
 
 
-@pytest.mark.parametrize("x, side, omega", [(0.2, 1, 3.0), (0.2714, 1, 4.0), (0.3, 0, 2.0), (0.2857, 0, 2.0),
-                                            (0.2857, 1, 3.0), (0.2714, 2, 2.0)])
+@pytest.mark.parametrize("x, side, omega", [(0.2, 1, 3.0), (0.2018, 1, 4.0), (0.2291, 0, 2.0), (0.2291, 0, 4.0),
+                                            (0.2716, 2, 3.0), (0.2714, 2, 2.0)])
 def test_part_over_the_arms_end_is_off_end_as_in_rigid_body(x, side, omega):
-    """(c) Before: ok (resting over the end) or penetration (a vertex swung under the arm); rigid_body says off_end."""
+    """(c) Before: ok (resting over the end) or penetration (a vertex swung under the arm); rigid_body says off_end.
+    Starts close to the arm's end that throw() still accepts (x + u_R ≤ length)."""
     arm = Arm(h=-0.01, mu=1.5, length=0.3)
     assert throw(TRI, arm, x, side, omega, model="rigid_body").status == Status.OFF_END
     assert engine_run(TRI, arm, x, side, omega).status == Status.OFF_END
+
+
+@pytest.mark.parametrize("x, side", [(0.2714, 1), (0.3, 0), (0.2857, 0), (0.2857, 1)])
+@pytest.mark.parametrize("model", ["rigid_body", "engine"])
+def test_a_start_hanging_over_the_arms_end_is_refused_by_every_model(x, side, model):
+    """One rule for starts and rests: the right support vertex must be on the arm (x + u_R ≤ length)."""
+    arm = Arm(h=-0.01, mu=1.5, length=0.3)
+    with pytest.raises(InvalidStateError, match="^x:"):
+        throw(TRI, arm, x, side, 3.0, model=model)
 
 
 @pytest.mark.slow

@@ -181,7 +181,7 @@ def test_record_trajectory(triangle):
 @pytest.mark.parametrize(
     "arm, x, side, omega, status",
     [
-        (tm.Arm(h=-0.01, mu=1.5, length=0.3), 0.28, 0, 5.0, Status.OFF_END),
+        (tm.Arm(h=-0.01, mu=1.5, length=0.3), 0.2291, 0, 5.0, Status.OFF_END),
         (tm.Arm(h=-0.01, mu=1.5, length=0.3), 0.2, 2, 5.0, Status.BEHIND_JOINT),
         (tm.Arm(h=-0.01), 0.2, 1, 4.0, Status.OK),  # μ = ∞
         (tm.Arm(h=-0.01, mu=0.3), 0.2, 1, 4.0, Status.OK),
