@@ -102,7 +102,8 @@ def test_set_image_round_trips_and_needs_its_arrays(triangle, arm):
 
 def test_limit_set_table_has_a_row_per_attractor_and_escape():
     ls = limit_set(repeller(), starts=([0.5, 0.2, 0.7], [0, 0, 0]))
-    rows = ls.table().splitlines()
+    head, *rows = ls.table().splitlines()
+    assert head == f"searched: {ls.range_text} (not beyond)"
     assert len(rows) == 1 + len(ls.attractors) + len(ls.escapes) == 4
     assert rows[1].split()[:2] == ["1", "fixed_point"]
     assert {r.split()[1] for r in rows[2:]} == {"behind_joint", "off_end"}
@@ -112,7 +113,8 @@ def test_limit_set_table_has_a_row_per_attractor_and_escape():
 
 def test_basins_table_lists_basin_shares_and_the_certificate():
     b = basins(bistable(), grid=100, method="orbits")
-    rows = b.table().splitlines()
+    head, *rows = b.table().splitlines()
+    assert head == f"grid over the {b.range_text} (not beyond)" and "x ≤" in head
     assert len(rows) == 1 + 2 + 1 and rows[-1] == b.certificate.statement
     shares = [float(r.split()[5]) for r in rows[1:3]]
     assert sum(shares) == pytest.approx(100.0) and shares[0] == pytest.approx(37.0, abs=1.0)
