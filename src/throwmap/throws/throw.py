@@ -182,6 +182,9 @@ def throw(
     return ThrowOutcome.from_record(part, x0, k, om, m.name, xn, kn, st, rec)
 
 
+_KINDS = {"U": "text", "S": "bytes", "O": "object", "c": "complex", "M": "date", "m": "time-delta", "V": "record"}
+
+
 def throw_batch(
     part: Part,
     arm: Arm,
@@ -215,7 +218,7 @@ def throw_batch(
     for name, value, dtype in (("x", x, float), ("side", side, None), ("omega", omega, float)):
         a = np.asarray(value)
         if a.dtype.kind not in "biuf":
-            raise InvalidStateError(name, f"must be numbers, got {a.dtype} values")
+            raise InvalidStateError(name, f"must be numbers, got {_KINDS.get(a.dtype.kind, 'non-numeric')} values")
         arrays.append(a.astype(dtype) if dtype is not None else a)
     try:
         xb, sb, ob = np.broadcast_arrays(*arrays)
@@ -228,7 +231,8 @@ def throw_batch(
     sraw = np.asarray(sb).ravel()
     if sraw.size and (sraw.dtype.kind == "b" or not np.issubdtype(sraw.dtype, np.integer)):
         # the rule of :meth:`Part.check_side` (one throw): sides are integers, not 1.0 nor True
-        raise InvalidStateError("side", f"must be integer side indices, got {sraw.dtype} values")
+        kind = {"b": "boolean", "f": "floating-point", "c": "complex"}.get(sraw.dtype.kind, "non-integer")
+        raise InvalidStateError("side", f"must be integer side indices, got {kind} values")
     sf = sraw.astype(np.int64)
     n = part.n_sides
     in_range = (sf >= 0) & (sf < n)
