@@ -87,7 +87,7 @@ def test_throw_json():
 
 def test_throw_json_escape_has_no_nan():
     """An escape leaves some record entries non-finite: they must come out as null."""
-    result = invoke("throw", *TRIANGLE, "--length", "0.3", "--x", "0.25", "--side", "0", "--omega", "20", "--json")
+    result = invoke("throw", *TRIANGLE, "--length", "0.3", "--x", "0.2", "--side", "0", "--omega", "20", "--json")
     assert result.exit_code == 0, result.output
     doc = strict_json(result.stdout)
     assert doc["status"] != "ok"
@@ -351,11 +351,12 @@ def test_plot_unsupported_extension(tmp_path):
     assert_one_error(result, "plot")
 
 
-def test_plot_missing_directory(tmp_path):
-    result = invoke("iterate", *TRIANGLE, "--x", "0.2", "--side", "0", "--omega", "4", "-n", "2",
-                    "--plot", tmp_path / "no" / "orbit.png")
-    assert_one_error(result, "plot")
-    assert "does not exist" in result.stderr
+def test_plot_missing_directory_is_created(tmp_path):
+    """One rule for every output: missing folders are made (after the up-front writability check)."""
+    target = tmp_path / "no" / "deeper" / "orbit.png"
+    result = invoke("iterate", *TRIANGLE, "--x", "0.2", "--side", "0", "--omega", "4", "-n", "2", "--plot", target)
+    assert result.exit_code == 0, result.output
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_plot_directory_that_is_a_file(tmp_path):

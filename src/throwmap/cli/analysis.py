@@ -23,7 +23,8 @@ import typer
 
 from .. import __version__
 from ..analysis import ConfigSet, basins, critical_points, funnels, limit_set
-from ..analysis.budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
+from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 from ..analysis.limitset import DEFAULT_CAPS
 from ..analysis.maps import ThrowMap
 from ..analysis.orbits import orbit_on_attractor
@@ -62,22 +63,8 @@ MaxTransientOpt = Annotated[int | None, typer.Option("--max-transient", parser=s
 RecordOpt = Annotated[int | None, typer.Option("--record", parser=strict_int, metavar="INTEGER",
                                                help="Throws recorded per orbit "
                                                     f"(default {DEFAULT_CAPS['n_record']}).")]
-MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the analysis may plan to hold, GB; "
-                                                                    "above it the command refuses before starting.")]
-MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the analysis may plan to run, s (estimated "
-                                                              "from throws timed at the start).")]
-ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
 
 
-def _limits(max_memory_gb: float, max_time: float, force: bool) -> dict:
-    """The work guard's keywords for the library (:mod:`throwmap.analysis.budget`); GB → bytes."""
-    check_finite(max_memory_gb, "max_memory")
-    check_finite(max_time, "max_time")
-    if max_memory_gb <= 0:
-        raise InvalidStateError("max_memory", f"must be positive (GB), got {max_memory_gb:g}")
-    if max_time <= 0:
-        raise InvalidStateError("max_time", f"must be positive (s), got {max_time:g}")
-    return {"max_memory": max_memory_gb * 1e9, "max_seconds": float(max_time), "force": bool(force)}
 
 
 # ------------------------------------------------------------------ helpers (no physics)
@@ -163,7 +150,7 @@ def limitset_cmd(
         fmt = figure_format(plot, "plot")
         fmt_map = figure_format(plot_map, "plot_map")
         check_out_dir(out)
-        limits = _limits(max_memory, max_time, force)
+        limits = work_limits(max_memory, max_time, force)
         crit = critical_points(the_part, arm, omega, model, x_max=x_max, **limits, **opts)
         with _option_names(), _progress() as bar:
             limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, **limits, **opts,
@@ -244,7 +231,7 @@ def basins_cmd(
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         check_out_dir(out)
-        limits = _limits(max_memory, max_time, force)
+        limits = work_limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
             result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, **limits, **opts,
                             max_throws=max_throws, n_check=check, n_seeds=starts, transient=transient,
@@ -325,7 +312,7 @@ def funnels_cmd(
                                                     f"(stable sides: {stable})")
         fmt = figure_format(plot, "plot")
         check_out_dir(out)
-        limits = _limits(max_memory, max_time, force)
+        limits = work_limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
             graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment, **limits, **opts,
                             rng=seed, x_max=x_max, method=method, n_seeds=starts, progress=bar)

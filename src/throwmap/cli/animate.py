@@ -21,6 +21,7 @@ from ..throws.orbit_trajectory import orbit_trajectory, trajectory_models
 from .options import (BackOpt, GOpt, HOpt, LengthOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt,
                       check_finite, check_output, guard, model_options, part_and_arm, strict_int)
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
+from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
 __all__ = ["register", "animate_cmd", "ANIMATE_MODELS", "PROGRESS_FRAMES"]
 
@@ -29,12 +30,6 @@ ANIMATE_MODELS = trajectory_models()
 PROGRESS_FRAMES = 60
 """A progress bar (stderr, terminals only) is shown for animations with more frames than this."""
 
-# the work guard's options (as ``limitset``/``basins``; :mod:`throwmap.budget`)
-MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the command may plan to hold, GB; "
-                                                                    "above it the command refuses before starting.")]
-MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the command may plan to run, s (estimated "
-                                                              "from throws timed at the start).")]
-ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
 
 
 def _trajectory(model, part, arm, x, side, omega, n, opts=None, limits=None):

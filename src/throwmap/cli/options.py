@@ -41,7 +41,7 @@ from ..throws.throw import DEFAULT_MODEL, MODELS
 
 __all__ = [
     "BackOpt", "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "ModelOptionOpt", "MuOpt", "OmegaOpt", "PartOpt",
-    "SideOpt", "XOpt", "model_options", "options_doc",
+    "SideOpt", "XOpt", "ForceOpt", "MaxMemoryOpt", "MaxTimeOpt", "model_options", "options_doc",
     "arm_dict", "check_directory", "check_finite", "check_out_dir", "check_output", "figure_format", "format_value",
     "guard", "make_out_dir", "parse_floats", "part_and_arm", "plot_format", "save_figure", "side_value", "stderr_line",
     "strict_int", "to_json",
@@ -90,6 +90,11 @@ SideOpt = Annotated[int, typer.Option("--side", parser=side_value, metavar="INTE
 OmegaOpt = Annotated[float, typer.Option("--omega", help="Release angular velocity ω, rad/s (≥ 0).")]
 ModelOpt = Annotated[str, typer.Option("--model", help=f"Throw model: {', '.join(MODELS)} (default {DEFAULT_MODEL}).")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON to stdout instead of a table.")]
+MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the command may plan to hold, GB; "
+                                                                    "above it the command refuses before starting.")]
+MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the command may plan to run, s (estimated "
+                                                              "from throws timed at the start).")]
+ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
 ModelOptionOpt = Annotated[list[str] | None, typer.Option(
     "--model-option", "-O", metavar="KEY=VALUE",
     help="A numerical option of the throw model, repeatable: e.g. -O impact_law=velocity (rigid_body), "

@@ -23,18 +23,13 @@ from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, a
                       check_out_dir, check_output, guard, make_out_dir, parse_floats, part_and_arm, stderr_line,
                       strict_int, to_json, write_text)
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
+from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
 __all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "ENGINES"]
 
 ENGINES = ("pymunk", "mujoco")
 """Engines ``validate`` can use; pymunk is the reference and always runs."""
 
-# the work guard's options (as ``limitset``/``basins``; :mod:`throwmap.budget`)
-MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the command may plan to hold, GB; "
-                                                                    "above it the command refuses before starting.")]
-MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the command may plan to run, s (estimated "
-                                                              "from throws timed at the start).")]
-ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
 
 
 # ------------------------------------------------------------------ demo

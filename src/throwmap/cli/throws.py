@@ -21,18 +21,13 @@ from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOp
                       SideOpt, XOpt, arm_dict, check_finite, figure_format, format_value, guard, model_options,
                       options_doc, parse_floats, part_and_arm, save_figure, strict_int, to_json)
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
+from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
 __all__ = ["register", "throw_cmd", "iterate_cmd", "PROGRESS_THRESHOLD"]
 
 PROGRESS_THRESHOLD = 200
 """``iterate`` shows a progress bar (on stderr) for more throws than this."""
 
-# the work guard's options (as ``limitset``/``basins``; :mod:`throwmap.budget`)
-MaxMemoryOpt = Annotated[float, typer.Option("--max-memory", help="Most memory the command may plan to hold, GB; "
-                                                                    "above it the command refuses before starting.")]
-MaxTimeOpt = Annotated[float, typer.Option("--max-time", help="Longest the command may plan to run, s (estimated "
-                                                              "from throws timed at the start).")]
-ForceOpt = Annotated[bool, typer.Option("--force", help="Run even above --max-memory / --max-time.")]
 
 
 # ------------------------------------------------------------------ throw
