@@ -71,3 +71,10 @@ def test_animate_takes_model_options(tmp_path):
     assert ok.exit_code == 0, ok.output
     bad = invoke("animate", *TRI, *START, "-O", "impact_law=x", "--out", tmp_path / "b.gif")
     assert bad.exit_code == 2 and bad.stderr.startswith("error: impact_law:") and not (tmp_path / "b.gif").exists()
+
+
+def test_a_refused_throw_prints_its_reason():
+    """A throw that used all its max_iter steps is `unresolved`, and the table says why."""
+    res = invoke("throw", *TRI, *START, "--model", "paper", "-O", "max_iter=1")
+    assert res.exit_code == 0, res.output
+    assert "unresolved" in res.stdout and "reason" in res.stdout and "max_iter" in res.stdout

@@ -81,6 +81,8 @@ def throw_cmd(
             ("friction ratio needed", fmt(out.friction_ratio_max, ".4g")),
             ("lift-off", fmt(out.lift_off)),
         ]
+        if out.message:  # why a result was refused (unresolved, unconverged, penetration, timeout)
+            rows.append(("reason", out.message))
         for name, value in rows:
             table.add_row(name, value)
         console.print(table)
