@@ -38,7 +38,7 @@ otherwise the pivoting continues about B.
 
 Status strings: ``"ok"``; ``"behind_joint"`` (a contact vertex — first contact,
 a landing vertex or a pivot — or the resting left support vertex at x ≤ 0);
-``"off_end"`` (a contact beyond ``arm.length`` or the resting CM beyond it);
+``"off_end"`` (a contact beyond ``arm.length``, or at rest with the right support vertex beyond it);
 ``"no_rest"`` (``max_impacts`` reached, or a pivot swing that never ends within
 ``pivot_t_max``); ``"no_contact"`` (no contact within ``t_max``).
 
@@ -375,8 +375,9 @@ def reference_roll(part, arm, j, psi, psidot, px, *, side0=-1, max_impacts=DEFAU
         near(xL, x_cm)
         if xL <= 0.0:
             return result(x_cm, k, "behind_joint", "rest_left_vertex")
-        if x_cm > L:
-            return result(x_cm, k, "off_end", "rest_cm")
+        xR = x_cm + geo["uR"]
+        if xR > L:  # the right support vertex past the end: the same rest rule as throw()'s starts
+            return result(x_cm, k, "off_end", "rest_right_vertex")
         return result(x_cm, k, "ok")
 
 
