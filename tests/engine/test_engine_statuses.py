@@ -16,7 +16,7 @@ from throwmap.errors import InvalidStateError
 from throwmap.engine import Placement, Scene, engine_run, simulate
 from throwmap.system.catalogue import triangle_30_60_90
 from throwmap.throws.outcome import Status
-from throwmap.throws.throw import check_start
+from throwmap.throws.throw import check_start, start_interval
 from throwmap.throws.trajectory import world_vertices
 
 TRI = triangle_30_60_90()
@@ -82,7 +82,8 @@ def test_every_ok_engine_result_is_a_start_throw_accepts():
     arm = Arm(h=-0.01, mu=1.5, length=0.3)
     n_ok = 0
     for side, x, omega in itertools.product((0, 1, 2), np.linspace(0.1, 0.3, 5), (2.0, 4.0, 6.0)):
-        x = max(float(x), TRI.x_min(side) + 1e-3)
+        lo, hi = start_interval(TRI, arm, side)
+        x = min(max(float(x), lo + 1e-3), hi)
         o = throw(TRI, arm, x, side, omega, model="engine")
         if o.status == Status.OK:
             n_ok += 1
