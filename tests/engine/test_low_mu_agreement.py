@@ -15,18 +15,15 @@ import pytest
 
 from throwmap import Arm, throw_batch
 from throwmap.system.catalogue import triangle_30_60_90
+from throwmap.testing.grids import side_grid
 from throwmap.throws.outcome import Status
 
 TRI = triangle_30_60_90()
 
 
 def _grid():
-    xs, ks, oms = [], [], []
-    for k in range(3):
-        for x in np.linspace(-TRI.uL[k] + 0.01, 0.45, 5):
-            for om in (3.0, 5.0, 7.0):
-                xs.append(x), ks.append(k), oms.append(om)
-    return np.array(xs), np.array(ks), np.array(oms)
+    """The triangle's 3 sides × 5 x × ω ∈ {3, 5, 7} rad/s (:func:`throwmap.testing.grids.side_grid`)."""
+    return side_grid(TRI)
 
 
 @pytest.mark.parametrize("mu, dx_all, share_close", [(0.3, 10e-3, 0.5), (0.6, 10e-3, 0.9), (1.0, 0.5e-3, 1.0)])

@@ -18,6 +18,7 @@ from throwmap.kernels import codes as C
 from throwmap.kernels import rigid_body as RB
 from throwmap.models.rigid_body import RigidBodyOptions
 from throwmap.system.catalogue import triangle_30_60_90
+from throwmap.testing.grids import side_grid
 from throwmap.throws.orbit_trajectory import throw_trajectory
 from throwmap.throws.outcome import Status
 
@@ -25,13 +26,8 @@ TRI = triangle_30_60_90()
 
 
 def _grid():
-    """The triangle grid of tests/engine/test_low_mu_agreement.py: 3 sides × 5 x × ω ∈ {3, 5, 7} rad/s."""
-    xs, ks, oms = [], [], []
-    for k in range(3):
-        for x in np.linspace(-TRI.uL[k] + 0.01, 0.45, 5):
-            for om in (3.0, 5.0, 7.0):
-                xs.append(x), ks.append(k), oms.append(om)
-    return np.array(xs), np.array(ks), np.array(oms)
+    """The triangle's 3 sides × 5 x × ω ∈ {3, 5, 7} rad/s (:func:`throwmap.testing.grids.side_grid`)."""
+    return side_grid(TRI)
 
 
 def _random_starts(n, seed):
