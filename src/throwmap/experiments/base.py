@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["Trial", "Experiment", "FAILURE_KINDS", "trial_seed_sequence", "trial_generator", "trial_seed"]
+__all__ = ["Trial", "Experiment", "FAILURE_KINDS", "trial_seed_sequence", "trial_generator", "trial_seed", "seed_of"]
 
 FAILURE_KINDS = ("wrong_side", "ejected", "not_captured", "off_end", "tilted",
                  "refused:unconverged", "refused:timeout", "refused:drop")
@@ -135,6 +135,13 @@ def trial_generator(seed: int, index: int) -> np.random.Generator:
 def trial_seed(seed: int, index: int) -> int:
     """The integer stored in :attr:`Trial.seed` for trial ``index`` of a run seeded ``seed``."""
     return int(trial_seed_sequence(seed, index).generate_state(1)[0])
+
+
+def seed_of(rng: np.random.Generator) -> int:
+    """The :attr:`Trial.seed` for the trial whose generator is ``rng`` (as the runner passes it):
+    ``rng``'s SeedSequence's ``generate_state(1)[0]``. Experiments write ``Trial(index, seed_of(rng), …)``."""
+    ss = getattr(rng.bit_generator, "seed_seq", None) or rng.bit_generator._seed_seq
+    return int(ss.generate_state(1)[0])
 
 
 def config_of(experiment: Any, config=None):

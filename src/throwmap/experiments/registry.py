@@ -18,7 +18,7 @@ __all__ = ["register_experiment", "get_experiment", "experiment_names", "unregis
 
 _REGISTRY: dict[str, Experiment] = {}
 _DISCOVERED = False
-_INFRA = ("base", "registry", "runner", "stats", "noise", "drop", "table")
+_INFRA = ("base", "registry", "runner", "stats", "noise", "drop", "plot")
 
 
 def _discover() -> None:

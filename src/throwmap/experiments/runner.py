@@ -1,0 +1,366 @@
+"""The Monte Carlo runner every experiment shares (issue 11, item 3; STYLE §13).
+
+:func:`run_experiment` runs trials ``0 … n−1`` of a registered experiment, each with its
+own generator spawned from the run's seed (:func:`throwmap.experiments.base.trial_generator`),
+in parallel processes (``workers=0``: all cores). A worker looks the experiment up by
+name, so nothing but the name, the config as JSON and two integers crosses the process
+boundary; each trial depends only on ``(config, seed, index)``, so the same seed gives
+the same trials whatever the number of workers.
+
+Keeping and resuming (``out=DIR``):
+
+* ``DIR/run.json`` — the run's header (experiment, version, config, seed), written first;
+* ``DIR/trials.jsonl`` — one JSON line per finished trial, appended as it finishes
+  (flushed and fsync'ed line by line: an interrupted run loses no trial it reported);
+* ``DIR/result.json`` and ``DIR/trials.parquet`` — written at the end, atomically
+  (a temporary file, then :func:`os.replace`).
+
+Running again into the same ``DIR`` (``resume=True``) reuses every stored trial with
+index < n and runs only the missing ones; a different experiment, config or seed is
+refused with one line naming the field (``resume=False`` discards the stored trials).
+Because a trial's generator does not depend on ``n``, a finished run may be extended to a
+larger ``n`` into the same directory.
+
+Work guard (:mod:`throwmap.budget`): the trials' memory is checked up front; the time
+is estimated from the first trials of this run (their wall time × the trials left ÷
+the workers) and above ``max_seconds`` the run stops with one line on ``n`` — unless
+``force`` — keeping the trials it finished.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from collections import Counter
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from dataclasses import dataclass
+from pathlib import Path
+
+from .. import __version__
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..errors import InvalidStateError, shown
+from .base import Trial, config_of, trial_generator, trial_seed
+from .registry import get_experiment
+from .stats import wilson_interval
+
+__all__ = ["ExperimentResult", "run_experiment", "load_result", "BYTES_PER_TRIAL", "TIMED_TRIALS"]
+
+BYTES_PER_TRIAL = 4000
+"""Memory the runner holds per trial, bytes (its :class:`Trial`, a few values, its JSON line)."""
+TIMED_TRIALS = 4
+"""Trials (per worker) finished before the run's total time is estimated and guarded."""
+
+
+@dataclass(frozen=True, slots=True)
+class ExperimentResult:
+    """The summary of a run of an experiment.
+
+    ``n`` trials summarised (``planned`` were asked for; ``complete`` when all ran),
+    ``successes``, ``success_rate`` = successes / n (nan when n = 0), ``ci95`` its Wilson
+    95 % interval (:func:`~throwmap.experiments.stats.wilson_interval`), ``failures``
+    the count of each failure kind, ``seed`` the run's seed, ``parameters`` every
+    parameter of the experiment (SI), ``config`` the validated config as JSON,
+    ``trials`` sorted by index, ``elapsed_s`` the wall time of this call (s, stored
+    trials not re-run), ``workers`` the processes used, ``resumed`` how many trials were
+    read back from ``out`` instead of run.
+    """
+
+    name: str
+    n: int
+    successes: int
+    success_rate: float
+    ci95: tuple
+    failures: dict
+    seed: int
+    parameters: dict
+    trials: tuple
+    elapsed_s: float
+    workers: int
+    planned: int = 0
+    complete: bool = True
+    config: dict | None = None
+    resumed: int = 0
+    version: str = __version__
+
+    @classmethod
+    def from_trials(cls, name: str, trials, *, seed: int, parameters: dict, planned: int, elapsed_s: float,
+                    workers: int, config: dict | None = None, resumed: int = 0) -> "ExperimentResult":
+        trials = tuple(sorted(trials, key=lambda t: t.index))
+        n = len(trials)
+        k = sum(t.success for t in trials)
+        fails = Counter(t.failure for t in trials if not t.success)
+        return cls(name, n, k, (k / n if n else math.nan), wilson_interval(k, n), dict(sorted(fails.items())),
+                   int(seed), parameters, trials, float(elapsed_s), int(workers), int(planned), n == planned,
+                   config, int(resumed))
+
+    def to_json(self) -> dict:
+        """The summary as one JSON object (no trials; they are in ``trials.jsonl``/``trials.parquet``)."""
+        return {"experiment": self.name, "version": self.version, "n": self.n, "successes": self.successes,
+                "success_rate": None if math.isnan(self.success_rate) else self.success_rate,
+                "ci95": [self.ci95[0], self.ci95[1]], "failures": dict(self.failures), "seed": self.seed,
+                "planned": self.planned, "complete": self.complete, "parameters": self.parameters,
+                "config": self.config, "values": self.value_summary(), "elapsed_s": self.elapsed_s,
+                "workers": self.workers, "resumed": self.resumed}
+
+    def value_summary(self) -> dict:
+        """For each numeric per-trial value: ``{"mean", "min", "max", "count"}`` over the trials that have it."""
+        out = {}
+        keys = []
+        for t in self.trials:
+            keys.extend(k for k in t.values if k not in keys)
+        for key in keys:
+            vals = [t.values[key] for t in self.trials if key in t.values]
+            nums = [float(v) for v in vals if isinstance(v, (int, float)) and not isinstance(v, bool)
+                    and math.isfinite(float(v))]
+            if nums and len(nums) == sum(1 for v in vals if not isinstance(v, (str, bool))):
+                out[key] = {"mean": sum(nums) / len(nums), "min": min(nums), "max": max(nums), "count": len(nums)}
+        return out
+
+    def rows(self) -> list[dict]:
+        """One flat dict per trial: index, seed, success, failure, then the values."""
+        return [{"index": t.index, "seed": t.seed, "success": t.success, "failure": t.failure, **t.values}
+                for t in self.trials]
+
+    def table(self) -> str:
+        """The summary as plain text: rate with interval, then the failures by kind."""
+        lo, hi = self.ci95
+        rate = "n/a" if math.isnan(self.success_rate) else f"{100 * self.success_rate:.1f} %"
+        lines = [f"experiment {self.name} (throwmap {self.version}), seed {self.seed}: "
+                 f"{self.successes}/{self.n} succeeded = {rate}, Wilson 95 % [{100 * lo:.1f}, {100 * hi:.1f}] %"
+                 + ("" if self.complete else f" (incomplete: {self.n} of {self.planned} trials)")]
+        for kind, c in self.failures.items():
+            lines.append(f"  {kind:<24}{c:>7}  ({100 * c / self.n:.1f} %)")
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """Bar chart of the outcomes (success and each failure kind) with the success rate's interval."""
+        from .plot import plot_result
+
+        return plot_result(self, ax=ax)
+
+
+# ------------------------------------------------------------------- workers
+_CONFIGS: dict = {}
+
+
+def _run_one(name: str, config_json: str, seed: int, index: int) -> dict:
+    """Run trial ``index`` in a worker: look the experiment up by name, rebuild the config from JSON."""
+    exp = get_experiment(name)
+    key = (name, config_json)
+    cfg = _CONFIGS.get(key)
+    if cfg is None:
+        cfg = _CONFIGS[key] = exp.config_type.model_validate_json(config_json)
+    return _checked(exp, cfg, seed, index).to_json()
+
+
+def _checked(exp, cfg, seed: int, index: int) -> Trial:
+    t = exp.trial(cfg, index, trial_generator(seed, index))
+    if not isinstance(t, Trial):
+        raise InvalidStateError("experiment.trial", f"{exp.name}: must return a Trial, got {type(t).__name__}")
+    want = trial_seed(seed, index)
+    if t.index != index or t.seed != want:
+        raise InvalidStateError("experiment.trial", f"{exp.name}: trial {index} returned index {t.index}, seed {t.seed} "
+                                                    f"(expected index {index}, seed {want} = trial_seed(seed, index))")
+    return t
+
+
+# ------------------------------------------------------------------- storage
+def _fsync_line(fh, obj: dict) -> None:
+    fh.write(json.dumps(obj, allow_nan=False) + "\n")
+    fh.flush()
+    os.fsync(fh.fileno())
+
+
+def _atomic_bytes(path: Path, write) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        write(tmp)
+        with open(tmp, "rb") as fh:
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def _read_trials(path: Path) -> dict[int, Trial]:
+    """Stored trials by index; a torn last line (the run was killed while writing it) is cut off."""
+    out: dict[int, Trial] = {}
+    if not path.exists():
+        return out
+    raw = path.read_bytes()
+    good = 0
+    for line in raw.splitlines(keepends=True):
+        if not line.endswith(b"\n"):
+            break
+        try:
+            t = Trial.from_json(json.loads(line))
+        except (ValueError, KeyError, TypeError):
+            break
+        out.setdefault(t.index, t)
+        good += len(line)
+    if good < len(raw):
+        with open(path, "r+b") as fh:
+            fh.truncate(good)
+    return out
+
+
+def _header(name: str, config_json: str, seed: int) -> dict:
+    return {"experiment": name, "version": __version__, "config": json.loads(config_json), "seed": int(seed)}
+
+
+def _check_header(stored: dict, want: dict, directory: Path) -> None:
+    for key in ("experiment", "seed", "config"):
+        if stored.get(key) != want[key]:
+            field = "config" if key == "config" else key
+            if key == "config":
+                a, b = stored.get("config") or {}, want["config"]
+                diff = sorted(k for k in set(a) | set(b) if a.get(k) != b.get(k))
+                field = f"config.{diff[0]}" if diff else "config"
+                detail = f"stored {shown(a.get(diff[0]) if diff else a, 60)}, given {shown(b.get(diff[0]) if diff else b, 60)}"
+            else:
+                detail = f"stored {shown(stored.get(key))}, given {shown(want[key])}"
+            raise InvalidStateError(field, f"differs from the run stored in {str(directory)!r} ({detail}): "
+                                           f"use another --out directory, or resume=False (--no-resume) to discard it")
+
+
+def load_result(directory) -> dict:
+    """The ``result.json`` of a finished run stored in ``directory``."""
+    return json.loads((Path(directory) / "result.json").read_text())
+
+
+# ------------------------------------------------------------------- runner
+def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int = 0, out=None, resume: bool = True,
+                   progress=None, max_seconds=None, max_memory=None, force: bool = False,
+                   stop_after: int | None = None) -> ExperimentResult:
+    """Run trials ``0 … n−1`` of ``experiment`` (a registered name or object) and summarise them.
+
+    ``config``: an instance of the experiment's ``config_type``, a dict validated by it,
+    or None (the built-in example). ``seed`` (int ≥ 0): trial i's generator is
+    ``default_rng(SeedSequence(seed).spawn(n)[i])``. ``workers``: processes (0: all
+    cores, 1: this process). ``out``: a directory keeping the trials (module docstring);
+    ``resume``: reuse the trials stored there. ``progress(done, total)`` is called after
+    each trial (stored trials count as done at the start). ``max_seconds`` (s) and
+    ``max_memory`` (bytes) bound the estimated work (None: :data:`~throwmap.budget.DEFAULT_MAX_SECONDS`,
+    :data:`~throwmap.budget.DEFAULT_MAX_MEMORY`); ``force`` runs anyway. ``stop_after``: run at most this
+    many new trials, then return the (incomplete) result — an interruption on purpose.
+
+    Raises :class:`~throwmap.errors.InvalidStateError` on bad input, on a stored run that
+    does not match, and when the work guard refuses (trials already finished are kept in ``out``).
+    """
+    exp = get_experiment(experiment)
+    cfg = config_of(exp, config)
+    n = check_count("n", n)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise InvalidStateError("seed", f"must be a non-negative integer, got {shown(seed)}")
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
+        raise InvalidStateError("workers", f"must be an integer ≥ 0 (0: all cores), got {shown(workers)}")
+    if stop_after is not None:
+        stop_after = check_count("stop_after", stop_after)
+    max_memory, max_seconds, force = check_limits(DEFAULT_MAX_MEMORY if max_memory is None else max_memory,
+                                                  DEFAULT_MAX_SECONDS if max_seconds is None else max_seconds, force)
+    guard_work(f"experiment {exp.name}", "n", n, BYTES_PER_TRIAL, max_memory, max_seconds, force,
+               hint="fewer trials (--n)", unit="trials")
+    n_workers = (os.cpu_count() or 1) if workers == 0 else workers
+    config_json = cfg.model_dump_json()
+    parameters = exp.parameters(cfg)
+    header = _header(exp.name, config_json, seed)
+
+    stored: dict[int, Trial] = {}
+    fh = None
+    directory = None
+    if out is not None:
+        directory = Path(out)
+        try:
+            directory.mkdir(parents=True, exist_ok=True)
+        except OSError as e:
+            raise InvalidStateError("out", f"cannot create directory {str(directory)!r}: {e.strerror}") from None
+        head_path, lines_path = directory / "run.json", directory / "trials.jsonl"
+        if resume and head_path.exists():
+            _check_header(json.loads(head_path.read_text()), header, directory)
+            stored = {i: t for i, t in _read_trials(lines_path).items() if i < n}
+            for i, t in stored.items():
+                if t.seed != trial_seed(seed, i):
+                    raise InvalidStateError("out", f"trial {i} stored in {str(lines_path)!r} has seed {t.seed}, "
+                                                   f"not {trial_seed(seed, i)}: the file was not written by this run")
+        else:
+            _atomic_bytes(head_path, lambda p: p.write_text(json.dumps(header, indent=2) + "\n"))
+            lines_path.write_bytes(b"")
+        fh = open(lines_path, "a", encoding="utf-8")
+
+    todo = [i for i in range(n) if i not in stored]
+    if stop_after is not None:
+        todo = todo[:stop_after]
+    done: dict[int, Trial] = dict(stored)
+    t0 = time.perf_counter()
+    if progress is not None:
+        progress(len(done), n)
+    timed = TIMED_TRIALS * n_workers
+    left_total = len([i for i in range(n) if i not in stored])
+
+    def finish(t: Trial, k: int) -> None:
+        t = Trial.from_json(t.to_json())  # as stored and read back: a resumed run gives the identical result
+        done[t.index] = t
+        if fh is not None:
+            _fsync_line(fh, t.to_json())
+        if progress is not None:
+            progress(len(done), n)
+        if k == timed and left_total > timed and not force:
+            per = (time.perf_counter() - t0) / k  # wall time per trial on n_workers processes
+            guard_work(f"experiment {exp.name}", "n", left_total, BYTES_PER_TRIAL, max_memory, max_seconds, False,
+                       throws_per_config=1.0, timer=lambda: per, hint="fewer trials (--n)", unit="trials")
+
+    try:
+        if n_workers == 1 or len(todo) <= 1:
+            for k, i in enumerate(todo, 1):
+                finish(_checked(exp, cfg, seed, i), k)
+        else:
+            with ProcessPoolExecutor(max_workers=n_workers) as pool:
+                pending = set()
+                it = iter(todo)
+                k = 0
+                try:
+                    for i in it:  # keep a bounded queue: 4 trials per worker in flight
+                        pending.add(pool.submit(_run_one, exp.name, config_json, seed, i))
+                        if len(pending) >= 4 * n_workers:
+                            break
+                    while pending:
+                        finished, pending = wait(pending, return_when=FIRST_COMPLETED)
+                        for f in sorted(finished, key=lambda f: f.result()["index"]):
+                            k += 1
+                            finish(Trial.from_json(f.result()), k)
+                        for i in it:
+                            pending.add(pool.submit(_run_one, exp.name, config_json, seed, i))
+                            if len(pending) >= 4 * n_workers:
+                                break
+                except BaseException:
+                    for f in pending:
+                        f.cancel()
+                    raise
+    finally:
+        if fh is not None:
+            fh.close()
+    elapsed = time.perf_counter() - t0
+    result = ExperimentResult.from_trials(exp.name, done.values(), seed=seed, parameters=parameters, planned=n,
+                                          elapsed_s=elapsed, workers=n_workers, config=json.loads(config_json),
+                                          resumed=len(stored))
+    if directory is not None:
+        _write_outputs(directory, result)
+    return result
+
+
+def _write_outputs(directory: Path, result: ExperimentResult) -> None:
+    """``result.json`` and ``trials.parquet``, each written atomically."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    doc = result.to_json()
+    text = json.dumps(doc, indent=2, allow_nan=False) + "\n"
+    _atomic_bytes(directory / "result.json", lambda p: p.write_text(text))
+    rows = result.rows()
+    table = pa.Table.from_pylist(rows) if rows else pa.table({"index": pa.array([], pa.int64())})
+    table = table.replace_schema_metadata({b"throwmap.result": json.dumps(doc, allow_nan=False).encode()})
+    _atomic_bytes(directory / "trials.parquet", lambda p: pq.write_table(table, p))
+

@@ -1,0 +1,48 @@
+"""Interval estimates for Monte Carlo success rates.
+
+Every experiment result carries the Wilson score interval (Wilson 1927; Brown, Cai &
+DasGupta, *Statist. Sci.* 16 (2001) 101, Eq. (4)) rather than the Wald interval, which
+collapses to a point at 0 or n successes — the cases a feeder is designed for.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..errors import InvalidStateError, shown
+
+__all__ = ["Z95", "wilson_interval"]
+
+Z95 = 1.959963984540054
+"""The two-sided 95 % standard-normal quantile, Φ⁻¹(0.975)."""
+
+
+def wilson_interval(successes: int, n: int, z: float = Z95) -> tuple[float, float]:
+    """Wilson score interval ``(low, high)`` for ``successes`` out of ``n`` Bernoulli trials.
+
+    With p̂ = k/n::
+
+        centre = (p̂ + z²/(2n)) / (1 + z²/n)
+        half   = z / (1 + z²/n) · sqrt(p̂(1 − p̂)/n + z²/(4n²))
+
+    ``z`` = :data:`Z95` gives the 95 % interval. ``n = 0`` gives ``(0.0, 1.0)`` (no
+    information); ``k = 0`` gives a low end of exactly 0 and ``k = n`` a high end of exactly 1.
+    """
+    for name, v in (("successes", successes), ("n", n)):
+        if isinstance(v, bool) or not isinstance(v, int) and not hasattr(v, "__index__"):
+            raise InvalidStateError(name, f"must be an integer, got {shown(v)}")
+    k, n = int(successes), int(n)
+    if n < 0 or not 0 <= k <= n:
+        raise InvalidStateError("successes", f"must satisfy 0 ≤ successes ≤ n, got {k} of {n}")
+    if not (isinstance(z, (int, float)) and math.isfinite(z) and z > 0):
+        raise InvalidStateError("z", f"must be a positive finite number, got {shown(z)}")
+    if n == 0:
+        return 0.0, 1.0
+    p = k / n
+    z2 = z * z
+    denom = 1.0 + z2 / n
+    centre = (p + z2 / (2 * n)) / denom
+    half = z / denom * math.sqrt(p * (1.0 - p) / n + z2 / (4.0 * n * n))
+    low = 0.0 if k == 0 else max(0.0, centre - half)
+    high = 1.0 if k == n else min(1.0, centre + half)
+    return low, high
