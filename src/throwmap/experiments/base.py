@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["Trial", "Experiment", "FAILURE_KINDS", "trial_seed_sequence", "trial_generator", "trial_seed", "seed_of"]
+__all__ = ["Trial", "Experiment", "FAILURE_KINDS", "trial_seed_sequence", "trial_generator", "trial_seed", "seed_of", "config_of", "read_config"]
 
 FAILURE_KINDS = ("wrong_side", "ejected", "not_captured", "off_end", "tilted",
                  "refused:unconverged", "refused:timeout", "refused:drop")
@@ -144,13 +144,50 @@ def seed_of(rng: np.random.Generator) -> int:
     return int(ss.generate_state(1)[0])
 
 
-def config_of(experiment: Any, config=None):
-    """``config`` validated as ``experiment.config_type`` (None → the built-in example)."""
+def config_of(experiment: Any, config=None, source=None):
+    """``config`` validated as ``experiment.config_type`` (None → the built-in example; a dict is
+    validated, its first problem raised as one :class:`~throwmap.errors.ConfigError` naming the
+    dotted field, ``config.<key>…``, as part files are (:mod:`throwmap.io.config`))."""
+    from pydantic import BaseModel, ValidationError
+
     ctype = experiment.config_type
     if config is None:
         return ctype()
     if isinstance(config, ctype):
         return config
-    if isinstance(config, dict):
+    if not isinstance(config, dict):
+        raise InvalidStateError("config", f"must be a {ctype.__name__} or a dict, got {type(config).__name__}")
+    try:
         return ctype.model_validate(config)
-    raise InvalidStateError("config", f"must be a {ctype.__name__} or a dict, got {type(config).__name__}")
+    except ValidationError as err:
+        from ..errors import ConfigError
+        from ..io.config import _config_error
+
+        e = _config_error(err, "config", source)
+        first = sorted(err.errors(include_url=False), key=lambda x: x["type"] != "extra_forbidden")[0]
+        if first["type"] == "extra_forbidden":  # name the allowed keys of the table the typo is in
+            model = ctype
+            for item in first["loc"][:-1]:
+                sub = model.model_fields.get(item) if isinstance(item, str) else None
+                ann = getattr(sub, "annotation", None)
+                if isinstance(ann, type) and issubclass(ann, BaseModel):
+                    model = ann
+            import difflib
+
+            key = str(first["loc"][-1])
+            close = difflib.get_close_matches(key, list(model.model_fields), n=1)
+            hint = f"did you mean {close[0]!r}? " if close else ""
+            e = ConfigError(e.field, f"unknown key {key!r} ({hint}allowed: {', '.join(model.model_fields)})")
+        raise e from None
+
+
+def read_config(experiment: Any, path):
+    """An experiment's config from a ``.toml`` or ``.json`` file (the document is the config's table
+    of keys), validated by its ``config_type``; errors as :func:`config_of` (``field="file"`` when the
+    file cannot be read or parsed)."""
+    from pathlib import Path
+
+    from ..io.config import _read_document
+
+    path = Path(path)
+    return config_of(experiment, _read_document(path), source=path)
