@@ -26,7 +26,7 @@ from ..throws.outcome import Status
 
 __all__ = ["Attractor", "LABEL_ESCAPE", "FATE_UNRESOLVED", "fate_label", "fate_code", "merge_intervals",
            "escape_fractions", "attractor_table", "nan_to_none", "none_to_nan", "check_cycles", "domain_text",
-           "domain_of", "range_short", "map_short", "attractor_counts"]
+           "domain_of", "range_short", "map_short", "system_short", "attractor_counts"]
 
 LABEL_ESCAPE = -1
 """Label of a configuration whose orbit does not end on an attractor on the arm."""
@@ -257,11 +257,28 @@ def range_short(map_info: dict) -> str:
     return f"x∈({min(v[0] for v in dom.values()):.4g}, {max(v[1] for v in dom.values()):.4g}] m"
 
 
+def system_short(map_info: dict) -> str:
+    """``alpha=5°, wall 5 cm (μ 0)`` from a throw map's ``map_info`` (empty on the paper's plain arm)."""
+    bits = []
+    alpha = float(map_info.get("alpha_rad") or 0.0)
+    if alpha:
+        bits.append(f"alpha={math.degrees(alpha):.3g}°")
+    for f in map_info.get("fixtures") or ():
+        if f.get("kind") == "wall":
+            mu = "arm μ" if f.get("mu") is None else f"μ {f['mu']:g}"
+            bits.append(f"wall {100 * f['height_m']:.3g} cm ({mu})")
+        elif f.get("kind") == "cavity":
+            bits.append("cavity")
+    return ", ".join(bits)
+
+
 def map_short(map_info: dict) -> str:
-    """``model='paper', omega=4 rad/s`` (a throw map) or ``map='name'``, for a repr."""
+    """``model='paper', omega=4 rad/s`` (a throw map, with ``alpha=…, wall …`` where the arm has them)
+    or ``map='name'``, for a repr."""
     if map_info.get("kind") == "throw":
         w = ", ".join(f"{v:g}" for v in map_info.get("omegas_rad_s", ()))
-        return f"model={map_info.get('model')!r}, omega={w} rad/s"
+        extra = system_short(map_info)
+        return f"model={map_info.get('model')!r}, omega={w} rad/s" + (f", {extra}" if extra else "")
     return f"map={map_info.get('name', map_info.get('label', 'map'))!r}"
 
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidStateError, shown
-from .attractors import Attractor, domain_text
+from .attractors import Attractor, domain_text, system_short
 from .basins import Basins, basins
 from .caps import RecurrenceCaps
 from .cellmap import map_to_attractors
@@ -118,7 +118,9 @@ class FunnelGraph:
         models = sorted({m.get("model") for m in maps if m.get("kind") == "throw"})
         if oms and len(oms) == len(maps):
             xm = max(m.get("x_max_m", 0.0) for m in maps)
-            return f"model={', '.join(models)!r}, omegas=[{'; '.join(oms)}] rad/s, x ≤ {xm:.4g} m"
+            extra = system_short(maps[0])
+            return (f"model={', '.join(models)!r}, omegas=[{'; '.join(oms)}] rad/s, "
+                    f"{extra + ', ' if extra else ''}x ≤ {xm:.4g} m")
         return f"{len(maps)} maps"
 
     @property

@@ -35,9 +35,10 @@ from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from ..models import DEFAULT_MODEL, check_model  # DEFAULT_MODEL re-exported here for the analysis modules
 from ..system.part import Part
-from ..throws.throw import start_interval, throw_batch
+from ..throws.throw import prepare, start_interval, throw_batch
 
-__all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid"]
+__all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid",
+           "fixtures_doc", "system_text"]
 
 DEFAULT_X_MAX = 0.6
 """Outer end of the analysed domain on an unbounded arm, m (the paper's arms span ≈ 60 cm).
@@ -101,6 +102,39 @@ def _check_x_max(x_max, lo_max: float, arm_length) -> float:
     return v
 
 
+def fixtures_doc(fixtures) -> list:
+    """Fixtures for JSON output: ``[{"kind": "wall", "height_m", "thickness_m", "mu"}, {"kind": "cavity",
+    "profile_m": [[s, y], …]}]`` (``"mu": null`` on a wall: the arm's μ)."""
+    from ..system.fixtures import Cavity, Wall
+
+    out = []
+    for f in fixtures or ():
+        if isinstance(f, Wall):
+            out.append({"kind": "wall", "height_m": f.height, "thickness_m": f.thickness,
+                        "mu": None if f.mu is None or not math.isfinite(f.mu) else f.mu})
+        elif isinstance(f, Cavity):
+            out.append({"kind": "cavity", "profile_m": [[s, y] for s, y in f.profile]})
+        else:  # pragma: no cover - System refuses anything else
+            out.append({"kind": type(f).__name__})
+    return out
+
+
+def system_text(fixtures, alpha: float) -> str:
+    """``"α = 5°, wall 5 cm (μ 0)"`` for labels and reprs; empty for the paper's plain arm."""
+    from ..system.fixtures import Cavity, Wall
+
+    bits = []
+    if alpha:
+        bits.append(f"α = {math.degrees(alpha):.3g}°")
+    for f in fixtures or ():
+        if isinstance(f, Wall):
+            mu = "arm μ" if f.mu is None else f"μ {f.mu:g}"
+            bits.append(f"wall {100 * f.height:.3g} cm ({mu})")
+        elif isinstance(f, Cavity):
+            bits.append(f"cavity {100 * f.span:.3g} × {100 * f.depth:.3g} cm")
+    return ", ".join(bits)
+
+
 @dataclass(frozen=True, eq=False)
 class ThrowMap(ConfigMap):
     """The throw map T^ω of ``part`` on ``arm`` (paper Sec. III-D), or a composed sequence.
@@ -115,7 +149,16 @@ class ThrowMap(ConfigMap):
     :func:`throwmap.throws.throw.start_interval`
     (the starts ``throw()`` accepts, ``arm.back`` included): ``x_lo`` (exclusive) to
     ``min(x_max, arm.length − u_R)`` (``x_max`` default: the arm length, else
-    :data:`DEFAULT_X_MAX`).
+    :data:`DEFAULT_X_MAX`). With a :class:`~throwmap.Wall` at the arm's end the
+    part resting against it has x + u_R = length, so ``x_hi`` = length − u_R is
+    exactly that resting configuration (a fixed point where jogs saturate).
+
+    ``throw_options`` are checked at construction as :func:`throwmap.throw` checks them
+    (:func:`throwmap.throws.throw.prepare`): ``fixtures=`` and ``alpha=`` (rad) are
+    refused, naming the keyword and the models that take them, by a model whose
+    :class:`~throwmap.models.Features` lacks them. The map keeps them as
+    :attr:`fixtures` (a tuple) and :attr:`alpha` (rad), and :meth:`describe`
+    (every result's ``map_info``) records them.
     """
 
     part: Part
@@ -135,6 +178,14 @@ class ThrowMap(ConfigMap):
         if np.any(om < 0):
             raise InvalidStateError("omega", f"must be ≥ 0 (the arm throws upward), got {om.tolist()}")
         object.__setattr__(self, "omegas", tuple(float(w) for w in om))
+        opts = dict(self.throw_options)
+        kw = {k: opts.pop(k) for k in ("fixtures", "alpha", "options") if k in opts}
+        for k in ("progress", "on_invalid"):
+            opts.pop(k, None)
+        _, system, _ = prepare(self.model, self.arm, kw.get("fixtures", ()), kw.get("alpha", 0.0),
+                               kw.get("options"), opts)
+        object.__setattr__(self, "fixtures", system.fixtures)
+        object.__setattr__(self, "alpha", system.alpha)
         iv = {s: start_interval(self.part, self.arm, s) for s in self.part.stable_sides}
         x_hi = _check_x_max(self.x_max, max(lo for lo, _ in iv.values()), self.arm.length)
         sides = tuple(s for s in self.part.stable_sides if min(x_hi, iv[s][1]) > iv[s][0])
@@ -147,7 +198,9 @@ class ThrowMap(ConfigMap):
         object.__setattr__(self, "x_hi", {s: min(x_hi, iv[s][1]) for s in sides})
         object.__setattr__(self, "throws_per_step", len(self.omegas))
         w = ", ".join(f"{v:g}" for v in self.omegas)
-        object.__setattr__(self, "label", f"{self.part.name or 'part'}, ω = {w} rad/s, model {self.model}")
+        extra = system_text(self.fixtures, self.alpha)
+        object.__setattr__(self, "label", f"{self.part.name or 'part'}, ω = {w} rad/s, model {self.model}"
+                                          + (f", {extra}" if extra else ""))
 
     def step(self, x, side):
         x = x.copy()
@@ -170,13 +223,15 @@ class ThrowMap(ConfigMap):
     def describe(self) -> dict:
         return {"kind": "throw", "part": self.part.name, "h_m": self.arm.h, "g_m_s2": self.arm.g,
                 "arm_length_m": self.arm.length, "mu": self.arm.mu if math.isfinite(self.arm.mu) else None, "omegas_rad_s": list(self.omegas),
-                "model": self.model, "x_max_m": self.x_max,
+                "model": self.model, "x_max_m": self.x_max, "alpha_rad": self.alpha,
+                "fixtures": fixtures_doc(self.fixtures),
                 "domain_m": {str(s): [self.x_lo[s], self.x_hi[s]] for s in self.sides}}
 
     def __repr__(self) -> str:
         w = ", ".join(f"{v:g}" for v in self.omegas)
+        extra = system_text(self.fixtures, self.alpha)
         return (f"ThrowMap(part={self.part.name or 'part'!r}, h={self.arm.h:g} m, model={self.model!r}, "
-                f"omega={w} rad/s, sides {self.sides}, x ≤ {self.x_max:.4g} m)")
+                f"omega={w} rad/s, {extra + ', ' if extra else ''}sides {self.sides}, x ≤ {self.x_max:.4g} m)")
 
 
 @dataclass(frozen=True, eq=False)

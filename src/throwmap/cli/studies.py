@@ -10,6 +10,7 @@ line on stderr, exit 2.
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -19,13 +20,14 @@ from .. import __version__
 from ..errors import ConfigError, InvalidStateError
 from ..io.config import resolve_part
 from ..throws.throw import check_model
-from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, arm_dict, check_finite,
-                      check_out_dir, check_output, guard, make_out_dir, parse_floats, part_and_arm, stderr_line,
+from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOptionOpt, MuOpt, PartOpt, arm_dict, check_finite,
+                      check_out_dir, check_output, guard, make_out_dir, model_options, parse_floats, part_and_arm,
+                      stderr_line,
                       strict_int, to_json, write_text)
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
-__all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "ENGINES"]
+__all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "validate_fixtures_cmd", "ENGINES"]
 
 ENGINES = ("pymunk", "mujoco")
 """Engines ``validate`` can use; pymunk is the reference and always runs."""
@@ -211,8 +213,77 @@ def validate_cmd(
         typer.echo(f"wrote {out / 'validation.json'}, {out / 'validation.md'}")
 
 
+# ------------------------------------------------------------------ validate-fixtures
+def validate_fixtures_cmd(
+    part: Annotated[list[str] | None, typer.Option("--part", help="Part(s) thrown (repeatable; default: the validate "
+                                                                   "set).")] = None,
+    n: Annotated[int, typer.Option("--n", parser=strict_int, metavar="INTEGER",
+                                   help="Random throws per condition (each compared with the engine).")] = 500,
+    seed: Annotated[int, typer.Option("--seed", parser=strict_int, metavar="INTEGER",
+                                      help="Seed of the random throws (one child stream per condition).")] = 0,
+    conditions: Annotated[str | None, typer.Option("--conditions", help="Conditions, comma list (default all): "
+                                                   "'tilt, μ = ∞', 'tilt', 'wall, μ_w = 0', 'wall, μ_w = μ' — "
+                                                   "or their short names tilt-inf, tilt, wall-0, wall-mu.")] = None,
+    model_option: ModelOptionOpt = None,
+    fixed_point: Annotated[bool, typer.Option("--fixed-point/--no-fixed-point",
+                                              help="Also find the fixed point at the wall with limit_set and "
+                                                   "check its multiplier.")] = True,
+    out: Annotated[Path, typer.Option("--out", help="Directory for tilt_wall.json and tilt_wall.md.")] = Path("out"),
+    as_json: JsonOpt = False,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
+) -> None:
+    """Tilted arms and walls: rigid_body and paper against the engine, and the fixed point at the wall."""
+    from ..studies.tilt_wall import CONDITIONS, validate_tilt_wall
+
+    with guard():
+        if n < 1:
+            raise InvalidStateError("n", f"must be a positive integer, got {n}")
+        conds = None
+        if conditions is not None:
+            short = {"tilt-inf": "tilt, μ = ∞", "tilt": "tilt", "wall-0": "wall, μ_w = 0", "wall-mu": "wall, μ_w = μ"}
+            conds = []
+            for c in (p.strip() for p in conditions.split(",") if p.strip()):
+                c = short.get(c, c)
+                if c not in CONDITIONS:
+                    raise InvalidStateError("conditions", f"unknown condition {c!r} (choose from "
+                                                          f"{', '.join(short)})")
+                conds.append(c)
+            if not conds:
+                raise InvalidStateError("conditions", "is empty")
+        rb = dataclasses.asdict(model_options(model_option, "rigid_body")["options"]) if model_option else {}
+        limits = work_limits(max_memory, max_time, force)
+        check_out_dir(out)
+        parts = _validation_parts(part)
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+        with Progress(TextColumn("engine throws"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                      console=Console(stderr=True), transient=True) as bar:
+            task = bar.add_task("engine", total=None)
+            report = validate_tilt_wall(parts, n=n, seed=seed, conditions=conds, rigid_body_options=rb,
+                                        fixed_point=fixed_point,
+                                        progress=lambda done, total: bar.update(task, completed=done, total=total),
+                                        **limits)
+        make_out_dir(out)
+        doc = {**report.to_dict(), "version": __version__}
+        write_text(out / "tilt_wall.json", to_json(doc) + "\n", "out")
+        lines = [report.table(), "", *(f"- {g}" for g in report.goal_lines()), "",
+                 *report.fixed_point_lines()]
+        md = (f"# throwmap validate-fixtures ({n} throws per condition, seed {seed})\n\n" + "\n".join(lines) + "\n")
+        write_text(out / "tilt_wall.md", md, "out")
+        if as_json:
+            typer.echo(to_json(doc))
+            return
+        for line in lines:
+            typer.echo(line)
+        typer.echo(f"wrote {out / 'tilt_wall.json'}, {out / 'tilt_wall.md'}")
+
+
 def register(app: typer.Typer) -> None:
-    """Add the ``demo``, ``compare`` and ``validate`` commands to ``app``."""
+    """Add the ``demo``, ``compare``, ``validate`` and ``validate-fixtures`` commands to ``app``."""
     app.command("demo")(demo_cmd)
     app.command("compare")(compare_cmd)
     app.command("validate")(validate_cmd)
+    app.command("validate-fixtures")(validate_fixtures_cmd)

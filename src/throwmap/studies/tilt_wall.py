@@ -1,0 +1,443 @@
+"""Tilted and walled throws: the exact models against the engine (issue 11, item 2).
+
+:func:`validate_tilt_wall` throws random cases on a tilted arm (rest angle α) and on
+an arm with a :class:`~throwmap.Wall` at its end through the exact models and through
+the pymunk engine (the reference), as :mod:`throwmap.studies.validation` does for the
+plain arm, and compares them throw by throw. Four conditions, ``n`` throws each:
+
+=====================  ==========================================================
+``tilt, μ = ∞``        α ∈ [−15°, 15°], no slip; models ``paper`` and ``rigid_body``
+``tilt``               α as above, μ random in [0.3, ∞]; ``rigid_body``
+``wall, μ_w = 0``      α and μ as above, a frictionless wall; ``rigid_body``
+``wall, μ_w = μ``      the wall as rough as the arm; ``rigid_body``
+=====================  ==========================================================
+
+The paper model assumes a pivot that never slips (Sec. III), so it is compared at
+μ = ∞ only. Every throw draws a part from the validation set
+(:func:`~throwmap.studies.validation.default_parts`), a side, x uniform over the
+starts :func:`throwmap.throw` accepts (with a wall: over their outer quarter, where
+jogs reach the wall), ω ∈ [3, 7] rad/s, h ∈ {−1, −0.5} cm (the paper's
+regime 0 > h > −min d), the arm length in [0.25, 0.40] m. Per row: throws compared,
+same outcome % (same side at rest, or the same escape) and |Δx| ≤ 0.5 mm %, each
+with its Wilson 95 % interval, median and 95th percentile |Δx|, and the throws each
+side refused (``unresolved``, ``timeout``, …), with the worst misses as reproducers.
+
+:func:`wall_fixed_point` finds, with :func:`throwmap.limit_set`, the fixed point a
+wall makes where jogs saturate (x* = length − u_R) and checks its multiplier by
+finite differences of the map.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..errors import InvalidStateError, ThrowmapError
+from ..kernels import codes as C
+from ..system.arm import Arm
+from ..system.fixtures import Wall
+from ..system.part import Part
+from ..throws.outcome import Status
+from ..throws.throw import start_interval, throw_batch
+from .validation import default_parts
+
+__all__ = ["CONDITIONS", "REFUSED", "TiltWallCases", "TiltWallReport", "make_cases", "validate_tilt_wall",
+           "wall_fixed_point", "compare_rows"]
+
+ALPHA_RANGE = (-math.radians(15.0), math.radians(15.0))
+"""Arm rest angles α, rad (issue 11: ±15°)."""
+MU_RANGE = (0.3, 3.0)
+"""Finite arm frictions, drawn log-uniformly; with probability :data:`P_MU_INF` μ = ∞ instead."""
+P_MU_INF = 0.2
+"""Share of the throws at μ = ∞ (no slip) in the conditions with random μ."""
+OMEGA_RANGE = (3.0, 7.0)
+"""Release rates, rad/s (the validation set's)."""
+H_VALUES = (-0.01, -0.005)
+"""Arm heights, m (0 > h > −min d for every part of the set: the paper's regime)."""
+LENGTH_RANGE = (0.25, 0.40)
+"""Arm lengths, m: short enough that many jogs reach the wall."""
+WALL_X_SHARE = 0.25
+"""With a wall, x is drawn over this outer share of the starts on the side (where jogs reach the wall)."""
+WALL_HEIGHT = 0.05
+"""Wall height above the arm surface, m (taller than every part of the set lying on a side)."""
+WITHIN = 0.5e-3
+"""|Δx| counted as agreement, m (issue 3's 0.5 mm)."""
+GOALS = {"same_pct": 99.0, "within_pct": 95.0}
+"""Targets of issue 11 per row: same outcome ≥ 99 %, |Δx| ≤ 0.5 mm in ≥ 95 %."""
+REFUSED = (C.UNRESOLVED, C.TIMEOUT, C.PENETRATION, C.UNCONVERGED, C.INCONSISTENT)
+"""Statuses that refuse a result rather than give one; such throws are counted, not compared."""
+CONDITIONS = {
+    "tilt, μ = ∞": {"wall": None, "mu": "inf", "models": ("paper", "rigid_body")},
+    "tilt": {"wall": None, "mu": "random", "models": ("rigid_body",)},
+    "wall, μ_w = 0": {"wall": "zero", "mu": "random", "models": ("rigid_body",)},
+    "wall, μ_w = μ": {"wall": "arm", "mu": "random", "models": ("rigid_body",)},
+}
+"""The conditions thrown, ``n`` throws each: the wall's μ (None: no wall), how μ is drawn, the models compared."""
+N_WORST = 8
+"""Misses kept per row as reproducers (largest |Δx| first, then side/status disagreements)."""
+SECONDS_PER_THROW_GUESS = 0.03
+"""Engine seconds per throw assumed by the work guard before it measures (s)."""
+
+
+@dataclass(frozen=True, slots=True)
+class TiltWallCases:
+    """The throws of one condition, as arrays of equal length (SI units; ``wall_mu`` nan: no wall,
+    ``inf``: as rough as an arm at μ = ∞)."""
+
+    condition: str
+    part: np.ndarray
+    x: np.ndarray
+    side: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray
+    mu: np.ndarray
+    h: np.ndarray
+    length: np.ndarray
+    wall_mu: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return int(self.x.size)
+
+    def case(self, i: int) -> dict:
+        """Throw ``i`` as plain values (its reproducer)."""
+        wm = float(self.wall_mu[i])
+        return {"part": str(self.part[i]), "x_m": float(self.x[i]), "side": int(self.side[i]),
+                "omega_rad_s": float(self.omega[i]), "alpha_rad": float(self.alpha[i]),
+                "alpha_deg": math.degrees(float(self.alpha[i])), "mu": float(self.mu[i]), "h_m": float(self.h[i]),
+                "length_m": float(self.length[i]), "wall": None if math.isnan(wm) else {"height_m": WALL_HEIGHT,
+                                                                                      "mu": wm}}
+
+    def system(self, i: int, parts: dict) -> tuple:
+        """``(part, arm, fixtures, alpha)`` of throw ``i``."""
+        arm = Arm(h=float(self.h[i]), mu=float(self.mu[i]), length=float(self.length[i]))
+        wm = float(self.wall_mu[i])
+        fixtures = () if math.isnan(wm) else (Wall(WALL_HEIGHT, mu=wm),)
+        return parts[str(self.part[i])], arm, fixtures, float(self.alpha[i])
+
+
+def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Generator) -> TiltWallCases:
+    """``n`` random throws of ``condition`` (a key of :data:`CONDITIONS`) drawn with ``rng``."""
+    spec = CONDITIONS[condition]
+    names = list(parts)
+    cols: dict[str, list] = {k: [] for k in ("part", "x", "side", "omega", "alpha", "mu", "h", "length", "wall_mu")}
+    for _ in range(n):
+        name = names[int(rng.integers(len(names)))]
+        part = parts[name]
+        k = int(rng.choice(part.stable_sides))
+        length = float(rng.uniform(*LENGTH_RANGE))
+        h = float(rng.choice(H_VALUES))
+        lo, hi = start_interval(part, Arm(h=h, length=length), k)
+        if spec["wall"] is not None:
+            lo = hi - WALL_X_SHARE * (hi - lo)
+        x = float(rng.uniform(lo, hi))
+        x = min(max(x, math.nextafter(lo, math.inf)), hi)
+        if spec["mu"] == "inf" or rng.uniform() < P_MU_INF:
+            mu = math.inf
+        else:
+            mu = float(math.exp(rng.uniform(math.log(MU_RANGE[0]), math.log(MU_RANGE[1]))))
+        wall_mu = {None: math.nan, "zero": 0.0, "arm": mu}[spec["wall"]]
+        for key, v in (("part", name), ("x", x), ("side", k), ("omega", float(rng.uniform(*OMEGA_RANGE))),
+                       ("alpha", float(rng.uniform(*ALPHA_RANGE))), ("mu", mu), ("h", h), ("length", length),
+                       ("wall_mu", wall_mu)):
+            cols[key].append(v)
+    return TiltWallCases(condition, np.array(cols["part"], dtype=object),
+                         *(np.array(cols[k], dtype=np.int64 if k == "side" else float)
+                           for k in ("x", "side", "omega", "alpha", "mu", "h", "length", "wall_mu")))
+
+
+def _throw_all(cases: TiltWallCases, parts: dict, model: str, options: dict, tick, walls: bool = True) -> dict:
+    """Every throw of ``cases`` through ``model`` (``walls`` False: without the wall); refused keywords
+    (a model without tilt or fixtures) end the run with the refusal's message."""
+    n = cases.n
+    out = {"x": np.full(n, np.nan), "side": np.full(n, -1, dtype=np.int64), "status": np.full(n, -1, dtype=np.int64),
+           "message": None}
+    for i in range(n):
+        part, arm, fixtures, alpha = cases.system(i, parts)
+        fixtures = fixtures if walls else ()
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                b = throw_batch(part, arm, cases.x[i:i + 1], cases.side[i:i + 1], cases.omega[i:i + 1], model=model,
+                                on_invalid="status", fixtures=fixtures, alpha=alpha, **options)
+        except ThrowmapError as err:
+            out["message"] = str(err)
+            return out
+        out["x"][i], out["side"][i], out["status"][i] = float(b.x[0]), int(b.side[0]), int(b.status[0])
+        if tick is not None:
+            tick()
+    return out
+
+
+def _wilson(k: int, n: int) -> list:
+    from ..experiments.stats import wilson_interval
+
+    lo, hi = wilson_interval(int(k), int(n))
+    return [100.0 * lo, 100.0 * hi]
+
+
+def _refusals(status) -> dict:
+    return {Status(int(c)).label: int(np.sum(status == c)) for c in REFUSED if np.any(status == c)}
+
+
+def _agree(a: dict, b: dict) -> np.ndarray:
+    """Throw by throw: the same escape, or at rest on the same side within :data:`WITHIN`."""
+    same_st = a["status"] == b["status"]
+    return same_st & ((a["status"] != C.OK) | ((a["side"] == b["side"]) & (np.abs(a["x"] - b["x"]) <= WITHIN)))
+
+
+def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: dict, free: dict | None = None) -> dict:
+    """One row: ``res`` (a model) against ``ref`` (the engine) on ``cases``; see the module docstring.
+
+    ``free`` (the engine without the wall, same throws) gives ``wall_changed_pct``: the share of
+    throws whose engine outcome the wall changed (beyond 0.5 mm, or side, or status)."""
+    n = cases.n
+    if res.get("message"):
+        return {"row": label, "n": n, "n_compared": 0, "available": False, "message": res["message"]}
+    refused_m = np.isin(res["status"], REFUSED)
+    refused_e = np.isin(ref["status"], REFUSED)
+    cmp = ~refused_m & ~refused_e
+    both_ok = cmp & (res["status"] == C.OK) & (ref["status"] == C.OK)
+    same_side = both_ok & (res["side"] == ref["side"])
+    same_escape = cmp & (res["status"] == ref["status"]) & (res["status"] != C.OK)
+    dx = np.full(n, np.nan)
+    dx[same_side] = np.abs(res["x"][same_side] - ref["x"][same_side])
+    same = same_side | same_escape
+    within = same_escape | (same_side & (dx <= WITHIN))
+    m = int(cmp.sum())
+    d = dx[same_side] * 1e3
+    # engine rests that lean on the wall (tilted, right support vertex past the arm's end)
+    uR = np.array([parts[str(p)].uR[int(k)] for p, k in zip(cases.part, np.maximum(ref["side"], 0))])
+    leaning = (ref["status"] == C.OK) & (ref["x"] + uR > cases.length + 1e-4)
+    miss = np.flatnonzero(cmp & ~within)
+    order = miss[np.argsort(-np.nan_to_num(dx[miss], nan=np.inf), kind="stable")][:N_WORST]
+    worst = [{**cases.case(int(i)), "model": {"x_m": float(res["x"][i]), "side": int(res["side"][i]),
+                                              "status": Status(int(res["status"][i])).label},
+              "engine": {"x_m": float(ref["x"][i]), "side": int(ref["side"][i]),
+                         "status": Status(int(ref["status"][i])).label},
+              "dx_mm": float(dx[i] * 1e3) if math.isfinite(dx[i]) else None} for i in order]
+    return {
+        "row": label, "n": n, "n_compared": m, "available": True,
+        "same_pct": 100.0 * same.sum() / m if m else math.nan, "same_ci95": _wilson(same.sum(), m),
+        "within_pct": 100.0 * within.sum() / m if m else math.nan, "within_ci95": _wilson(within.sum(), m),
+        "dx_median_mm": float(np.median(d)) if d.size else math.nan,
+        "dx_p95_mm": float(np.percentile(d, 95)) if d.size else math.nan,
+        "dx_max_mm": float(d.max()) if d.size else math.nan,
+        "model_refused": _refusals(res["status"]), "engine_refused": _refusals(ref["status"]),
+        "engine_leaning": int(leaning.sum()),
+        "at_wall_pct": (100.0 * float(np.mean((ref["status"] == C.OK) & (np.abs(ref["x"] + uR - cases.length) < 1e-3)))
+                        if not np.all(np.isnan(cases.wall_mu)) else 0.0),
+        "wall_changed_pct": 100.0 * float(np.mean(~_agree(free, ref))) if free is not None else None,
+        "worst": worst,
+    }
+
+
+@dataclass(frozen=True, slots=True)
+class TiltWallReport:
+    """Result of :func:`validate_tilt_wall`: ``rows`` (one dict per model and condition), ``goals``
+    (per row: met or not), ``fixed_point`` (:func:`wall_fixed_point`'s dict, or None), ``settings``
+    (seed, n, every range drawn from), and the cases and raw results per condition."""
+
+    rows: tuple
+    goals: dict
+    fixed_point: dict | None
+    settings: dict
+    cases: dict = field(default_factory=dict)
+    results: dict = field(default_factory=dict)
+
+    def table(self) -> str:
+        """The rows as a Markdown table (distances in mm, shares in % with their Wilson 95 % interval)."""
+        lines = ["| condition: model vs pymunk | throws (compared) | same outcome % [95 % CI] | |Δx| ≤ 0.5 mm % "
+                 "[95 % CI] | |Δx| median (mm) | |Δx| p95 (mm) | wall changed % / at wall % | refused: model / engine |",
+                 "|" + "---|" * 8]
+        for r in self.rows:
+            if not r["available"]:
+                lines.append(f"| {r['row']} | {r['n']} (0) | — | — | — | — | — | not run: {r['message']} |")
+                continue
+            ref = ", ".join(f"{k} {v}" for k, v in r["model_refused"].items()) or "0"
+            eng = ", ".join(f"{k} {v}" for k, v in r["engine_refused"].items()) or "0"
+            lean = f"; leaning {r['engine_leaning']}" if r["engine_leaning"] else ""
+            lines.append(f"| {r['row']} | {r['n']} ({r['n_compared']}) | {_pct(r['same_pct'], r['same_ci95'])} | "
+                         f"{_pct(r['within_pct'], r['within_ci95'])} | {_f(r['dx_median_mm'])} | "
+                         f"{_f(r['dx_p95_mm'])} | {_wall(r)} | {ref} / {eng}{lean} |")
+        return "\n".join(lines)
+
+    def goal_lines(self) -> list[str]:
+        return [f"{name}: {g['value']:.2f} % (goal ≥ {g['goal']:g} %) — {'met' if g['met'] else 'NOT met'}"
+                for name, g in self.goals.items()]
+
+    def fixed_point_lines(self) -> list[str]:
+        fp = self.fixed_point
+        if not fp:
+            return []
+        if not fp.get("found"):
+            return [f"wall fixed point ({fp['model']}, {fp['part']}, side {fp['side']}): NOT found — {fp['message']}"]
+        fd = ", ".join(f"h = {h:g} m: {v:+.3g}" for h, v in zip(fp["fd_steps_m"], fp["fd_left"]))
+        return [f"wall fixed point ({fp['model']}, {fp['part']}, ω = {fp['omega_rad_s']:g} rad/s, L = "
+                f"{fp['length_m']:g} m, α = {fp['alpha_deg']:g}°, wall μ {_mu(fp['wall_mu'])}): x* = "
+                f"{fp['x_star_m']:.6f} m on side {fp['side']} (length − u_R = {fp['x_wall_m']:.6f} m), multiplier "
+                f"{fp['multiplier']:+.3g}, residual {fp['residual_m']:.3g} m, reached from "
+                f"{100 * fp['fraction']:.1f} % of {fp['n_starts']} starts ({fp['range']})",
+                f"  left difference quotients (T(x*) − T(x* − h))/h: {fd}; the map without the wall at x*: slope "
+                f"{_f(fp['free_slope'], '+.3g')}"]
+
+    def to_dict(self) -> dict:
+        from ..io.files import json_ready
+
+        return json_ready({"rows": list(self.rows), "goals": self.goals, "fixed_point": self.fixed_point,
+                           "settings": self.settings, "table_markdown": self.table()})
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "TiltWallReport":
+        """The summary back from :meth:`to_dict` (cases and raw results are not written)."""
+        return cls(tuple(d["rows"]), dict(d["goals"]), d.get("fixed_point"), dict(d["settings"]))
+
+
+def _f(v, spec=".3f"):
+    return "—" if v is None or not math.isfinite(v) else format(v, spec)
+
+
+def _pct(v, ci) -> str:
+    return "—" if v is None or not math.isfinite(v) else f"{v:.1f} [{ci[0]:.1f}, {ci[1]:.1f}]"
+
+
+def _wall(r: dict) -> str:
+    if r.get("wall_changed_pct") is None:
+        return "no wall"
+    return f"{r['wall_changed_pct']:.1f} / {r['at_wall_pct']:.1f}"
+
+
+def _mu(v) -> str:
+    return "∞" if v is None or math.isinf(v) else f"{v:g}"
+
+
+def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wall | None = None, alpha: float = 0.0,
+                     model: str = "rigid_body", n_starts: int = 16, rng=0, fd_steps=(1e-3, 1e-4, 1e-5, 1e-6),
+                     **options) -> dict:
+    """The fixed point at the wall, x* = length − u_R on ``side``, found by :func:`throwmap.limit_set`.
+
+    A jog that would carry the part past the wall stops against it, so T(x) = x* for
+    every x near x* on that side: x* is a fixed point with multiplier 0 (superstable:
+    reached in finitely many throws). The map is defined only for x ≤ x* (x + u_R ≤
+    length), so its derivative there is one-sided: the left difference quotient
+    (T(x*) − T(x* − h))/h, computed here for each h in ``fd_steps`` (m), must be 0, and
+    limit_set's multiplier (:func:`throwmap.analysis.recurrence._slopes`, one-sided
+    where the right neighbour is no valid start) must agree. ``free_slope`` is the
+    same quotient of the map without the wall, for comparison. Returns a dict (JSON-ready).
+    """
+    from ..analysis import limit_set
+    from ..throws.throw import throw_batch as tb
+
+    wall = Wall(WALL_HEIGHT, mu=0.0) if wall is None else wall
+    kw = {"fixtures": (wall,), "alpha": alpha, **options}
+    k = part.check_side(side)
+    x_wall = start_interval(part, arm, k)[1]
+    info = {"model": model, "part": part.name, "side": k, "omega_rad_s": float(omega), "length_m": arm.length,
+            "h_m": arm.h, "mu": arm.mu, "alpha_deg": math.degrees(alpha), "wall_mu": wall.mu, "x_wall_m": x_wall,
+            "fd_steps_m": list(fd_steps)}
+    try:
+        ls = limit_set(part, arm, omega, model, n_starts=n_starts, rng=rng, **kw)
+    except ThrowmapError as err:
+        return {**info, "found": False, "message": str(err)}
+    fps = [a for a in ls.attractors if a.kind == "fixed_point" and a.points[0][0] == k
+           and abs(a.points[0][1] - x_wall) <= 1e-6]
+    if not fps:
+        return {**info, "found": False, "message": f"limit_set found {ls.kind}: " + "; ".join(
+            a.describe() for a in ls.attractors) + f"; escapes {ls.escapes}", "range": ls.range_text}
+    a = fps[0]
+    xs = a.points[0][1]
+
+    def left(extra: dict, x0: float) -> list:
+        xa = np.array([x0] + [x0 - h for h in fd_steps])
+        b = tb(part, arm, xa, k, omega, model=model, on_invalid="status", **extra)
+        ok = (b.status == C.OK) & (b.side == b.side[0])
+        return [float((b.x[0] - b.x[j + 1]) / h) if ok[0] and ok[j + 1] else math.nan for j, h in enumerate(fd_steps)]
+
+    free = left({kk: v for kk, v in kw.items() if kk != "fixtures"}, xs)
+    return {**info, "found": True, "x_star_m": xs, "multiplier": a.multiplier, "residual_m": a.residual,
+            "fraction": a.fraction, "n_starts": ls.n_starts, "range": ls.range_text, "fd_left": left(kw, xs),
+            "free_slope": free[-1] if free else math.nan, "limit_set": ls.summary()}
+
+
+def _timer(parts: dict) -> float:
+    """Seconds per engine throw, measured on three tilted throws against a wall (after one that warms the engine)."""
+    first = dict([next(iter(parts.items()))])
+    _throw_all(make_cases(first, "wall, μ_w = 0", 1, np.random.default_rng(1)), parts, "engine", {}, None)
+    cases = make_cases(first, "wall, μ_w = 0", 3, np.random.default_rng(2))
+    t0 = time.perf_counter()
+    _throw_all(cases, parts, "engine", {}, None)
+    return (time.perf_counter() - t0) / cases.n
+
+
+def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, seed: int = 0, conditions=None,
+                       models=None, rigid_body_options: dict | None = None, fixed_point: bool = True, progress=None,
+                       max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
+                       force: bool = False) -> TiltWallReport:
+    """Throw ``n`` random cases per condition (:data:`CONDITIONS`) through the models and the engine; compare.
+
+    ``models`` (a sequence of model names) replaces every condition's models (e.g.
+    ``("engine",)``: the engine against itself, a check of the comparison: 100 %).
+    ``seed`` seeds one child generator per condition (``SeedSequence(seed).spawn``), so a
+    condition's throws do not depend on which others run. ``rigid_body_options`` (e.g.
+    ``{"impact_law": "velocity"}``) go to every rigid_body throw. ``fixed_point`` also runs
+    :func:`wall_fixed_point` on the canonical triangle (side 0, ω = 5 rad/s, L = 0.30 m,
+    frictionless wall, μ = 1). ``progress(done, total)`` counts engine throws. Work
+    guard (:mod:`throwmap.budget`) on ``n``: the engine time per throw is measured first.
+    """
+    parts = default_parts() if parts is None else parts
+    conditions = tuple(CONDITIONS) if conditions is None else tuple(conditions)
+    for c in conditions:
+        if c not in CONDITIONS:
+            raise InvalidStateError("conditions", f"unknown condition {c!r} (choose from {', '.join(CONDITIONS)})")
+    n = check_count("n", n, minimum=1)
+    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
+    guard_work("validate-fixtures", "n", n * sum(1 + bool(CONDITIONS[c]["wall"]) for c in conditions), 400.0, max_memory, max_seconds, force,
+               throws_per_config=1.0, timer=lambda: _timer(parts), hint="fewer throws per condition (--n)",
+               unit="engine throws")
+    rb = dict(rigid_body_options or {})
+    if models is not None:
+        from ..models import check_model
+
+        models = tuple(check_model(m) for m in ([models] if isinstance(models, str) else models))
+    seqs = np.random.SeedSequence(seed).spawn(len(CONDITIONS))
+    total = n * sum(1 + bool(CONDITIONS[c]["wall"]) for c in conditions)
+    done = [0]
+
+    def tick():
+        done[0] += 1
+        if progress is not None:
+            progress(done[0], total)
+
+    rows, cases_out, results = [], {}, {}
+    for c in conditions:
+        cases = make_cases(parts, c, n, np.random.default_rng(seqs[list(CONDITIONS).index(c)]))
+        ref = _throw_all(cases, parts, "engine", {}, tick)
+        free = _throw_all(cases, parts, "engine", {}, tick, walls=False) if CONDITIONS[c]["wall"] else None
+        names = CONDITIONS[c]["models"] if models is None else tuple(models)
+        res = {m: _throw_all(cases, parts, m, rb if m == "rigid_body" else {}, None) for m in names}
+        cases_out[c], results[c] = cases, {"engine": ref, **res, **({"engine, no wall": free} if free else {})}
+        for m, r in res.items():
+            rows.append(compare_rows(f"{c}: {m}", cases, parts, r, ref, free))
+    goals = {}
+    for r in rows:
+        if r["available"] and r["n_compared"]:
+            for key, name in (("same_pct", "same outcome"), ("within_pct", "|Δx| ≤ 0.5 mm")):
+                goals[f"{r['row']}: {name}"] = {"value": r[key], "goal": GOALS[key], "met": bool(r[key] >= GOALS[key])}
+    fp = None
+    if fixed_point:
+        from ..system.catalogue import triangle_30_60_90
+
+        fp = wall_fixed_point(triangle_30_60_90(), Arm(h=-0.01, mu=1.0, length=0.30), 5.0, 0, **rb)
+    settings = {"n_per_condition": n, "seed": seed, "conditions": {c: {**CONDITIONS[c], "models": list(
+        CONDITIONS[c]["models"] if models is None else models)} for c in conditions}, "parts": list(parts),
+        "alpha_range_deg": [math.degrees(a) for a in ALPHA_RANGE], "mu_range": list(MU_RANGE),
+        "p_mu_inf": P_MU_INF, "omega_range_rad_s": list(OMEGA_RANGE), "h_m": list(H_VALUES),
+        "length_range_m": list(LENGTH_RANGE), "wall_height_m": WALL_HEIGHT, "within_m": WITHIN,
+        "rigid_body_options": rb, "reference": "engine (pymunk, default EngineSettings)",
+        "refused_statuses": [Status(c).label for c in REFUSED]}
+    return TiltWallReport(tuple(rows), goals, fp, settings, cases_out, results)
