@@ -33,6 +33,9 @@ class Orbit:
     (length ``n_throws + 1``); ``omegas`` the release rates used (rad/s);
     ``outcomes`` each throw's :class:`ThrowOutcome`. ``status`` is OK if every throw
     was, else the escape that ended the orbit early (its outcome is the last one).
+    ``poses`` (model ``"engine"`` only, else None): the part's arm-frame pose
+    ``(x, y, φ)`` (m, m, rad) at the start and after each completed throw — the pose
+    the next throw starts from, tilted where a fixture holds the part so.
     """
 
     x: np.ndarray
@@ -41,6 +44,7 @@ class Orbit:
     outcomes: tuple
     status: Status
     model: str
+    poses: tuple | None = None
 
     def __repr__(self) -> str:
         om = np.asarray(self.omegas, dtype=float)
@@ -78,6 +82,7 @@ class Orbit:
             "omegas": [float(v) for v in self.omegas],
             "kinds": list(self.kinds),
             "outcomes": [o.to_dict() for o in self.outcomes],
+            **({} if self.poses is None else {"poses": [[float(c) for c in p] for p in self.poses]}),
         }
 
     @classmethod
@@ -86,7 +91,8 @@ class Orbit:
         return cls(x=np.array(d["x"], dtype=float), side=np.array(d["side"], dtype=int),
                    omegas=np.array(d["omegas"], dtype=float),
                    outcomes=tuple(ThrowOutcome.from_dict(o) for o in d["outcomes"]),
-                   status=Status.from_label(d["status"]), model=d["model"])
+                   status=Status.from_label(d["status"]), model=d["model"],
+                   poses=None if d.get("poses") is None else tuple(tuple(float(c) for c in p) for p in d["poses"]))
 
     def table(self) -> str:
         """One line per throw: ω, the start, the kind of throw and where it ended."""
@@ -177,6 +183,11 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     per throw) is checked before any throw, its time from the first throws
     (:data:`TIMED_THROWS`, timed now); above ``max_memory`` (bytes) or ``max_seconds``
     (s) it is refused with one line on ``n``, unless ``force``.
+
+    Model ``"engine"``: each throw starts from the pose the previous one left the part in
+    (not from a flat rest at the reported ``(x, side)``), so a part held tilted by a
+    fixture stays so; :attr:`Orbit.poses` lists those poses. Its ``realisation`` keyword
+    may also be a callable ``omega -> realisation`` (one realisation per throw).
     """
     try:
         x0, s0 = state
@@ -185,6 +196,8 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     gd = ThrowGuard("iterate", "n", planned_throws(omegas, n), BYTES_PER_THROW, max_memory, max_seconds, force,
                       hint="fewer throws (-n)")
     om = throw_rates(omegas, n)
+    if _is_engine(model):
+        return _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs)
     xs = [float(x0)]
     ss = [part.check_side(s0)]
     outs = []
@@ -208,3 +221,59 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
         status=status,
         model=model,
     )
+
+
+def _is_engine(model) -> bool:
+    """Whether ``model`` is the pymunk engine (the model whose runs hand their end scene to the next throw)."""
+    from ..models import get_model
+
+    return getattr(get_model(model), "name", None) == "engine"
+
+
+def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs) -> Orbit:
+    """:func:`iterate` for model ``"engine"``: a chain of engine runs, each starting from the scene the
+    previous one ended in (:meth:`throwmap.engine.EngineRun.next_scene`), so a part keeps its settled
+    pose — tilted against a wall or in a cavity — from throw to throw. Only the first start is the
+    flat rest at ``(x0, s0)``. ``realisation`` may be a realisation (every throw), None (the impulse at
+    each throw's ω) or a callable ``omega -> realisation`` (e.g. :meth:`throwmap.experiments.noise.Noise.realisation_for`).
+    """
+    from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
+    from ..system.arm import warn_if_outside_regime
+    from .throw import check_start, prepare
+
+    kw = dict(throw_kwargs)
+    fixtures, alpha, options = kw.pop("fixtures", ()), kw.pop("alpha", 0.0), kw.pop("options", None)
+    real = kw.get("realisation")
+    factory = real if callable(real) and not hasattr(real, "angle") else None
+    if factory is not None:
+        kw["realisation"] = None
+    _, system, opts = prepare(model, arm, fixtures, alpha, options, kw)
+    x, k, _ = check_start(part, arm, x0, s0, float(om[0]) if om.size else 0.0)
+    warn_if_outside_regime(part, arm)
+    friction = Friction() if opts.friction is None else opts.friction
+    scene = Scene(arm, (Placement(part, x=x, side=k),), system.fixtures, system.alpha, friction)
+    xs, ss = [float(x)], [int(k)]
+    poses = [tuple(float(c) for c in scene.placements[0].arm_pose(arm.h))]
+    outs = []
+    status = Status.OK
+    for w in om:
+        w = float(w)
+        if w < 0 or not np.isfinite(w):
+            raise InvalidStateError("omegas", f"must be finite and ≥ 0, got {shown(w)}")
+        realisation = factory(w) if factory is not None else (ImpulseThrow(w) if opts.realisation is None
+                                                               else opts.realisation)
+        run = simulate(scene, realisation, opts.settings)
+        o = run.outcome(0, x0=xs[-1], side0=ss[-1], omega=w)
+        outs.append(o)
+        gd.tick()
+        if progress is not None:
+            progress(len(outs))
+        if o.status != Status.OK:
+            status = o.status
+            break
+        xs.append(o.x)
+        ss.append(o.side)
+        poses.append(tuple(float(c) for c in run.poses[0]))
+        scene = run.next_scene()
+    return Orbit(x=np.array(xs), side=np.array(ss, dtype=int), omegas=om[: len(outs)].copy(), outcomes=tuple(outs),
+                 status=status, model="engine", poses=tuple(poses))
