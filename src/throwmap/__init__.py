@@ -25,13 +25,14 @@ from .system.part import Part, Side
 from .system.catalogue import rectangle, regular_polygon, triangle_30_60_90
 from . import models
 from .models import DEFAULT_MODEL, get_model, model_names, register
+from .system.fixtures import Cavity, Wall
 from .system.system import System
 from .throws.throw import MODELS, throw, throw_batch
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "Arm", "BatchOutcome", "DEFAULT_MODEL", "System", "get_model", "model_names", "models", "register", "ConfigError", "ConfigSet", "FunctionMap", "ThrowMap", "basins", "critical_points",
+    "Arm", "BatchOutcome", "Cavity", "DEFAULT_MODEL", "System", "Wall", "get_model", "model_names", "models", "register", "ConfigError", "ConfigSet", "FunctionMap", "ThrowMap", "basins", "critical_points",
     "funnels", "limit_set", "push", "G", "InvalidArmError", "InvalidPartError", "InvalidStateError",
     "MODELS", "Orbit", "Part", "RegimeWarning", "Side", "Status", "ThrowOutcome", "ThrowmapError",
     "ThrowmapWarning", "cm", "iterate", "plot_throw_map", "rectangle", "regime_problems", "regular_polygon",

@@ -265,7 +265,8 @@ def system_short(map_info: dict) -> str:
         bits.append(f"alpha={math.degrees(alpha):.3g}°")
     for f in map_info.get("fixtures") or ():
         if f.get("kind") == "wall":
-            mu = "arm μ" if f.get("mu") is None else f"μ {f['mu']:g}"
+            mu = f.get("mu")
+            mu = "arm μ" if mu == "arm" else ("μ ∞" if mu is None else f"μ {mu:g}")
             bits.append(f"wall {100 * f['height_m']:.3g} cm ({mu})")
         elif f.get("kind") == "cavity":
             bits.append("cavity")

@@ -104,14 +104,15 @@ def _check_x_max(x_max, lo_max: float, arm_length) -> float:
 
 def fixtures_doc(fixtures) -> list:
     """Fixtures for JSON output: ``[{"kind": "wall", "height_m", "thickness_m", "mu"}, {"kind": "cavity",
-    "profile_m": [[s, y], …]}]`` (``"mu": null`` on a wall: the arm's μ)."""
+    "profile_m": [[s, y], …]}]``. A wall's ``"mu"`` is ``"arm"`` where it takes the arm's μ
+    (``Wall.mu`` None) and ``null`` for μ = ∞ (no slip), as everywhere in the JSON output."""
     from ..system.fixtures import Cavity, Wall
 
     out = []
     for f in fixtures or ():
         if isinstance(f, Wall):
             out.append({"kind": "wall", "height_m": f.height, "thickness_m": f.thickness,
-                        "mu": None if f.mu is None or not math.isfinite(f.mu) else f.mu})
+                        "mu": "arm" if f.mu is None else (f.mu if math.isfinite(f.mu) else None)})
         elif isinstance(f, Cavity):
             out.append({"kind": "cavity", "profile_m": [[s, y] for s, y in f.profile]})
         else:  # pragma: no cover - System refuses anything else

@@ -26,13 +26,14 @@ from ..analysis import ConfigSet, basins, critical_points, funnels, limit_set
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 from ..analysis.limitset import DEFAULT_CAPS
-from ..analysis.maps import ThrowMap
+from ..analysis.maps import ThrowMap, system_text
 from ..analysis.orbits import orbit_on_attractor
 from ..errors import InvalidStateError, ThrowmapError
 from ..throws.throw import check_model
-from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt, arm_dict,
-                      check_finite, check_out_dir, figure_format, guard, make_out_dir, model_options, options_doc,
-                      parse_floats, part_and_arm, save_figure, strict_int, to_json, write_bytes, write_text)
+from .options import (AlphaOpt, BackOpt, CavityOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt,
+                      OmegaOpt, PartOpt, WallMuOpt, WallOpt, arm_dict, check_finite, check_out_dir, figure_format,
+                      guard, make_out_dir, model_options, options_doc, parse_floats, part_and_arm, save_figure,
+                      strict_int, system_doc, system_options, to_json, write_bytes, write_text)
 
 __all__ = ["register", "limitset_cmd", "basins_cmd", "funnels_cmd", "JSON_ARRAYS_MAX", "OPTION_FIELDS"]
 
@@ -117,6 +118,10 @@ def limitset_cmd(
     back: BackOpt = None,
     model: ModelOpt = "rigid_body",
     model_option: ModelOptionOpt = None,
+    alpha: AlphaOpt = None,
+    wall: WallOpt = None,
+    wall_mu: WallMuOpt = None,
+    cavity: CavityOpt = None,
     x_max: XMaxOpt = None,
     starts: StartsOpt = 64,
     transient: TransientOpt = None,
@@ -145,29 +150,30 @@ def limitset_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
+        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         fmt_map = figure_format(plot_map, "plot_map")
         check_out_dir(out)
         limits = work_limits(max_memory, max_time, force)
-        crit = critical_points(the_part, arm, omega, model, x_max=x_max, **limits, **opts)
+        cmap = ThrowMap(the_part, arm, omega, model, x_max, {**opts, **sysk})  # refuses what the model lacks
+        crit = critical_points(the_part, arm, omega, model, x_max=x_max, **limits, **opts, **sysk)
         with _option_names(), _progress() as bar:
-            limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, **limits, **opts,
+            limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, **limits, **opts, **sysk,
                               transient=transient, max_transient=max_transient, n_record=record, tol=tol, max_period=max_period,
                               progress=lambda done, total: bar("iterating", done, total))
         if plot is not None:
             from ..viz.limit_set import plot_limit_set
 
-            orbit = orbit_on_attractor(the_part, arm, omega, model, limit, **opts)
+            orbit = orbit_on_attractor(the_part, arm, omega, model, limit, **opts, **sysk)
             save_figure(plot_limit_set(limit, critical=crit, orbit=orbit), plot, fmt, "plot")
         if plot_map is not None:
             from ..throws.samples import sample_map
 
-            cmap = ThrowMap(the_part, arm, omega, model, x_max, dict(opts))
             save_figure(sample_map(cmap).plot(critical=crit, limit=limit), plot_map, fmt_map, "plot_map")
         doc = {"limit_set": limit.to_dict(), "critical_points": crit.to_dict(), "part": the_part.name,
-               "arm": arm_dict(arm), "omega": omega, "model": model, "seed": seed,
+               "arm": arm_dict(arm), **system_doc(sysk), "omega": omega, "model": model, "seed": seed,
                "plot": str(plot) if plot is not None else None,
                "plot_map": str(plot_map) if plot_map is not None else None, "model_options": options_doc(opts), "version": __version__}
         written = [p for p in (plot, plot_map) if p is not None]
@@ -178,7 +184,8 @@ def limitset_cmd(
         if as_json:
             typer.echo(to_json(doc))
             return
-        typer.echo(f"{the_part.name}: ω = {omega:g} rad/s, h = {arm.h:g} m, model {model!r}")
+        typer.echo(f"{the_part.name}: ω = {omega:g} rad/s, h = {arm.h:g} m, model {model!r}"
+                   + (f", {system_text(cmap.fixtures, cmap.alpha)}" if sysk else ""))
         typer.echo("critical points (r_i: jogs end; l_i = inf S):")
         typer.echo(crit.table())
         typer.echo("")
@@ -197,6 +204,10 @@ def basins_cmd(
     back: BackOpt = None,
     model: ModelOpt = "rigid_body",
     model_option: ModelOptionOpt = None,
+    alpha: AlphaOpt = None,
+    wall: WallOpt = None,
+    wall_mu: WallMuOpt = None,
+    cavity: CavityOpt = None,
     x_max: XMaxOpt = None,
     grid: Annotated[int, typer.Option("--grid", parser=strict_int, metavar="INTEGER",
                                       help="Configurations per stable side (≥ 2), evenly spaced "
@@ -227,20 +238,21 @@ def basins_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
+        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         check_out_dir(out)
         limits = work_limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
-            result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, **limits, **opts,
+            result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, **limits, **opts, **sysk,
                             max_throws=max_throws, n_check=check, n_seeds=starts, transient=transient,
                             max_transient=max_transient, n_record=record, x_max=x_max, progress=bar)
         if plot is not None:
             from ..viz.basins import plot_basins
 
             save_figure(plot_basins(result), plot, fmt, "plot")
-        extra = {"part": the_part.name, "arm": arm_dict(arm), "omega": omega, "model": model, "seed": seed,
+        extra = {"part": the_part.name, "arm": arm_dict(arm), **system_doc(sysk), "omega": omega, "model": model, "seed": seed,
                  "plot": str(plot) if plot is not None else None, "model_options": options_doc(opts), "version": __version__}
         written = [plot] if plot is not None else []
         if out is not None:
@@ -275,6 +287,10 @@ def funnels_cmd(
     back: BackOpt = None,
     model: ModelOpt = "rigid_body",
     model_option: ModelOptionOpt = None,
+    alpha: AlphaOpt = None,
+    wall: WallOpt = None,
+    wall_mu: WallMuOpt = None,
+    cavity: CavityOpt = None,
     x_max: XMaxOpt = None,
     goal: Annotated[str | None, typer.Option("--goal", help="Goal configurations 'side:lo-hi, …' in m "
                                                             "(e.g. '0:0.50-0.90'); none: no priorities.")]
@@ -300,6 +316,7 @@ def funnels_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
+        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         omegas = parse_floats(omega, "omega")
         target = None
@@ -315,12 +332,13 @@ def funnels_cmd(
         limits = work_limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
             graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment, **limits, **opts,
+                            **sysk,
                             rng=seed, x_max=x_max, method=method, n_seeds=starts, progress=bar)
         if plot is not None:
             from ..viz.funnels import plot_funnel_graph
 
             save_figure(plot_funnel_graph(graph), plot, fmt, "plot")
-        doc = {**graph.to_dict(), "part": the_part.name, "arm": arm_dict(arm), "omegas": omegas,
+        doc = {**graph.to_dict(), "part": the_part.name, "arm": arm_dict(arm), **system_doc(sysk), "omegas": omegas,
                "model": model, "seed": seed, "plot": str(plot) if plot is not None else None,
                "model_options": options_doc(opts), "version": __version__}
         written = [plot] if plot is not None else []

@@ -18,8 +18,9 @@ import typer
 from ..errors import InvalidStateError, ThrowmapError
 from ..models import DEFAULT_MODEL, model_names
 from ..throws.orbit_trajectory import orbit_trajectory, trajectory_models
-from .options import (BackOpt, GOpt, HOpt, LengthOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, XOpt,
-                      check_finite, check_output, guard, model_options, part_and_arm, strict_int)
+from .options import (AlphaOpt, BackOpt, CavityOpt, GOpt, HOpt, LengthOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt,
+                      SideOpt, WallMuOpt, WallOpt, XOpt, check_finite, check_output, guard, model_options,
+                      part_and_arm, strict_int, system_options)
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
@@ -70,6 +71,10 @@ def animate_cmd(
     model: Annotated[str, typer.Option("--model", help=f"Model: {', '.join(ANIMATE_MODELS)} "
                                                        f"(default {DEFAULT_MODEL}).")] = DEFAULT_MODEL,
     model_option: ModelOptionOpt = None,
+    alpha: AlphaOpt = None,
+    wall: WallOpt = None,
+    wall_mu: WallMuOpt = None,
+    cavity: CavityOpt = None,
     out: Annotated[Path, typer.Option("--out", help="Animation file, .gif or .mp4 (mp4 needs ffmpeg).")]
     = Path("out/throw.gif"),
     fps: Annotated[int, typer.Option("--fps", parser=strict_int, metavar="INTEGER", help="Frames per second.")] = 30,
@@ -84,7 +89,7 @@ def animate_cmd(
         if model not in ANIMATE_MODELS:
             what = f"model {model!r} records no trajectory" if model in model_names() else f"unknown model {model!r}"
             raise InvalidStateError("model", f"{what} (choose from {', '.join(ANIMATE_MODELS)})")
-        opts = model_options(model_option, model)
+        opts = {**model_options(model_option, model), **system_options(alpha, wall, wall_mu, cavity)}
         if n < 1:
             raise InvalidStateError("n", f"must be a positive integer, got {n}")
         if fps < 1:
@@ -100,6 +105,10 @@ def animate_cmd(
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         check_finite(omega, "omega")
+        if "alpha" in opts or "fixtures" in opts:  # refused before any work by a model without them
+            from ..throws.throw import prepare
+
+            prepare(model, arm, opts.get("fixtures", ()), opts.get("alpha", 0.0), opts.get("options"), {})
         os.environ.setdefault("MPLBACKEND", "Agg")  # files only, never a window
         try:
             traj = _trajectory(model, the_part, arm, x, side, omega, n, opts, limits)
@@ -116,7 +125,11 @@ def animate_cmd(
         except OSError as err:
             raise ThrowmapError("out", f"cannot create directory {parent}: {err.strerror or err}") from None
         throws, summary = _summary(traj)
-        title = f"{the_part.name or 'part'} — h = {arm.h:g} m, ω = {omega:g} rad/s, model {model!r}, {throws}"
+        from ..analysis.maps import system_text
+
+        extra = system_text(opts.get("fixtures", ()), opts.get("alpha", 0.0))
+        title = (f"{the_part.name or 'part'} — h = {arm.h:g} m, ω = {omega:g} rad/s, model {model!r}, "
+                 f"{extra + ', ' if extra else ''}{throws}")
         n_drawn = len(frame_times(traj, fps, speed, 0.5))  # the progress bar's total
         try:
             from rich.console import Console

@@ -41,7 +41,8 @@ from ..throws.throw import DEFAULT_MODEL, MODELS
 
 __all__ = [
     "BackOpt", "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "ModelOptionOpt", "MuOpt", "OmegaOpt", "PartOpt",
-    "SideOpt", "XOpt", "ForceOpt", "MaxMemoryOpt", "MaxTimeOpt", "model_options", "options_doc",
+    "SideOpt", "XOpt", "ForceOpt", "MaxMemoryOpt", "MaxTimeOpt", "AlphaOpt", "WallOpt", "WallMuOpt", "CavityOpt",
+    "model_options", "options_doc", "parse_alpha", "system_options", "system_doc",
     "arm_dict", "check_directory", "check_finite", "check_out_dir", "check_output", "figure_format", "format_value",
     "guard", "make_out_dir", "parse_floats", "part_and_arm", "plot_format", "save_figure", "side_value", "stderr_line",
     "strict_int", "to_json",
@@ -99,6 +100,100 @@ ModelOptionOpt = Annotated[list[str] | None, typer.Option(
     "--model-option", "-O", metavar="KEY=VALUE",
     help="A numerical option of the throw model, repeatable: e.g. -O impact_law=velocity (rigid_body), "
          "-O tol=1e-12, -O max_impacts=50 (the model's options type lists them; unknown keys are refused).")]
+
+
+AlphaOpt = Annotated[str | None, typer.Option(
+    "--alpha", metavar="ANGLE",
+    help="Arm rest angle α, counter-clockwise from horizontal (> 0 raises the arm's end): rad, or degrees with a "
+         "'deg' suffix (0.05, 5deg, -10deg). Default 0; only models with tilt take it (paper, rigid_body, engine).")]
+WallOpt = Annotated[float | None, typer.Option(
+    "--wall", help="A wall at the arm's end, its height above the arm surface, m (e.g. 0.05; needs --length). "
+                   "Only models with fixtures take it (rigid_body, engine).")]
+WallMuOpt = Annotated[float | None, typer.Option(
+    "--wall-mu", help="Wall–part Coulomb friction μ (default: the arm's μ; inf = no slip). Needs --wall.")]
+CavityOpt = Annotated[Path | None, typer.Option(
+    "--cavity", help="A cavity at the arm's end from a .json or .toml file holding profile = [[s, y], …] in m "
+                     "(s back from the arm's end, y ≤ 0 below the surface; see throwmap.Cavity).")]
+
+
+def parse_alpha(text) -> float:
+    """``--alpha`` in rad: a number (rad), or a number with a ``deg`` (or ``°``) suffix (degrees).
+
+    Refused with a one-line error on ``alpha``: anything else, or a non-finite angle."""
+    raw = str(text).strip()
+    low = raw.lower().replace(" ", "")
+    deg = False
+    for suffix in ("degrees", "degree", "deg", "°"):
+        if low.endswith(suffix):
+            low, deg = low[: -len(suffix)], True
+            break
+    if low.endswith("rad"):
+        low = low[:-3]
+    try:
+        v = float(low)
+    except ValueError:
+        raise InvalidStateError("alpha", f"must be an angle in rad (0.05) or in degrees with 'deg' (5deg), "
+                                         f"got {raw!r}") from None
+    if not math.isfinite(v):
+        raise InvalidStateError("alpha", f"must be finite, got {raw!r}")
+    return math.radians(v) if deg else v
+
+
+def system_options(alpha: str | None = None, wall: float | None = None, wall_mu: float | None = None,
+                   cavity: Path | None = None) -> dict:
+    """The keywords ``fixtures=`` and ``alpha=`` of :func:`throwmap.throw` from ``--alpha``, ``--wall``,
+    ``--wall-mu`` and ``--cavity``, checked before any work; only those given (so that a model
+    without tilt or fixtures is not handed them unasked, and refuses them when asked)."""
+    from ..system.fixtures import Cavity, Wall
+
+    out: dict = {}
+    if alpha is not None:
+        out["alpha"] = parse_alpha(alpha)
+    fixtures = []
+    if wall_mu is not None and wall is None:
+        raise InvalidStateError("wall_mu", "needs --wall (the wall's height)")
+    if wall is not None:
+        if not math.isfinite(wall) or wall <= 0:
+            raise InvalidStateError("wall", f"must be a positive height in m, got {wall:g}")
+        if wall_mu is not None and (math.isnan(wall_mu) or wall_mu < 0):
+            raise InvalidStateError("wall_mu", f"must be a number ≥ 0 (inf: no slip), got {wall_mu:g}")
+        fixtures.append(Wall(float(wall), mu=None if wall_mu is None else float(wall_mu)))
+    if cavity is not None:
+        fixtures.append(Cavity(_cavity_profile(Path(cavity))))
+    if fixtures:
+        out["fixtures"] = tuple(fixtures)
+    return out
+
+
+def _cavity_profile(path: Path) -> tuple:
+    """The ``profile`` of a cavity file (.json or .toml), refused on ``cavity`` if unreadable."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as err:
+        raise ConfigError("cavity", f"cannot read {path}: {err.strerror or err}") from None
+    try:
+        if path.suffix.lower() == ".toml":
+            import tomllib
+
+            data = tomllib.loads(text)
+        else:
+            data = json.loads(text)
+    except (ValueError, UnicodeDecodeError) as err:
+        raise ConfigError("cavity", f"{path} is not valid {path.suffix.lstrip('.').upper() or 'JSON'}: "
+                                    f"{str(err).splitlines()[0]}") from None
+    prof = data.get("profile") if isinstance(data, dict) else None
+    if prof is None and isinstance(data, dict) and isinstance(data.get("cavity"), dict):
+        prof = data["cavity"].get("profile")
+    if not isinstance(prof, list):
+        raise ConfigError("cavity", f"{path} needs profile = [[s, y], …] (m), at the top or in a [cavity] table")
+    return tuple(tuple(p) if isinstance(p, list) else p for p in prof)
+
+
+def system_doc(system_kw: dict) -> dict:
+    """``{"alpha_rad", "fixtures"}`` of a run for its JSON record (α = 0 and no fixtures: the plain arm)."""
+    from ..analysis.maps import fixtures_doc
+
+    return {"alpha_rad": float(system_kw.get("alpha", 0.0)), "fixtures": fixtures_doc(system_kw.get("fixtures", ()))}
 
 
 def _option_value(text: str):

@@ -17,9 +17,11 @@ from .. import __version__
 from ..errors import InvalidStateError
 from ..throws.orbit import Orbit, iterate
 from ..throws.throw import DEFAULT_MODEL, check_model, throw
-from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt, OmegaOpt, PartOpt,
-                      SideOpt, XOpt, arm_dict, check_finite, figure_format, format_value, guard, model_options,
-                      options_doc, parse_floats, part_and_arm, save_figure, strict_int, to_json)
+from .options import (AlphaOpt, BackOpt, CavityOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt,
+                      OmegaOpt, PartOpt, SideOpt, WallMuOpt, WallOpt, XOpt, arm_dict, check_finite, figure_format,
+                      format_value, guard, model_options, options_doc, parse_floats, part_and_arm, save_figure,
+                      strict_int, system_doc, system_options, to_json)
+from ..analysis.maps import system_text
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
@@ -43,19 +45,25 @@ def throw_cmd(
     back: BackOpt = None,
     model: ModelOpt = DEFAULT_MODEL,
     model_option: ModelOptionOpt = None,
+    alpha: AlphaOpt = None,
+    wall: WallOpt = None,
+    wall_mu: WallMuOpt = None,
+    cavity: CavityOpt = None,
     as_json: JsonOpt = False,
 ) -> None:
     """One throw from rest at (x, side): where the part lands and how."""
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
+        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         check_finite(omega, "omega")
-        out = throw(the_part, arm, x, side, omega, model=model, **opts)
+        out = throw(the_part, arm, x, side, omega, model=model, **opts, **sysk)
         if as_json:
-            doc = {**out.to_dict(), "part": the_part.name, "arm": arm_dict(arm), "model_options": options_doc(opts), "version": __version__}
+            doc = {**out.to_dict(), "part": the_part.name, "arm": arm_dict(arm), **system_doc(sysk),
+                   "model_options": options_doc(opts), "version": __version__}
             typer.echo(to_json(doc))
             return
         from rich.console import Console
@@ -64,8 +72,9 @@ def throw_cmd(
 
         fmt = format_value
         console = Console()
+        extra = system_text(sysk.get("fixtures", ()), sysk.get("alpha", 0.0))
         console.print(escape(f"{the_part.name}: throw from x = {fmt(x)} m, side {side}, ω = {fmt(omega)} rad/s "
-                             f"(model {model!r})"), soft_wrap=True)
+                             f"(model {model!r}{', ' + extra if extra else ''})"), soft_wrap=True)
         table = Table()
         table.add_column("quantity")
         table.add_column("value", justify="right")
@@ -152,6 +161,10 @@ def iterate_cmd(
     back: BackOpt = None,
     model: ModelOpt = DEFAULT_MODEL,
     model_option: ModelOptionOpt = None,
+    alpha: AlphaOpt = None,
+    wall: WallOpt = None,
+    wall_mu: WallMuOpt = None,
+    cavity: CavityOpt = None,
     as_json: JsonOpt = False,
     plot: Annotated[Path | None, typer.Option("--plot", help="Write a figure of the orbit (e.g. orbit.png).")] = None,
     max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
@@ -162,22 +175,28 @@ def iterate_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
+        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         omegas, n_lib, planned = _throw_rates(omega, n)
         limits = work_limits(max_memory, max_time, force)
         fmt = figure_format(plot, "plot")
+        if sysk:  # a model without tilt or fixtures refuses them before any throw (the library's rule)
+            from ..throws.throw import prepare
+
+            prepare(model, arm, sysk.get("fixtures", ()), sysk.get("alpha", 0.0), opts.get("options"), {})
         if planned > PROGRESS_THRESHOLD:
-            orbit = _iterate_with_progress(the_part, arm, (x, side), omegas, n_lib, planned, model, {**opts, **limits})
+            orbit = _iterate_with_progress(the_part, arm, (x, side), omegas, n_lib, planned, model,
+                                           {**opts, **sysk, **limits})
         else:
-            orbit = iterate(the_part, arm, (x, side), omegas, n_lib, model=model, **opts, **limits)
+            orbit = iterate(the_part, arm, (x, side), omegas, n_lib, model=model, **opts, **sysk, **limits)
         summary = _orbit_summary(orbit, planned)
         if plot is not None:
             save_figure(orbit.plot(part=the_part, arm=arm), plot, fmt, "plot")
         if as_json:
             doc = {**orbit.to_dict(), "summary": summary, "part": the_part.name, "arm": arm_dict(arm),
-                   "plot": str(plot) if plot is not None else None, "model_options": options_doc(opts), "version": __version__}
+                   **system_doc(sysk), "plot": str(plot) if plot is not None else None, "model_options": options_doc(opts), "version": __version__}
             typer.echo(to_json(doc))
             return
         from rich.console import Console
@@ -185,8 +204,9 @@ def iterate_cmd(
         from rich.table import Table
 
         console = Console()
-        console.print(escape(f"{the_part.name}: orbit from x = {format_value(x)} m, side {side} (model {model!r})"),
-                      soft_wrap=True)
+        extra = system_text(sysk.get("fixtures", ()), sysk.get("alpha", 0.0))
+        console.print(escape(f"{the_part.name}: orbit from x = {format_value(x)} m, side {side} (model {model!r}"
+                             f"{', ' + extra if extra else ''})"), soft_wrap=True)
         table = Table()
         table.add_column("quantity")
         table.add_column("value", justify="right")
