@@ -1,0 +1,627 @@
+"""A wall at the arm's end in model "rigid_body": its guards, resets and statics (issue 11, item 2).
+
+The wall (:class:`throwmap.system.fixtures.Wall`) is the face x = L (the arm's
+``length``, arm frame) from the arm surface y = h up to y = h + H; its normal
+into the part is −x̂, its Coulomb coefficient μ_w (``inf``: no slip), and every
+impact with it is plastic (zero restitution), as on the arm. Gravity is a
+general vector (g_x, g_y) in the arm frame; an arm at rest angle α gives
+(g_x, g_y) = (−g sin α, −g cos α) (α < 0 tilts the end down: g_x > 0 pushes the
+part towards the wall). Unit mass, inertia ρ² about the CM, as the rest of the
+automaton (:mod:`throwmap.kernels.rigid_body`).
+
+Guards
+------
+``wall_touch``   FLIGHT: the earliest time a vertex reaches x = L moving outward
+                 (:func:`wall_touch_time`, the lower-bound stepping of
+                 :func:`throwmap.kernels.flight.touch_time` applied to the wall
+                 gap; it cannot miss a crossing). A vertex crossing x = L above
+                 the wall top has passed over it: an edge then meets the wall's
+                 top corner, which is not modelled (refused, :data:`WHY_WALL_TOP`).
+``wall_reach``   PIVOT_* about A = (p_x, h): every vertex above the line moves
+                 outward as θ decreases, so the wall is a lower bound θ ≥ θ_w on the
+                 pivot angle (:func:`wall_theta`, closed form); the swinging part
+                 touches the wall when θ reaches θ_w.
+``slide_hit``    FLAT_SLIDE at constant acceleration: the leading vertex reaches the
+                 wall (:func:`slide_hit`, closed form).
+
+Resets
+------
+``wall_impact``  one vertex against the wall: the impact law of the arm
+                 (:func:`~.impact.coulomb_impact`: Eq. 4 inside the friction cone,
+                 else Routh's process or the velocity-level law) in a frame turned by
+                 −90° so that the wall's normal −x̂ is that law's normal ŷ
+                 (:func:`wall_impact`). The normal velocity after it is 0.
+``all_stop``     several contacts (arm vertices and wall vertices) at once: the part
+                 stops if the impulse that removes its whole momentum is a sum of
+                 impulses inside the contacts' friction cones
+                 (:func:`cone_contains`, exact: Carathéodory's theorem, every basis of
+                 ≤ 3 cone edges is tried).
+
+Statics
+-------
+``rest_against_wall`` a part at rest touching the arm and the wall stays if gravity
+                 is balanced by forces inside the contacts' cones (:func:`cone_contains`
+                 with the gravity wrench), the same exact test.
+
+What is refused (status UNRESOLVED, reason code ``WHY_*`` below) is every state
+the automaton cannot follow exactly: an edge on the wall's top corner, a vertex
+pressed against the wall during flight (it would slide along the wall), a
+two-contact impact with slip, a two-contact slide (a ladder sliding at both
+ends), and a pivot at the wall's foot driven into the wall.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..flight import SNAP, first_contact
+from .impact import coulomb_impact
+from .modes import IMP_INCONSISTENT, IMP_SEPARATE
+from .trajectory import _put
+
+WHY_NONE = 0
+WHY_WALL_TOP = 1
+WHY_WALL_SLIDE = 2
+WHY_TWO_CONTACT = 3
+WHY_LADDER = 4
+WHY_CORNER = 5
+WHY_SLIDE_WALL = 6
+WHY_MESSAGES = {
+    WHY_WALL_TOP: ("a vertex passed the wall's plane above its top: an edge meets the wall's top corner, "
+                   "which rigid_body does not model (use model 'engine', or a taller Wall)"),
+    WHY_WALL_SLIDE: ("a vertex stays pressed against the wall in flight (it would slide along the wall face), "
+                     "which rigid_body does not model"),
+    WHY_TWO_CONTACT: ("an impact at the arm and the wall at once needs slip at a contact: this two-contact "
+                      "impact is not modelled by rigid_body"),
+    WHY_LADDER: ("the part leans on the arm and the wall and slides at both (a ladder-like slide): this "
+                 "two-contact motion is not modelled by rigid_body"),
+    WHY_CORNER: ("the pivot at the wall's foot is driven into the wall while the part swings: this "
+                 "two-contact motion is not modelled by rigid_body"),
+    WHY_SLIDE_WALL: ("a pivot sliding along the arm brought the part to the wall: this contact is not located "
+                     "by rigid_body's sliding phase"),
+}
+"""Why a walled throw was refused (status UNRESOLVED), by reason code."""
+
+CONE_TOL = 1e-11
+"""Relative tolerance of :func:`cone_contains` (residual and negative coefficients, relative to |b|)."""
+MU_BIG = 1e12
+"""μ standing in for ∞ where a cone needs a finite edge (never in the impact law: μ = ∞ is exact there)."""
+
+
+# ---------------------------------------------------------------------------------------- reset wall_impact
+@njit(cache=True)
+def wall_impact(vx, vy, om, rx, ry, rho2, mu_w, law):
+    """Reset ``wall_impact``: plastic Coulomb impact of the vertex at (r_x, r_y) from the CM (m) on the wall x = L.
+
+    The arm's law :func:`~.impact.coulomb_impact` in the frame (x', y') = (y, −x), a proper
+    rotation by −90° in which the wall's inward normal −x̂ is ŷ' and its tangent ŷ is x̂';
+    ω is unchanged. ``mu_w`` is the wall's μ (``inf``: no slip), ``law`` the impact law.
+    Returns ``(vx⁺, vy⁺, ω⁺, P_t, P_n, kind, jt0, jn0)``: P_n (m/s, ≥ 0) the impulse along −x̂,
+    P_t along +ŷ, kind as :func:`~.impact.coulomb_impact` (IMP_SEPARATE if the vertex is not
+    moving into the wall).
+    """
+    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vy, -vx, om, ry, -rx, rho2, mu_w, law)
+    return -vyp, vxp, wp, pt, pn, kind, jt0, jn0
+
+
+# ---------------------------------------------------------------------------------------- guard wall_touch
+@njit(cache=True, inline="always")
+def wall_gap(t, j, c, b, ru, rv, vx, om, gx):
+    """Gap W_j(t) = L − x_j(t) (m) of vertex j to the wall at flight time t (s), and its rate (m/s).
+
+    W_j(t) = c_j + b_j t − ½ g_x t² − u_j (cos ωt − 1) + v_j (sin ωt − ωt), with c_j = L − x − u_j
+    and b_j = −v_x + ω v_j its value and rate at t = 0, (u_j, v_j) the vertex offsets at t = 0.
+    """
+    wt = om * t
+    hs = math.sin(0.5 * wt)
+    hc = math.cos(0.5 * wt)
+    s = 2.0 * hs * hc
+    cm1 = -2.0 * hs * hs
+    gj = c[j] + b[j] * t - 0.5 * gx * t * t - ru[j] * cm1 + rv[j] * (s - wt)
+    dg = -vx - gx * t + om * (ru[j] * s + rv[j] * (1.0 + cm1))
+    return gj, dg
+
+
+@njit(cache=True, inline="always")
+def _step_lb(gj, dg, M):
+    """Smallest positive root of gj + dg s − ½ M s² (gj clipped at 0; M ≥ 0): a step that cannot pass a root."""
+    gp = gj if gj > 0.0 else 0.0
+    if M <= 0.0:
+        if dg >= 0.0:
+            return math.inf
+        return gp / (-dg)
+    disc = math.sqrt(dg * dg + 2.0 * M * gp)
+    if dg >= 0.0:
+        return (dg + disc) / M
+    return 2.0 * gp / (disc - dg)
+
+
+@njit(cache=True)
+def wall_touch_time(c, ru, rv, vx, om, gx, ell, excl_j, excl_t, t_max, tol, max_iter):
+    """Guard ``wall_touch``: earliest t ∈ [0, t_max] (s) at which a vertex reaches the wall x = L moving outward.
+
+    ``c`` the gaps L − x_j at t = 0 (m; exactly 0 for a vertex on the wall), ``(ru, rv)``
+    the vertex offsets from the CM at t = 0 (m), ``vx`` the CM's velocity along the arm (m/s),
+    ``om`` the spin (rad/s), ``gx`` gravity along the arm (m/s²), ``ell`` the vertex
+    distances from the CM (m). Vertex ``excl_j`` (−1: none) just left the wall and stays
+    off it for t < ``excl_t``.
+
+    Guarantee (as :func:`throwmap.kernels.flight.touch_time`): W_j'' = −g_x + ω²(…) ≥
+    −(max(g_x, 0) + ω² ℓ_j) =: −M_j, so each step, the smallest positive root of the
+    quadratic lower bound of every gap, cannot pass a crossing; it stops when the
+    smallest gap is ≤ ``tol`` times the size of its terms, or past ``t_max`` (the
+    arm's touch: the earlier event wins). Returns ``(t, j)``: j = −1 no wall contact
+    before t_max, −3 ``max_iter`` steps without a decision.
+    """
+    n = ru.shape[0]
+    b = np.empty(n)
+    for j in range(n):
+        b[j] = -vx + om * rv[j]
+    aw = abs(om)
+    t = 0.0
+    for _ in range(max_iter):
+        if t > t_max:
+            return t_max, -1
+        step = math.inf
+        jmin = -1
+        gmin = math.inf
+        jlow = -1  # the vertex of smallest gap, in case t can no longer advance
+        glow = math.inf
+        for j in range(n):
+            gj, dg = wall_gap(t, j, c, b, ru, rv, vx, om, gx)
+            M = max(gx, 0.0) + om * om * ell[j]
+            scale = abs(c[j]) + (abs(b[j]) + aw * abs(rv[j])) * t + 0.5 * abs(gx) * t * t \
+                + abs(ru[j]) * abs(math.cos(om * t) - 1.0)
+            if j == excl_j and t < excl_t:
+                sj = excl_t - t
+                if gj > 0.0 or dg > 0.0:
+                    sq = _step_lb(gj, dg, M)
+                    if sq > sj:
+                        sj = sq
+                if sj < step:
+                    step = sj
+                continue
+            if t == 0.0 and gj <= tol * scale and dg == 0.0:
+                # on the wall at rest relative to it: pressed (contact now) unless it curves away
+                win = wall_departure(0.0, ru[j], rv[j], om, gx, 0.0, ell[j])
+                if win > 0.0:
+                    if win < step:
+                        step = win
+                    continue
+                gj = 0.0
+            if gj <= tol * scale and (t > 0.0 or dg <= 0.0):
+                if gj < gmin:
+                    gmin = gj
+                    jmin = j
+                continue
+            if gj < glow and t > 0.0:
+                glow = gj
+                jlow = j
+            sj = _step_lb(gj, dg, M)
+            if sj < step:
+                step = sj
+        if jmin < 0 and t + step == t and jlow >= 0:
+            jmin = jlow  # the step is below the resolution of t: the contact is resolved to rounding
+        if jmin >= 0:
+            return t, jmin
+        if t + step == t:
+            return t, -3
+        t += step
+    return t, -3
+
+
+@njit(cache=True)
+def wall_departure(un, rx, ry, om, gx, gy, lj):
+    """Time (s) for which a vertex that just left the wall (gap 0, outward rate ``un`` ≥ 0) stays off it.
+
+    Exact Taylor bound of its gap W(s) ≥ W' s + ½W'' s² + W''' s³/6 − ω⁴ℓ s⁴/24 with
+    W'' = −g_x + ω² r_x and W''' = −ω³ r_y ((r_x, r_y): CM → vertex, m): returns 0.9 × the
+    positive root of ½W'' + W''' s/6 − ω⁴ℓ s²/24, or 0 if W'' < 0 (the vertex is pressed
+    against the wall: it cannot leave). ``gy`` does not enter (the wall is vertical).
+    """
+    g2 = -gx + om * om * rx
+    g3 = -om * om * om * ry
+    if g2 < 0.0 and g2 > -1e-9 * (abs(gx) + abs(gy) + 1e-300):
+        g2 = 0.0
+    if g2 < 0.0:
+        return 0.0
+    a = om * om * om * om * lj / 24.0
+    bb = g3 / 6.0
+    cc = 0.5 * g2
+    if a <= 0.0:
+        if bb > 0.0 or cc > 0.0:
+            return 1.0
+        return 0.0
+    root = (bb + math.sqrt(bb * bb + 4.0 * a * cc)) / (2.0 * a)
+    if root <= 0.0:
+        return 0.0
+    return 0.9 * root
+
+
+# ---------------------------------------------------------------------------------------- guard wall_reach (pivots)
+@njit(cache=True)
+def wall_theta(px, L, top, theta, phi, w, jp):
+    """Guard ``wall_reach`` of a pivot on vertex ``jp`` at (p_x, h): the least pivot angle θ_w the wall allows.
+
+    Vertex j sits at A + ℓ_j (cos ψ_j, sin ψ_j), ψ_j = θ + δ_j, with ψ_j ∈ [0, π] while the
+    part pivots (every vertex above the line), so x_j decreases with θ and x_j ≤ L ⟺
+    θ ≥ arccos((L − p_x)/ℓ_j) − δ_j. ``theta``/``phi`` (rad) are the current pivot angle and
+    orientation (δ_j follows from them), ``w`` the body vertices (m), ``top`` = H the wall's
+    height above the line (m). Returns ``(θ_w, j_w, y_w)``: the bound (−inf: none), the vertex
+    that sets it and its height above the line there (m; > ``top``: it passes above the wall).
+    """
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    ax = cp * w[jp, 0] - sp * w[jp, 1]
+    ay = sp * w[jp, 0] + cp * w[jp, 1]
+    gap = L - px
+    best = -math.inf
+    jb = -1
+    yb = 0.0
+    for j in range(w.shape[0]):
+        if j == jp:
+            continue
+        ex = cp * w[j, 0] - sp * w[j, 1] - ax
+        ey = sp * w[j, 0] + cp * w[j, 1] - ay
+        lj = math.hypot(ex, ey)
+        if lj <= gap:
+            continue
+        delta = math.atan2(ey, ex) - theta
+        psi_w = math.acos(max(-1.0, min(1.0, gap / lj)))
+        th = psi_w - delta
+        if th > best:
+            best = th
+            jb = j
+            yb = lj * math.sin(psi_w)
+    return best, jb, yb
+
+
+# ---------------------------------------------------------------------------------------- FLAT_SLIDE into the wall
+@njit(cache=True)
+def slide_hit(v, a, gap):
+    """Guard ``slide_hit``: a flat slide at speed ``v`` > 0 (m/s, towards the wall) with constant
+    acceleration ``a`` (m/s²) and ``gap`` (m) between its leading vertex and the wall.
+
+    Returns ``(hit, t, v_hit)``: whether it reaches the wall, when (s) and how fast (m/s);
+    without a hit ``t`` is the time it stops (a < 0) and v_hit = 0.
+    """
+    if gap <= 0.0:
+        return True, 0.0, v
+    disc = v * v + 2.0 * a * gap
+    if disc < 0.0:
+        return False, -v / a, 0.0
+    vh = math.sqrt(disc)
+    if a == 0.0:
+        return True, gap / v, v
+    return True, 2.0 * gap / (v + vh), vh
+
+
+@njit(cache=True)
+def wall_reach_at_rest(u, vh, top):
+    """The leading vertex of a part flat on a side sliding towards the wall.
+
+    ``u`` the vertices' x offsets from the CM (m), ``vh`` their heights above the arm line (m),
+    ``top`` the wall's height (m). Returns ``(u_w, j_w, above)``: the largest offset, its vertex,
+    and whether that vertex is above the wall's top (it would pass over the wall: an edge then
+    meets the top corner).
+    """
+    jb = 0
+    for j in range(u.shape[0]):
+        if u[j] > u[jb]:
+            jb = j
+    umax = u[jb]
+    tie = 1e-12 * (abs(umax) + abs(vh[jb]))
+    for j in range(u.shape[0]):  # a flush (vertical) leading side: its lowest vertex meets the wall
+        if u[j] >= umax - tie and vh[j] < vh[jb]:
+            jb = j
+    return umax, jb, vh[jb] >= top
+
+
+# ---------------------------------------------------------------------------------------- cones: impacts and statics
+@njit(cache=True)
+def _solve3(A, b, x):
+    """Solve the 3×3 system A x = b by Gaussian elimination with partial pivoting; False if singular."""
+    M = np.empty((3, 4))
+    for i in range(3):
+        for k in range(3):
+            M[i, k] = A[i, k]
+        M[i, 3] = b[i]
+    amax = 0.0
+    for i in range(3):
+        for k in range(3):
+            amax = max(amax, abs(A[i, k]))
+    if amax == 0.0:
+        return False
+    for col in range(3):
+        p = col
+        for i in range(col + 1, 3):
+            if abs(M[i, col]) > abs(M[p, col]):
+                p = i
+        if abs(M[p, col]) <= 1e-13 * amax:
+            return False
+        if p != col:
+            for k in range(4):
+                tmp = M[col, k]
+                M[col, k] = M[p, k]
+                M[p, k] = tmp
+        for i in range(col + 1, 3):
+            f = M[i, col] / M[col, col]
+            for k in range(col, 4):
+                M[i, k] -= f * M[col, k]
+    for i in range(2, -1, -1):
+        s = M[i, 3]
+        for k in range(i + 1, 3):
+            s -= M[i, k] * x[k]
+        x[i] = s / M[i, i]
+    return True
+
+
+@njit(cache=True)
+def cone_contains(G, m, b):
+    """Whether ``b`` (3,) is a nonnegative combination of the first ``m`` columns of ``G`` (3, ≥ m).
+
+    Exact by Carathéodory's theorem: if b is in the cone it is a nonnegative combination of
+    at most 3 linearly independent columns, so every set of 1, 2 and 3 columns is tried
+    (least squares on 1 and 2, a solve on 3), accepting coefficients ≥ −tol and residual ≤ tol,
+    tol = :data:`CONE_TOL` |b| (columns normalised first).
+    """
+    nb = math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2])
+    if nb == 0.0:
+        return True
+    tol = CONE_TOL
+    bn = b / nb
+    Gn = np.empty((3, m))
+    for k in range(m):
+        c = math.sqrt(G[0, k] ** 2 + G[1, k] ** 2 + G[2, k] ** 2)
+        for i in range(3):
+            Gn[i, k] = G[i, k] / c if c > 0.0 else 0.0
+    # one column
+    for k in range(m):
+        a = Gn[0, k] * bn[0] + Gn[1, k] * bn[1] + Gn[2, k] * bn[2]
+        if a > 0.0:
+            r = 0.0
+            for i in range(3):
+                r += (bn[i] - a * Gn[i, k]) ** 2
+            if math.sqrt(r) <= tol:
+                return True
+    # two columns: least squares
+    for k1 in range(m):
+        for k2 in range(k1 + 1, m):
+            a11 = 0.0
+            a12 = 0.0
+            a22 = 0.0
+            r1 = 0.0
+            r2 = 0.0
+            for i in range(3):
+                a11 += Gn[i, k1] * Gn[i, k1]
+                a12 += Gn[i, k1] * Gn[i, k2]
+                a22 += Gn[i, k2] * Gn[i, k2]
+                r1 += Gn[i, k1] * bn[i]
+                r2 += Gn[i, k2] * bn[i]
+            det = a11 * a22 - a12 * a12
+            if det <= 1e-14:
+                continue
+            c1 = (a22 * r1 - a12 * r2) / det
+            c2 = (a11 * r2 - a12 * r1) / det
+            if c1 < -tol or c2 < -tol:
+                continue
+            r = 0.0
+            for i in range(3):
+                r += (bn[i] - c1 * Gn[i, k1] - c2 * Gn[i, k2]) ** 2
+            if math.sqrt(r) <= tol:
+                return True
+    # three columns
+    A = np.empty((3, 3))
+    x = np.empty(3)
+    for k1 in range(m):
+        for k2 in range(k1 + 1, m):
+            for k3 in range(k2 + 1, m):
+                for i in range(3):
+                    A[i, 0] = Gn[i, k1]
+                    A[i, 1] = Gn[i, k2]
+                    A[i, 2] = Gn[i, k3]
+                if not _solve3(A, bn, x):
+                    continue
+                if x[0] >= -tol and x[1] >= -tol and x[2] >= -tol:
+                    return True
+    return False
+
+
+@njit(cache=True)
+def contact_wrenches(pts, nrm, mus, m, lref, G):
+    """Fill ``G`` (3, ≥ 3m) with the edges of the contacts' friction cones as wrenches; returns their number.
+
+    Contact i at ``pts[i]`` (CM → contact point, m) with inward unit normal ``nrm[i]`` and
+    Coulomb μ ``mus[i]``: edges n ± μ t (t = n turned by −90°), just n if μ = 0, and n, t, −t if
+    μ = ∞. A force f at r gives the wrench (f_x, f_y, (r × f)/``lref``) (``lref`` m: torques in
+    force units).
+    """
+    k = 0
+    for i in range(m):
+        nx = nrm[i, 0]
+        ny = nrm[i, 1]
+        tx = ny
+        ty = -nx
+        rx = pts[i, 0]
+        ry = pts[i, 1]
+        mu = mus[i]
+        if mu == 0.0:
+            dirs = ((nx, ny), (nx, ny), (nx, ny))
+            nd = 1
+        elif math.isinf(mu):
+            dirs = ((nx, ny), (tx, ty), (-tx, -ty))
+            nd = 3
+        else:
+            dirs = ((nx + mu * tx, ny + mu * ty), (nx - mu * tx, ny - mu * ty), (nx, ny))
+            nd = 2
+        for q in range(nd):
+            fx, fy = dirs[q]
+            G[0, k] = fx
+            G[1, k] = fy
+            G[2, k] = (rx * fy - ry * fx) / lref
+            k += 1
+    return k
+
+
+@njit(cache=True)
+def contacts_can_supply(pts, nrm, mus, m, fx, fy, tau, lref):
+    """Whether contact forces (or impulses) inside the contacts' cones sum to the wrench (f_x, f_y, τ).
+
+    ``tau`` is the torque about the CM (m · force). Statics of a part touching the arm and the
+    wall: (f_x, f_y, τ) = (−g_x, −g_y, 0); a plastic impact that stops the part: −(v_x, v_y, ρ²ω).
+    """
+    G = np.empty((3, 3 * m))
+    k = contact_wrenches(pts, nrm, mus, m, lref, G)
+    b = np.empty(3)
+    b[0] = fx
+    b[1] = fy
+    b[2] = tau / lref
+    return cone_contains(G, k, b)
+
+
+@njit(cache=True)
+def flat_contacts(u, vh, k_left, k_right, mu, mu_w, top, x_gap, tol, pts, nrm, mus):
+    """The contacts of a part flat on a side, its vertices' x offsets ``u`` and heights above the CM ``vh`` (m).
+
+    Arm contacts at the two support vertices ``k_left``, ``k_right`` (normal ŷ, μ); wall
+    contacts at every vertex within ``tol`` (m) of the wall, i.e. u_j ≥ ``x_gap`` − tol where
+    ``x_gap`` = L − x_cm, below ``top`` (the wall top's height above the CM; normal −x̂, μ_w).
+    Fills ``pts``/``nrm``/``mus`` (≥ n + 2 rows) and returns the number of contacts and of wall contacts.
+    """
+    m = 0
+    for j in (k_left, k_right):
+        pts[m, 0] = u[j]
+        pts[m, 1] = vh[j]
+        nrm[m, 0] = 0.0
+        nrm[m, 1] = 1.0
+        mus[m] = mu
+        m += 1
+    nw = 0
+    for j in range(u.shape[0]):
+        if u[j] >= x_gap - tol and vh[j] < top:
+            pts[m, 0] = x_gap
+            pts[m, 1] = vh[j]
+            nrm[m, 0] = -1.0
+            nrm[m, 1] = 0.0
+            mus[m] = mu_w
+            m += 1
+            nw += 1
+    return m, nw
+
+
+@njit(cache=True)
+def corner_pivot_rate(v, u_r, d, rho2):
+    """Spin (rad/s) just after a part sliding flat at ``v`` (m/s) hits the wall with its right support vertex.
+
+    That vertex sits in the corner of arm and wall (offset (u_R, −d) from the CM, m) and stops;
+    the part turns about it, conserving angular momentum about it: ω⁺ = −d v/(ρ² + u_R² + d²)
+    (clockwise for v > 0: it tips towards the wall).
+    """
+    return -d * v / (rho2 + u_r * u_r + d * d)
+
+
+@njit(cache=True)
+def rest_flat_at_wall(u, vh, k_left, k_right, x_gap, top, mu, mu_w, gx, gy, lref):
+    """Rest ``rest_against_wall`` of a part flat on a side touching the wall: whether gravity is held.
+
+    Contacts from :func:`flat_contacts`; gravity (g_x, g_y) (m/s²). True if arm and wall forces
+    inside their cones can balance it (:func:`contacts_can_supply`).
+    """
+    n = u.shape[0]
+    pts = np.empty((n + 2, 2))
+    nrm = np.empty((n + 2, 2))
+    mus = np.empty(n + 2)
+    m, _nw = flat_contacts(u, vh, k_left, k_right, mu, mu_w, top, x_gap, 1e-9 * lref, pts, nrm, mus)
+    return contacts_can_supply(pts, nrm, mus, m, -gx, -gy, 0.0, lref)
+
+
+@njit(cache=True)
+def separates(kind):
+    """Whether a wall impact of this kind left the vertex moving away (it was not moving in)."""
+    return kind == IMP_SEPARATE
+
+
+# ---------------------------------------------------------------------------------------- FLIGHT with a wall
+@njit(cache=True)
+def refresh_frame(phi, y, h, w, ell, ru, rv, c0):
+    """Flight frame at orientation φ and CM height y (m): offsets R(φ) w_j and arm gaps (tiny ones snapped to 0)."""
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    for j in range(w.shape[0]):
+        ru[j] = cp * w[j, 0] - sp * w[j, 1]
+        rv[j] = sp * w[j, 0] + cp * w[j, 1]
+        c = (y - h) + rv[j]
+        c0[j] = 0.0 if abs(c) <= SNAP * ell[j] else c
+
+
+@njit(cache=True)
+def fly_walled(t, x, y, vx, vy, phi, om, c0, ru, rv, gx, g, ell, excl_j, excl_t, wexcl_j, wexcl_t, L, tol, max_iter,
+               cw, traj, ts):
+    """Mode FLIGHT with a wall: until guard ``touch`` (the arm) or ``wall_touch``, whichever comes first.
+
+    Gravity (g_x, −g) (m/s²; g the component normal to the arm, as
+    :func:`~throwmap.kernels.flight.first_contact` takes it). The arm's vertex ``excl_j`` is
+    excluded for ``excl_t`` s, the wall's ``wexcl_j`` for ``wexcl_t`` s (both from now).
+    ``cw`` (n,) is scratch for the wall gaps. Returns ``(where, j, t, x, y, v_x, v_y, φ, r_x, r_y)``:
+    where = 0 the arm, 1 the wall, −1 the arm search failed (j its code, as :func:`fly`), −2 the wall
+    search hit ``max_iter``; (r_x, r_y) the contact vertex's offset from the CM (m).
+    """
+    tc, jc = first_contact(c0, ru, rv, vy, om, g, ell, excl_j, excl_t, tol, max_iter)
+    where = 0
+    if jc < 0:
+        where = -1
+    if L < math.inf:
+        for j in range(ru.shape[0]):
+            cj = L - x - ru[j]
+            cw[j] = 0.0 if abs(cj) <= SNAP * ell[j] else cj
+        tw, jw = wall_touch_time(cw, ru, rv, vx, om, gx, ell, wexcl_j, wexcl_t, tc, tol, max_iter)
+        if jw == -3:
+            return -2, jw, t, x, y, vx, vy, phi, 0.0, 0.0
+        if jw >= 0 and (tw < tc or jc < 0):
+            where = 1
+            jc = jw
+            tc = tw
+    if where == -1:
+        return -1, jc, t, x, y, vx, vy, phi, 0.0, 0.0
+    if traj.shape[0] > 0:
+        while ts[1] <= t + tc:
+            tq = ts[1] - t
+            _put(traj, ts, ts[1], x + vx * tq + 0.5 * gx * tq * tq, y + vy * tq - 0.5 * g * tq * tq, phi + om * tq)
+            ts[1] += ts[2]
+    x += vx * tc + 0.5 * gx * tc * tc
+    vx += gx * tc
+    y += vy * tc - 0.5 * g * tc * tc
+    vy -= g * tc
+    phi += om * tc
+    t += tc
+    cp = math.cos(om * tc)
+    sp = math.sin(om * tc)
+    rx = cp * ru[jc] - sp * rv[jc]
+    ry = sp * ru[jc] + cp * rv[jc]
+    if traj.shape[0] > 0:
+        _put(traj, ts, t, x, y, phi)
+    return where, jc, t, x, y, vx, vy, phi, rx, ry
+
+
+@njit(cache=True)
+def wall_hit_in_flight(vx, vy, om, rx, ry, y, h, top, rho2, mu_w, law, gx, g, lj):
+    """Reset ``wall_impact`` in FLIGHT for a vertex at (r_x, r_y) from the CM (m), CM height y (m).
+
+    Refuses (``why`` ≠ 0) a vertex above the wall's top (``top`` = H, m above the line:
+    :data:`WHY_WALL_TOP`) and one the impact leaves pressed against the wall
+    (:data:`WHY_WALL_SLIDE`: :func:`wall_departure` gives no window). Returns
+    ``(vx⁺, vy⁺, ω⁺, P_t, P_n, kind, excl_t, why)``: ``excl_t`` (s) how long the vertex
+    provably stays off the wall afterwards; kind IMP_INCONSISTENT: no consistent impulse.
+    """
+    if y + ry - h >= top:
+        return vx, vy, om, 0.0, 0.0, IMP_SEPARATE, 0.0, WHY_WALL_TOP
+    vxp, vyp, wp, pt, pn, kind, _jt0, _jn0 = wall_impact(vx, vy, om, rx, ry, rho2, mu_w, law)
+    if kind == IMP_INCONSISTENT:
+        return vx, vy, om, 0.0, 0.0, kind, 0.0, WHY_NONE
+    un = -(vxp - wp * ry)  # the wall gap's rate: 0 after a plastic impact (> 0 if it was leaving)
+    vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
+    excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, -g, lj) if un <= 1e-12 * vscale else 1.0
+    if excl <= 0.0:
+        return vxp, vyp, wp, pt, pn, kind, 0.0, WHY_WALL_SLIDE
+    return vxp, vyp, wp, pt, pn, kind, excl, WHY_NONE
