@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import __version__
-from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work, human_seconds
 from ..errors import InvalidStateError, shown
 from .base import Trial, config_of, trial_generator, trial_seed
 from .registry import get_experiment
@@ -309,8 +309,14 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
             progress(len(done), n)
         if k == timed and left_total > timed and not force:
             per = (time.perf_counter() - t0) / k  # wall time per trial on n_workers processes
-            guard_work(f"experiment {exp.name}", "n", left_total, BYTES_PER_TRIAL, max_memory, max_seconds, False,
-                       throws_per_config=1.0, timer=lambda: per, hint="fewer trials (--n)", unit="trials")
+            secs = per * left_total
+            if secs > max_seconds:
+                raise InvalidStateError(
+                    "n", f"experiment {exp.name} on {left_total:,} trials needs ≈ {human_seconds(secs)} "
+                         f"({1e3 * per * n_workers:.3g} ms per trial on each of {n_workers} worker(s), measured on the "
+                         f"first {k}), over the limit of {human_seconds(max_seconds)}: raise max_seconds (CLI --max-time s), "
+                         f"pass force=True (--force), or use fewer trials (--n); the {len(done)} finished trials are kept"
+                         + (f" in {str(directory)!r} for a resume" if directory is not None else ""))
 
     try:
         if n_workers == 1 or len(todo) <= 1:

@@ -1,0 +1,183 @@
+"""The Monte Carlo runner: seeds, parallel determinism, keeping and resuming trials, the work guard.
+
+Runs the real ``settle`` experiment (a pymunk drop, ≈ 10 ms a trial) on short runs.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pyarrow.parquet as pq
+import pytest
+
+from throwmap.errors import ConfigError, InvalidStateError
+from throwmap.experiments import Trial, experiment_names, get_experiment, trial_seed
+from throwmap.experiments.runner import run_experiment
+from throwmap.experiments.stats import wilson_interval
+
+CFG = {"length": 0.4}
+
+
+@pytest.fixture(scope="module")
+def reference():
+    """12 settle trials, seed 7, in this process."""
+    return run_experiment("settle", CFG, n=12, seed=7, workers=1)
+
+
+def test_settle_is_registered():
+    assert "settle" in experiment_names()
+    with pytest.raises(InvalidStateError, match=r"^experiment: unknown experiment 'nope' \(choose from .*settle"):
+        get_experiment("nope")
+
+
+def test_same_seed_same_trials_on_any_number_of_workers(reference):
+    two = run_experiment("settle", CFG, n=12, seed=7, workers=2)
+    assert two.trials == reference.trials and two.workers == 2
+    other = run_experiment("settle", CFG, n=12, seed=8, workers=1)
+    assert [t.values["x0"] for t in other.trials] != [t.values["x0"] for t in reference.trials]
+
+
+def test_trial_seeds_are_spawned(reference):
+    kids = np.random.SeedSequence(7).spawn(12)
+    assert [t.index for t in reference.trials] == list(range(12))
+    assert [t.seed for t in reference.trials] == [int(k.generate_state(1)[0]) for k in kids]
+    # a trial's stream does not depend on n: trial 3 of a longer run is the same trial
+    longer = run_experiment("settle", CFG, n=1, seed=7, workers=1)
+    assert longer.trials[0] == reference.trials[0]
+
+
+def test_summary_is_consistent(reference):
+    r = reference
+    assert r.n == 12 and r.complete and r.successes == sum(t.success for t in r.trials)
+    assert r.successes + sum(r.failures.values()) == r.n
+    assert r.ci95 == wilson_interval(r.successes, r.n)
+    assert r.failures == {k: sum(t.failure == k for t in r.trials) for k in r.failures}
+    doc = r.to_json()
+    for key in ("n", "successes", "success_rate", "ci95", "failures", "seed", "parameters", "experiment", "version"):
+        assert key in doc
+    json.dumps(doc, allow_nan=False)
+    assert doc["parameters"]["length_m"] == 0.4 and doc["seed"] == 7
+    assert "Wilson 95 %" in r.table()
+
+
+def test_out_keeps_every_trial(tmp_path, reference):
+    r = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
+    lines = (tmp_path / "trials.jsonl").read_text().splitlines()
+    assert len(lines) == 12
+    stored = sorted((Trial.from_json(json.loads(s)) for s in lines), key=lambda t: t.index)
+    assert tuple(stored) == reference.trials
+    assert json.loads((tmp_path / "result.json").read_text()) == json.loads(json.dumps(r.to_json()))
+    table = pq.read_table(tmp_path / "trials.parquet")
+    assert table.num_rows == 12
+    assert {"index", "seed", "success", "failure", "x", "side", "tilt", "x0", "phi0"} <= set(table.column_names)
+    assert table.column("success").to_pylist() == [t.success for t in reference.trials]
+    meta = json.loads(table.schema.metadata[b"throwmap.result"])
+    assert meta["n"] == 12 and meta["ci95"] == list(r.ci95)
+    assert not [p for p in os.listdir(tmp_path) if p.endswith(".tmp")]
+
+
+def test_interrupted_run_resumes_without_redoing(tmp_path, reference):
+    first = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path, stop_after=5)
+    assert first.n == 5 and not first.complete and first.planned == 12
+    assert len((tmp_path / "trials.jsonl").read_text().splitlines()) == 5
+    done = []
+    second = run_experiment("settle", CFG, n=12, seed=7, workers=2, out=tmp_path, progress=lambda d, t: done.append(d))
+    assert second.resumed == 5 and done[0] == 5 and done[-1] == 12
+    lines = (tmp_path / "trials.jsonl").read_text().splitlines()
+    assert len(lines) == 12  # the 5 stored trials were not run again
+    assert second.trials == reference.trials and second.to_json()["failures"] == reference.to_json()["failures"]
+    # extending the run to more trials reuses all 12
+    third = run_experiment("settle", CFG, n=14, seed=7, workers=1, out=tmp_path)
+    assert third.resumed == 12 and third.trials[:12] == reference.trials
+
+
+def test_killed_run_resumes(tmp_path):
+    """SIGKILL a run in a subprocess mid-way: the trials it reported survive and are not redone."""
+    out = tmp_path / "run"
+    code = ("from throwmap.experiments.runner import run_experiment; "
+            f"run_experiment('settle', {CFG!r}, n=150, seed=3, workers=1, out={str(out)!r})")
+    proc = subprocess.Popen([sys.executable, "-c", code])
+    lines = out / "trials.jsonl"
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < 60:
+        if lines.exists() and lines.read_bytes().count(b"\n") >= 5:
+            break
+        time.sleep(0.005)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    kept = lines.read_bytes().count(b"\n")
+    assert 5 <= kept < 150 and not (out / "result.json").exists()
+    resumed = run_experiment("settle", CFG, n=150, seed=3, workers=1, out=out)
+    assert resumed.resumed == kept and resumed.n == 150
+    assert len(lines.read_text().splitlines()) == 150
+    fresh = run_experiment("settle", CFG, n=150, seed=3, workers=2)
+    assert resumed.trials == fresh.trials and resumed.ci95 == fresh.ci95
+
+
+def test_torn_last_line_is_cut_and_redone(tmp_path, reference):
+    run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path, stop_after=4)
+    with open(tmp_path / "trials.jsonl", "a") as fh:
+        fh.write('{"index": 4, "seed": 1')  # the run was killed while writing trial 4
+    r = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
+    assert r.resumed == 4 and r.trials == reference.trials
+    assert len((tmp_path / "trials.jsonl").read_text().splitlines()) == 12
+
+
+def test_a_different_run_in_the_same_directory_is_refused(tmp_path):
+    run_experiment("settle", CFG, n=3, seed=7, workers=1, out=tmp_path)
+    with pytest.raises(InvalidStateError, match=r"^seed: differs from the run stored in .*stored 7, given 8"):
+        run_experiment("settle", CFG, n=3, seed=8, workers=1, out=tmp_path)
+    with pytest.raises(InvalidStateError, match=r"^config\.length: differs"):
+        run_experiment("settle", {"length": 0.5}, n=3, seed=7, workers=1, out=tmp_path)
+    fresh = run_experiment("settle", {"length": 0.5}, n=3, seed=8, workers=1, out=tmp_path, resume=False)
+    assert fresh.resumed == 0 and len((tmp_path / "trials.jsonl").read_text().splitlines()) == 3
+
+
+def test_work_guard_refuses_long_runs_and_keeps_the_trials(tmp_path):
+    with pytest.raises(InvalidStateError, match=r"^n: experiment settle on [\d,]+ trials needs ≈ .* ms per trial .*--force.* kept in"):
+        run_experiment("settle", CFG, n=500, seed=1, workers=1, out=tmp_path, max_seconds=0.01)
+    kept = len((tmp_path / "trials.jsonl").read_text().splitlines())
+    assert kept >= 4  # the trials timed before the refusal are kept for a resume
+    with pytest.raises(InvalidStateError, match="memory"):
+        run_experiment("settle", CFG, n=10**9, seed=1, workers=1)
+    r = run_experiment("settle", CFG, n=6, seed=1, workers=1, max_seconds=1e-6, force=True)
+    assert r.n == 6
+
+
+def test_bad_inputs_are_one_line_errors():
+    with pytest.raises(InvalidStateError, match="^seed:"):
+        run_experiment("settle", n=2, seed=-1)
+    with pytest.raises(InvalidStateError, match="^n:"):
+        run_experiment("settle", n=-2, seed=0)
+    with pytest.raises(InvalidStateError, match="^workers:"):
+        run_experiment("settle", n=2, seed=0, workers=-1)
+    with pytest.raises(ConfigError, match=r"^config\.lenght: unknown key 'lenght' \(did you mean 'length'"):
+        run_experiment("settle", {"lenght": 0.4}, n=2, seed=0)
+    with pytest.raises(ConfigError, match=r"^config\.noise\.omega_rel:"):
+        run_experiment("settle", {"noise": {"omega_rel": -1}}, n=2, seed=0)
+
+
+def test_no_trials():
+    r = run_experiment("settle", n=0, seed=0, workers=1)
+    assert r.n == 0 and r.ci95 == (0.0, 1.0) and r.to_json()["success_rate"] is None
+
+
+def test_trial_values_are_checked():
+    with pytest.raises(InvalidStateError, match="^trial.failure:"):
+        Trial(0, 1, True, "wrong_side")
+    with pytest.raises(InvalidStateError, match="^trial.failure:"):
+        Trial(0, 1, False)
+    with pytest.raises(InvalidStateError, match=r"^trial.values\['a'\]:"):
+        Trial(0, 1, True, None, {"a": [1, 2]})
+    t = Trial(2, trial_seed(5, 2), False, "ejected", {"x": np.float64(0.1), "k": np.int64(2), "ok": np.bool_(True)})
+    assert Trial.from_json(json.loads(json.dumps(t.to_json()))) == t
+
+
+def test_plot(reference):
+    ax = reference.plot()
+    assert ax.get_ylabel() == "fraction of trials"
+    assert [tick.get_text() for tick in ax.get_xticklabels()][0] == "success"
