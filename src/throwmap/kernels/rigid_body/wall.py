@@ -55,10 +55,11 @@ import math
 import numpy as np
 from numba import njit
 
+from .. import codes as C
 from ..flight import SNAP, first_contact
-from .impact import coulomb_impact
+from .impact import coulomb_impact, record_impact
 from .modes import IMP_INCONSISTENT, IMP_SEPARATE
-from .trajectory import _put
+from .trajectory import _put, _put_final
 
 WHY_NONE = 0
 WHY_WALL_TOP = 1
@@ -482,12 +483,14 @@ def contacts_can_supply(pts, nrm, mus, m, fx, fy, tau, lref):
 
 @njit(cache=True)
 def flat_contacts(u, vh, k_left, k_right, mu, mu_w, top, x_gap, tol, pts, nrm, mus):
-    """The contacts of a part flat on a side, its vertices' x offsets ``u`` and heights above the CM ``vh`` (m).
+    """The contacts of a part flat on a side, its vertices' offsets ``u`` (along the arm) and ``vh`` (normal) from the CM (m).
 
     Arm contacts at the two support vertices ``k_left``, ``k_right`` (normal ŷ, μ); wall
-    contacts at every vertex within ``tol`` (m) of the wall, i.e. u_j ≥ ``x_gap`` − tol where
-    ``x_gap`` = L − x_cm, below ``top`` (the wall top's height above the CM; normal −x̂, μ_w).
-    Fills ``pts``/``nrm``/``mus`` (≥ n + 2 rows) and returns the number of contacts and of wall contacts.
+    contacts (normal −x̂, μ_w) where the part meets the wall face x_cm + ``x_gap``: the
+    vertices within ``tol`` (m) of it span a segment (one point, or a flush side) whose ends
+    below ``top`` (the wall top's height above the CM, m) are the contacts — a flush side
+    reaching above the top touches up to the wall's top corner. Fills ``pts``/``nrm``/``mus``
+    (≥ 4 rows) and returns the number of contacts and of wall contacts.
     """
     m = 0
     for j in (k_left, k_right):
@@ -497,16 +500,26 @@ def flat_contacts(u, vh, k_left, k_right, mu, mu_w, top, x_gap, tol, pts, nrm, m
         nrm[m, 1] = 1.0
         mus[m] = mu
         m += 1
-    nw = 0
+    lo = math.inf
+    hi = -math.inf
     for j in range(u.shape[0]):
-        if u[j] >= x_gap - tol and vh[j] < top:
-            pts[m, 0] = x_gap
-            pts[m, 1] = vh[j]
-            nrm[m, 0] = -1.0
-            nrm[m, 1] = 0.0
-            mus[m] = mu_w
-            m += 1
-            nw += 1
+        if u[j] >= x_gap - tol:
+            lo = min(lo, vh[j])
+            hi = max(hi, vh[j])
+    if not lo < top:
+        return m, 0
+    hi = min(hi, top)
+    nw = 0
+    for yc in (lo, hi):
+        if nw == 1 and yc <= lo + tol:
+            break
+        pts[m, 0] = x_gap
+        pts[m, 1] = yc
+        nrm[m, 0] = -1.0
+        nrm[m, 1] = 0.0
+        mus[m] = mu_w
+        m += 1
+        nw += 1
     return m, nw
 
 
@@ -528,10 +541,9 @@ def rest_flat_at_wall(u, vh, k_left, k_right, x_gap, top, mu, mu_w, gx, gy, lref
     Contacts from :func:`flat_contacts`; gravity (g_x, g_y) (m/s²). True if arm and wall forces
     inside their cones can balance it (:func:`contacts_can_supply`).
     """
-    n = u.shape[0]
-    pts = np.empty((n + 2, 2))
-    nrm = np.empty((n + 2, 2))
-    mus = np.empty(n + 2)
+    pts = np.empty((4, 2))
+    nrm = np.empty((4, 2))
+    mus = np.empty(4)
     m, _nw = flat_contacts(u, vh, k_left, k_right, mu, mu_w, top, x_gap, 1e-9 * lref, pts, nrm, mus)
     return contacts_can_supply(pts, nrm, mus, m, -gx, -gy, 0.0, lref)
 
@@ -625,3 +637,236 @@ def wall_hit_in_flight(vx, vy, om, rx, ry, y, h, top, rho2, mu_w, law, gx, g, lj
     if excl <= 0.0:
         return vxp, vyp, wp, pt, pn, kind, 0.0, WHY_WALL_SLIDE
     return vxp, vyp, wp, pt, pn, kind, excl, WHY_NONE
+
+
+# ---------------------------------------------------------------------------------------- PIVOT_* reaching the wall
+ACT_FLIGHT = 0
+ACT_REST = 1
+ACT_SWING = 2
+ACT_REFUSE = 3
+ACT_INCONSISTENT = 4
+ACT_CORNER = 5
+
+
+@njit(cache=True)
+def pivot_wall_hit(px, h, lj, theta, thdot, va, yw, top, L, rho2, mu, mu_w, law, gx, gy, lref):
+    """Reset at guard ``wall_reach``: pivoting on A = (p_x, h), the vertex C at (L, h + y_w) touches the wall.
+
+    In order, as the arm's ``land_side``: (1) the impulse at C alone (A free,
+    :func:`wall_impact`); accepted if A then moves up (lifts): FLIGHT. (2) Else both
+    contacts stop their normal motion; A on the arm and C on the wall leave the part one
+    degree of freedom that moves C along its normal, so the part stops — if the impulse
+    that removes its momentum lies in the sum of the two friction cones
+    (:func:`contacts_can_supply`); else the impact needs slip at both: refused
+    (:data:`WHY_TWO_CONTACT`). (3) Stopped, it rests leaning on arm and wall if gravity is
+    held inside both cones (``rest_against_wall``); else it swings back about A from rest if
+    gravity turns it away from the wall (θ̈ > 0), else it would slide at both (refused,
+    :data:`WHY_LADDER`). C above the wall's top (y_w ≥ H) is refused (:data:`WHY_WALL_TOP`).
+
+    Returns ``(action, x, y, v_x, v_y, ω, excl_t, why)``: ``ACT_FLIGHT`` with the flight state
+    (C to be excluded from ``wall_touch`` for excl_t s), ``ACT_REST`` (x, y the CM), ``ACT_SWING``
+    (pivot state unchanged, at rest), ``ACT_REFUSE`` with ``why``, ``ACT_INCONSISTENT``.
+    """
+    if yw >= top:
+        return ACT_REFUSE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, WHY_WALL_TOP
+    c = math.cos(theta)
+    s = math.sin(theta)
+    x = px + lj * c
+    y = h + lj * s
+    vx = va - thdot * lj * s
+    vy = thdot * lj * c
+    om = thdot
+    rx = L - x
+    ry = h + yw - y
+    # (1) the impulse at C alone
+    vxp, vyp, wp, pt, pn, kind, _j0, _j1 = wall_impact(vx, vy, om, rx, ry, rho2, mu_w, law)
+    if kind == IMP_INCONSISTENT:
+        return ACT_INCONSISTENT, x, y, vx, vy, om, 0.0, WHY_NONE
+    ax = -lj * c  # CM → A
+    ay = -lj * s
+    un_a = vyp + wp * ax
+    if un_a > 0.0:
+        vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
+        un = -(vxp - wp * ry)
+        lc = math.hypot(rx, ry)
+        excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, gy, lc) if un <= 1e-12 * vscale else 1.0
+        if excl <= 0.0:
+            return ACT_REFUSE, x, y, vxp, vyp, wp, 0.0, WHY_WALL_SLIDE
+        return ACT_FLIGHT, x, y, vxp, vyp, wp, excl, WHY_NONE
+    # (2) both stop
+    pts = np.empty((2, 2))
+    nrm = np.empty((2, 2))
+    mus = np.empty(2)
+    pts[0, 0] = ax
+    pts[0, 1] = ay
+    nrm[0, 0] = 0.0
+    nrm[0, 1] = 1.0
+    mus[0] = mu
+    pts[1, 0] = rx
+    pts[1, 1] = ry
+    nrm[1, 0] = -1.0
+    nrm[1, 1] = 0.0
+    mus[1] = mu_w
+    if not contacts_can_supply(pts, nrm, mus, 2, -vx, -vy, -rho2 * om, lref):
+        return ACT_REFUSE, x, y, vx, vy, om, 0.0, WHY_TWO_CONTACT
+    # (3) at rest leaning on arm and wall, or swinging back, or a ladder
+    if contacts_can_supply(pts, nrm, mus, 2, -gx, -gy, 0.0, lref):
+        return ACT_REST, x, y, 0.0, 0.0, 0.0, 0.0, WHY_NONE
+    torque = c * gy - s * gx  # (CM − A) × g / ℓ: θ̈ has its sign
+    if torque > 0.0:
+        return ACT_SWING, x, y, 0.0, 0.0, 0.0, 0.0, WHY_NONE
+    return ACT_REFUSE, x, y, 0.0, 0.0, 0.0, 0.0, WHY_LADDER
+
+
+@njit(cache=True)
+def nearest_side(phi, beta):
+    """The side whose rest orientation β_k is nearest to φ (rad), as the engines read a tilted rest."""
+    best = 0
+    dmin = math.inf
+    for k in range(beta.shape[0]):
+        dd = abs((phi - beta[k] + math.pi) % (2.0 * math.pi) - math.pi)
+        if dd < dmin:
+            dmin = dd
+            best = k
+    return best
+
+
+# ---------------------------------------------------------------------------------------- FLAT_SLIDE with a wall
+@njit(cache=True)
+def _rows(x0, v0, a, t0, t1, y, phi, traj, ts):
+    while ts[1] <= t1:
+        tq = ts[1] - t0
+        _put(traj, ts, ts[1], x0 + v0 * tq + 0.5 * a * tq * tq, y, phi)
+        ts[1] += ts[2]
+
+
+@njit(cache=True)
+def flat_offsets(k, w, beta):
+    """Vertex offsets (u_j, v_j) from the CM (m) of a part flat on side k."""
+    cb = math.cos(beta[k])
+    sb = math.sin(beta[k])
+    n = w.shape[0]
+    u = np.empty(n)
+    v = np.empty(n)
+    for j in range(n):
+        u[j] = cb * w[j, 0] - sb * w[j, 1]
+        v[j] = sb * w[j, 0] + cb * w[j, 1]
+    return u, v
+
+
+@njit(cache=True)
+def settle_walled(x, v, t, k, mu, gx, gn, h, L, top, mu_w, back, rho2, w, beta, d, uL, phi, traj, ts, rec):
+    """Mode FLAT_SLIDE on side k with a wall at x = L: slide, then rest, hit the wall, or leave behind the joint.
+
+    The CM at x (m) moves at v (m/s) with acceleration g_x − μ g_n sgn v while sliding (g_x
+    gravity along the arm, g_n > 0 normal to it; μ = 0 slides on until something stops it).
+    Stopped away from the wall it rests if |g_x| ≤ μ g_n, else slides downhill. Outward, the
+    leading vertex (:func:`wall_reach_at_rest`) reaches the wall with the CM at x = L − u_w
+    (:func:`slide_hit`); the plastic impact there stops the part if the impulse lies in the
+    contacts' cones (the arm at both support vertices, the wall at the leading vertices: a
+    flush side stops dead); a part whose only wall contact is its right support vertex turns
+    about that corner instead (:func:`corner_pivot_rate`); anything else is refused
+    (:data:`WHY_TWO_CONTACT`), as is a leading vertex above the wall's top
+    (:data:`WHY_WALL_TOP`). At rest against the wall it stays if arm and wall hold gravity
+    (:func:`rest_flat_at_wall`): x = L − u_w, exactly; pulled away it slides back; pushed
+    into the wall and not held it is refused (:data:`WHY_LADDER`).
+
+    Returns ``(status, x, t, ω_corner, why)``: status OK or BEHIND_JOINT (at rest or leaving
+    behind the joint, x the CM), −1: the part turns about its corner vertex k at (L, h) with
+    spin ω_corner (rad/s), UNRESOLVED with ``why``.
+    """
+    n = w.shape[0]
+    u, vv = flat_offsets(k, w, beta)
+    dk = d[k]
+    u_w, _j_w, above = wall_reach_at_rest(u, vv + dk, top)
+    jl = (k + 1) % n
+    jr = k
+    fr = mu * gn
+    lref = math.sqrt(rho2) + dk
+    x_wall = L - u_w
+    y = h + dk
+    sample = traj.shape[0] > 0
+    for _ in range(8):
+        if v == 0.0:
+            if x >= x_wall - 1e-12 * (abs(L) + lref):  # against the wall
+                x = x_wall
+                if rest_flat_at_wall(u, vv, jl, jr, u_w, top - dk, mu, mu_w, gx, -gn, lref):
+                    return _rest_walled(x, k, t, gx, gn, dk, y, phi, beta, uL, back, traj, ts, rec)
+                if gx >= 0.0:
+                    return C.UNRESOLVED, x, t, 0.0, WHY_LADDER
+            elif abs(gx) <= fr:
+                return _rest_walled(x, k, t, gx, gn, dk, y, phi, beta, uL, back, traj, ts, rec)
+            sv = 1.0 if gx > 0.0 else -1.0  # slides downhill from rest
+        else:
+            sv = 1.0 if v > 0.0 else -1.0
+        a = gx - fr * sv
+        rec[C.N_SLIPS] += 1.0
+        if sv > 0.0:
+            hit, th, vh = slide_hit(v, a, x_wall - x)
+            if not hit:  # stops short of the wall
+                x_stop = x - 0.5 * v * v / a
+                if sample:
+                    _rows(x, v, a, t, t + th, y, phi, traj, ts)
+                rec[C.SLIP_DISTANCE] += x_stop - x
+                x = x_stop
+                t += th
+                v = 0.0
+                continue
+            if above:
+                return C.UNRESOLVED, x, t, 0.0, WHY_WALL_TOP
+            if sample:
+                _rows(x, v, a, t, t + th, y, phi, traj, ts)
+            rec[C.SLIP_DISTANCE] += x_wall - x
+            t += th
+            x = x_wall
+            pts = np.empty((4, 2))
+            nrm = np.empty((4, 2))
+            mus = np.empty(4)
+            m, nw = flat_contacts(u, vv, jl, jr, mu, mu_w, top - dk, u_w, 1e-9 * lref, pts, nrm, mus)
+            k_before = 0.5 * vh * vh
+            if contacts_can_supply(pts, nrm, mus, m, -vh, 0.0, 0.0, lref):
+                record_impact(0.0, vh, k_before, 0.0, rec)
+                v = 0.0
+                continue
+            if nw == 1 and u_w - u[jr] <= 1e-9 * lref:
+                wp = corner_pivot_rate(vh, u[jr], dk, rho2)
+                l2 = u[jr] * u[jr] + dk * dk
+                record_impact(-wp * dk - vh, -wp * u[jr], k_before, 0.5 * (rho2 + l2) * wp * wp, rec)
+                return -1, x, t, wp, WHY_NONE
+            return C.UNRESOLVED, x, t, 0.0, WHY_TWO_CONTACT
+        # inward
+        if a > 0.0 and v < 0.0:  # decelerates: stops unless it leaves behind the joint first
+            x_stop = x - 0.5 * v * v / a
+            if x_stop + uL[k] > -back:
+                t_stop = -v / a
+                if sample:
+                    _rows(x, v, a, t, t + t_stop, y, phi, traj, ts)
+                rec[C.SLIP_DISTANCE] += x - x_stop
+                x = x_stop
+                t += t_stop
+                v = 0.0
+                continue
+        x_edge = -back - uL[k]
+        dist = x - x_edge
+        if a != 0.0:
+            disc = v * v - 2.0 * a * dist
+            t_e = (-v - math.sqrt(disc if disc > 0.0 else 0.0)) / a
+        else:
+            t_e = dist / abs(v)
+        if sample:
+            _rows(x, v, a, t, t + t_e, y, phi, traj, ts)
+            _put_final(traj, ts, t + t_e, x_edge, y, phi)
+        rec[C.SLIP_DISTANCE] += dist
+        return C.BEHIND_JOINT, x_edge, t + t_e, 0.0, WHY_NONE
+    return C.UNRESOLVED, x, t, 0.0, WHY_LADDER
+
+
+@njit(cache=True)
+def _rest_walled(x, k, t, gx, gn, dk, y, phi, beta, uL, back, traj, ts, rec):
+    rec[C.E_FINAL] = gn * dk - gx * x
+    rec[C.T_REST] = t
+    m = round((phi - beta[k]) / (2.0 * math.pi))
+    _put_final(traj, ts, t, x, y, beta[k] + 2.0 * math.pi * m)
+    if x + uL[k] <= -back:
+        return C.BEHIND_JOINT, x, t, 0.0, WHY_NONE
+    return C.OK, x, t, 0.0, WHY_NONE
