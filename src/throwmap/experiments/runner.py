@@ -51,6 +51,11 @@ BYTES_PER_TRIAL = 4000
 """Memory the runner holds per trial, bytes (its :class:`Trial`, a few values, its JSON line)."""
 TIMED_TRIALS = 4
 """Trials (per worker) finished before the run's total time is estimated and guarded."""
+CHUNK_SECONDS = 0.2
+"""s of work a worker is handed at a time once trials have been timed (at least one trial): cheap trials go
+in chunks so that inter-process traffic does not dominate; an interrupted run loses at most the chunks in flight."""
+MAX_CHUNK = 64
+"""Most trials handed to a worker at a time."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -145,14 +150,16 @@ class ExperimentResult:
 _CONFIGS: dict = {}
 
 
-def _run_one(name: str, config_json: str, seed: int, index: int) -> dict:
-    """Run trial ``index`` in a worker: look the experiment up by name, rebuild the config from JSON."""
+def _run_chunk(name: str, config_json: str, seed: int, indices: tuple) -> tuple[list, float]:
+    """Run trials ``indices`` in a worker: look the experiment up by name, rebuild the config from JSON.
+    Returns the trials as JSON objects and the seconds they took."""
+    t0 = time.perf_counter()
     exp = get_experiment(name)
     key = (name, config_json)
     cfg = _CONFIGS.get(key)
     if cfg is None:
         cfg = _CONFIGS[key] = exp.config_type.model_validate_json(config_json)
-    return _checked(exp, cfg, seed, index).to_json()
+    return [_checked(exp, cfg, seed, i).to_json() for i in indices], time.perf_counter() - t0
 
 
 def _checked(exp, cfg, seed: int, index: int) -> Trial:
@@ -324,23 +331,31 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
                 finish(_checked(exp, cfg, seed, i), k)
         else:
             with ProcessPoolExecutor(max_workers=n_workers) as pool:
+                queue = list(todo)
                 pending = set()
-                it = iter(todo)
                 k = 0
+                spent, counted = 0.0, 0
+
+                def submit():
+                    # one trial per task at first; then chunks of ≈ CHUNK_SECONDS of work (cheap trials
+                    # would otherwise spend most of their time in inter-process traffic)
+                    size = 1 if counted == 0 else max(1, min(MAX_CHUNK, int(CHUNK_SECONDS * counted / max(spent, 1e-9))))
+                    chunk, queue[:] = tuple(queue[:size]), queue[size:]
+                    pending.add(pool.submit(_run_chunk, exp.name, config_json, seed, chunk))
+
                 try:
-                    for i in it:  # keep a bounded queue: 4 trials per worker in flight
-                        pending.add(pool.submit(_run_one, exp.name, config_json, seed, i))
-                        if len(pending) >= 4 * n_workers:
-                            break
+                    while queue and len(pending) < 2 * n_workers:
+                        submit()
                     while pending:
                         finished, pending = wait(pending, return_when=FIRST_COMPLETED)
-                        for f in sorted(finished, key=lambda f: f.result()["index"]):
-                            k += 1
-                            finish(Trial.from_json(f.result()), k)
-                        for i in it:
-                            pending.add(pool.submit(_run_one, exp.name, config_json, seed, i))
-                            if len(pending) >= 4 * n_workers:
-                                break
+                        for f in finished:
+                            rows, secs = f.result()
+                            spent, counted = spent + secs, counted + len(rows)
+                            for row in rows:
+                                k += 1
+                                finish(Trial.from_json(row), k)
+                        while queue and len(pending) < 2 * n_workers:
+                            submit()
                 except BaseException:
                     for f in pending:
                         f.cancel()

@@ -1,0 +1,23 @@
+"""The experiments benchmark runs end to end at tiny sizes (no timing assertions)."""
+
+import importlib.util
+import json
+import math
+from pathlib import Path
+
+BENCH = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_experiments.py"
+
+
+def test_bench_experiments_runs_small(tmp_path, capsys):
+    spec = importlib.util.spec_from_file_location("bench_experiments", BENCH)
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    out = tmp_path / "b.json"
+    data = bench.main(["--quick", "--experiments", "settle", "--workers", "1,2", "--json", str(out)])
+    text = capsys.readouterr().out
+    assert "reference: one engine throw" in text and "settle" in text and "1,000 trials" in text
+    assert json.loads(out.read_text()) == json.loads(json.dumps(data))
+    runs = data["experiments"][0]["runs"]
+    assert [r["workers"] for r in runs] == [1, 2]
+    for r in runs:
+        assert math.isfinite(r["projected_1000_s"]) and r["projected_1000_s"] == 1000 / r["trials_per_s"]
