@@ -31,7 +31,10 @@ from .caps import DEFAULT_CAPS, RecurrenceCaps, check_caps, resolve_caps, split_
 from .maps import DEFAULT_MODEL, ConfigMap, as_map
 from .recurrence import check_starts, find_attractors, start_grid
 
-__all__ = ["LimitSet", "limit_set", "RecurrenceCaps", "DEFAULT_CAPS", "check_caps"]
+__all__ = ["LimitSet", "limit_set", "RecurrenceCaps", "DEFAULT_CAPS", "check_caps", "WALL_TOL"]
+
+WALL_TOL = 1e-9
+"""A fixed point within this distance (m) of a wall's resting configuration x* = length − u_R rests against it."""
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -95,6 +98,33 @@ class LimitSet:
         return int(self.caps.get("transient_used", self.caps.get("transient", 0)))
 
     @property
+    def wall_points(self) -> dict:
+        """``{attractor id: (side, x*)}`` for the fixed points and cycle points that rest against a wall.
+
+        With a :class:`~throwmap.Wall` at the arm's end a part resting against it has
+        x* + u_R = length: the last start :func:`throwmap.throw` accepts on that side, the
+        domain's upper end. A jog that would carry the part past the wall stops there, so
+        T(x) = x* for every x close below x*: a fixed point with multiplier 0
+        (superstable: reached in finitely many throws, not asymptotically). The map is
+        defined only for x ≤ x*, so that multiplier is the *left* derivative,
+        lim_{h→0+} (T(x*) − T(x* − h))/h (the slopes are one-sided where the right
+        neighbour is no valid start; :func:`~throwmap.analysis.recurrence.find_attractors`).
+        """
+        info = self.map_info
+        if not any(f.get("kind") == "wall" for f in info.get("fixtures") or ()):
+            return {}
+        dom, _ = domain_of(info)
+        x_max = float(info.get("x_max_m", math.inf))
+        out = {}
+        for a in self.attractors:
+            for side, x in a.points:
+                hi = dom.get(int(side), (math.nan, math.nan))[1]
+                if hi < x_max and abs(x - hi) <= WALL_TOL:
+                    out[a.id] = (int(side), float(x))
+                    break
+        return out
+
+    @property
     def unique(self) -> bool:
         """One attractor reached from every start, no escapes."""
         return len(self.attractors) == 1 and not self.escapes
@@ -133,8 +163,13 @@ class LimitSet:
         elif self.unique:
             lines.append(f"  every orbit from the {self.range_text} ends on #1; attractors beyond this range are "
                          "not ruled out")
+        wall = self.wall_points
         for a in self.attractors:
             lines.append(f"  {a.describe()}  [{100 * a.fraction:.1f} % of starts]")
+            if a.id in wall:
+                s, x = wall[a.id]
+                lines.append(f"     against the wall: x* = {x:.6f} m on side {s} = length − u_R (the last valid start); "
+                             f"multiplier {a.multiplier:+.3g} is the left derivative (T is defined for x ≤ x* only)")
         for k, v in self.escapes.items():
             lines.append(f"  -1 {k}: {100 * v:.1f} % of starts")
         return "\n".join(lines)
@@ -149,6 +184,7 @@ class LimitSet:
         return {
             "kind": self.kind, "unique": self.unique, "range": self.range_text,
             "attractors": [a.to_dict() for a in self.attractors],
+            "at_wall": [{"id": i, "side": s, "x_m": x} for i, (s, x) in self.wall_points.items()],
             "escapes": dict(self.escapes),
             "starts": {"x_m": self.starts_x.tolist(), "side": self.starts_side.tolist(),
                        "label": self.labels.tolist()},

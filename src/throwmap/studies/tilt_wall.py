@@ -79,7 +79,7 @@ CONDITIONS = {
 }
 """The conditions thrown, ``n`` throws each: the wall's μ (None: no wall), how μ is drawn, the models compared."""
 N_WORST = 8
-"""Misses kept per row as reproducers (largest |Δx| first, then side/status disagreements)."""
+"""Misses kept per row as reproducers: side or status disagreements first, then the largest |Δx|."""
 SECONDS_PER_THROW_GUESS = 0.03
 """Engine seconds per throw assumed by the work guard before it measures (s)."""
 
@@ -121,8 +121,10 @@ class TiltWallCases:
         return parts[str(self.part[i])], arm, fixtures, float(self.alpha[i])
 
 
-def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Generator) -> TiltWallCases:
-    """``n`` random throws of ``condition`` (a key of :data:`CONDITIONS`) drawn with ``rng``."""
+def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Generator,
+               alpha_range=ALPHA_RANGE) -> TiltWallCases:
+    """``n`` random throws of ``condition`` (a key of :data:`CONDITIONS`) drawn with ``rng``; α uniform
+    over ``alpha_range`` (rad; ``(0, 0)``: the plain arm's baseline on the same draws)."""
     spec = CONDITIONS[condition]
     names = list(parts)
     cols: dict[str, list] = {k: [] for k in ("part", "x", "side", "omega", "alpha", "mu", "h", "length", "wall_mu")}
@@ -143,7 +145,7 @@ def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Ge
             mu = float(math.exp(rng.uniform(math.log(MU_RANGE[0]), math.log(MU_RANGE[1]))))
         wall_mu = {None: math.nan, "zero": 0.0, "arm": mu}[spec["wall"]]
         for key, v in (("part", name), ("x", x), ("side", k), ("omega", float(rng.uniform(*OMEGA_RANGE))),
-                       ("alpha", float(rng.uniform(*ALPHA_RANGE))), ("mu", mu), ("h", h), ("length", length),
+                       ("alpha", float(rng.uniform(*alpha_range))), ("mu", mu), ("h", h), ("length", length),
                        ("wall_mu", wall_mu)):
             cols[key].append(v)
     return TiltWallCases(condition, np.array(cols["part"], dtype=object),
@@ -151,15 +153,17 @@ def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Ge
                            for k in ("x", "side", "omega", "alpha", "mu", "h", "length", "wall_mu")))
 
 
-def _throw_all(cases: TiltWallCases, parts: dict, model: str, options: dict, tick, walls: bool = True) -> dict:
-    """Every throw of ``cases`` through ``model`` (``walls`` False: without the wall); refused keywords
-    (a model without tilt or fixtures) end the run with the refusal's message."""
+def _throw_all(cases: TiltWallCases, parts: dict, model: str, options: dict, tick, walls: bool = True,
+               level: bool = False) -> dict:
+    """Every throw of ``cases`` through ``model`` (``walls`` False: without the wall; ``level``: at α = 0);
+    refused keywords (a model without tilt or fixtures) end the run with the refusal's message."""
     n = cases.n
     out = {"x": np.full(n, np.nan), "side": np.full(n, -1, dtype=np.int64), "status": np.full(n, -1, dtype=np.int64),
            "message": None}
     for i in range(n):
         part, arm, fixtures, alpha = cases.system(i, parts)
         fixtures = fixtures if walls else ()
+        alpha = 0.0 if level else alpha
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -185,17 +189,29 @@ def _refusals(status) -> dict:
     return {Status(int(c)).label: int(np.sum(status == c)) for c in REFUSED if np.any(status == c)}
 
 
+MU_BANDS = ((0.3, 0.6), (0.6, 1.0), (1.0, 3.0), (math.inf, math.inf))
+"""Arm-friction bands of the per-μ breakdown ([lo, hi); the last is μ = ∞). Below μ ≈ 0.6 rigid_body's
+Routh impacts and pymunk's velocity-level impacts differ by mm; at μ = ∞ pymunk caps its friction
+(README, Validation): there the reference itself is uncertain by mm."""
+
+
+def _band(lo: float, hi: float) -> str:
+    return "∞" if math.isinf(lo) else f"{lo:g}–{hi:g}"
+
+
 def _agree(a: dict, b: dict) -> np.ndarray:
     """Throw by throw: the same escape, or at rest on the same side within :data:`WITHIN`."""
     same_st = a["status"] == b["status"]
     return same_st & ((a["status"] != C.OK) | ((a["side"] == b["side"]) & (np.abs(a["x"] - b["x"]) <= WITHIN)))
 
 
-def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: dict, free: dict | None = None) -> dict:
+def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: dict, free: dict | None = None,
+                 level: tuple | None = None) -> dict:
     """One row: ``res`` (a model) against ``ref`` (the engine) on ``cases``; see the module docstring.
 
     ``free`` (the engine without the wall, same throws) gives ``wall_changed_pct``: the share of
-    throws whose engine outcome the wall changed (beyond 0.5 mm, or side, or status)."""
+    throws whose engine outcome the wall changed (beyond 0.5 mm, or side, or status). ``level``
+    (``(res, ref)`` of the same throws at α = 0) gives the row's ``baseline``."""
     n = cases.n
     if res.get("message"):
         return {"row": label, "n": n, "n_compared": 0, "available": False, "message": res["message"]}
@@ -214,6 +230,16 @@ def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: 
     # engine rests that lean on the wall (tilted, right support vertex past the arm's end)
     uR = np.array([parts[str(p)].uR[int(k)] for p, k in zip(cases.part, np.maximum(ref["side"], 0))])
     leaning = (ref["status"] == C.OK) & (ref["x"] + uR > cases.length + 1e-4)
+    by_mu = {}
+    for lo, hi in MU_BANDS:
+        sel = cmp & ((cases.mu == lo) if math.isinf(lo) else ((cases.mu >= lo) & (cases.mu < hi)))
+        if sel.any():
+            by_mu[_band(lo, hi)] = {"n": int(sel.sum()), "within_pct": 100.0 * float(within[sel].mean()),
+                                    "same_pct": 100.0 * float(same[sel].mean())}
+    base = None
+    if level is not None and not level[0].get("message") and not level[1].get("message"):
+        b = compare_rows(label, cases, parts, level[0], level[1])
+        base = {k: b[k] for k in ("n_compared", "same_pct", "within_pct", "dx_median_mm", "dx_p95_mm", "by_mu")}
     miss = np.flatnonzero(cmp & ~within)
     order = miss[np.argsort(-np.nan_to_num(dx[miss], nan=np.inf), kind="stable")][:N_WORST]
     worst = [{**cases.case(int(i)), "model": {"x_m": float(res["x"][i]), "side": int(res["side"][i]),
@@ -233,6 +259,7 @@ def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: 
         "at_wall_pct": (100.0 * float(np.mean((ref["status"] == C.OK) & (np.abs(ref["x"] + uR - cases.length) < 1e-3)))
                         if not np.all(np.isnan(cases.wall_mu)) else 0.0),
         "wall_changed_pct": 100.0 * float(np.mean(~_agree(free, ref))) if free is not None else None,
+        "by_mu": by_mu, "baseline": base,
         "worst": worst,
     }
 
@@ -251,20 +278,36 @@ class TiltWallReport:
     results: dict = field(default_factory=dict)
 
     def table(self) -> str:
-        """The rows as a Markdown table (distances in mm, shares in % with their Wilson 95 % interval)."""
-        lines = ["| condition: model vs pymunk | throws (compared) | same outcome % [95 % CI] | |Δx| ≤ 0.5 mm % "
-                 "[95 % CI] | |Δx| median (mm) | |Δx| p95 (mm) | wall changed % / at wall % | refused: model / engine |",
-                 "|" + "---|" * 8]
+        """The rows as a Markdown table (distances in mm, shares in % with their Wilson 95 % interval), then
+        the share within 0.5 mm by arm friction μ, each with the same draws on the level arm (α = 0)."""
+        lines = ["| condition: model vs reference | throws (compared) | same outcome % [95 % CI] | |Δx| ≤ 0.5 mm % "
+                 "[95 % CI] | |Δx| median (mm) | |Δx| p95 (mm) | α = 0: ≤ 0.5 mm % | wall changed % / at wall % "
+                 "| refused: model / reference |", "|" + "---|" * 9]
         for r in self.rows:
             if not r["available"]:
-                lines.append(f"| {r['row']} | {r['n']} (0) | — | — | — | — | — | not run: {r['message']} |")
+                lines.append(f"| {r['row']} | {r['n']} (0) | — | — | — | — | — | — | not run: {r['message']} |")
                 continue
             ref = ", ".join(f"{k} {v}" for k, v in r["model_refused"].items()) or "0"
             eng = ", ".join(f"{k} {v}" for k, v in r["engine_refused"].items()) or "0"
             lean = f"; leaning {r['engine_leaning']}" if r["engine_leaning"] else ""
+            base = r.get("baseline")
             lines.append(f"| {r['row']} | {r['n']} ({r['n_compared']}) | {_pct(r['same_pct'], r['same_ci95'])} | "
                          f"{_pct(r['within_pct'], r['within_ci95'])} | {_f(r['dx_median_mm'])} | "
-                         f"{_f(r['dx_p95_mm'])} | {_wall(r)} | {ref} / {eng}{lean} |")
+                         f"{_f(r['dx_p95_mm'])} | {_f(base['within_pct'], '.1f') if base else '—'} | {_wall(r)} | "
+                         f"{ref} / {eng}{lean} |")
+        bands = [_band(*b) for b in MU_BANDS]
+        lines += ["", "| |Δx| ≤ 0.5 mm % by arm μ (throws), tilted [α = 0] | " + " | ".join(f"μ {b}" for b in bands)
+                  + " |", "|" + "---|" * (len(bands) + 1)]
+        for r in self.rows:
+            if not r["available"]:
+                continue
+            cells = []
+            for b in bands:
+                v = r["by_mu"].get(b)
+                w = (r.get("baseline") or {}).get("by_mu", {}).get(b)
+                cells.append("—" if v is None else f"{v['within_pct']:.1f} ({v['n']})"
+                             + (f" [{w['within_pct']:.1f}]" if w else ""))
+            lines.append(f"| {r['row']} | " + " | ".join(cells) + " |")
         return "\n".join(lines)
 
     def goal_lines(self) -> list[str]:
@@ -375,14 +418,17 @@ def _timer(parts: dict) -> float:
 
 
 def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, seed: int = 0, conditions=None,
-                       models=None, rigid_body_options: dict | None = None, fixed_point: bool = True, progress=None,
+                       models=None, alpha_range=ALPHA_RANGE, baseline: bool = True, rigid_body_options: dict | None = None, fixed_point: bool = True, progress=None,
                        max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
                        force: bool = False) -> TiltWallReport:
     """Throw ``n`` random cases per condition (:data:`CONDITIONS`) through the models and the engine; compare.
 
     ``models`` (a sequence of model names) replaces every condition's models (e.g.
     ``("engine",)``: the engine against itself, a check of the comparison: 100 %).
-    ``seed`` seeds one child generator per condition (``SeedSequence(seed).spawn``), so a
+    ``baseline`` also throws every case at α = 0 (model and engine), so that each row
+    says how the same draws agree on the level arm (the known plain-arm gaps: μ ≤ 0.6,
+    μ = ∞). ``alpha_range`` (rad) is where α is drawn (``(0.0, 0.0)``: the same throws on the
+    level arm, a baseline). ``seed`` seeds one child generator per condition (``SeedSequence(seed).spawn``), so a
     condition's throws do not depend on which others run. ``rigid_body_options`` (e.g.
     ``{"impact_law": "velocity"}``) go to every rigid_body throw. ``fixed_point`` also runs
     :func:`wall_fixed_point` on the canonical triangle (side 0, ω = 5 rad/s, L = 0.30 m,
@@ -391,12 +437,16 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
     """
     parts = default_parts() if parts is None else parts
     conditions = tuple(CONDITIONS) if conditions is None else tuple(conditions)
+    alpha_range = tuple(float(a) for a in alpha_range)
+    if len(alpha_range) != 2 or not all(math.isfinite(a) for a in alpha_range) or alpha_range[1] < alpha_range[0]:
+        raise InvalidStateError("alpha_range", f"must be (low, high) in rad with low ≤ high, got {alpha_range}")
     for c in conditions:
         if c not in CONDITIONS:
             raise InvalidStateError("conditions", f"unknown condition {c!r} (choose from {', '.join(CONDITIONS)})")
     n = check_count("n", n, minimum=1)
     max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
-    guard_work("validate-fixtures", "n", n * sum(1 + bool(CONDITIONS[c]["wall"]) for c in conditions), 400.0, max_memory, max_seconds, force,
+    n_engine = n * sum(1 + bool(CONDITIONS[c]["wall"]) + bool(baseline) for c in conditions)
+    guard_work("validate-fixtures", "n", n_engine, 400.0, max_memory, max_seconds, force,
                throws_per_config=1.0, timer=lambda: _timer(parts), hint="fewer throws per condition (--n)",
                unit="engine throws")
     rb = dict(rigid_body_options or {})
@@ -405,7 +455,7 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
 
         models = tuple(check_model(m) for m in ([models] if isinstance(models, str) else models))
     seqs = np.random.SeedSequence(seed).spawn(len(CONDITIONS))
-    total = n * sum(1 + bool(CONDITIONS[c]["wall"]) for c in conditions)
+    total = n * sum(1 + bool(CONDITIONS[c]["wall"]) + bool(baseline) for c in conditions)
     done = [0]
 
     def tick():
@@ -415,14 +465,23 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
 
     rows, cases_out, results = [], {}, {}
     for c in conditions:
-        cases = make_cases(parts, c, n, np.random.default_rng(seqs[list(CONDITIONS).index(c)]))
+        cases = make_cases(parts, c, n, np.random.default_rng(seqs[list(CONDITIONS).index(c)]), alpha_range)
         ref = _throw_all(cases, parts, "engine", {}, tick)
         free = _throw_all(cases, parts, "engine", {}, tick, walls=False) if CONDITIONS[c]["wall"] else None
+        ref0 = _throw_all(cases, parts, "engine", {}, tick, level=True) if baseline else None
         names = CONDITIONS[c]["models"] if models is None else tuple(models)
-        res = {m: _throw_all(cases, parts, m, rb if m == "rigid_body" else {}, None) for m in names}
-        cases_out[c], results[c] = cases, {"engine": ref, **res, **({"engine, no wall": free} if free else {})}
+        opts = {m: rb if m == "rigid_body" else {} for m in names}
+        res = {m: _throw_all(cases, parts, m, opts[m], None) for m in names}
+        res0 = {m: _throw_all(cases, parts, m, opts[m], None, level=True) for m in names} if baseline else {}
+        cases_out[c] = cases
+        results[c] = {"engine": ref, **res, **({"engine, no wall": free} if free else {}),
+                      **({"engine, α = 0": ref0} if ref0 else {}), **{f"{m}, α = 0": r for m, r in res0.items()}}
         for m, r in res.items():
-            rows.append(compare_rows(f"{c}: {m}", cases, parts, r, ref, free))
+            rows.append(compare_rows(f"{c}: {m} vs engine", cases, parts, r, ref, free,
+                                     (res0[m], ref0) if baseline else None))
+        if "paper" in res and "rigid_body" in res:  # two exact models: no engine between them
+            rows.append(compare_rows(f"{c}: paper vs rigid_body", cases, parts, res["paper"], res["rigid_body"], None,
+                                     (res0["paper"], res0["rigid_body"]) if baseline else None))
     goals = {}
     for r in rows:
         if r["available"] and r["n_compared"]:
@@ -435,9 +494,9 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
         fp = wall_fixed_point(triangle_30_60_90(), Arm(h=-0.01, mu=1.0, length=0.30), 5.0, 0, **rb)
     settings = {"n_per_condition": n, "seed": seed, "conditions": {c: {**CONDITIONS[c], "models": list(
         CONDITIONS[c]["models"] if models is None else models)} for c in conditions}, "parts": list(parts),
-        "alpha_range_deg": [math.degrees(a) for a in ALPHA_RANGE], "mu_range": list(MU_RANGE),
+        "alpha_range_deg": [round(math.degrees(float(a)), 9) for a in alpha_range], "mu_range": list(MU_RANGE),
         "p_mu_inf": P_MU_INF, "omega_range_rad_s": list(OMEGA_RANGE), "h_m": list(H_VALUES),
         "length_range_m": list(LENGTH_RANGE), "wall_height_m": WALL_HEIGHT, "within_m": WITHIN,
-        "rigid_body_options": rb, "reference": "engine (pymunk, default EngineSettings)",
+        "rigid_body_options": rb, "baseline_alpha_0": bool(baseline), "mu_bands": [_band(*b) for b in MU_BANDS], "reference": "engine (pymunk, default EngineSettings)",
         "refused_statuses": [Status(c).label for c in REFUSED]}
     return TiltWallReport(tuple(rows), goals, fp, settings, cases_out, results)
