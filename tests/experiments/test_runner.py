@@ -95,11 +95,28 @@ def test_interrupted_run_resumes_without_redoing(tmp_path, reference):
     assert third.resumed == 12 and third.trials[:12] == reference.trials
 
 
+def _processes_running(marker: str) -> list[int]:
+    """Live processes whose command line contains ``marker`` (Linux /proc; empty elsewhere)."""
+    pids = []
+    for d in os.listdir("/proc") if os.path.isdir("/proc") else []:
+        if d.isdigit():
+            try:
+                with open(f"/proc/{d}/cmdline", "rb") as fh:
+                    cmd = fh.read()
+                with open(f"/proc/{d}/stat") as fh:
+                    state = fh.read().rsplit(")", 1)[1].split()[0]
+            except OSError:
+                continue
+            if marker.encode() in cmd and state != "Z":
+                pids.append(int(d))
+    return pids
+
+
 def test_killed_run_resumes(tmp_path):
     """SIGKILL a run in a subprocess mid-way: the trials it reported survive and are not redone."""
     out = tmp_path / "run"
     code = ("from throwmap.experiments.runner import run_experiment; "
-            f"run_experiment('settle', {CFG!r}, n=150, seed=3, workers=1, out={str(out)!r})")
+            f"run_experiment('settle', {CFG!r}, n=150, seed=3, workers=2, out={str(out)!r})")
     proc = subprocess.Popen([sys.executable, "-c", code])
     lines = out / "trials.jsonl"
     t0 = time.monotonic()
@@ -109,6 +126,11 @@ def test_killed_run_resumes(tmp_path):
         time.sleep(0.005)
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait()
+    # its workers die with it (no orphan keeps computing or writing)
+    t0 = time.monotonic()
+    while _processes_running(str(out)) and time.monotonic() - t0 < 10:
+        time.sleep(0.05)
+    assert not _processes_running(str(out))
     kept = lines.read_bytes().count(b"\n")
     assert 5 <= kept < 150 and not (out / "result.json").exists()
     resumed = run_experiment("settle", CFG, n=150, seed=3, workers=1, out=out)
