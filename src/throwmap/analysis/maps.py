@@ -185,6 +185,8 @@ class ThrowMap(ConfigMap):
             opts.pop(k, None)
         _, system, _ = prepare(self.model, self.arm, kw.get("fixtures", ()), kw.get("alpha", 0.0),
                                kw.get("options"), opts)
+        if system.fixtures and self.arm.length is None:
+            raise InvalidStateError("arm.length", "a wall or cavity sits at the arm's end: give the arm a length")
         object.__setattr__(self, "fixtures", system.fixtures)
         object.__setattr__(self, "alpha", system.alpha)
         iv = {s: start_interval(self.part, self.arm, s) for s in self.part.stable_sides}

@@ -150,8 +150,8 @@ def limitset_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
-        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        sysk = system_options(alpha, wall, wall_mu, cavity, arm)
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         fmt_map = figure_format(plot_map, "plot_map")
@@ -238,8 +238,8 @@ def basins_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
-        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        sysk = system_options(alpha, wall, wall_mu, cavity, arm)
         check_finite(omega, "omega")
         fmt = figure_format(plot, "plot")
         check_out_dir(out)
@@ -316,8 +316,8 @@ def funnels_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
-        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        sysk = system_options(alpha, wall, wall_mu, cavity, arm)
         omegas = parse_floats(omega, "omega")
         target = None
         if goal is not None:

@@ -89,7 +89,7 @@ def animate_cmd(
         if model not in ANIMATE_MODELS:
             what = f"model {model!r} records no trajectory" if model in model_names() else f"unknown model {model!r}"
             raise InvalidStateError("model", f"{what} (choose from {', '.join(ANIMATE_MODELS)})")
-        opts = {**model_options(model_option, model), **system_options(alpha, wall, wall_mu, cavity)}
+        opts = {**model_options(model_option, model), **system_options(alpha, wall, wall_mu, cavity)}  # values
         if n < 1:
             raise InvalidStateError("n", f"must be a positive integer, got {n}")
         if fps < 1:
@@ -102,6 +102,7 @@ def animate_cmd(
         check_animation_path(out, need_directory=False)  # before any work; the directory is made below
         check_output(out, "out", create=True)  # its folder writable or creatable
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        system_options(alpha, wall, wall_mu, cavity, arm)  # fixtures need the arm's length
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         check_finite(omega, "omega")

@@ -140,10 +140,11 @@ def parse_alpha(text) -> float:
 
 
 def system_options(alpha: str | None = None, wall: float | None = None, wall_mu: float | None = None,
-                   cavity: Path | None = None) -> dict:
+                   cavity: Path | None = None, arm: Arm | None = None) -> dict:
     """The keywords ``fixtures=`` and ``alpha=`` of :func:`throwmap.throw` from ``--alpha``, ``--wall``,
     ``--wall-mu`` and ``--cavity``, checked before any work; only those given (so that a model
-    without tilt or fixtures is not handed them unasked, and refuses them when asked)."""
+    without tilt or fixtures is not handed them unasked, and refuses them when asked). Fixtures sit
+    at the arm's end: with ``arm`` unbounded they are refused on ``arm.length``."""
     from ..system.fixtures import Cavity, Wall
 
     out: dict = {}
@@ -161,6 +162,9 @@ def system_options(alpha: str | None = None, wall: float | None = None, wall_mu:
     if cavity is not None:
         fixtures.append(Cavity(_cavity_profile(Path(cavity))))
     if fixtures:
+        if arm is not None and arm.length is None:
+            raise InvalidArmError("arm.length", "a wall or cavity sits at the arm's end: give the arm a length "
+                                                "(--length, or length in the part file's [arm])")
         out["fixtures"] = tuple(fixtures)
     return out
 

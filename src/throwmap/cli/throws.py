@@ -55,8 +55,8 @@ def throw_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
-        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        sysk = system_options(alpha, wall, wall_mu, cavity, arm)
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         check_finite(omega, "omega")
@@ -175,8 +175,8 @@ def iterate_cmd(
     with guard():
         check_model(model)
         opts = model_options(model_option, model)
-        sysk = system_options(alpha, wall, wall_mu, cavity)
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        sysk = system_options(alpha, wall, wall_mu, cavity, arm)
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         omegas, n_lib, planned = _throw_rates(omega, n)

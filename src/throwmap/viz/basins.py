@@ -14,6 +14,7 @@ import textwrap
 import numpy as np
 
 from ..errors import InvalidStateError
+from .limit_set import draw_wall_stops, system_suffix
 from .style import (
     ESCAPE_COLOR,
     _plt,
@@ -144,6 +145,8 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
 
     frac = basins.fractions if hasattr(basins, "fractions") else {}
     handles = []
+    row = {s: i for i, s in enumerate(sides)}
+    draw_wall_stops(ax, basins.map_info, k, lambda s: row.get(s), handles)
     for a in basins.attractors:
         handles.append(Patch(color=palette[a.id], label=f"#{a.id} {a.kind} ({100 * frac.get(a.id, 0.0):.1f} %)"))
     for v in extra:
@@ -177,7 +180,7 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     cb.set_label("throws to reach (colour: attractor)", fontsize=8)
     cb.ax.tick_params(labelsize=7)
 
-    label = map_title(basins.map_info, basins.map_info.get("label", "map"))
+    label = map_title(basins.map_info, basins.map_info.get("label", "map")) + system_suffix(basins.map_info)
     rng = x_range_text(basins.map_info)
     ax.set_title(basins_title(label, x.size, rng, str(basins.certificate.statement)), fontsize=8)
     layout(fig)

@@ -17,7 +17,49 @@ import numpy as np
 from ..errors import InvalidStateError
 from .style import _plt, fmt_share, layout, map_title, scale, side_colors, x_range_text
 
-__all__ = ["plot_limit_set"]
+__all__ = ["plot_limit_set", "wall_stops", "system_suffix", "draw_wall_stops"]
+
+
+def wall_stops(map_info: dict) -> dict:
+    """``{side: x*}`` (m): where a wall at the arm's end stops the CM on each side (x* = length − u_R, the
+    domain's upper end); empty without a wall, or where ``x_max`` cut the domain short of it."""
+    if not any(f.get("kind") == "wall" for f in (map_info or {}).get("fixtures") or ()):
+        return {}
+    x_max = float(map_info.get("x_max_m", math.inf))
+    out = {}
+    for s, (lo, hi) in ((map_info.get("domain_m") or {}).items()):
+        if float(hi) < x_max:
+            out[int(s)] = float(hi)
+    return out
+
+
+def system_suffix(map_info: dict) -> str:
+    """``", α = 5°, wall 5 cm (μ 0)"`` for a figure title; empty on the paper's plain arm."""
+    from ..analysis.attractors import system_short
+
+    text = system_short(map_info or {}).replace("alpha=", "α = ")
+    return f", {text}" if text else ""
+
+
+def draw_wall_stops(ax, map_info: dict, k: float, where, handles=None, *, horizontal: bool = False):
+    """The wall, drawn where the arm is: a thick grey bar at each side's stop x* (``where(side)`` gives the
+    lane's y, or None to draw across the axes; ``horizontal``: a line T = x* in a T(x) panel)."""
+    from matplotlib.lines import Line2D
+
+    stops = wall_stops(map_info)
+    for s, x in stops.items():
+        y = where(s)
+        if y is None:
+            continue
+        if horizontal:
+            ax.axhline(x * k, color="0.25", lw=2.5, alpha=0.5, zorder=0, gid="wall")
+        elif y == "all":
+            ax.axvline(x * k, color="0.25", lw=3, alpha=0.6, zorder=1, gid="wall")
+        else:
+            ax.vlines(x * k, y - 0.38, y + 0.38, color="0.25", lw=3.5, alpha=0.75, zorder=1, gid="wall")
+    if stops and handles is not None:
+        handles.append(Line2D([], [], color="0.25", lw=3.5, alpha=0.75, label="wall: the CM stops at length − u_R"))
+    return stops
 
 
 def _attractor_line(a) -> str:
@@ -104,6 +146,7 @@ def plot_limit_set(limit, ax=None, *, critical=None, orbit=None, unit: str = "cm
     xs += [b[2] for a in limit.attractors for b in a.bands]
     if critical is not None:
         xs += [v for d in (critical.r, critical.l) for v in d.values() if math.isfinite(v)]
+    xs += list(wall_stops(limit.map_info).values())
     if orbit is not None and np.size(orbit.x):
         xs += [float(v) for v in np.asarray(orbit.x) if math.isfinite(v)]
     x_hi = max(xs)
@@ -113,6 +156,7 @@ def plot_limit_set(limit, ax=None, *, critical=None, orbit=None, unit: str = "cm
     for s in sides:
         ax.hlines(lane[s], 0.0, x_hi * k, color="0.82", lw=1.0, zorder=0)
     ax.axvline(0.0, color="0.3", lw=1.2, zorder=0)
+    draw_wall_stops(ax, limit.map_info, k, lambda s: lane.get(s), handles)
     ax.text(0.0, 1.0, " joint", transform=ax.get_xaxis_transform(), va="top", ha="left", fontsize=7, color="0.3")
 
     # attractors
@@ -217,7 +261,7 @@ def plot_limit_set(limit, ax=None, *, critical=None, orbit=None, unit: str = "cm
     lo = min(xs + [0.0])
     ax.set_xlim(lo * k - 0.02 * x_hi * k, 1.03 * x_hi * k)
     ax.set_xlabel(f"x of CM along the arm ({unit}; joint at 0)")
-    label = map_title(limit.map_info, limit.map_info.get("label", "map"))
+    label = map_title(limit.map_info, limit.map_info.get("label", "map")) + system_suffix(limit.map_info)
     rng = x_range_text(limit.map_info)
     n_att_txt = f"{len(limit.attractors)} attractor{'s' if len(limit.attractors) != 1 else ''}"
     ax.set_title(f"{label}\nlimit set: {limit.kind}, {n_att_txt} from {limit.n_starts} starts"

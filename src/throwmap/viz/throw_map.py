@@ -16,6 +16,7 @@ import math
 import numpy as np
 
 from ..errors import InvalidStateError
+from .limit_set import draw_wall_stops, system_suffix
 from .style import _plt, layout, map_title, scale, side_colors, wrap_setting
 
 __all__ = ["plot_map", "sampled_range"]
@@ -155,6 +156,8 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
             key("escapes (off the arm / no rest)", ls="none", marker="x", ms=5, color="k")
         ax.plot(lim, lim, "--", color="0.5", lw=0.8, zorder=2)
         key("T(x) = x", ls="--", color="0.5", lw=0.8)
+        if draw_wall_stops(ax, samples.info, k, lambda side, s=s: 0.0 if side == s else None, horizontal=True):
+            key("wall: a jog stops at length − u_R", color="0.25", lw=2.5, alpha=0.5)
         if critical is not None:
             _draw_critical(ax, critical, s, k, key)
         ax.set_xlim(lim)
@@ -167,6 +170,7 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
             ax.legend(handles=list(panel.values()), loc="upper left", fontsize=7)
     if title is None:
         setting = map_title(samples.info, "")
+        setting += system_suffix(samples.info) if setting else ""
         title = f"throw map T(x): {setting}" if setting else str(samples.label)
         title = wrap_setting(f"{title}, {sampled_range(samples, unit)}", 150 if compact else 120)
     fig.suptitle(title, **({} if compact else {"fontsize": 10}))
