@@ -53,6 +53,8 @@ class InsetPolygon:
         else :class:`~throwmap.errors.InvalidPartError`). None free: p unchanged.
         """
         p = np.asarray(p, dtype=float)
+        if not np.all(np.isfinite(p)):
+            raise InvalidPartError("weight_at", f"must be finite, got {tuple(p.tolist())}")
         if self.contains(p):
             return (float(p[0]), float(p[1]))
         if free[0] and free[1]:
@@ -125,9 +127,10 @@ def inset_polygon(vertices, margin: float) -> InsetPolygon:
 class WeightForCom:
     """The lightest single weight that puts the CM of plate + weight at ``com`` (m, kg).
 
-    ``realisable`` False means ``com`` is outside the allowed region (then no mass distribution
-    on the plate with one weight gives it; outside the plate itself, none at all); ``mass`` and
-    ``at`` are then nan. ``ratio`` = mass / plate mass.
+    ``realisable`` False means ``com`` is outside the allowed region or on its edge (then no
+    finite weight kept ``margin`` inside the plate gives it; outside the plate itself, no mass
+    distribution at all); ``at`` is then nan and ``mass`` nan (outside) or inf (on the edge).
+    ``ratio`` = mass / plate mass.
     """
 
     com: tuple
@@ -164,7 +167,10 @@ def lightest_weight_for_com(vertices, plate_mass: float, com, margin: float) -> 
     # largest s with n·(c + s d) <= b
     nd = n @ d
     s = min(float((bk - nk @ c) / ndk) for nk, bk, ndk in zip(n, b, nd) if ndk > 1e-15)
+    if s <= 1e-12:  # c on the allowed region's edge: only an infinitely heavy weight at c itself
+        nan = math.nan
+        return WeightForCom(tuple(c), tuple(cp), False, (nan, nan), math.inf, math.inf, margin, inside_plate)
     w = c + s * d
-    ratio = float(np.linalg.norm(c - cp) / np.linalg.norm(w - c)) if s > 0 else math.inf
+    ratio = float(np.linalg.norm(c - cp) / np.linalg.norm(w - c))
     return WeightForCom(tuple(c), tuple(cp), True, (float(w[0]), float(w[1])), ratio * float(plate_mass), ratio,
                         margin, inside_plate)

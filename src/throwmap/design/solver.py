@@ -84,7 +84,10 @@ def jacobian_summary(J: np.ndarray, scale: np.ndarray, step: np.ndarray, noise: 
 
 
 def fd_jacobian(fun, p, f0, step, project) -> tuple[np.ndarray, int]:
-    """Central-difference Jacobian of ``fun`` at p (one-sided at a bound); returns (J, evaluations)."""
+    """Central-difference Jacobian of ``fun`` at p; returns (J, evaluations).
+
+    One-sided where p ± h leaves the bounds or the features are undefined (nan) there; a zero
+    column where neither side can be evaluated."""
     p = np.asarray(p, dtype=float)
     J = np.zeros((f0.size, p.size))
     n_ev = 0
@@ -94,19 +97,22 @@ def fd_jacobian(fun, p, f0, step, project) -> tuple[np.ndarray, int]:
         pp, _ = project(p + e)
         pm, _ = project(p - e)
         up, dn = abs(pp[j] - (p[j] + step[j])) < 1e-15, abs(pm[j] - (p[j] - step[j])) < 1e-15
-        if up and dn:
+        fp = fm = None
+        if up:
             fp, _ = fun(pp)
+            n_ev += 1
+            fp = fp if np.all(np.isfinite(fp)) else None
+        if dn:
             fm, _ = fun(pm)
-            n_ev += 2
+            n_ev += 1
+            fm = fm if np.all(np.isfinite(fm)) else None
+        if fp is not None and fm is not None:
             J[:, j] = (fp - fm) / (2 * step[j])
-        elif up:
-            fp, _ = fun(pp)
-            n_ev += 1
+        elif fp is not None:
             J[:, j] = (fp - f0) / step[j]
-        elif dn:
-            fm, _ = fun(pm)
-            n_ev += 1
+        elif fm is not None:
             J[:, j] = (f0 - fm) / step[j]
+        # else: the features are undefined on both sides (or p_j is pinned by its bounds): a zero column
     return J, n_ev
 
 
@@ -174,6 +180,9 @@ def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, 
             try:
                 dz = -np.linalg.solve(A + lam * np.diag(d), g)
             except np.linalg.LinAlgError:
+                lam *= 4.0
+                continue
+            if not np.all(np.isfinite(dz)):
                 lam *= 4.0
                 continue
             pn, hn = project(p + dz * scale)
