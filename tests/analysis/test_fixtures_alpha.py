@@ -203,3 +203,19 @@ def test_orbit_records_do_not_lose_the_system(model):
     assert o.status == tm.Status.OK
     out: ThrowOutcome = o.outcomes[-1]
     assert dataclasses.is_dataclass(out)
+
+
+def test_the_throw_map_figure_is_sampled_up_to_the_wall_and_draws_it(model):
+    pytest.importorskip("matplotlib")
+    fig = tm.plot_throw_map(PART, ARM, 1.0, model=model.name, n=40, **KW)
+    title = fig._suptitle.get_text()
+    assert "α = 5°, wall 5 cm (μ 0)" in title.replace("\n", " ")
+    walls = [a for ax in fig.axes for a in ax.get_lines() if a.get_gid() == "wall"]
+    assert len(walls) == len(PART.stable_sides)  # one stop per panel, at T = length − u_R
+    for ax, k in zip(fig.axes, PART.stable_sides):
+        xs = np.concatenate([c.get_offsets()[:, 0] for c in ax.collections if c.get_gid() == "branch-" + str(k)])
+        assert xs.max() == pytest.approx(100 * start_interval(PART, ARM, k)[1])  # the last start: at the wall
+        assert not [c for c in ax.collections if c.get_gid() == "escapes"]  # no start past the wall
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
