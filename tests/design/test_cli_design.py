@@ -98,3 +98,17 @@ def test_cavity_subcommand_registers_only_when_present(monkeypatch):
     monkeypatch.setattr(cli_design.importlib.util, "find_spec", lambda name: None)
     cli_design._register_cavity("other")
     assert calls == ["group"]
+
+
+def test_benchmark_script_runs_small(tmp_path, capsys):
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "benchmarks" / "design.py"
+    spec = importlib.util.spec_from_file_location("bench_design", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    res = mod.main(["--repeat", "1", "--json", str(tmp_path / "b.json")])
+    assert "ratio design / critical_points" in capsys.readouterr().out
+    assert res["design_success"] and res["critical_points_ms"] > 0 and res["design_ms"] > 0
+    assert json.loads((tmp_path / "b.json").read_text())["design_evaluations"] == res["design_evaluations"]

@@ -184,6 +184,9 @@ class DraftExample:
     exact: DesignResult
     as_printed: DesignResult
     targets: dict
+    exact_limit: str
+    exact_limit_kind: str
+    exact_escapes: dict
 
     def table(self) -> str:
         def cm(d, sides=(0, 1, 2)):
@@ -201,15 +204,24 @@ class DraftExample:
                           else "OUTSIDE the plate: no mass distribution on it has this CM"))
                 lines.append(f"  {what:<24} reading {r.name}: CM ({100 * r.com[0]:.2f}, {100 * r.com[1]:.2f}) cm — {where}")
         lines += ["", "r_i in cm {r_0, r_1, r_2} (sides: 0 hypotenuse, 1 long leg, 2 short leg):",
-                  f"{'point':<52} {'ω':>6}  {'draft':>20}  {'energy test F':>20}  {'exact (rigid_body)':>20}  "
-                  f"{'engine (pymunk)':>20}"]
+                  f"{'point':<44} {'lead g at (x, y) cm':>24} {'ω':>6}  {'draft':>20}  {'energy test F':>20}  "
+                  f"{'exact (rigid_body)':>20}  {'engine (pymunk)':>20}"]
         for r in self.rows:
-            lines.append(f"{r.label:<52} {r.omega:>6.3f}  {cm(r.draft_r):>20}  {cm(r.f_r):>20}  {cm(r.exact_r):>20}  "
-                         f"{cm(r.engine_r):>20}")
+            m, (x, y) = r.part.point_masses[0]
+            lead = f"{1000 * m:.1f} at ({100 * x:.2f}, {100 * y:.2f})"
+            lines.append(f"{r.label:<44} {lead:>24} {r.omega:>6.3f}  {cm(r.draft_r):>20}  {cm(r.f_r):>20}  "
+                         f"{cm(r.exact_r):>20}  {cm(r.engine_r):>20}")
+        lines.append("(draft column: the draft's own 'numerically simulated' r_i of its design; its F-targets were "
+                     f"{cm(DRAFT['targets_printed'])} cm; —: no flip below the arm's end in that test)")
         miss = {s: self.rows[2].exact_r[s] - self.targets[s] for s in self.targets}
         lines += ["", f"corrected small-angle design for {cm(self.targets)} cm: {self.small_angle.message}",
                   f"  its miss on the exact model: {cm(miss)} cm (the draft's own: {{+4, +4, 0}} cm)",
-                  f"exact design for {cm(self.targets)} cm: {self.exact.message}",
+                  f"exact design for {cm(self.targets)} cm (from the draft's start): {self.exact.message}",
+                  f"  but its limit set: {self.exact_limit_kind}"
+                  + (f" ({', '.join(f'{k} {100 * v:.1f} %' for k, v in self.exact_escapes.items())} of starts)"
+                     if self.exact_escapes else "")
+                  + (": r_i meet the goal, yet no orbit stays on the arm — sup S = r_i presumes a limit set that "
+                     "is not there" if self.exact_limit_kind == "escape" else ""),
                   f"the draft's targets as printed ({cm(DRAFT['targets_printed'])} cm, r_2 large) in this numbering: "
                   f"{self.as_printed.message}"]
         return "\n".join(lines)
@@ -224,8 +236,8 @@ def draft_example(*, engine: bool = True) -> DraftExample:
 
     Rows: the draft's start and design (each CM realised by its lightest lead weight), the
     corrected small-angle design for :data:`DRAFT_TARGETS` (weight mass fixed to the start's,
-    weight place and ω varied, from the draft's start) and the exact design for the same goal,
-    started from the small-angle one. ``engine`` False skips the engine's r_i (≈ 2 s per row).
+    weight place and ω varied, from the draft's start) and the exact design for the same goal
+    from the same start; then the limit set of the exact design (32 starts per side, seed 0). ``engine`` False skips the engine's r_i (≈ 2 s per row).
     """
     plate = plexiglas_triangle()
     arm = draft_arm()
@@ -236,17 +248,21 @@ def draft_example(*, engine: bool = True) -> DraftExample:
     p_design = Part.from_vertices(plate.vertices, mass=plate.mass, point_masses=((wd.mass, wd.at),))
     sa = design(plate, arm, DRAFT["omega_start"], DRAFT_TARGETS, weight_mass=ws.mass, weight_at=ws.at,
                 model=SMALL_ANGLE_F)
-    ex = design(plate, arm, sa.omega, DRAFT_TARGETS, weight_mass=ws.mass, weight_at=sa.weight_at)
+    ex = design(plate, arm, DRAFT["omega_start"], DRAFT_TARGETS, weight_mass=ws.mass, weight_at=ws.at)
+    from ..analysis.limitset import limit_set
+
+    ls = limit_set(ex.part, arm, ex.omega, n_starts=32, rng=0)
     printed = design(plate, arm, DRAFT["omega_start"], DRAFT["targets_printed"], weight_mass=ws.mass, weight_at=ws.at)
     rows = (
         _row("draft start: CM (2, 3.5) cm, ω 5.6", p_start, arm, DRAFT["omega_start"], {}, engine),
         _row("draft design: CM (2.8, 3.8) cm, ω 4.6", p_design, arm, DRAFT["omega_design"],
              DRAFT["simulated_printed"], engine),
         _row("corrected small-angle design (weight + ω)", sa.part, arm, sa.omega, {}, engine),
-        _row("exact design (weight + ω)", ex.part, arm, ex.omega, {}, engine),
+        _row("exact design (weight + ω, from the start)", ex.part, arm, ex.omega, {}, engine),
     )
     return DraftExample(plate=plate, arm=arm, readings_start=rs, readings_design=rd, rows=rows, small_angle=sa,
-                        exact=ex, as_printed=printed, targets=dict(DRAFT_TARGETS))
+                        exact=ex, as_printed=printed, targets=dict(DRAFT_TARGETS), exact_limit=ls.summary(),
+                        exact_limit_kind=ls.kind, exact_escapes=dict(ls.escapes))
 
 
 # ----------------------------------------------------------------- the feeder
