@@ -203,3 +203,13 @@ def test_plot(reference):
     ax = reference.plot()
     assert ax.get_ylabel() == "fraction of trials"
     assert [tick.get_text() for tick in ax.get_xticklabels()][0] == "success"
+
+
+def test_parquet_takes_columns_of_mixed_types():
+    import pyarrow as pa
+
+    from throwmap.experiments.runner import _arrow_table
+
+    t = _arrow_table(pa, [{"a": 1, "b": True, "c": 1}, {"a": "x", "b": 2, "c": 2.5}, {"a": None}])
+    assert t.column("a").to_pylist() == ["1", "x", None]
+    assert t.column("b").to_pylist() == [1.0, 2.0, None] and t.column("c").to_pylist() == [1.0, 2.5, None]

@@ -395,7 +395,25 @@ def _write_outputs(directory: Path, result: ExperimentResult) -> None:
     text = json.dumps(doc, indent=2, allow_nan=False) + "\n"
     _atomic_bytes(directory / "result.json", lambda p: p.write_text(text))
     rows = result.rows()
-    table = pa.Table.from_pylist(rows) if rows else pa.table({"index": pa.array([], pa.int64())})
+    table = _arrow_table(pa, rows) if rows else pa.table({"index": pa.array([], pa.int64())})
     table = table.replace_schema_metadata({b"throwmap.result": json.dumps(doc, allow_nan=False).encode()})
     _atomic_bytes(directory / "trials.parquet", lambda p: pq.write_table(table, p))
 
+
+
+def _arrow_table(pa, rows: list[dict]):
+    """The trials as an Arrow table; a value column whose trials disagree on the type (an experiment
+    that stores 1 and 2.5, or a number and a text) is written as float, or as text when any entry is text."""
+    try:
+        return pa.Table.from_pylist(rows)
+    except (pa.ArrowInvalid, pa.ArrowTypeError):
+        keys = list(dict.fromkeys(k for r in rows for k in r))
+        cols = {}
+        for k in keys:
+            vals = [r.get(k) for r in rows]
+            try:
+                cols[k] = pa.array(vals)
+            except (pa.ArrowInvalid, pa.ArrowTypeError):
+                texty = any(isinstance(v, str) for v in vals)
+                cols[k] = pa.array([None if v is None else (str(v) if texty else float(v)) for v in vals])
+        return pa.table(cols)
