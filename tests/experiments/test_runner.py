@@ -213,3 +213,13 @@ def test_parquet_takes_columns_of_mixed_types():
     t = _arrow_table(pa, [{"a": 1, "b": True, "c": 1}, {"a": "x", "b": 2, "c": 2.5}, {"a": None}])
     assert t.column("a").to_pylist() == ["1", "x", None]
     assert t.column("b").to_pylist() == [1.0, 2.0, None] and t.column("c").to_pylist() == [1.0, 2.5, None]
+
+
+def test_an_unregistered_experiment_runs_in_this_process_only():
+    from throwmap.experiments.settle import Settle
+
+    mine = Settle()  # same class, not the registered object
+    assert run_experiment(mine, CFG, n=2, seed=7, workers=1).trials == run_experiment("settle", CFG, n=2, seed=7,
+                                                                                       workers=1).trials
+    with pytest.raises(InvalidStateError, match="^experiment: 'settle' is not the registered experiment"):
+        run_experiment(mine, CFG, n=2, seed=7, workers=2)

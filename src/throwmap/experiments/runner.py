@@ -285,6 +285,13 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     guard_work(f"experiment {exp.name}", "n", n, BYTES_PER_TRIAL, max_memory, max_seconds, force,
                hint="fewer trials (--n)", unit="trials")
     n_workers = (os.cpu_count() or 1) if workers == 0 else workers
+    if n_workers > 1:
+        from .registry import _REGISTRY
+
+        if _REGISTRY.get(exp.name) is not exp:
+            raise InvalidStateError("experiment", f"{exp.name!r} is not the registered experiment of that name: workers "
+                                                  f"look experiments up by name, so register it "
+                                                  f"(register_experiment) or run it with workers=1")
     config_json = cfg.model_dump_json()
     parameters = exp.parameters(cfg)
     header = _header(exp.name, config_json, seed)
