@@ -138,3 +138,16 @@ def test_alpha_is_passed_to_the_model_as_a_throw_option():
     st = sp.setup([0.07, 5.0])
     assert st.throw_options == {"alpha": 0.07}
     assert sp.setup([0.0, 5.0]).arm == ARM
+
+
+def test_wall_window_target_widens_the_end_wall_window():
+    """The robust-separation objective: S = [r_0 + u_R(0)](1.06 ω) − max_j [r_j + u_R(j)](0.94 ω) ≥ 6 cm."""
+    from throwmap.design import WallWindow
+    from throwmap.design.examples import end_wall_window
+
+    res = design(PLATE, ARM, 5.0, [Target("r", 0, 0.32), WallWindow(0, 0.06, 0.06)], weight_mass=0.05)
+    assert res.success, res.message
+    lo, hi, S = end_wall_window(res.part, ARM, res.omega, 0, 0.06)
+    assert S >= 0.06 - 1e-4
+    assert res.features["wall_0"] == pytest.approx(S, abs=1e-6)
+    assert res.to_dict()["targets"][1] == {"kind": "wall_window", "side": 0, "jitter": 0.06, "width_m": 0.06}

@@ -21,10 +21,10 @@ from .plate import inset_polygon, lightest_weight_for_com
 from .result import DesignResult, DesignStep
 from .small_angle import energy_critical_points
 from .space import PARAMETERS, DesignSpace
-from .targets import Separation, Target
+from .targets import Separation, Target, WallWindow
 
 __all__ = ["DEFAULT_MARGIN", "DEFAULT_TOL", "DesignResult", "DesignSpace", "DesignStep", "PARAMETERS",
-           "SMALL_ANGLE_F", "Separation", "Target", "design", "design_critical_points", "energy_critical_points",
+           "SMALL_ANGLE_F", "Separation", "Target", "WallWindow", "design", "design_critical_points", "energy_critical_points",
            "inset_polygon", "lightest_weight_for_com", "draft_example", "feeder_design", "design_cavity",
            "CavityDesign"]
 

@@ -23,7 +23,7 @@ from .result import DesignResult, DesignStep
 from .small_angle import energy_critical_points
 from .solver import damped_lm
 from .space import DesignSpace
-from .targets import Evaluation, Separation, Target, as_targets, evaluate
+from .targets import Evaluation, Separation, Target, WallWindow, as_targets, evaluate
 
 __all__ = ["design", "design_critical_points", "SMALL_ANGLE_F", "DEFAULT_MARGIN", "DEFAULT_TOL"]
 
@@ -146,7 +146,7 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
     labels = []
     for t in targets:
         labels += [f"sep_{j}" for j in range(plate.n_sides)] if isinstance(t, Separation) else [t.label]
-    need_ls = any(isinstance(t, Separation) or t.kind != "r" for t in targets)
+    need_ls = any(isinstance(t, Separation) or (isinstance(t, Target) and t.kind != "r") for t in targets)
     noise = max(xtol, LIMIT_SET_NOISE) if need_ls else (1e-9 if model == SMALL_ANGLE_F else xtol)
     cache: dict = {}
 
@@ -201,6 +201,8 @@ def _step(space, p, st, ev, targets, labels, residual, norm, hits) -> DesignStep
     for t in targets:
         if isinstance(t, Separation):
             ach.update({f"top_{s}": u for s, u in sorted(ev.top.items())})
+        elif isinstance(t, WallWindow):
+            ach[t.label] = (ev.wall or {}).get(t.label, math.nan)
         else:
             ach[t.label] = residual.get(t.label, math.nan) + t.value
     part = st.part if st is not None else space.plate

@@ -167,7 +167,7 @@ class DesignResult:
                 "omega": f"{s:g} rad/s", "alpha": f"{math.degrees(s):g}°"}[k]
 
     def to_dict(self) -> dict:
-        from .targets import Separation
+        from .targets import Separation, WallWindow
 
         def fin(v):
             return float(v) if v is not None and math.isfinite(v) else None
@@ -183,7 +183,9 @@ class DesignResult:
             "achieved_r_m": {str(s): fin(v) for s, v in self.achieved.items()},
             "features_m": {k: fin(v) for k, v in self.features.items()},
             "targets": [({"kind": "separation", "side": t.side, "x_m": t.x, "margin_m": t.margin}
-                         if isinstance(t, Separation) else {"kind": t.kind, "side": t.side, "value_m": t.value})
+                         if isinstance(t, Separation) else
+                         {"kind": "wall_window", "side": t.side, "jitter": t.jitter, "width_m": t.width}
+                         if isinstance(t, WallWindow) else {"kind": t.kind, "side": t.side, "value_m": t.value})
                         for t in self.targets],
             "vary": list(self.vary), "bounds": {k: list(v) for k, v in self.bounds.items()}, "margin_m": self.margin,
             "jacobian": {"rank_start": self.jacobian_rank_start, "rank": self.jacobian_rank,

@@ -10,6 +10,12 @@ Three kinds of target, each on one stable side (sides numbered as in
 ``Target("bottom", side, value)``  its bottom l_i = inf S; both from
                                    :func:`throwmap.analysis.limit_set` (orbits; noisier than r_i:
                                    found to the band sampling, so use larger FD steps).
+``WallWindow(side, jitter, width)`` an end wall at the arm's end L holds side k and no other, for every
+                                   ω within ±jitter: with u_R(i) the CM → outer support vertex,
+                                   S = [r_k + u_R(k)](ω(1 + jitter)) − max_{j≠k} [r_j + u_R(j)](ω(1 − jitter))
+                                   is the width of the usable L; the residual max(0, width − S) is zero
+                                   once S ≥ width (a part against the wall at L jogs back to it iff
+                                   L − u_R(i) < r_i, and r_i falls as ω rises).
 ``Separation(side, x, margin)``    "x beyond X is reached only on side k, with margin m":
                                    every point of the limit set on a side j ≠ k lies below X − m
                                    (u_j ≤ X − m) and the limit set on side k reaches X + m
@@ -29,7 +35,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["Target", "Separation", "as_targets", "Evaluation", "evaluate"]
+__all__ = ["Target", "Separation", "WallWindow", "as_targets", "Evaluation", "evaluate"]
 
 KINDS = ("r", "top", "bottom")
 
@@ -101,9 +107,40 @@ class Separation:
         return all(math.isfinite(v) and v == 0.0 for v in r.values())
 
 
+@dataclass(frozen=True, slots=True)
+class WallWindow:
+    """An end wall holds ``side`` only for ω within ±``jitter`` (fraction), with a window ≥ ``width`` (m)."""
+
+    side: int
+    jitter: float = 0.06
+    width: float = 0.02
+
+    def __post_init__(self):
+        if isinstance(self.side, bool) or not isinstance(self.side, (int, np.integer)) or self.side < 0:
+            raise InvalidStateError("wall_window.side", f"must be a side index ≥ 0, got {shown(self.side)}")
+        object.__setattr__(self, "side", int(self.side))
+        for nm, lo, hi in (("jitter", 0.0, 0.5), ("width", 0.0, math.inf)):
+            v = getattr(self, nm)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.floating)) or not (lo <= v < hi):
+                raise InvalidStateError(f"wall_window.{nm}", f"must be a number in [{lo}, {hi}), got {shown(v)}")
+            object.__setattr__(self, nm, float(v))
+
+    @property
+    def label(self) -> str:
+        return f"wall_{self.side}"
+
+    def width_of(self, part, r_lo: dict, r_hi: dict) -> float:
+        """S (m) from r_i at ω(1 − jitter) and ω(1 + jitter); nan where an r_i is missing."""
+        k = self.side
+        others = [r_lo.get(j, math.nan) + float(part.uR[j]) for j in part.stable_sides if j != k]
+        if k not in part.stable_sides or not others:
+            return math.nan
+        return r_hi.get(k, math.nan) + float(part.uR[k]) - max(others)
+
+
 def as_targets(target) -> tuple:
     """A dict ``{side: r_i}`` (m), or Target/Separation objects, as a tuple of targets."""
-    if isinstance(target, (Target, Separation)):
+    if isinstance(target, (Target, Separation, WallWindow)):
         return (target,)
     if isinstance(target, dict):
         if not target:
@@ -113,11 +150,12 @@ def as_targets(target) -> tuple:
         items = tuple(target)
     except TypeError:
         raise InvalidStateError("target", f"must be a dict {{side: r_i}} or targets, got {shown(target)}") from None
-    if not items or not all(isinstance(t, (Target, Separation)) for t in items):
-        raise InvalidStateError("target", "must be a dict {side: r_i in m} or a sequence of Target/Separation")
+    if not items or not all(isinstance(t, (Target, Separation, WallWindow)) for t in items):
+        raise InvalidStateError("target", "must be a dict {side: r_i in m} or a sequence of Target/Separation/"
+                                          "WallWindow")
     if sum(isinstance(t, Separation) for t in items) > 1:
         raise InvalidStateError("target", "at most one separation objective")
-    labels = [t.label for t in items if isinstance(t, Target)]
+    labels = [t.label for t in items if not isinstance(t, Separation)]
     if len(set(labels)) != len(labels):
         raise InvalidStateError("target", f"a feature is targeted twice: {labels}")
     return items
@@ -132,6 +170,7 @@ class Evaluation:
     bottom: dict
     residual: dict
     next_kind: dict
+    wall: dict = None
 
     @property
     def vector(self) -> np.ndarray:
@@ -174,11 +213,20 @@ def evaluate(setup, targets, model: str, *, x_max=None, xtol: float = 1e-7, n_gr
         ls = limit_set(part, arm, omega, model, x_max=x_max, **lo, **opts)
         top = {s: ls.u(s) for s in part.stable_sides}
         bottom = {s: ls.l(s) for s in part.stable_sides}
+    wall = {}
+    for t in targets:
+        if isinstance(t, WallWindow):
+            rr = [critical_points(part, arm, omega * f, model, x_max=x_max, xtol=xtol, n_grid=n_grid, limit=_NoLimit(),
+                                  **opts).r for f in (1 - t.jitter, 1 + t.jitter)]
+            wall[t.label] = t.width_of(part, rr[0], rr[1])
     res = {}
     for t in targets:
-        if isinstance(t, Separation):
+        if isinstance(t, WallWindow):
+            S = wall[t.label]
+            res[t.label] = max(0.0, t.width - S) if math.isfinite(S) else math.nan
+        elif isinstance(t, Separation):
             res.update(t.residual(top))
         else:
             src = {"r": r, "top": top, "bottom": bottom}[t.kind]
             res[t.label] = src.get(t.side, math.nan) - t.value
-    return Evaluation(r=r, top=top, bottom=bottom, residual=res, next_kind=nxt)
+    return Evaluation(r=r, top=top, bottom=bottom, residual=res, next_kind=nxt, wall=wall)

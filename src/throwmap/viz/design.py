@@ -94,7 +94,7 @@ def plot_design(result, ax=None, *, steps=None, limit_sets=None, unit: str = "cm
         fig = axes[0, 0].figure
     targets = result.target_values()
     if separation is None:
-        separation = next((t for t in result.targets if not hasattr(t, "kind")), None)
+        separation = next((t for t in result.targets if type(t).__name__ == "Separation"), None)
     sides = sorted({t.side for t in result.targets} | set(result.part.stable_sides))
     colors = side_colors(max(sides) + 1)
     x_top = max([v for st in result.history for v in st.r.values() if math.isfinite(v)] + list(targets.values())
