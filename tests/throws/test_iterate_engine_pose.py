@@ -89,3 +89,22 @@ def test_other_models_unchanged(triangle, arm):
 def test_engine_orbit_round_trips_poses(cavity_orbit):
     back = tm.Orbit.from_dict(cavity_orbit.to_dict())
     assert back.poses == cavity_orbit.poses
+
+
+def test_a_dropped_part_is_thrown_from_where_it_fell(triangle):
+    """iterate(state=DropResult) starts from the engine scene the drop left (its fixtures, its pose)."""
+    from throwmap.experiments.drop import drop_part
+
+    d = drop_part(triangle, ARM, 3, fixtures=FIXTURES, x_range=(0.05, 0.3))
+    assert d.ok
+    o = tm.iterate(triangle, ARM, d, [2.5, 2.5], model="engine")
+    assert o.poses[0] == pytest.approx(d.pose, abs=0.0) and o.x[0] == d.x and o.side[0] == d.side
+    first = simulate(d.scene, ImpulseThrow(2.5))
+    assert o.outcomes[0].x == first.states[0][0] and tuple(first.poses[0]) == o.poses[1]
+    assert tm.iterate(triangle, ARM, d.scene, [2.5, 2.5], model="engine").poses == o.poses
+    with pytest.raises(tm.InvalidStateError, match="^state: an engine Scene is a start for model 'engine' only"):
+        tm.iterate(triangle, ARM, d, [2.5], model="paper")
+    with pytest.raises(tm.InvalidStateError, match="^fixtures: a start Scene brings its own"):
+        tm.iterate(triangle, ARM, d, [2.5], model="engine", fixtures=FIXTURES)
+    with pytest.raises(tm.InvalidStateError, match="^state: the engine Scene must hold this one part"):
+        tm.iterate(tm.rectangle(0.08, 0.04), ARM, d, [2.5], model="engine")

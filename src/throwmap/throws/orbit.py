@@ -184,20 +184,30 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     (:data:`TIMED_THROWS`, timed now); above ``max_memory`` (bytes) or ``max_seconds``
     (s) it is refused with one line on ``n``, unless ``force``.
 
-    Model ``"engine"``: each throw starts from the pose the previous one left the part in
+    Model ``"engine"``: ``state`` may also be an engine :class:`~throwmap.engine.Scene` (or a
+    :class:`~throwmap.experiments.drop.DropResult`, whose ``scene`` is used) holding this one part, e.g.
+    a part dropped onto the arm: the first throw starts from its pose, with its fixtures and α.
+    Each throw starts from the pose the previous one left the part in
     (not from a flat rest at the reported ``(x, side)``), so a part held tilted by a
     fixture stays so; :attr:`Orbit.poses` lists those poses. Its ``realisation`` keyword
     may also be a callable ``omega -> realisation`` (one realisation per throw).
     """
-    try:
-        x0, s0 = state
-    except (TypeError, ValueError):
-        raise InvalidStateError("state", f"must be a pair (x, side), got {shown(state)}") from None
+    scene = getattr(state, "scene", state)  # a DropResult carries its engine scene
+    if hasattr(scene, "placements"):  # an engine Scene: the part already at rest in the engine
+        if not _is_engine(model):
+            raise InvalidStateError("state", f"an engine Scene is a start for model 'engine' only (model is {model!r})")
+        x0 = s0 = None
+    else:
+        scene = None
+        try:
+            x0, s0 = state
+        except (TypeError, ValueError):
+            raise InvalidStateError("state", f"must be a pair (x, side), got {shown(state)}") from None
     gd = ThrowGuard("iterate", "n", planned_throws(omegas, n), BYTES_PER_THROW, max_memory, max_seconds, force,
                       hint="fewer throws (-n)")
     om = throw_rates(omegas, n)
     if _is_engine(model):
-        return _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs)
+        return _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs, scene)
     xs = [float(x0)]
     ss = [part.check_side(s0)]
     outs = []
@@ -230,7 +240,7 @@ def _is_engine(model) -> bool:
     return getattr(get_model(model), "name", None) == "engine"
 
 
-def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs) -> Orbit:
+def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs, start_scene=None) -> Orbit:
     """:func:`iterate` for model ``"engine"``: a chain of engine runs, each starting from the scene the
     previous one ended in (:meth:`throwmap.engine.EngineRun.next_scene`), so a part keeps its settled
     pose — tilted against a wall or in a cavity — from throw to throw. Only the first start is the
@@ -247,11 +257,25 @@ def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs) ->
     factory = real if callable(real) and not hasattr(real, "angle") else None
     if factory is not None:
         kw["realisation"] = None
+    if start_scene is not None:
+        from .trajectory import state_from_pose
+
+        if len(start_scene.placements) != 1 or start_scene.placements[0].part != part or start_scene.arm != arm:
+            raise InvalidStateError("state", "the engine Scene must hold this one part on this arm")
+        if fixtures not in ((), None) or alpha != 0.0:
+            raise InvalidStateError("fixtures", "a start Scene brings its own fixtures and alpha: do not pass them")
+        fixtures, alpha = start_scene.fixtures, start_scene.alpha
+        if kw.get("friction") is None:
+            kw["friction"] = start_scene.friction
     _, system, opts = prepare(model, arm, fixtures, alpha, options, kw)
-    x, k, _ = check_start(part, arm, x0, s0, float(om[0]) if om.size else 0.0)
     warn_if_outside_regime(part, arm)
-    friction = Friction() if opts.friction is None else opts.friction
-    scene = Scene(arm, (Placement(part, x=x, side=k),), system.fixtures, system.alpha, friction)
+    if start_scene is None:
+        x, k, _ = check_start(part, arm, x0, s0, float(om[0]) if om.size else 0.0)
+        friction = Friction() if opts.friction is None else opts.friction
+        scene = Scene(arm, (Placement(part, x=x, side=k),), system.fixtures, system.alpha, friction)
+    else:
+        scene = start_scene
+        x, k, _ = state_from_pose(part, scene.placements[0].arm_pose(arm.h))
     xs, ss = [float(x)], [int(k)]
     poses = [tuple(float(c) for c in scene.placements[0].arm_pose(arm.h))]
     outs = []
