@@ -84,7 +84,7 @@ def experiment_cmd(
                                                   show_default=False)] = None,
     n: Annotated[int, typer.Option("--n", parser=strict_int, metavar="INTEGER", help="Number of trials.")] = 100,
     seed: Annotated[int, typer.Option("--seed", parser=strict_int, metavar="INTEGER",
-                                      help="Seed of the run (trial i uses SeedSequence(seed).spawn(n)[i]).")] = 0,
+                                      help="Seed of the run (trial i uses SeedSequence(seed).spawn(n)\\[i]).")] = 0,
     workers: Annotated[int, typer.Option("--workers", parser=strict_int, metavar="INTEGER",
                                          help="Processes (0: all cores).")] = 0,
     as_json: JsonOpt = False,
