@@ -151,3 +151,21 @@ def test_wall_window_target_widens_the_end_wall_window():
     assert S >= 0.06 - 1e-4
     assert res.features["wall_0"] == pytest.approx(S, abs=1e-6)
     assert res.to_dict()["targets"][1] == {"kind": "wall_window", "side": 0, "jitter": 0.06, "width_m": 0.06}
+
+
+def test_weight_mass_and_omega_vary():
+    res = design(PLATE, ARM, 5.0, {0: 0.31, 2: 0.20}, weight_mass=0.02, weight_at=(0.02, 0.02),
+                 vary=("weight_mass", "omega"))
+    assert res.success, res.message
+    assert res.part.mass == pytest.approx(PLATE.mass + res.weight_mass)
+    assert res.weight_mass != 0.02 and res.jacobian_rank == 2
+
+
+def test_band_top_target():
+    """A band top of the limit set (from limit_set) as the target, ω varied: reached, with full rank
+    (the default difference steps grow tenfold for limit-set features)."""
+    res = design(PLATE, ARM, 4.9, [Target("top", 0, 0.41)], weight_mass=0.05, weight_at=(0.0125, 0.0285),
+                 vary=("omega",), limit_options={"n_starts": 8}, max_iter=6)
+    assert res.success, res.message
+    assert abs(res.features["top_0"] - 0.41) <= 1e-4
+    assert res.jacobian_rank == 1

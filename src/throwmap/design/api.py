@@ -22,7 +22,7 @@ from ..system.part import Part
 from .result import DesignResult, DesignStep
 from .small_angle import energy_critical_points
 from .solver import damped_lm
-from .space import DesignSpace
+from .space import DEFAULT_STEPS, DesignSpace
 from .targets import Evaluation, Separation, Target, WallWindow, as_targets, evaluate
 
 __all__ = ["design", "design_critical_points", "SMALL_ANGLE_F", "DEFAULT_MARGIN", "DEFAULT_TOL"]
@@ -38,6 +38,11 @@ DEFAULT_TOL = 1e-4
 
 LIMIT_SET_NOISE = 1e-4
 """How precisely a band top/bottom is found from orbits (m), for the rank threshold."""
+
+LIMIT_SET_STEP_FACTOR = 10.0
+"""With band top/bottom or separation targets the default difference steps are this many times
+:data:`~throwmap.design.space.DEFAULT_STEPS` (5 mm, 0.05 rad/s…), so that a step moves a band's end
+by ≫ :data:`LIMIT_SET_NOISE`."""
 
 
 def _check_float(name, v, *, lo=None):
@@ -97,7 +102,8 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
     margin : float
         The weight stays this far inside every edge of the plate, m (default 8 mm).
     scales, steps : dict, optional
-        Typical sizes and finite-difference half-steps (:mod:`throwmap.design.space`).
+        Typical sizes and finite-difference half-steps (:mod:`throwmap.design.space`; steps ×
+        :data:`LIMIT_SET_STEP_FACTOR` by default when a target needs the limit set).
     tol : float
         Success when every feature is within ``tol`` of its target, m (default 0.1 mm).
     xtol : float
@@ -133,6 +139,9 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
              "alpha": None if alpha is None else _check_float("alpha", alpha)}
     if com is not None:
         start["com_x"], start["com_y"] = (_check_float("com", v) for v in com)
+    need_ls = any(isinstance(t, Separation) or (isinstance(t, Target) and t.kind != "r") for t in targets)
+    if need_ls:  # band tops/bottoms are found to ~0.1 mm: ten times longer difference steps
+        steps = {**{k: LIMIT_SET_STEP_FACTOR * v for k, v in DEFAULT_STEPS.items()}, **dict(steps or {})}
     space = DesignSpace(plate=plate, arm=arm, start=start, vary=tuple(vary) if not isinstance(vary, str) else (vary,),
                         bounds=dict(bounds or {}), margin=_check_float("margin", margin, lo=0.0),
                         scales=dict(scales or {}), steps=dict(steps or {}))
@@ -146,7 +155,6 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
     labels = []
     for t in targets:
         labels += [f"sep_{j}" for j in range(plate.n_sides)] if isinstance(t, Separation) else [t.label]
-    need_ls = any(isinstance(t, Separation) or (isinstance(t, Target) and t.kind != "r") for t in targets)
     noise = max(xtol, LIMIT_SET_NOISE) if need_ls else (1e-9 if model == SMALL_ANGLE_F else xtol)
     cache: dict = {}
 

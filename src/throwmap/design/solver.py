@@ -227,7 +227,8 @@ def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, 
     if success:
         message = f"reached: every |achieved − target| ≤ {1000 * tol:.3g} mm after {len(iterates) - 1} steps"
         if jac1.rank < m:
-            message += f"; the Jacobian's rank {jac1.rank} < {m} targets (the solution is not locally unique in the targets)"
+            message += (f"; the Jacobian's rank {jac1.rank} < {m} targets (near the solution the targets cannot all be "
+                        "moved independently)")
     else:
         if jac0.rank < m or jac1.rank < m:
             message += (f"; the Jacobian is rank deficient (rank {jac0.rank} at the start, {jac1.rank} at the end, "
