@@ -70,3 +70,11 @@ def test_bad_config_names_the_field(tmp_path):
     worse.write_text('{"noise": {"omega_rel": "a lot"}}')
     one_error(invoke("experiment", "settle", worse, "--n", 2), "config.noise.omega_rel")
     one_error(invoke("experiment", "settle", tmp_path / "missing.toml", "--n", 2), "file")
+
+
+def test_plot(tmp_path):
+    fig = tmp_path / "figs" / "settle.png"
+    r = invoke("experiment", "settle", "--n", 4, "--seed", 1, "--workers", 1, "--json", "--plot", fig)
+    assert r.exit_code == 0 and fig.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    json.loads(r.stdout)
+    one_error(invoke("experiment", "settle", "--n", 4, "--plot", tmp_path / "f.xyz"), "plot")

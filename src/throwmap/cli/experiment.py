@@ -4,7 +4,7 @@
 
     throwmap experiment --list
     throwmap experiment NAME [CONFIG] --n N --seed S [--workers W] [--json] [--out DIR]
-                        [--no-resume] [--max-time S] [--max-memory GB] [--force]
+                        [--no-resume] [--plot FILE] [--max-time S] [--max-memory GB] [--force]
 
 A thin shell over :func:`throwmap.experiments.run_experiment`. ``CONFIG`` is a
 ``.toml``/``.json`` file validated by the experiment's config type (omitted: the built-in
@@ -27,7 +27,8 @@ import typer
 
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits
 from ..errors import InvalidStateError
-from .options import ForceOpt, JsonOpt, MaxMemoryOpt, MaxTimeOpt, check_out_dir, guard, strict_int, to_json
+from .options import (ForceOpt, JsonOpt, MaxMemoryOpt, MaxTimeOpt, check_out_dir, figure_format, guard, save_figure,
+                      strict_int, to_json)
 
 __all__ = ["register", "experiment_cmd"]
 
@@ -91,6 +92,8 @@ def experiment_cmd(
     out: Annotated[Path | None, typer.Option("--out", help="Directory keeping the trials (trials.jsonl, "
                                                            "result.json, trials.parquet); a rerun resumes.")] = None,
     resume: Annotated[bool, typer.Option("--resume/--no-resume", help="Reuse the trials stored in --out.")] = True,
+    plot: Annotated[Path | None, typer.Option("--plot", help="Write a figure of the outcomes with the success "
+                                                             "rate's interval (e.g. settle.png).")] = None,
     list_: Annotated[bool, typer.Option("--list", help="List the experiments and exit.")] = False,
     max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
     max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
@@ -117,9 +120,12 @@ def experiment_cmd(
         limits = cli_limits(max_memory, max_time, force)
         if out is not None:
             check_out_dir(out)
+        fmt = figure_format(plot, "plot")
         with _progress(exp.name) as update:
             result = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=out, resume=resume,
                                     progress=update, **limits)
+        if plot is not None:
+            save_figure(result.plot(), plot, fmt, "plot")
         if as_json:
             typer.echo(to_json(result.to_json()))
         else:

@@ -11,7 +11,7 @@ def plot_result(result, ax=None):
     import matplotlib.pyplot as plt
 
     if ax is None:
-        _, ax = plt.subplots(figsize=(6, 3.5))
+        _, ax = plt.subplots(figsize=(6.5, 4), layout="constrained")
     n = max(result.n, 1)
     labels = ["success"] + list(result.failures)
     fracs = [result.successes / n] + [c / n for c in result.failures.values()]
@@ -20,10 +20,12 @@ def plot_result(result, ax=None):
     lo, hi = result.ci95
     p = fracs[0]
     ax.errorbar([0], [p], yerr=[[p - lo], [hi - p]], fmt="none", ecolor="black", capsize=6, label="Wilson 95 %")
-    for b, f in zip(bars, fracs):
-        ax.annotate(f"{100 * f:.1f} %", (b.get_x() + b.get_width() / 2, f), ha="center", va="bottom", fontsize=8)
+    for i, (b, f) in enumerate(zip(bars, fracs)):
+        top = hi if i == 0 else f  # above the interval's cap on the success bar
+        ax.annotate(f"{100 * f:.1f} %", (b.get_x() + b.get_width() / 2, top), xytext=(0, 3),
+                    textcoords="offset points", ha="center", va="bottom", fontsize=8)
     ax.set_xticks(range(len(labels)), labels, rotation=20, ha="right")
-    ax.set_ylim(0, 1.08)
+    ax.set_ylim(0, 1.12)
     ax.set_ylabel("fraction of trials")
     ax.set_title(f"experiment {result.name}: n = {result.n}, seed {result.seed}")
     ax.legend(loc="upper right", fontsize=8)
