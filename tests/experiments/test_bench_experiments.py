@@ -5,11 +5,11 @@ import json
 import math
 from pathlib import Path
 
-BENCH = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_experiments.py"
+BENCH = Path(__file__).resolve().parents[2] / "benchmarks" / "experiments.py"
 
 
 def test_bench_experiments_runs_small(tmp_path, capsys):
-    spec = importlib.util.spec_from_file_location("bench_experiments", BENCH)
+    spec = importlib.util.spec_from_file_location("experiments_bench", BENCH)
     bench = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(bench)
     out = tmp_path / "b.json"

@@ -12,7 +12,7 @@ single-part trials in ≤ 5 min on 2 cores.
 Prints the machine and a table; ``--json PATH`` also writes the figures; ``--quick``
 runs tiny sizes (the smoke test). Usage::
 
-    python benchmarks/bench_experiments.py [--experiments settle,feed] [--n 40] [--json bench_experiments.json]
+    python benchmarks/experiments.py [--experiments settle,feed] [--n 40] [--json experiments.json]
 """
 
 from __future__ import annotations
