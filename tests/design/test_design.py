@@ -5,7 +5,6 @@ from __future__ import annotations
 import dataclasses
 import math
 
-import numpy as np
 import pytest
 
 import throwmap as tm
@@ -147,7 +146,7 @@ def test_wall_window_target_widens_the_end_wall_window():
 
     res = design(PLATE, ARM, 5.0, [Target("r", 0, 0.32), WallWindow(0, 0.06, 0.06)], weight_mass=0.05)
     assert res.success, res.message
-    lo, hi, S = end_wall_window(res.part, ARM, res.omega, 0, 0.06)
+    *_, S = end_wall_window(res.part, ARM, res.omega, 0, 0.06)
     assert S >= 0.06 - 1e-4
     assert res.features["wall_0"] == pytest.approx(S, abs=1e-6)
     assert res.to_dict()["targets"][1] == {"kind": "wall_window", "side": 0, "jitter": 0.06, "width_m": 0.06}

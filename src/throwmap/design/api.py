@@ -145,7 +145,6 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
     space = DesignSpace(plate=plate, arm=arm, start=start, vary=tuple(vary) if not isinstance(vary, str) else (vary,),
                         bounds=dict(bounds or {}), margin=_check_float("margin", margin, lo=0.0),
                         scales=dict(scales or {}), steps=dict(steps or {}))
-    sides = set(plate.stable_sides)
     for t in targets:
         if t.side not in range(plate.n_sides):
             raise InvalidStateError("target", f"side {t.side} does not exist (the part has sides 0..{plate.n_sides - 1})")

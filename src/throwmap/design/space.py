@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InvalidStateError, shown
+from ..errors import InvalidPartError, InvalidStateError, shown
 from ..system.arm import Arm
 from ..system.part import Part
 from .plate import InsetPolygon, inset_polygon
@@ -124,8 +124,8 @@ class DesignSpace:
         object.__setattr__(self, "vary", vary)
         try:
             region = inset_polygon(self.plate.vertices, self.margin)
-        except Exception as err:  # InvalidPartError on margin
-            raise InvalidStateError("margin", getattr(err, "reason", str(err))) from None
+        except InvalidPartError as err:
+            raise InvalidStateError("margin", err.reason) from None
         object.__setattr__(self, "region", region)
         b = dict(DEFAULT_BOUNDS)
         b.update(self.bounds or {})

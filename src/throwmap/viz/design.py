@@ -127,7 +127,7 @@ def plot_design(result, ax=None, *, steps=None, limit_sets=None, unit: str = "cm
             if s in lane and math.isfinite(r):
                 axl.scatter([r * k], [lane[s] + 0.25], marker="v", s=45, color="tab:red", zorder=7)
         for lbl, v in targets.items():
-            kind, s = lbl.split("_")
+            _, s = lbl.split("_")
             s = int(s)
             if s in lane:
                 axl.vlines(v * k, lane[s] - 0.35, lane[s] + 0.35, color="tab:green", ls="--", lw=1.3, zorder=6)
