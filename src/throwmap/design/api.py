@@ -151,9 +151,11 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         if model == SMALL_ANGLE_F and not (isinstance(t, Target) and t.kind == "r"):
             raise InvalidStateError("target", f"model {SMALL_ANGLE_F!r} gives r_i only, not {t.label}")
     # fixed rows: the separation's rows cover every side of the plate
-    labels = []
+    labels, inequality = [], []
     for t in targets:
-        labels += [f"sep_{j}" for j in range(plate.n_sides)] if isinstance(t, Separation) else [t.label]
+        rows = [f"sep_{j}" for j in range(plate.n_sides)] if isinstance(t, Separation) else [t.label]
+        labels += rows
+        inequality += [isinstance(t, (Separation, WallWindow))] * len(rows)
     noise = max(xtol, LIMIT_SET_NOISE) if need_ls else (1e-9 if model == SMALL_ANGLE_F else xtol)
     cache: dict = {}
 
@@ -176,7 +178,7 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         return cache[key]
 
     rep = damped_lm(features, space.p0, project=space.project, scale=space.scale, step=space.step, tol=tol,
-                    noise=noise, labels=labels, max_iter=max_iter)
+                    noise=noise, labels=labels, inequality=inequality, max_iter=max_iter)
     hist = []
     for itr in rep.iterates:
         st, ev = itr.info

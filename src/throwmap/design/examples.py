@@ -68,10 +68,12 @@ Fig. 8 and targets make r_2 the large one (the reviewer's remark: the numbering 
 The hypotenuse is the side that reaches farthest on this triangle, so the 20 cm goes to side 0."""
 
 FEEDER = {"weight_mass": 0.050, "start_at": "centroid", "omega_start": 5.0, "h": -0.01, "length": 0.60,
-          "targets": {0: 0.320, 1: 0.155, 2: 0.235}, "side": 0, "x": 0.335, "margin": 0.035, "jitter": 0.06}
+          "targets": {0: 0.320, 1: 0.155, 2: 0.235}, "side": 0, "x": 0.335, "margin": 0.035, "jitter": 0.06,
+          "wall_width": 0.05}
 """The feeder's design problem: start (50 g at the plate's centroid, ω = 5 rad/s), arm, r-targets (m),
 the separation it is checked against (the limit set passes x = 33.5 cm only on side 0, margin 3.5 cm)
-and the ω jitter (± 6 %: 2σ of the experiment's 3 % noise) of the end-wall window."""
+and the robust-separation objective: an end wall holds side 0 only, for ω within ± 6 % (2σ of the
+experiment's 3 % noise), over a window of L at least 5 cm wide (:class:`~throwmap.design.targets.WallWindow`)."""
 
 ENGINE_GRID = {"n_grid": 48, "n_split": 7, "xtol": 2e-5}
 """critical_points options for the engine's r_i (its cost bounded: ≈ 300 throws per part)."""
@@ -369,14 +371,19 @@ def run_feeder_design(*, engine: bool = True, limit_starts: int = 64) -> tuple:
     """Compute the feeder design from scratch: ``(DesignResult, FeederDesign)``.
 
     The design: 50 g of lead, starting at the plate's centroid with ω = 5 rad/s, weight place
-    and ω varied until the exact r_i hit :data:`FEEDER` ``["targets"]``; then the limit set
+    and ω varied until the exact r_i hit :data:`FEEDER` ``["targets"]`` and the end-wall window for
+    ±6 % ω is at least 5 cm wide (a hinge: inactive once met); then the limit set
     (``limit_starts`` per side, seed 0) gives the band tops/bottoms, and the engine its r_i.
     """
     from ..analysis.limitset import limit_set
 
     plate = plexiglas_triangle()
     arm = feeder_arm()
-    res = design(plate, arm, FEEDER["omega_start"], FEEDER["targets"], weight_mass=FEEDER["weight_mass"])
+    from .targets import Target, WallWindow
+
+    objective = [Target("r", s, v) for s, v in sorted(FEEDER["targets"].items())]
+    objective.append(WallWindow(FEEDER["side"], FEEDER["jitter"], FEEDER["wall_width"]))
+    res = design(plate, arm, FEEDER["omega_start"], objective, weight_mass=FEEDER["weight_mass"])
     ls = limit_set(res.part, arm, res.omega, n_starts=limit_starts, rng=0)
     er = engine_r(res.part, arm, res.omega) if engine else {s: math.nan for s in res.achieved}
     fd = FeederDesign(plate=plate, part=res.part, arm=arm, omega=res.omega, weight_mass=res.weight_mass,
@@ -435,6 +442,7 @@ def feeder_toml(fd: FeederDesign, res: DesignResult) -> str:
         f"xtol_m = {fd.engine_xtol!r}",
         "",
         "[end_wall]",
+        f"objective_width_m = {FEEDER['wall_width']!r}",
         f"jitter = {fd.jitter!r}",
         f"window_m = [{fd.wall_window[0]!r}, {fd.wall_window[1]!r}]",
         "",

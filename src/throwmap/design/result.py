@@ -154,8 +154,10 @@ class DesignResult:
         units = {"weight_x": "cm", "weight_y": "cm", "com_x": "cm", "com_y": "cm", "h": "cm", "weight_mass": "g",
                  "omega": "rad/s", "alpha": "deg"}
         rows.append("units: " + ", ".join(f"{k} {units[k]}" for k in self.vary) + "; features cm")
+        res = self.history[-1].residual
+        n_act = sum(1 for lb, v in res.items() if not lb.startswith(("sep_", "wall_")) or v != 0)
         rows.append(f"Jacobian (in units of {', '.join(f'{k} {self._scale_text(k)}' for k in self.vary)}): rank "
-                    f"{self.jacobian_rank_start} → {self.jacobian_rank} of {len(labels)} targets, condition "
+                    f"{self.jacobian_rank_start} → {self.jacobian_rank} of {n_act} active targets, condition "
                     f"{self.condition_start:.3g} → {self.condition:.3g}")
         rows.append(f"{'success' if self.success else 'FAILED'}: {self.message}")
         return "\n".join(rows)

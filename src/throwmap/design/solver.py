@@ -117,6 +117,7 @@ def fd_jacobian(fun, p, f0, step, project) -> tuple[np.ndarray, int]:
 
 
 def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, noise: float, labels=None,
+              inequality=None,
               max_iter: int = 40, lam0: float = 1e-3, max_tries: int = 10, stall_window: int = 5,
               stall_rtol: float = 0.01) -> LMReport:
     """Solve ``fun(p)[0] = 0`` (residual rows, m) by damped Levenberg–Marquardt within bounds.
@@ -133,6 +134,12 @@ def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, 
         Success when every |residual| ≤ tol (m).
     noise
         How precisely ``fun`` finds its features (m), for the rank threshold.
+    labels
+        A name per residual row (for the history and messages).
+    inequality
+        Per row, whether it is a hinge max(0, …) of an inequality; a satisfied one (zero) is
+        inactive and does not count among the targets the rank is compared with (the
+        implicit-function test concerns the active rows only).
     max_iter, lam0, max_tries
         Outer iterations, initial damping, damping increases tried per iteration.
     stall_window, stall_rtol
@@ -163,7 +170,12 @@ def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, 
     J, k = fd_jacobian(fun, p, f, step, project)
     n_ev += k
     jac0 = jacobian_summary(J, scale, step, noise)
-    m = f.size
+    ineq = np.zeros(f.size, dtype=bool) if inequality is None else np.asarray(inequality, dtype=bool)
+
+    def n_active(f):
+        return int(np.sum(~ineq) + np.sum(ineq & (np.abs(f) > 0)))
+
+    m0 = n_active(f)
     message = ""
     success = False
     for _ in range(max_iter):
@@ -224,13 +236,15 @@ def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, 
     J_end, k = fd_jacobian(fun, p, f, step, project)
     n_ev += k
     jac1 = jacobian_summary(J_end, scale, step, noise)
+    m = n_active(f)
     if success:
         message = f"reached: every |achieved − target| ≤ {1000 * tol:.3g} mm after {len(iterates) - 1} steps"
         if jac1.rank < m:
             message += (f"; the Jacobian's rank {jac1.rank} < {m} targets (near the solution the targets cannot all be "
                         "moved independently)")
     else:
-        if jac0.rank < m or jac1.rank < m:
+        if jac0.rank < m0 or jac1.rank < m:
             message += (f"; the Jacobian is rank deficient (rank {jac0.rank} at the start, {jac1.rank} at the end, "
-                        f"< {m} targets): the targets cannot all be moved independently (implicit-function test fails)")
+                        f"< {max(m0, m)} targets): the targets cannot all be moved independently (implicit-function "
+                        "test fails)")
     return LMReport(success, message, p, f, info, tuple(iterates), jac0, jac1, n_ev)
