@@ -10,12 +10,14 @@ analytic models call a landing ``ok``.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..throws.outcome import Status
 from ..throws.trajectory import world_vertices
 
-__all__ = ["EDGE_EPS", "FLAT_TILT", "UNCONVERGED", "edge_status", "rest_status", "tilted_message"]
+__all__ = ["EDGE_EPS", "FLAT_TILT", "UNCONVERGED", "clamp_to_arm", "edge_status", "rest_status", "tilted_message"]
 
 UNCONVERGED = Status.UNCONVERGED
 """Status of a run refused as not converged (code 10 of :mod:`throwmap.kernels.codes`)."""
@@ -27,14 +29,17 @@ FLAT_TILT = 0.02
 """rad: a settled part within this angle of a side lies flat on it."""
 
 
-def edge_status(vx, vy, h: float, L: float, back: float):
+def edge_status(vx, vy, h: float, L: float, back: float, slack: float = 0.0):
     """``behind_joint``/``off_end`` if a vertex (arm-frame coordinates ``vx``, ``vy``, m) is below the
-    surface line y = h (by more than :data:`EDGE_EPS`) behind x = −back / beyond x = L, else None."""
+    surface line y = h (by more than :data:`EDGE_EPS`) behind x = −back − ``slack`` / beyond
+    x = L + ``slack``, else None. ``slack`` (m) is :data:`EDGE_EPS` where fixtures stand at the
+    ends: a part pressed into a wall at the arm's end, down in a cavity, sits a collision slop
+    (~10 µm) inside the wall, below the surface line and "past" L without having left the arm."""
     below = np.asarray(vy) < h - EDGE_EPS
     vx = np.asarray(vx)
-    if np.any(below & (vx < -back)):
+    if np.any(below & (vx < -back - slack)):
         return Status.BEHIND_JOINT
-    if np.any(below & (vx > L)):
+    if np.any(below & (vx > L + slack)):
         return Status.OFF_END
     return None
 
@@ -46,18 +51,35 @@ def rest_status(part, pose_a, x: float, k: int, tilt: float, h: float, L: float,
     −back < x + u_L and x + u_R ≤ L; ``behind_joint``/``off_end`` past an edge;
     tilted elsewhere on a ``plain`` arm (one part, no fixtures: nothing can hold
     it so) ``unconverged``. With fixtures or other parts a tilted rest (against a
-    wall, in a cavity, on another part) is ``ok``.
+    wall, in a cavity, on another part) is ``ok``, and the edges get :data:`EDGE_EPS` of
+    slack (see :func:`edge_status`; :func:`clamp_to_arm` then puts x back on the arm).
     """
     V = world_vertices(part, pose_a)
-    over = edge_status(V[:, 0], V[:, 1], h, L, back)
+    slack = 0.0 if plain else EDGE_EPS
+    over = edge_status(V[:, 0], V[:, 1], h, L, back, slack)
     flat = abs(tilt) < FLAT_TILT and bool(part.stable[k])
-    if over == Status.BEHIND_JOINT or (flat and x + float(part.uL[k]) <= -back):
+    if over == Status.BEHIND_JOINT or (flat and x + float(part.uL[k]) <= -back - slack):
         return Status.BEHIND_JOINT
-    if over == Status.OFF_END or (flat and x + float(part.uR[k]) > L) or x > L:
+    if over == Status.OFF_END or (flat and x + float(part.uR[k]) > L + slack) or x > L + slack:
         return Status.OFF_END
     if plain and not flat:
         return UNCONVERGED
     return Status.OK
+
+
+def clamp_to_arm(part, x: float, k: int, L: float, back: float) -> float:
+    """``x`` moved onto the starts :func:`throwmap.throw` accepts on side ``k`` (at most :data:`EDGE_EPS`
+    away, see :func:`rest_status`): a part flat against a wall at the arm's end reads a collision
+    slop past x = L − u_R and is reported at the last start, so the next throw starts from it."""
+    from ..throws.throw import _last_at_most  # the start rule's own rounding (throw.start_interval)
+
+    hi = _last_at_most(float(part.uR[k]), float(L))
+    lo = _last_at_most(float(part.uL[k]), -float(back))
+    if x > hi:
+        return hi
+    if x <= lo:
+        return math.nextafter(lo, math.inf)
+    return x
 
 
 def tilted_message(i: int, tilt: float, side: int) -> str:

@@ -51,6 +51,7 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     over = 0
     near = False
     L, h, back, thick, margin = w.L, w.h, w.back, w.thickness, w.margin
+    slack = 0.0 if w.plain_arm else EDGE_EPS  # fixtures at the ends: see throwmap.engine.rest.edge_status
     c, s = math.cos(a), math.sin(a)
     for wx, wy in w.wlists[i]:
         X = px + c * wx - s * wy
@@ -58,8 +59,8 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
         xa = ca * X + sa * Y
         ya = -sa * X + ca * Y
         d = h - ya
-        if d > EDGE_EPS and (xa < -back or xa > L):
-            over = -1 if xa < -back else 1
+        if d > EDGE_EPS and (xa < -back - slack or xa > L + slack):
+            over = -1 if xa < -back - slack else 1
         if w.plain_arm:  # fast path: depth below the flat surface line, in the arm frame
             if -back <= xa <= L and d <= thick:
                 if d > deepest:

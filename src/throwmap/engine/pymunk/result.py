@@ -10,7 +10,7 @@ import numpy as np
 from ...kernels import codes as C
 from ...throws.outcome import Status, ThrowOutcome
 from ...throws.trajectory import Trajectory, state_from_pose
-from ..rest import UNCONVERGED, rest_status, tilted_message
+from ..rest import FLAT_TILT, UNCONVERGED, clamp_to_arm, rest_status, tilted_message
 from ..scene import Placement, Scene
 from .contacts import Contacts
 from .world import World
@@ -133,6 +133,8 @@ def finish(scene: Scene, w: World, contacts: Contacts, status: Status, message: 
         st = tr.status
         if st == Status.OK and status == Status.OK:
             st = rest_status(part, pose_a, x, k, tilt, h, L, back, w.plain_arm)
+            if st == Status.OK and not w.plain_arm and abs(tilt) < FLAT_TILT:
+                x = clamp_to_arm(part, x, k, L, back)
             if st == UNCONVERGED:
                 message = (message + "; " if message else "") + tilted_message(len(statuses), tilt, k)
         statuses.append(st)
