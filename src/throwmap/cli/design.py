@@ -22,7 +22,7 @@ import typer
 
 from .. import __version__
 from ..errors import InvalidStateError
-from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, MuOpt, PartOpt, arm_dict, check_finite,
+from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, arm_dict, check_finite,
                       check_output, figure_format, guard, parse_floats, part_and_arm, save_figure, to_json, write_text)
 from .usage import ThrowmapGroup
 
@@ -36,6 +36,9 @@ design_app = typer.Typer(name="design", cls=ThrowmapGroup, no_args_is_help=True,
 TargetOpt = Annotated[list[str], typer.Option("--target", metavar="SIDE=R",
                                               help="Target critical point r_i of a side, m; repeatable "
                                                    "(e.g. --target 0=0.30 --target 1=0.175).")]
+ModelOpt = Annotated[str, typer.Option("--model", help="Map the features come from: a throw model (rigid_body, "
+                                                       "paper, engine, …) or small_angle_F (the draft's corrected "
+                                                       "energy test, fast).")]
 PlotOpt = Annotated[Path | None, typer.Option("--plot", help="Write the Fig. 8 analogue (each iterate's part beside "
                                                             "its limit set), e.g. design.png.")]
 

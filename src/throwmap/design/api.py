@@ -124,7 +124,10 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
     if not isinstance(arm, Arm):
         raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
     if model != SMALL_ANGLE_F:
-        check_model(model)
+        try:
+            check_model(model)
+        except InvalidStateError as err:
+            raise InvalidStateError("model", f"{err.reason[:-1]}, or {SMALL_ANGLE_F})") from None
     omega = _check_float("omega", omega, lo=0.0)
     weight_mass = _check_float("weight_mass", weight_mass, lo=0.0)
     wx, wy = _weight_at(plate, weight_at)
