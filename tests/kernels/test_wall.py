@@ -11,8 +11,9 @@ from scipy.optimize import linprog
 
 from throwmap.kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY
 from throwmap.kernels.rigid_body.modes import IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK
-from throwmap.kernels.rigid_body.wall import (WHY_NONE, WHY_WALL_SLIDE, WHY_WALL_TOP, cone_contains,
-                                              contacts_can_supply, corner_pivot_rate, rest_flat_at_wall, slide_hit,
+from throwmap.kernels.rigid_body.wall import (WHY_NONE, WHY_WALL_SLIDE, cone_contains, contact_impact,
+                                              contacts_can_supply, corner_inside, corner_pivot_rate,
+                                              corner_touch_time, rest_flat_at_wall, slide_hit, wall_contact_angle,
                                               wall_departure, wall_hit_in_flight, wall_impact, wall_reach_at_rest,
                                               wall_theta, wall_touch_time)
 from throwmap.system.catalogue import rectangle, triangle_30_60_90
@@ -91,7 +92,7 @@ def test_wall_touch_is_the_first_crossing_found_by_dense_sampling(phi0, vx, om, 
     L = float(ru.max() + gap)  # CM at x = 0, the nearest vertex `gap` from the wall
     cw = L - ru
     t_max = 0.6
-    t, j = wall_touch_time(cw, ru, rv, vx, om, gx, ell, -1, 0.0, t_max, 1e-14, 100_000)
+    t, j = wall_touch_time(cw, ru, rv, vx, om, gx, ell, -1, 0.0, t_max, 1e-14, 100_000, np.zeros(3))
     ts = np.linspace(0, t_max, 60001)
     xs = (vx * ts + 0.5 * gx * ts * ts)[:, None] + np.cos(om * ts)[:, None] * ru - np.sin(om * ts)[:, None] * rv
     over = np.nonzero((xs > L + 1e-9).any(axis=1))[0]
@@ -112,13 +113,13 @@ def test_wall_touch_respects_the_horizon_and_the_departure_window():
     ell = np.abs(ru)
     cw = np.array([0.0, 0.04])
     # vertex 0 on the wall, moving away: no contact at t = 0
-    t, j = wall_touch_time(cw, ru, rv, -0.1, 0.0, 0.0, ell, -1, 0.0, 1.0, 1e-14, 1000)
+    t, j = wall_touch_time(cw, ru, rv, -0.1, 0.0, 0.0, ell, -1, 0.0, 1.0, 1e-14, 1000, np.zeros(2))
     assert j == -1
     # moving in from 1 cm: reaches the wall after 0.01/0.5 s, unless the horizon comes first
     cw = np.array([0.01, 0.05])
-    t, j = wall_touch_time(cw, ru, rv, 0.5, 0.0, 0.0, ell, -1, 0.0, 1.0, 1e-14, 1000)
+    t, j = wall_touch_time(cw, ru, rv, 0.5, 0.0, 0.0, ell, -1, 0.0, 1.0, 1e-14, 1000, np.zeros(2))
     assert j == 0 and t == pytest.approx(0.02, rel=1e-12)
-    t, j = wall_touch_time(cw, ru, rv, 0.5, 0.0, 0.0, ell, -1, 0.0, 0.019, 1e-14, 1000)
+    t, j = wall_touch_time(cw, ru, rv, 0.5, 0.0, 0.0, ell, -1, 0.0, 0.019, 1e-14, 1000, np.zeros(2))
     assert j == -1
 
 
@@ -129,14 +130,28 @@ def test_wall_departure_window():
     assert wall_departure(0.0, 0.03, 0.0, 0.0, 1.0, -G, 0.03) == 0.0
 
 
-def test_wall_hit_in_flight_refuses_above_the_top_and_a_pressed_vertex():
-    r = wall_hit_in_flight(1.0, 0.0, 0.0, 0.02, 0.06, 0.0, 0.0, 0.05, 4e-4, 0.0, LAW_ROUTH, 0.0, G, 0.063)
-    assert r[-1] == WHY_WALL_TOP
+def test_wall_hit_in_flight_refuses_a_pressed_vertex():
     # no spin after a frictionless hit through the CM line, gravity towards the wall: it stays pressed
-    r = wall_hit_in_flight(1.0, 0.0, 0.0, 0.02, 0.0, 0.02, 0.0, 0.05, 4e-4, 0.0, LAW_ROUTH, 1.0, G, 0.02)
+    r = wall_hit_in_flight(1.0, 0.0, 0.0, 0.02, 0.0, -1.0, 0.0, False, 4e-4, 0.0, LAW_ROUTH, 1.0, G, 0.02)
     assert r[-1] == WHY_WALL_SLIDE
-    r = wall_hit_in_flight(1.0, 0.0, 0.0, 0.02, 0.01, 0.02, 0.0, 0.05, 4e-4, 0.0, LAW_ROUTH, 0.0, G, 0.0224)
+    r = wall_hit_in_flight(1.0, 0.0, 0.0, 0.02, 0.01, -1.0, 0.0, False, 4e-4, 0.0, LAW_ROUTH, 0.0, G, 0.0224)
     assert r[-1] == WHY_NONE and r[-2] > 0
+
+
+@settings(max_examples=200, deadline=None)
+@given(_state(), st.floats(0, 2 * math.pi), st.sampled_from([0.0, 0.5, math.inf]))
+def test_contact_impact_on_the_face_is_the_wall_impact(s, ang, mu):
+    vx, vy, w, rx, ry, rho2 = s
+    a = wall_impact(vx, vy, w, rx, ry, rho2, mu, LAW_ROUTH)
+    b = contact_impact(vx, vy, w, rx, ry, -1.0, 0.0, rho2, mu, LAW_ROUTH)
+    assert a[:5] == pytest.approx(b[:5], abs=1e-12) and a[5] == b[5]
+    # any normal: the contact's normal velocity is 0 after a plastic impact that was closing
+    nx, ny = math.cos(ang), math.sin(ang)
+    un = (vx - w * ry) * nx + (vy + w * rx) * ny
+    vxp, vyp, wp, pt, pn, kind, _, _ = contact_impact(vx, vy, w, rx, ry, nx, ny, rho2, mu, LAW_ROUTH)
+    if un < 0 and kind != IMP_INCONSISTENT:
+        assert abs((vxp - wp * ry) * nx + (vyp + wp * rx) * ny) <= 1e-9 * (abs(vx) + abs(vy) + abs(w) * 0.1 + 1e-9)
+        assert pn >= 0
 
 
 # ---------------------------------------------------------------------------------------- wall_reach (pivots)
@@ -255,3 +270,88 @@ def test_cone_contains_agrees_with_linprog(m, seed):
         assert ours or np.min(np.abs(np.linalg.svd(Gm, compute_uv=False))) < 1e-6
     else:
         assert not ours
+
+
+# ---------------------------------------------------------------------------------------- the wall's top corner
+def _inside(P, q):
+    """Whether point q is inside the convex polygon P (rows, either orientation)."""
+    e = np.roll(P, -1, axis=0) - P
+    cr = e[:, 0] * (q[1] - P[:, 1]) - e[:, 1] * (q[0] - P[:, 0])
+    return (cr > 0).all() or (cr < 0).all()
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.floats(0.0, 2 * math.pi), st.floats(-1.0, 1.5, **finite), st.floats(-1.0, 1.0, **finite),
+       st.floats(-12, 12, **finite), st.floats(0.0, 0.06), st.floats(-0.04, 0.06))
+def test_corner_touch_is_the_first_entry_found_by_dense_sampling(phi0, vx, vy, om, dx, dy):
+    tri = triangle_30_60_90()
+    w = np.asarray(tri.w)
+    c, s = math.cos(phi0), math.sin(phi0)
+    ru = c * w[:, 0] - s * w[:, 1]
+    rv = s * w[:, 0] + c * w[:, 1]
+    q = np.array([ru.max() + dx, dy])  # corner relative to the CM at t = 0
+    P0 = np.stack([ru, rv], 1)
+    if _inside(P0, q):
+        return
+    gx, gn, t_max = 0.5, G, 0.4
+    t, e = corner_touch_time(q[0], q[1], vx, vy, om, gx, gn, ru, rv, -1, 0.0, t_max, 1e-14, 200_000)
+
+    def poly(tt):
+        X = np.array([vx * tt + 0.5 * gx * tt * tt, vy * tt - 0.5 * gn * tt * tt])
+        R = np.array([[math.cos(om * tt), -math.sin(om * tt)], [math.sin(om * tt), math.cos(om * tt)]])
+        return X + P0 @ R.T
+
+    ts = np.linspace(0, t_max, 8001)
+    first = next((tt for tt in ts if _inside(poly(tt), q)), None)
+    if e < 0:
+        assert e == -1 and first is None
+    else:
+        assert first is None or first >= t - 1e-12
+        P = poly(t)
+        a, b = P[e], P[(e + 1) % 3]
+        # the corner is on edge e at that time
+        cross = (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0])
+        assert abs(cross) / np.hypot(*(b - a)) < 1e-9
+        u = np.dot(q - a, b - a) / np.dot(b - a, b - a)
+        assert -1e-9 <= u <= 1 + 1e-9
+
+
+def test_wall_contact_angle_finds_the_corner_on_an_edge_above_a_low_wall():
+    tri = triangle_30_60_90()
+    w = np.asarray(tri.w)
+    rng = np.random.default_rng(5)
+    found = 0
+    for _ in range(300):
+        jp = int(rng.integers(3))
+        phi = float(rng.uniform(0, 2 * math.pi))
+        R = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+        V = (R @ w.T).T
+        A = V[jp]
+        if ((V - A)[:, 1] < -1e-12).any():
+            continue
+        theta = math.atan2(-A[1], -A[0])
+        px, top = 0.3, 0.02
+        L = px + float(rng.uniform(0.0, 0.15))
+        if corner_inside(px, 0.0, theta, phi, w, jp, L, top) or (px + (V - A)[:, 0] > L).any():
+            continue
+        th, corner, j, cx, cy, nx, ny = wall_contact_angle(px, L, top, theta, phi, w, jp)
+        if not np.isfinite(th):
+            continue
+        rot = np.array([[math.cos(th - theta), -math.sin(th - theta)], [math.sin(th - theta), math.cos(th - theta)]])
+        P = np.array([px, 0.0]) + ((V - A) @ rot.T)
+        # at the bound the part touches the wall and does not cross it: no vertex beyond below the top,
+        # the corner not inside
+        below = P[:, 1] < top - 1e-12
+        assert (P[below, 0] <= L + 1e-9).all()
+        assert not _inside(P, np.array([L, top])) or corner
+        if corner:
+            found += 1
+            a, b = P[j], P[(j + 1) % 3]
+            cross = (b[0] - a[0]) * (top - a[1]) - (b[1] - a[1]) * (L - a[0])
+            assert abs(cross) / np.hypot(*(b - a)) < 1e-9
+            # the normal points into the part (towards its CM)
+            cm = np.array([px, 0.0]) + rot @ (-A)
+            assert np.dot(cm - np.array([L, top]), [nx, ny]) > 0
+        else:
+            assert P[j, 0] == pytest.approx(L, abs=1e-12) and P[j, 1] < top
+    assert found > 5

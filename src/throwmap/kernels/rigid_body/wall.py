@@ -84,10 +84,23 @@ WHY_MESSAGES = {
 }
 """Why a walled throw was refused (status UNRESOLVED), by reason code."""
 
+EV_WALL = 10
+"""Event code of guard ``wall_reach`` (after the codes of :mod:`.modes`): a vertex is on the wall and the part turns into it."""
+WHY_COL = getattr(C, "WHY", -1)
+"""Record column receiving the reason code of a refusal (``kernels.codes.WHY``), if the record has one."""
+
 CONE_TOL = 1e-11
 """Relative tolerance of :func:`cone_contains` (residual and negative coefficients, relative to |b|)."""
 MU_BIG = 1e12
 """μ standing in for ∞ where a cone needs a finite edge (never in the impact law: μ = ∞ is exact there)."""
+
+
+@njit(cache=True)
+def refuse(rec, why):
+    """Status UNRESOLVED for a walled throw the automaton cannot follow; the reason ``why`` goes to the record."""
+    if WHY_COL >= 0:
+        rec[WHY_COL] = why
+    return C.UNRESOLVED
 
 
 # ---------------------------------------------------------------------------------------- reset wall_impact
@@ -139,14 +152,14 @@ def _step_lb(gj, dg, M):
 
 
 @njit(cache=True)
-def wall_touch_time(c, ru, rv, vx, om, gx, ell, excl_j, excl_t, t_max, tol, max_iter):
+def wall_touch_time(c, ru, rv, vx, om, gx, ell, excl_j, excl_t, t_max, tol, max_iter, off):
     """Guard ``wall_touch``: earliest t ∈ [0, t_max] (s) at which a vertex reaches the wall x = L moving outward.
 
     ``c`` the gaps L − x_j at t = 0 (m; exactly 0 for a vertex on the wall), ``(ru, rv)``
     the vertex offsets from the CM at t = 0 (m), ``vx`` the CM's velocity along the arm (m/s),
     ``om`` the spin (rad/s), ``gx`` gravity along the arm (m/s²), ``ell`` the vertex
     distances from the CM (m). Vertex ``excl_j`` (−1: none) just left the wall and stays
-    off it for t < ``excl_t``.
+    off it for t < ``excl_t``; vertices with ``off[j]`` ≠ 0 are not watched (they passed above the top).
 
     Guarantee (as :func:`throwmap.kernels.flight.touch_time`): W_j'' = −g_x + ω²(…) ≥
     −(max(g_x, 0) + ω² ℓ_j) =: −M_j, so each step, the smallest positive root of the
@@ -170,6 +183,8 @@ def wall_touch_time(c, ru, rv, vx, om, gx, ell, excl_j, excl_t, t_max, tol, max_
         jlow = -1  # the vertex of smallest gap, in case t can no longer advance
         glow = math.inf
         for j in range(n):
+            if off[j] != 0.0:
+                continue
             gj, dg = wall_gap(t, j, c, b, ru, rv, vx, om, gx)
             M = max(gx, 0.0) + om * om * ell[j]
             scale = abs(c[j]) + (abs(b[j]) + aw * abs(rv[j])) * t + 0.5 * abs(gx) * t * t \
@@ -276,6 +291,271 @@ def wall_theta(px, L, top, theta, phi, w, jp):
             jb = j
             yb = lj * math.sin(psi_w)
     return best, jb, yb
+
+
+@njit(cache=True)
+def wall_contact_angle(px, L, top, theta, phi, w, jp):
+    """Guard ``wall_reach`` with the wall's top corner: the least pivot angle θ_c at which the part meets the wall.
+
+    Pivoting on vertex ``jp`` at (p_x, h), the part meets the wall either with a vertex on its face
+    below the top (:func:`wall_theta`'s bound, for the vertices that cross x = L below ``top``) or
+    with an edge on the top corner Q = (L, h + H): turned by Δ about A an edge with outward normal
+    n_e and support c_e = n_e·(a − A) touches Q when |q| cos(∠n_e + Δ − ∠q) = c_e, q = Q − A, with
+    the touching point inside the edge. The largest such angle θ ≤ θ (the part moves outward as θ
+    decreases) is the bound. Returns ``(θ_c, corner, j, c_x, c_y, n_x, n_y)``: the bound (−inf: none),
+    whether it is the corner, the vertex on the face or the edge (vertex j → j + 1) on the corner, the contact point relative to A (m) and the unit normal of the contact
+    into the part (world frame at θ_c): −x̂ on the face, the edge's inward normal on the corner.
+    """
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    n = w.shape[0]
+    ax = cp * w[jp, 0] - sp * w[jp, 1]
+    ay = sp * w[jp, 0] + cp * w[jp, 1]
+    gap = L - px
+    best = -math.inf
+    corner = False
+    jb = -1
+    cx = 0.0
+    cy = 0.0
+    nx = -1.0
+    ny = 0.0
+    # vertices on the face, below the top
+    for j in range(n):
+        if j == jp:
+            continue
+        ex = cp * w[j, 0] - sp * w[j, 1] - ax
+        ey = sp * w[j, 0] + cp * w[j, 1] - ay
+        lj = math.hypot(ex, ey)
+        if lj <= gap:
+            continue
+        psi_w = math.acos(max(-1.0, min(1.0, gap / lj)))
+        yw = lj * math.sin(psi_w)
+        if yw >= top:
+            continue  # passes above the top: the corner decides
+        th = psi_w - (math.atan2(ey, ex) - theta)
+        if th > best:
+            best = th
+            corner = False
+            jb = j
+            cx = gap
+            cy = yw
+            nx = -1.0
+            ny = 0.0
+    # edges on the top corner
+    qx = gap
+    qy = top
+    rq = math.hypot(qx, qy)
+    aq = math.atan2(qy, qx)
+    gx_ = -ax  # the CM relative to A (for the outward sense of the normals)
+    gy_ = -ay
+    for j in range(n):
+        j2 = (j + 1) % n
+        pax = cp * w[j, 0] - sp * w[j, 1] - ax
+        pay = sp * w[j, 0] + cp * w[j, 1] - ay
+        pbx = cp * w[j2, 0] - sp * w[j2, 1] - ax
+        pby = sp * w[j2, 0] + cp * w[j2, 1] - ay
+        ex = pbx - pax
+        ey = pby - pay
+        le = math.hypot(ex, ey)
+        if le == 0.0:
+            continue
+        enx = ey / le
+        eny = -ex / le
+        if enx * (gx_ - pax) + eny * (gy_ - pay) > 0.0:  # make it outward
+            enx = -enx
+            eny = -eny
+        ce = enx * pax + eny * pay
+        if abs(ce) > rq:
+            continue
+        an = math.atan2(eny, enx)
+        base = math.acos(ce / rq)
+        for sgn in (1.0, -1.0):
+            dlt = aq - an + sgn * base
+            dlt = (dlt + math.pi) % (2.0 * math.pi) - math.pi  # (−π, π]
+            if dlt > 1e-15:
+                dlt -= 2.0 * math.pi
+            th = theta + dlt
+            if th <= best:
+                continue
+            # the edge at that angle: is Q inside the segment?
+            c = math.cos(dlt)
+            s = math.sin(dlt)
+            rax = c * pax - s * pay
+            ray = s * pax + c * pay
+            rex = c * ex - s * ey
+            rey = s * ex + c * ey
+            u = ((qx - rax) * rex + (qy - ray) * rey) / (le * le)
+            if u < 0.0 or u > 1.0:
+                continue
+            best = th
+            corner = True
+            jb = j
+            cx = qx
+            cy = qy
+            nx = -(c * enx - s * eny)
+            ny = -(s * enx + c * eny)
+    return best, corner, jb, cx, cy, nx, ny
+
+
+@njit(cache=True)
+def contact_impact(vx, vy, om, rx, ry, nx, ny, rho2, mu_c, law):
+    """Reset ``impact`` at a contact with unit normal (n_x, n_y) into the part: the arm's law in the frame (t, n),
+    t = n turned by −90° (a proper rotation). Returns as :func:`wall_impact`, with P_n along n and P_t along t."""
+    tx = ny
+    ty = -nx
+    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vx * tx + vy * ty, vx * nx + vy * ny, om,
+                                                          rx * tx + ry * ty, rx * nx + ry * ny, rho2, mu_c, law)
+    return vxp * tx + vyp * nx, vxp * ty + vyp * ny, wp, pt, pn, kind, jt0, jn0
+
+
+@njit(cache=True)
+def fill_wall_vertices(theta, phi, w, jp, wv):
+    """Rows (ℓ_j, δ_j) of ``wv`` (n, 2): vertex j at A + ℓ_j (cos(θ + δ_j), sin(θ + δ_j)) while pivoting on ``jp``
+    (ℓ = 0 for jp itself), for the sliding phase's guard ``wall_reach``."""
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    for j in range(w.shape[0]):
+        ex = cp * (w[j, 0] - w[jp, 0]) - sp * (w[j, 1] - w[jp, 1])
+        ey = sp * (w[j, 0] - w[jp, 0]) + cp * (w[j, 1] - w[jp, 1])
+        wv[j, 0] = 0.0 if j == jp else math.hypot(ex, ey)
+        wv[j, 1] = math.atan2(ey, ex) - theta
+
+
+@njit(cache=True)
+def corner_inside(px, h, theta, phi, w, jp, L, top):
+    """Whether the wall's top corner (L, h + top) lies inside the part pivoting on ``jp`` at (p_x, h) (by more than
+    1e-12 of its size): an edge has passed it."""
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    n = w.shape[0]
+    qx = L - px
+    qy = top
+    sgn = 0.0
+    size = 0.0
+    for j in range(n):
+        size = max(size, abs(w[j, 0]) + abs(w[j, 1]))
+    for j in range(n):
+        j2 = (j + 1) % n
+        ax = cp * (w[j, 0] - w[jp, 0]) - sp * (w[j, 1] - w[jp, 1])
+        ay = sp * (w[j, 0] - w[jp, 0]) + cp * (w[j, 1] - w[jp, 1])
+        bx = cp * (w[j2, 0] - w[jp, 0]) - sp * (w[j2, 1] - w[jp, 1])
+        by = sp * (w[j2, 0] - w[jp, 0]) + cp * (w[j2, 1] - w[jp, 1])
+        cr = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax)
+        le = math.hypot(bx - ax, by - ay)
+        if abs(cr) <= 1e-12 * size * le:
+            return False
+        s = 1.0 if cr > 0.0 else -1.0
+        if sgn == 0.0:
+            sgn = s
+        elif s != sgn:
+            return False
+    return True
+
+
+# ---------------------------------------------------------------------------------------- guard corner_touch (flight)
+@njit(cache=True)
+def _edge_frame(ru, rv, e):
+    """Outward unit normal (n_x, n_y) of edge e (vertex e → e + 1, offsets from the CM at t = 0) and its support c_e (m)."""
+    n = ru.shape[0]
+    e2 = (e + 1) % n
+    ex = ru[e2] - ru[e]
+    ey = rv[e2] - rv[e]
+    le = math.hypot(ex, ey)
+    nx = ey / le
+    ny = -ex / le
+    c = nx * ru[e] + ny * rv[e]
+    if c < 0.0:  # the CM (origin) is inside: the outward normal has n·a > 0
+        nx = -nx
+        ny = -ny
+        c = -c
+    return nx, ny, c
+
+
+@njit(cache=True)
+def corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max):
+    """Bounds (M2, M3) on the second and third time derivatives of every edge's corner distance f_e
+    (:func:`corner_touch_time`) over a flight of ``t_max`` s from Q − CM = (q_x, q_y) (m) and CM velocity (v_x, v_y)."""
+    ga = math.hypot(gx, gn)
+    v0 = math.hypot(vx, vy)
+    D = math.hypot(qx, qy) + v0 * t_max + 0.5 * ga * t_max * t_max
+    vm = v0 + ga * t_max
+    aw = abs(om)
+    return om * om * D + 2.0 * aw * vm + ga, aw * aw * aw * D + 3.0 * om * om * vm + 3.0 * aw * ga
+
+
+@njit(cache=True)
+def corner_touch_time(qx, qy, vx, vy, om, gx, gn, ru, rv, excl_e, excl_t, t_max, tol, max_iter):
+    """Guard ``corner_touch``: earliest t ∈ [0, t_max] (s) at which the wall's top corner Q enters the flying part.
+
+    ``(q_x, q_y)`` = Q − CM at t = 0 (m), CM velocity (v_x, v_y), spin ω, gravity (g_x, −g_n);
+    ``(ru, rv)`` the vertex offsets at t = 0. Edge e (outward normal n_e, support c_e) has the
+    signed distance f_e(t) = R(ωt) n_e · (Q − X(t)) − c_e of Q beyond it; Q is inside the convex
+    part iff every f_e < 0, so the part stays clear while some f_e > 0, and a step is safe if
+    it is safe for one positive edge: the largest of the edges' lower-bound steps (the second
+    derivatives are bounded by M2 of :func:`corner_bounds`) is taken. Edge ``excl_e`` stays
+    positive for t < ``excl_t``. Returns ``(t, e)``: e the edge Q meets, −1 none before t_max,
+    −3 ``max_iter`` steps.
+    """
+    n = ru.shape[0]
+    M2, _m3 = corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max)
+    t = 0.0
+    for _ in range(max_iter):
+        if t > t_max:
+            return t_max, -1
+        c = math.cos(om * t)
+        s = math.sin(om * t)
+        px = qx - vx * t - 0.5 * gx * t * t  # Q − X(t)
+        py = qy - vy * t + 0.5 * gn * t * t
+        wx = vx + gx * t
+        wy = vy - gn * t
+        fmax = -math.inf
+        emax = -1
+        step = 0.0
+        clear = False  # the excluded edge still provably keeps Q out
+        for e in range(n):
+            nx0, ny0, ce = _edge_frame(ru, rv, e)
+            nx = c * nx0 - s * ny0
+            ny = s * nx0 + c * ny0
+            f = nx * px + ny * py - ce
+            df = om * (-ny * px + nx * py) - (nx * wx + ny * wy)
+            if e == excl_e and t < excl_t:
+                se = excl_t - t
+                if f > 0.0 or df > 0.0:
+                    se = max(se, _step_lb(f, df, M2))
+                step = max(step, se)
+                clear = True
+                continue
+            if f > fmax:
+                fmax = f
+                emax = e
+            if f > 0.0:
+                step = max(step, _step_lb(f, df, M2))
+        scale = math.hypot(px, py) + math.hypot(ru[0], rv[0])
+        if not clear and fmax <= tol * scale:
+            return t, emax
+        if t + step == t:
+            return t, emax if not clear else -3
+        t += step
+    return t, -3
+
+
+@njit(cache=True)
+def corner_departure(qx, qy, vx, vy, om, gx, gn, nx, ny, t_max):
+    """Time (s) for which an edge that just stopped on the wall's top corner (normal velocity 0) stays off it.
+
+    With Q − CM = (q_x, q_y) (m) and the edge's outward normal (n_x, n_y) now: f(s) ≥ ½ f2 s² − M3 s³/6 with
+    f2 = −ω² n·(Q − X) − 2ω (Jn)·V − n·g (J: +90°, M3 of :func:`corner_bounds`); returns 0.9 · 3 f2/M3
+    (``t_max`` if M3 = 0), or 0 if f2 ≤ 0 (the edge is pressed on the corner: it would slide over it).
+    """
+    jx = -ny
+    jy = nx
+    f2 = -om * om * (nx * qx + ny * qy) - 2.0 * om * (jx * vx + jy * vy) - (nx * gx - ny * gn)
+    if f2 <= 0.0:
+        return 0.0
+    _m2, M3 = corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max)
+    if M3 <= 0.0:
+        return t_max
+    return min(0.9 * 3.0 * f2 / M3, t_max)
 
 
 # ---------------------------------------------------------------------------------------- FLAT_SLIDE into the wall
@@ -568,38 +848,61 @@ def refresh_frame(phi, y, h, w, ell, ru, rv, c0):
 
 
 @njit(cache=True)
-def fly_walled(t, x, y, vx, vy, phi, om, c0, ru, rv, gx, g, ell, excl_j, excl_t, wexcl_j, wexcl_t, L, tol, max_iter,
-               cw, traj, ts):
-    """Mode FLIGHT with a wall: until guard ``touch`` (the arm) or ``wall_touch``, whichever comes first.
+def fly_walled(t, x, y, vx, vy, phi, om, c0, ru, rv, gx, g, ell, excl_j, excl_t, wexcl_j, wexcl_t, cexcl_e, cexcl_t, L,
+               top, h, tol, max_iter, cw, off, traj, ts):
+    """Mode FLIGHT with a wall: until guard ``touch`` (the arm), ``wall_touch`` (the face) or ``corner_touch``
+    (the top corner), whichever comes first.
 
     Gravity (g_x, −g) (m/s²; g the component normal to the arm, as
     :func:`~throwmap.kernels.flight.first_contact` takes it). The arm's vertex ``excl_j`` is
-    excluded for ``excl_t`` s, the wall's ``wexcl_j`` for ``wexcl_t`` s (both from now).
-    ``cw`` (n,) is scratch for the wall gaps. Returns ``(where, j, t, x, y, v_x, v_y, φ, r_x, r_y)``:
-    where = 0 the arm, 1 the wall, −1 the arm search failed (j its code, as :func:`fly`), −2 the wall
-    search hit ``max_iter``; (r_x, r_y) the contact vertex's offset from the CM (m).
+    excluded for ``excl_t`` s, the face's ``wexcl_j`` for ``wexcl_t`` s, the corner's edge ``cexcl_e``
+    for ``cexcl_t`` s (all from now). A vertex that reaches the face's plane above the top
+    (``top`` m above the line y = ``h``) passes over it and is marked in ``off`` (n,), no longer
+    watched by the face. ``cw`` (n,) is scratch. Returns ``(where, j, t, x, y, v_x, v_y, φ, r_x, r_y,
+    n_x, n_y)``: where = 0 the arm (vertex j), 1 the face (vertex j), 2 the corner (edge j), −1 the
+    arm search failed (j its code, as :func:`fly`), −2 a wall search hit ``max_iter``; (r_x, r_y)
+    the contact point's offset from the CM (m) and (n_x, n_y) the contact's normal into the part.
     """
+    n = ru.shape[0]
     tc, jc = first_contact(c0, ru, rv, vy, om, g, ell, excl_j, excl_t, tol, max_iter)
-    where = 0
-    if jc < 0:
-        where = -1
-    if L < math.inf:
-        for j in range(ru.shape[0]):
-            cj = L - x - ru[j]
-            cw[j] = 0.0 if abs(cj) <= SNAP * ell[j] else cj
-        tw, jw = wall_touch_time(cw, ru, rv, vx, om, gx, ell, wexcl_j, wexcl_t, tc, tol, max_iter)
+    where = 0 if jc >= 0 else -1
+    nx = 0.0
+    ny = 1.0
+    for j in range(n):
+        cj = L - x - ru[j]
+        cw[j] = 0.0 if abs(cj) <= SNAP * ell[j] else cj
+    for _ in range(n + 1):
+        tw, jw = wall_touch_time(cw, ru, rv, vx, om, gx, ell, wexcl_j, wexcl_t, tc, tol, max_iter, off)
         if jw == -3:
-            return -2, jw, t, x, y, vx, vy, phi, 0.0, 0.0
-        if jw >= 0 and (tw < tc or jc < 0):
-            where = 1
-            jc = jw
-            tc = tw
+            return -2, jw, t, x, y, vx, vy, phi, 0.0, 0.0, 0.0, 0.0
+        if jw < 0:
+            break
+        yj = y + vy * tw - 0.5 * g * tw * tw + math.sin(om * tw) * ru[jw] + math.cos(om * tw) * rv[jw]
+        if yj - h < top:
+            if tw < tc or jc < 0:
+                where = 1
+                jc = jw
+                tc = tw
+                nx = -1.0
+                ny = 0.0
+            break
+        off[jw] = 1.0  # over the top: the corner guard watches its edges
+    tq, eq = corner_touch_time(L - x, h + top - y, vx, vy, om, gx, g, ru, rv, cexcl_e, cexcl_t, tc, tol, max_iter)
+    if eq == -3:
+        return -2, eq, t, x, y, vx, vy, phi, 0.0, 0.0, 0.0, 0.0
+    if eq >= 0 and (tq < tc or where == -1):
+        where = 2
+        jc = eq
+        tc = tq
+        nx0, ny0, _ce = _edge_frame(ru, rv, eq)
+        nx = -(math.cos(om * tq) * nx0 - math.sin(om * tq) * ny0)
+        ny = -(math.sin(om * tq) * nx0 + math.cos(om * tq) * ny0)
     if where == -1:
-        return -1, jc, t, x, y, vx, vy, phi, 0.0, 0.0
+        return -1, jc, t, x, y, vx, vy, phi, 0.0, 0.0, 0.0, 0.0
     if traj.shape[0] > 0:
         while ts[1] <= t + tc:
-            tq = ts[1] - t
-            _put(traj, ts, ts[1], x + vx * tq + 0.5 * gx * tq * tq, y + vy * tq - 0.5 * g * tq * tq, phi + om * tq)
+            tq_ = ts[1] - t
+            _put(traj, ts, ts[1], x + vx * tq_ + 0.5 * gx * tq_ * tq_, y + vy * tq_ - 0.5 * g * tq_ * tq_, phi + om * tq_)
             ts[1] += ts[2]
     x += vx * tc + 0.5 * gx * tc * tc
     vx += gx * tc
@@ -607,33 +910,38 @@ def fly_walled(t, x, y, vx, vy, phi, om, c0, ru, rv, gx, g, ell, excl_j, excl_t,
     vy -= g * tc
     phi += om * tc
     t += tc
-    cp = math.cos(om * tc)
-    sp = math.sin(om * tc)
-    rx = cp * ru[jc] - sp * rv[jc]
-    ry = sp * ru[jc] + cp * rv[jc]
+    if where == 2:
+        rx = L - x
+        ry = h + top - y
+    else:
+        cp = math.cos(om * tc)
+        sp = math.sin(om * tc)
+        rx = cp * ru[jc] - sp * rv[jc]
+        ry = sp * ru[jc] + cp * rv[jc]
     if traj.shape[0] > 0:
         _put(traj, ts, t, x, y, phi)
-    return where, jc, t, x, y, vx, vy, phi, rx, ry
+    return where, jc, t, x, y, vx, vy, phi, rx, ry, nx, ny
 
 
 @njit(cache=True)
-def wall_hit_in_flight(vx, vy, om, rx, ry, y, h, top, rho2, mu_w, law, gx, g, lj):
-    """Reset ``wall_impact`` in FLIGHT for a vertex at (r_x, r_y) from the CM (m), CM height y (m).
+def wall_hit_in_flight(vx, vy, om, rx, ry, nx, ny, corner, rho2, mu_w, law, gx, g, lj):
+    """Reset ``wall_impact`` in FLIGHT at the contact (r_x, r_y) from the CM (m) with normal (n_x, n_y) into the part:
+    a vertex on the face (−x̂), or the top corner on an edge (``corner``: the edge's inward normal).
 
-    Refuses (``why`` ≠ 0) a vertex above the wall's top (``top`` = H, m above the line:
-    :data:`WHY_WALL_TOP`) and one the impact leaves pressed against the wall
-    (:data:`WHY_WALL_SLIDE`: :func:`wall_departure` gives no window). Returns
-    ``(vx⁺, vy⁺, ω⁺, P_t, P_n, kind, excl_t, why)``: ``excl_t`` (s) how long the vertex
-    provably stays off the wall afterwards; kind IMP_INCONSISTENT: no consistent impulse.
+    Refuses (``why`` = :data:`WHY_WALL_SLIDE`) a contact the impact leaves pressed on the wall (no
+    departure window: it would slide along it). Returns ``(vx⁺, vy⁺, ω⁺, P_t, P_n, kind, excl_t, why)``:
+    ``excl_t`` (s) how long the contact provably stays open afterwards (:func:`wall_departure`,
+    :func:`corner_departure`); kind IMP_INCONSISTENT: no consistent impulse.
     """
-    if y + ry - h >= top:
-        return vx, vy, om, 0.0, 0.0, IMP_SEPARATE, 0.0, WHY_WALL_TOP
-    vxp, vyp, wp, pt, pn, kind, _jt0, _jn0 = wall_impact(vx, vy, om, rx, ry, rho2, mu_w, law)
+    vxp, vyp, wp, pt, pn, kind, _jt0, _jn0 = contact_impact(vx, vy, om, rx, ry, nx, ny, rho2, mu_w, law)
     if kind == IMP_INCONSISTENT:
         return vx, vy, om, 0.0, 0.0, kind, 0.0, WHY_NONE
-    un = -(vxp - wp * ry)  # the wall gap's rate: 0 after a plastic impact (> 0 if it was leaving)
-    vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
-    excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, -g, lj) if un <= 1e-12 * vscale else 1.0
+    if corner:
+        excl = corner_departure(rx, ry, vxp, vyp, wp, gx, g, -nx, -ny, 1.0)
+    else:
+        un = -(vxp - wp * ry)  # the wall gap's rate: 0 after a plastic impact (> 0 if it was leaving)
+        vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
+        excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, -g, lj) if un <= 1e-12 * vscale else 1.0
     if excl <= 0.0:
         return vxp, vyp, wp, pt, pn, kind, 0.0, WHY_WALL_SLIDE
     return vxp, vyp, wp, pt, pn, kind, excl, WHY_NONE
@@ -649,26 +957,26 @@ ACT_CORNER = 5
 
 
 @njit(cache=True)
-def pivot_wall_hit(px, h, lj, theta, thdot, va, yw, top, L, rho2, mu, mu_w, law, gx, gy, lref):
-    """Reset at guard ``wall_reach``: pivoting on A = (p_x, h), the vertex C at (L, h + y_w) touches the wall.
+def pivot_wall_hit(px, h, lj, theta, thdot, va, cqx, cqy, nx, ny, corner, rho2, mu, mu_w, law, gx, gy, lref):
+    """Reset at guard ``wall_reach``: pivoting on A = (p_x, h), the part meets the wall at A + (c_x, c_y)
+    (:func:`wall_contact_angle`) with the contact's normal (n_x, n_y) into the part (−x̂ on the face, an
+    edge's inward normal on the top corner, ``corner``).
 
-    In order, as the arm's ``land_side``: (1) the impulse at C alone (A free,
-    :func:`wall_impact`); accepted if A then moves up (lifts): FLIGHT. (2) Else both
-    contacts stop their normal motion; A on the arm and C on the wall leave the part one
-    degree of freedom that moves C along its normal, so the part stops — if the impulse
-    that removes its momentum lies in the sum of the two friction cones
-    (:func:`contacts_can_supply`); else the impact needs slip at both: refused
-    (:data:`WHY_TWO_CONTACT`). (3) Stopped, it rests leaning on arm and wall if gravity is
-    held inside both cones (``rest_against_wall``); else it swings back about A from rest if
-    gravity turns it away from the wall (θ̈ > 0), else it would slide at both (refused,
-    :data:`WHY_LADDER`). C above the wall's top (y_w ≥ H) is refused (:data:`WHY_WALL_TOP`).
+    In order, as the arm's ``land_side``: (1) the impulse at the wall contact alone (A free,
+    :func:`contact_impact`); accepted if A then moves up (lifts): FLIGHT, the wall
+    contact kept from the flight's wall guards for ``excl_t`` s. (2) Else both contacts stop
+    their normal motion; A on the arm and the wall contact leave the part one degree of freedom that
+    moves the contact along its normal, so the part stops — if the impulse that removes its momentum
+    lies in the sum of the two friction cones (:func:`contacts_can_supply`); else the impact needs
+    slip at both: refused (:data:`WHY_TWO_CONTACT`). (3) Stopped, it rests leaning on arm and wall if
+    gravity is held inside both cones (``rest_against_wall``); else it swings back about A from rest
+    if gravity turns it away from the wall (θ̈ > 0), else it would slide at both (refused,
+    :data:`WHY_LADDER`).
 
     Returns ``(action, x, y, v_x, v_y, ω, excl_t, why)``: ``ACT_FLIGHT`` with the flight state
-    (C to be excluded from ``wall_touch`` for excl_t s), ``ACT_REST`` (x, y the CM), ``ACT_SWING``
-    (pivot state unchanged, at rest), ``ACT_REFUSE`` with ``why``, ``ACT_INCONSISTENT``.
+    (the wall contact to be excluded from ``wall_touch``/``corner_touch`` for excl_t s), ``ACT_REST`` (x, y the CM),
+    ``ACT_SWING`` (pivot state unchanged, at rest), ``ACT_REFUSE`` with ``why``, ``ACT_INCONSISTENT``.
     """
-    if yw >= top:
-        return ACT_REFUSE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, WHY_WALL_TOP
     c = math.cos(theta)
     s = math.sin(theta)
     x = px + lj * c
@@ -676,16 +984,21 @@ def pivot_wall_hit(px, h, lj, theta, thdot, va, yw, top, L, rho2, mu, mu_w, law,
     vx = va - thdot * lj * s
     vy = thdot * lj * c
     om = thdot
-    rx = L - x
-    ry = h + yw - y
-    # (1) the impulse at C alone
-    vxp, vyp, wp, pt, pn, kind, _j0, _j1 = wall_impact(vx, vy, om, rx, ry, rho2, mu_w, law)
+    rx = cqx - lj * c  # CM → contact
+    ry = cqy - lj * s
+    # (1) the impulse at the wall contact alone
+    vxp, vyp, wp, pt, pn, kind, _j0, _j1 = contact_impact(vx, vy, om, rx, ry, nx, ny, rho2, mu_w, law)
     if kind == IMP_INCONSISTENT:
         return ACT_INCONSISTENT, x, y, vx, vy, om, 0.0, WHY_NONE
     ax = -lj * c  # CM → A
     ay = -lj * s
     un_a = vyp + wp * ax
     if un_a > 0.0:
+        if corner:
+            excl = corner_departure(rx, ry, vxp, vyp, wp, gx, -gy, -nx, -ny, 1.0)
+            if excl <= 0.0:
+                return ACT_REFUSE, x, y, vxp, vyp, wp, 0.0, WHY_WALL_SLIDE
+            return ACT_FLIGHT, x, y, vxp, vyp, wp, excl, WHY_NONE
         vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
         un = -(vxp - wp * ry)
         lc = math.hypot(rx, ry)
@@ -704,8 +1017,8 @@ def pivot_wall_hit(px, h, lj, theta, thdot, va, yw, top, L, rho2, mu, mu_w, law,
     mus[0] = mu
     pts[1, 0] = rx
     pts[1, 1] = ry
-    nrm[1, 0] = -1.0
-    nrm[1, 1] = 0.0
+    nrm[1, 0] = nx
+    nrm[1, 1] = ny
     mus[1] = mu_w
     if not contacts_can_supply(pts, nrm, mus, 2, -vx, -vy, -rho2 * om, lref):
         return ACT_REFUSE, x, y, vx, vy, om, 0.0, WHY_TWO_CONTACT
