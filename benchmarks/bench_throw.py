@@ -142,7 +142,7 @@ def _phases(x, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, s
     steps = 0
     for i in range(x.shape[0]):
         if stop == 3:
-            acc += _throw(x[i], side[i], omega[i], h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
+            acc += _throw(x[i], side[i], omega[i], h, g, 0.0, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
                           max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec, traj, tags, ts)[0]
             continue
         x0 = x[i]
@@ -232,7 +232,7 @@ def bench_kernel(part, arm, x, sides, omega, repeat):
     s = np.ascontiguousarray(sides, dtype=np.int64)
     valid = np.ones(m, dtype=bool)
     outs = (np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
-    geo = (arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
+    geo = (arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
            part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples)
     throw_many(x[:16], s[:16], omega[:16], valid[:16], *geo, *(a[:16] for a in outs))
     best = float("inf")

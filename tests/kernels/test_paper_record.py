@@ -12,7 +12,7 @@ O = PaperOptions()
 
 
 def _args(part, arm):
-    return (arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
+    return (arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL,
             part.uR, part.ell, part.stable, O.tol, O.max_iter, O.max_impacts, O.n_samples)
 
 

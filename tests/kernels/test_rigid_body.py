@@ -25,14 +25,14 @@ def rb(part, arm, x, k, om, mu, m=0, dt=0.005):
     rec = np.empty(C.NREC)
     traj = np.empty((m, 4))
     x1, k1, st_ = RB.throw_one_rigid_body(
-        x, k, om, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta,
+        x, k, om, arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta,
         part.d, part.uL, part.uR, part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, rec, traj, dt)
     return x1, k1, st_, rec, traj
 
 
 def paper(part, arm, x, k, om):
     rec = np.empty(C.NREC)
-    x1, k1, st_ = throw_one(x, k, om, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w,
+    x1, k1, st_ = throw_one(x, k, om, arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w,
                             part.beta, part.d, part.uL, part.uR, part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS,
                             16, rec)
     return x1, k1, st_, rec
@@ -53,7 +53,7 @@ def batch(part, arm, x, k, om, mu):
     so = np.empty(n, np.int64)
     sto = np.empty(n, np.int64)
     rec = np.empty((n, C.NREC))
-    RB.throw_many_rigid_body(x, k, om, np.ones(n, bool), arm.h, arm.g, arm.length_or_inf, arm.back,
+    RB.throw_many_rigid_body(x, k, om, np.ones(n, bool), arm.h, arm.g, 0.0, arm.length_or_inf, arm.back,
                              part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta, part.d, part.uL, part.uR,
                              part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, xo, so, sto, rec)
     return xo, so, sto, rec

@@ -37,8 +37,8 @@ def _same(a, b):
 def test_rigid_body_serial_equals_parallel(triangle, mu):
     arm = tm.Arm(h=-0.01, length=0.6)
     x, side, om, valid = _starts(triangle)
-    args = (x, side, om, valid, arm.h, arm.g, arm.length_or_inf, 0.0, triangle.radius_of_gyration**2, mu, RB.LAW_ROUTH,
-            triangle.w, triangle.beta, triangle.d, triangle.uL, triangle.uR, triangle.ell, triangle.stable, 1e-14, 100_000,
+    args = (x, side, om, valid, arm.h, arm.g, 0.0, arm.length_or_inf, 0.0, triangle.radius_of_gyration**2, mu,
+            RB.LAW_ROUTH, triangle.w, triangle.beta, triangle.d, triangle.uL, triangle.uR, triangle.ell, triangle.stable, 1e-14, 100_000,
             10_000)
     for par, ser in ((RB.throw_many_rigid_body, RB.throw_many_rigid_body_serial),
                      (RB.throw_many_rigid_body_rk4, RB.throw_many_rigid_body_rk4_serial)):
@@ -52,8 +52,8 @@ def test_rigid_body_serial_equals_parallel(triangle, mu):
 def test_paper_serial_equals_parallel(triangle):
     arm = tm.Arm(h=-0.01)
     x, side, om, valid = _starts(triangle, n=700)  # several chunks of CHUNK throws
-    args = (x, side, om, valid, arm.h, arm.g, arm.length_or_inf, 0.0, triangle.radius_of_gyration**2, triangle.w,
-            triangle.beta, triangle.d, triangle.uL, triangle.uR, triangle.ell, triangle.stable, 1e-14, 100_000,
+    args = (x, side, om, valid, arm.h, arm.g, 0.0, arm.length_or_inf, 0.0, triangle.radius_of_gyration**2,
+            triangle.w, triangle.beta, triangle.d, triangle.uL, triangle.uR, triangle.ell, triangle.stable, 1e-14, 100_000,
             10_000, 16)
     a, b = _out(x.size), _out(x.size)
     P.throw_many(*args, *a)

@@ -10,6 +10,15 @@ Entry points: :func:`throw_one` (one throw), :func:`throw_one_traj` (one throw w
 its trajectory rows, :mod:`~throwmap.kernels.record`) and :func:`throw_many` (a
 batch, in parallel; no trajectory cost: its buffers have zero rows) with its serial
 twin :func:`throw_many_serial` for batches below :data:`PARALLEL_MIN`.
+
+Tilted arm (``alpha``, rad, CCW +, |α| < π/2; draft Sec. VI): the arm rests at α and
+the impulse throw gives the part ω × r with the arm itself not moving (as the engine's
+:class:`~throwmap.engine.realisation.ImpulseThrow`). In the arm frame this is the
+horizontal throw with gravity (−g sin α, −g cos α): the first-contact search sees the
+normal component g cos α, the CM's x gets −½ g sin α t², and the cascade runs in
+ψ = θ + α (:mod:`~throwmap.kernels.roll`). Energies use U = g cos α (y − h) + g sin α x.
+``stable`` must be the table for α (:func:`throwmap.kernels.rigid_body.tilt.tilted_stable`).
+α = 0 runs the horizontal code unchanged, bit for bit.
 """
 
 import math
@@ -35,21 +44,29 @@ cost milliseconds (issue 10: critical_points 108 ms on two threads vs 3.7 ms on 
 
 
 @njit(cache=True, inline="always")
-def _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
-           n_samples, ta_j, tb_j, work, rec, traj, tags, ts):
+def _throw(x0, side, omega, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+           max_impacts, n_samples, ta_j, tb_j, work, rec, traj, tags, ts):
     """One throw; ``work`` is (4, n) scratch, ``traj``/``tags``/``ts`` the trajectory writer (0 rows: none)."""
     n = w.shape[0]
     start_record(rec)
     dk = d[side]
     record = traj.shape[0] > 0
     phi0 = beta[side]
+    tilted = alpha != 0.0
+    gt = g * math.sin(alpha)  # gravity along the arm (−gt) and normal to it (−gn)
+    gn = g * math.cos(alpha)
     if record:
         R.put(traj, tags, ts, 0.0, x0, h + dk, phi0, n + side)
     # release energy per unit mass (Eq. 1): |ω × r|² + ρ²ω², potential from the arm line
-    rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + g * dk
+    if tilted:
+        rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + gn * dk + gt * x0
+    else:
+        rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + g * dk
     if omega == 0.0:
-        rec[C.E_FINAL] = g * dk
+        rec[C.E_FINAL] = gn * dk + gt * x0 if tilted else g * dk
         rec[C.N_MIN] = 1.0
+        if tilted:
+            rec[C.MU_MAX] = abs(math.tan(alpha))  # the friction that holds it at rest
         return x0, side, (C.BEHIND_JOINT if x0 + uL[side] <= -back else C.OK)
     # reset release (Eq. 1); vertices relative to the CM at the rest orientation on `side`
     vx, vy0, _ = release_state(x0, dk, h, omega)
@@ -64,34 +81,38 @@ def _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, s
         pv[j] = sb * w[j, 0] + cb * w[j, 1]
         b[j] = omega * (x0 + pu[j])  # the gaps' initial rates, cancellation-free
     gap_constants(dk, pv, ell, c0)
-    t, jc = touch_time(c0, b, pu, pv, vy0, omega, g, ell, -1, 0.0, tol, max_iter)
+    t, jc = touch_time(c0, b, pu, pv, vy0, omega, gn, ell, -1, 0.0, tol, max_iter)
     rec[C.T_FLIGHT] = t
     rec[C.CONTACT_VERTEX] = jc
     if jc < 0:
         if record:
-            R.release_flight_rows(traj, tags, ts, R.ESCAPE_FALL_TIME, x0, dk, h, omega, g, phi0, R.FLIGHT)
+            R.release_flight_rows(traj, tags, ts, R.ESCAPE_FALL_TIME, x0, dk, h, omega, gn, phi0, R.FLIGHT, gt)
         if jc != UNRESOLVED_J:
             rec[C.CAP_HIT] = 1.0  # max_iter steps without contact: not resolved, not a missed contact
         return x0, side, C.UNRESOLVED
     # state just before impact (Eq. 1)
     phi = omega * t
-    xc = x0 + vx * t
-    yc = h + dk + vy0 * t - 0.5 * g * t * t
-    vy = vy0 - g * t
+    if tilted:
+        xc = x0 + vx * t - 0.5 * gt * t * t
+        vx = vx - gt * t
+    else:
+        xc = x0 + vx * t
+    yc = h + dk + vy0 * t - 0.5 * gn * t * t
+    vy = vy0 - gn * t
     cp = math.cos(phi)
     sp = math.sin(phi)
     rx = cp * pu[jc] - sp * pv[jc]
     ry = sp * pu[jc] + cp * pv[jc]
     px = xc + rx
     if record:
-        R.release_flight_rows(traj, tags, ts, t, x0, dk, h, omega, g, phi0, jc)
+        R.release_flight_rows(traj, tags, ts, t, x0, dk, h, omega, gn, phi0, jc, gt)
     rec[C.CONTACT_X] = px
     rec[C.VX_PRE] = vx
     rec[C.VY_PRE] = vy
     rec[C.W_PRE] = omega
     k_pre = 0.5 * (vx * vx + vy * vy + rho2 * omega * omega)
     rec[C.K_PRE] = k_pre
-    rec[C.U_IMPACT] = g * (yc - h)
+    rec[C.U_IMPACT] = gn * (yc - h) + gt * xc if tilted else g * (yc - h)
     # plastic no-slip impact about the contact vertex (Eq. 4)
     vxp, vyp, wp = plastic_impact(vx, vy, omega, rx, ry, rho2)
     rec[C.VX_POST] = vxp
@@ -114,13 +135,18 @@ def _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, s
     rec[C.N_IMPACTS] = 1.0
     if px <= -back or px > length:
         if record:  # nothing to land on there: the part falls on past the arm line
-            R.flight_rows(traj, tags, ts, t, t + R.ESCAPE_FALL_TIME, xc, yc, phi0 + omega * t, vx, vy, omega, g,
-                          R.FLIGHT)
+            R.flight_rows(traj, tags, ts, t, t + R.ESCAPE_FALL_TIME, xc, yc, phi0 + omega * t, vx, vy, omega, gn,
+                          R.FLIGHT, gt)
         return xc, side, (C.BEHIND_JOINT if px <= -back else C.OFF_END)
     theta = math.atan2(-ry, -rx)
     x, k, status = pivot_cascade(jc, theta, wp, px, side, rho2, d, uL, uR, ell, stable, ta_j, tb_j, g, length,
-                                 max_impacts, n_samples, rec, traj, tags, ts, h, w, beta, back)
-    rec[C.E_FINAL] = g * d[k]
+                                 max_impacts, n_samples, rec, traj, tags, ts, h, w, beta, back, alpha)
+    if tilted:
+        rec[C.E_FINAL] = gn * d[k] + gt * x
+        if status == C.OK and abs(math.tan(alpha)) > rec[C.MU_MAX]:
+            rec[C.MU_MAX] = abs(math.tan(alpha))  # the friction that holds it at rest
+    else:
+        rec[C.E_FINAL] = g * d[k]
     if status == C.OK:
         if x + uL[k] <= -back:
             status = C.BEHIND_JOINT
@@ -130,8 +156,8 @@ def _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, s
 
 
 @njit(cache=True)
-def throw_one(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
-              n_samples, rec):
+def throw_one(x0, side, omega, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+              max_impacts, n_samples, rec):
     """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s).
 
     ``length`` (m, inf: unbounded) and ``back`` (m, ``Arm.back``) bound the arm's
@@ -142,12 +168,12 @@ def throw_one(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell
     """
     ta_j, tb_j = side_angles(d, uL, uR)
     work = np.empty((4, w.shape[0]))
-    return _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
+    return _throw(x0, side, omega, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
                   n_samples, ta_j, tb_j, work, rec, np.empty((0, 4)), np.empty(0, np.int64), np.zeros(R.NTS))
 
 
 @njit(cache=True)
-def throw_one_traj(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+def throw_one_traj(x0, side, omega, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                    max_impacts, n_samples, rec, traj, tags, dt):
     """:func:`throw_one` also recording its trajectory every ``dt`` s and at every event.
 
@@ -160,13 +186,13 @@ def throw_one_traj(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR
     ta_j, tb_j = side_angles(d, uL, uR)
     work = np.empty((4, w.shape[0]))
     ts = R.new_state(dt)
-    x, k, st = _throw(x0, side, omega, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+    x, k, st = _throw(x0, side, omega, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                       max_impacts, n_samples, ta_j, tb_j, work, rec, traj, tags, ts)
     return x, k, st, int(ts[R.COUNT]), int(ts[R.DROPPED])
 
 
 @njit(cache=True, inline="always")
-def _chunk(c, x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+def _chunk(c, x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
            max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out):
     """Throws ``c·CHUNK`` … ``(c+1)·CHUNK − 1`` of a batch (one scratch allocation)."""
     m = x0.shape[0]
@@ -178,7 +204,7 @@ def _chunk(c, x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, 
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = _throw(x0[i], side[i], omega[i], h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
+        x, k, st = _throw(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
                           max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec_out[i], traj, tags, ts)
         x_out[i] = x
         side_out[i] = k
@@ -186,7 +212,7 @@ def _chunk(c, x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, 
 
 
 @njit(cache=True, parallel=True)
-def throw_many(x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+def throw_many(x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                max_impacts, n_samples, x_out, side_out, status_out, rec_out):
     """Batch of independent throws (flat arrays), chunks in parallel; invalid starts get ``INVALID_START``.
 
@@ -197,16 +223,16 @@ def throw_many(x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL,
     ta_j, tb_j = side_angles(d, uL, uR)
     n_chunks = (x0.shape[0] + CHUNK - 1) // CHUNK
     for c in prange(n_chunks):
-        _chunk(c, x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+        _chunk(c, x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out)
 
 
 @njit(cache=True)
-def throw_many_serial(x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
+def throw_many_serial(x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
                       max_iter, max_impacts, n_samples, x_out, side_out, status_out, rec_out):
     """:func:`throw_many` on the calling thread (no thread-pool wake-up): for batches below :data:`PARALLEL_MIN`."""
     ta_j, tb_j = side_angles(d, uL, uR)
     n_chunks = (x0.shape[0] + CHUNK - 1) // CHUNK
     for c in range(n_chunks):
-        _chunk(c, x0, side, omega, valid, h, g, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+        _chunk(c, x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
                max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out)

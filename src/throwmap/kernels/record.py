@@ -16,6 +16,11 @@ midpoint rule in u) and inverted by linear interpolation.
 
 Rows that do not fit in ``traj`` are counted in ``ts[DROPPED]`` (the caller
 retries with a larger buffer); M = 0 records nothing (the batch path).
+
+On an arm at rest angle α the rows stay in the ARM frame (the model turns them into
+the world): flights get −½ g_t t² along the arm (``gt`` = g sin α, ``g`` its normal
+component g cos α), and a swing is tabulated in ψ = θ + α (``tilt`` = α), the
+horizontal pendulum, and drawn at θ = ψ − α.
 """
 
 import math
@@ -77,10 +82,10 @@ def continue_angle(phi, phi_prev):
 
 
 @njit(cache=True)
-def flight_rows(traj, tags, ts, t0, t1, x0, y0, phi0, vx, vy, w, g, last_tag):
+def flight_rows(traj, tags, ts, t0, t1, x0, y0, phi0, vx, vy, w, g, last_tag, gt=0.0):
     """Rows of a ballistic flight (Eq. 1) from the pose (x0, y0, φ0) at t0 with velocity (vx, vy, w) up to t1.
 
-    The row at t1 gets ``last_tag`` (the touching vertex at a first contact).
+    Gravity (−gt, −g) (m/s²). The row at t1 gets ``last_tag`` (the touching vertex at a first contact).
     """
     dt = ts[DT]
     n = grid_count(t0, t1, dt)
@@ -89,20 +94,21 @@ def flight_rows(traj, tags, ts, t0, t1, x0, y0, phi0, vx, vy, w, g, last_tag):
         if t1 <= t0:
             tq = t0
         s = tq - t0
-        put(traj, tags, ts, tq, x0 + vx * s, y0 + vy * s - 0.5 * g * s * s, phi0 + w * s,
+        put(traj, tags, ts, tq, x0 + vx * s - 0.5 * gt * s * s, y0 + vy * s - 0.5 * g * s * s, phi0 + w * s,
             last_tag if i == n else FLIGHT)
 
 
 @njit(cache=True)
-def release_flight_rows(traj, tags, ts, t1, x0, dk, h, omega, g, phi0, last_tag):
-    """Rows of the flight from release (Eq. 1 in the form x0 − (h+d)ωt, h + d + x0ωt − ½gt²) up to t1."""
+def release_flight_rows(traj, tags, ts, t1, x0, dk, h, omega, g, phi0, last_tag, gt=0.0):
+    """Rows of the flight from release (Eq. 1 in the form x0 − (h+d)ωt − ½g_t t², h + d + x0ωt − ½gt²) up to t1."""
     dt = ts[DT]
     n = grid_count(0.0, t1, dt)
     for i in range(1, n + 1):
         tq = t1 if i == n else dt * i
         if t1 <= 0.0:
             tq = 0.0
-        put(traj, tags, ts, tq, x0 - (h + dk) * omega * tq, h + dk + x0 * omega * tq - 0.5 * g * tq * tq,
+        put(traj, tags, ts, tq, x0 - (h + dk) * omega * tq - 0.5 * gt * tq * tq,
+            h + dk + x0 * omega * tq - 0.5 * g * tq * tq,
             phi0 + omega * tq, last_tag if i == n else FLIGHT)
 
 
@@ -148,12 +154,13 @@ def _interp(x, xp, fp, k):
 
 
 @njit(cache=True)
-def swing_rows(traj, tags, ts, j, px, lj, alpha_j, h, th0, th_turn, end, E, I, g):
+def swing_rows(traj, tags, ts, j, px, lj, alpha_j, h, th0, th_turn, end, E, I, g, tilt=0.0):
     """Rows of one pivot swing about w_j at x = ``px`` from θ0 (through ``th_turn`` unless NaN) to ``end``.
 
     Writes the rows strictly inside the swing; returns ``(t_end, φ_end)``, the
     time and continuous body angle on arrival (the caller writes the landing row).
-    φ = θ + π − α_j with α_j the body angle of w_j.
+    φ = θ + π − α_j with α_j the body angle of w_j. On a tilted arm the angles given
+    are ψ = θ + ``tilt`` (the pendulum's, rad) and the rows are drawn at θ = ψ − tilt.
     """
     nodes = QUADRATURE_NODES
     two = not math.isnan(th_turn)
@@ -167,14 +174,15 @@ def swing_rows(traj, tags, ts, j, px, lj, alpha_j, h, th0, th_turn, end, E, I, g
         swing_table(th0, end, E, lj, I, g, nodes, t_tab, th_tab, 0, 0.0)
     t0 = ts[T_NOW]
     t1 = t0 + t_tab[m - 1]
-    off = continue_angle(th0 + math.pi - alpha_j, ts[PHI]) - th0
+    off = continue_angle(th0 - tilt + math.pi - alpha_j, ts[PHI]) - th0
     dt = ts[DT]
     n = grid_count(t0, t1, dt)
     k = 0
     for i in range(1, n):
         tq = t0 + dt * i
         th, k = _interp(tq - t0, t_tab, th_tab, k)
-        put(traj, tags, ts, tq, px + lj * math.cos(th), h + lj * math.sin(th), th + off, j)
+        thp = th - tilt
+        put(traj, tags, ts, tq, px + lj * math.cos(thp), h + lj * math.sin(thp), th + off, j)
     return (t0 if t1 <= t0 else t1), end + off
 
 

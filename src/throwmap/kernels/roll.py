@@ -38,6 +38,21 @@ m g is N = 1 − k + 3k s² − 2k e s (s = sin θ, k = ℓ²/I, e = E/(g ℓ)),
 minimum over the swept arc is exact; the friction force is k cos θ (3s − 2e).
 A negative minimum flags lift-off (the part would hop); it does not change the
 dynamics of this model.
+
+Tilted arm (rest angle α, rad, CCW +; draft Sec. VI)
+----------------------------------------------------
+Gravity in the arm frame is (−g sin α, −g cos α), so about a pivot U = g ℓ_j sin(θ + α):
+the pendulum above in ψ = θ + α, the angle in the frame of gravity. The cascade runs
+every guard and reset above in ψ (the landing angles become θa_j + α, θb_j + α; the peak
+stays at ψ = π/2), so jog and flip barriers change with α; landings are impulsive and
+unchanged. A side is stable iff its CM's vertical meets the support segment inside
+(u_L < −d tan α < u_R, the ``stable`` table passed for α), the Zeno barriers are
+g ℓ (1 − sin ψ) about each support vertex, and an unstable side tips over the vertex
+its CM overhangs along gravity. The paper's no-slip assumption holds the part at any α
+(the record reports the friction demand, now including |tan α| at rest). The force
+record of a swing is then the horizontal force in ψ rotated into the arm frame,
+N = cos α N_w − sin α F_w, F = cos α F_w + sin α N_w, sampled at ``n_samples`` angles
+(its exact minimum is only exact for α = 0).
 """
 
 import math
@@ -122,6 +137,28 @@ def _check_arc(th1, th2, E, ell, I, g, n_samples, rec):
 
 
 @njit(cache=True, inline="always")
+def _check_arc_tilted(th1, th2, E, ell, I, g, n_samples, rec, alpha):
+    """:func:`_check_arc` on a tilted arm: ψ ∈ [th1, th2] (ψ = θ + α), arm-frame N and |F|/N at ``n_samples`` angles."""
+    k = ell * ell / I
+    e = E / (g * ell)
+    ca = math.cos(alpha)
+    sa = math.sin(alpha)
+    for i in range(n_samples):
+        th = th1 + (th2 - th1) * i / (n_samples - 1)
+        s = math.sin(th)
+        nw = 1.0 - k + 3.0 * k * s * s - 2.0 * k * e * s
+        fw = k * math.cos(th) * (3.0 * s - 2.0 * e)
+        N = ca * nw - sa * fw
+        F = ca * fw + sa * nw
+        if N < rec[C.N_MIN]:
+            rec[C.N_MIN] = N
+        if N > 0.0:
+            r = abs(F) / N
+            if r > rec[C.MU_MAX]:
+                rec[C.MU_MAX] = r
+
+
+@njit(cache=True, inline="always")
 def _record_impulse(jx, jy, rec):
     if jy < 0.0:
         rec[C.N_PULL] += 1.0
@@ -171,8 +208,11 @@ def turn_back(E, g, lj, dirn):
 
 
 @njit(cache=True, inline="always")
-def pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec):
+def pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec, alpha=0.0):
     """One swing about a pivot vertex (compound pendulum), from θ at rate θ̇ (rad/s) to a landing.
+
+    On a tilted arm (``alpha`` ≠ 0) the angles θ, θa, θb are ψ = θ + α (see the module
+    docstring) and the force record is :func:`_check_arc_tilted`.
 
     Returns ``(E, end, land_dir, th_turn, thdot_end)``: the energy (J/kg), the end
     angle reached (θa or θb), the sense of the landing, the turning angle (NaN when
@@ -182,18 +222,25 @@ def pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec):
     dirn = swing_sense(theta, thdot)
     if reach_end(theta, dirn, ta, tb, E, g, lj):
         end = tb if dirn > 0 else ta
-        _check_arc(theta, end, E, lj, I, g, n_samples, rec)
+        if alpha != 0.0:
+            _check_arc_tilted(theta, end, E, lj, I, g, n_samples, rec, alpha)
+        else:
+            _check_arc(theta, end, E, lj, I, g, n_samples, rec)
         land_dir = dirn
         th_turn = math.nan
     else:
         # turns back below the barrier and lands on the side behind
         th_turn = turn_back(E, g, lj, dirn)
-        if dirn > 0:
+        if alpha != 0.0:
+            if dirn > 0:
+                _check_arc_tilted(ta, th_turn, E, lj, I, g, n_samples, rec, alpha)
+            else:
+                _check_arc_tilted(th_turn, tb, E, lj, I, g, n_samples, rec, alpha)
+        elif dirn > 0:
             _check_arc(ta, th_turn, E, lj, I, g, n_samples, rec)
-            end = ta
         else:
             _check_arc(th_turn, tb, E, lj, I, g, n_samples, rec)
-            end = tb
+        end = ta if dirn > 0 else tb
         land_dir = -dirn
     w2 = 2.0 * (E - g * lj * math.sin(end)) / I
     speed = math.sqrt(w2) if w2 > 0.0 else 0.0
@@ -248,12 +295,17 @@ def rocking_rest(k_after, lA, lB, dk, g):
 
 
 @njit(cache=True)
-def tip_over(k, x_cm, n, d, uL, uR):
+def tip_over(k, x_cm, n, d, uL, uR, alpha=0.0):
     """Reset ``tip_over``: flat on unstable side k, the part tips from rest over the vertex its CM overhangs.
 
-    Returns ``(j, px, theta)``: the pivot vertex, its x (m) and the angle of pivot→CM.
+    On an arm at rest angle ``alpha`` it overhangs along gravity: the left vertex iff
+    u_L ≥ −d tan α. Returns ``(j, px, theta)``: the pivot vertex, its x (m) and the
+    angle of pivot→CM (arm frame).
     """
-    if uL[k] >= 0.0:
+    left = uL[k] >= 0.0
+    if alpha != 0.0:
+        left = uL[k] >= -d[k] * math.tan(alpha)
+    if left:
         j = (k + 1) % n
         return j, x_cm + uL[k], theta_a(j, n, d, uL)
     return k, x_cm + uR[k], theta_b(k, d, uR)
@@ -289,7 +341,7 @@ def roll_to_rest(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, g, le
 
 @njit(cache=True, inline="always")
 def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j, tb_j, g, length, max_impacts,
-                  n_samples, rec, traj, tags, ts, h, w, beta, back):
+                  n_samples, rec, traj, tags, ts, h, w, beta, back, alpha=0.0):
     """Pivot on vertex ``w_j`` from angle ``theta`` at rate ``thdot`` (rad/s, CCW +) until rest.
 
     ``px`` is the pivot's world x (m), ``side0`` the side thrown from (flips are
@@ -301,7 +353,8 @@ def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j
     Returns ``(x, side, status)``; ``rec`` counters are updated in place.
     With a non-empty ``traj`` the swings and landings are recorded
     (:mod:`~throwmap.kernels.record`; ``h`` the arm height, ``w`` the vertices and
-    ``beta`` the resting orientations give the poses).
+    ``beta`` the resting orientations give the poses). ``alpha``: the arm's rest angle
+    (rad; ``stable`` must be the table for it): every swing runs in ψ = θ + α.
     """
     n = d.shape[0]
     last_side = side0
@@ -317,13 +370,21 @@ def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j
         elif theta > tb:
             theta = tb
         theta0 = theta
-        E, end, land_dir, th_turn, thdot = pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec)
+        if alpha != 0.0:
+            E, end, land_dir, th_turn, thdot = pivot_swing(theta + alpha, thdot, ta + alpha, tb + alpha, lj, I, g,
+                                                           n_samples, rec, alpha)
+        else:
+            E, end, land_dir, th_turn, thdot = pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec)
         # ---------------------------------------------------------- reset land_side
         k = j if land_dir > 0 else (j - 1) % n
         uA = uR[k] if land_dir > 0 else uL[k]
         if record:
-            t_end, phi_end = swing_rows(traj, tags, ts, j, px, lj, math.atan2(w[j, 1], w[j, 0]), h, theta0, th_turn,
-                                        end, E, I, g)
+            if alpha != 0.0:
+                t_end, phi_end = swing_rows(traj, tags, ts, j, px, lj, math.atan2(w[j, 1], w[j, 0]), h,
+                                            theta0 + alpha, th_turn, end, E, I, g, alpha)
+            else:
+                t_end, phi_end = swing_rows(traj, tags, ts, j, px, lj, math.atan2(w[j, 1], w[j, 0]), h, theta0,
+                                            th_turn, end, E, I, g)
             put(traj, tags, ts, t_end, px - uA, h + d[k], continue_angle(beta[k], phi_end), n + k)
         if k != last_side:
             rec[C.N_FLIPS] += 1.0
@@ -341,7 +402,15 @@ def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j
         if pxB > length:
             return x_cm, k, C.OFF_END
         if lifts:
-            if stable[k] and rocking_rest(0.5 * (rho2 + uB * uB + dk * dk) * w_new * w_new, ell[j], ell[jB], dk, g):
+            k_after = 0.5 * (rho2 + uB * uB + dk * dk) * w_new * w_new
+            if alpha != 0.0:
+                th_A = tb_j[j] if land_dir > 0 else ta_j[j]  # A's and B's pivot angles flat on side k
+                th_B = ta_j[jB] if land_dir > 0 else tb_j[jB]
+                zeno = k_after < min(g * ell[j] * (1.0 - math.sin(th_A + alpha)),
+                                     g * ell[jB] * (1.0 - math.sin(th_B + alpha)))
+            else:
+                zeno = rocking_rest(k_after, ell[j], ell[jB], dk, g)
+            if stable[k] and zeno:
                 return x_cm, k, C.OK  # rocks to rest (Zeno), energy below both barriers
             j = jB
             px = pxB
@@ -351,7 +420,7 @@ def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j
             return x_cm, k, C.OK
         else:
             thdot = 0.0
-            j, px, theta = tip_over(k, x_cm, n, d, uL, uR)
+            j, px, theta = tip_over(k, x_cm, n, d, uL, uR, alpha)
         if px <= -back:
             return x_cm, k, C.BEHIND_JOINT
         if px > length:

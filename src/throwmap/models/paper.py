@@ -2,8 +2,10 @@
 
 No small-angle approximation: release (Eq. 1), first contact of any vertex (Eq. 3),
 plastic no-slip impact (Eq. 4), then the exact pivot/landing/rocking cascade
-(:mod:`throwmap.kernels.paper`). Plain arm only (no fixtures, α = 0); friction is
-not modelled (the record reports the friction the throw needs).
+(:mod:`throwmap.kernels.paper`). No fixtures; the arm may rest at an angle α
+(``alpha=``, rad, CCW +; draft Sec. VI): gravity (−g sin α, −g cos α) in the arm
+frame. Friction is not modelled (the record reports the friction the throw needs,
+at rest on a tilted arm at least |tan α|).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ import numpy as np
 from ..kernels import codes as C
 from ..kernels.paper import PARALLEL_MIN, throw_many, throw_many_serial, throw_one, throw_one_traj
 from ..kernels.record import FLIGHT
+from .rigid_body import stable_at
 from ..throws.outcome import Status, ThrowOutcome
 from ..throws.trajectory import NO_CONTACT, Trajectory, contact_points, drawn_length, world_vertices
 from ._checks import int_at_least, tolerance
@@ -54,15 +57,14 @@ class PaperModel:
                "plastic no-slip impact, exact pivoting, landings, flips and rocking; lift-off and pulling "
                "impulses flagged, not modelled")
     options_type = PaperOptions
-    features = Features(trajectory=True)
+    features = Features(trajectory=True, tilt=True)
 
     def throw_one(self, part, system, x, side, omega, o: PaperOptions):
         arm = system.arm
         rec = np.empty(C.NREC)
-        xn, kn, st = throw_one(x, side, omega, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2,
-                               part.w,
-                               part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter,
-                               o.max_impacts, o.n_samples, rec)
+        xn, kn, st = throw_one(x, side, omega, arm.h, arm.g, system.alpha, arm.length_or_inf, arm.back,
+                               part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL, part.uR, part.ell,
+                               stable_at(part, system.alpha), o.tol, o.max_iter, o.max_impacts, o.n_samples, rec)
         return xn, kn, st, rec
 
     def throw_batch(self, part, system, x, side, omega, valid, o: PaperOptions, progress=None):
@@ -70,9 +72,10 @@ class PaperModel:
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
         kernel = throw_many if m >= PARALLEL_MIN else throw_many_serial
-        kernel(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w,
-               part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts,
-               o.n_samples, out.x, out.side, out.status, out.records)
+        kernel(x, side, omega, valid, arm.h, arm.g, system.alpha, arm.length_or_inf, arm.back,
+               part.radius_of_gyration**2, part.w, part.beta, part.d, part.uL, part.uR, part.ell,
+               stable_at(part, system.alpha), o.tol, o.max_iter, o.max_impacts, o.n_samples, out.x, out.side,
+               out.status, out.records)
         return out
 
     def assumptions(self, records, mu, status) -> str:
@@ -84,10 +87,10 @@ class PaperModel:
                 f"needs μ > arm μ {100 * slip.mean():.0f} %")
 
     def trajectory(self, part, system, x, side, omega, o: PaperOptions, dt):
-        return record_trajectory(part, system.arm, x, side, omega, dt, o)
+        return record_trajectory(part, system.arm, x, side, omega, dt, o, alpha=system.alpha)
 
 
-def record_trajectory(part, arm, x0, k0, om, dt, o: PaperOptions):
+def record_trajectory(part, arm, x0, k0, om, dt, o: PaperOptions, alpha: float = 0.0):
     """The kernel's recorded motion of one throw as ``(ThrowOutcome, Trajectory)``.
 
     Model "paper" (paper Sec. III-B–C, Eqs. 1–4): the first sample is the resting start
@@ -99,7 +102,9 @@ def record_trajectory(part, arm, x0, k0, om, dt, o: PaperOptions):
     horizontal (an impulsive throw). Events ``(t, label)``: ``"release"``,
     ``"impact v<j>"`` (j the user's vertex index), ``"land side <k>"``, ``"flip <a>→<b>"``,
     ``"rest"`` or ``"escape: <status>"``. Contacts per sample: both support vertices at
-    rest and at a landing, the pivot while swinging, none in flight.
+    rest and at a landing, the pivot while swinging, none in flight. On an arm at rest
+    angle ``alpha`` (rad) the kernel's arm-frame rows are turned into the world by α and
+    ``arm_angle`` is α at every sample.
     """
     rec = np.empty(C.NREC)
     m = 2048
@@ -107,9 +112,9 @@ def record_trajectory(part, arm, x0, k0, om, dt, o: PaperOptions):
         rows = np.full((m, 4), np.nan)
         tags = np.full(m, FLIGHT, dtype=np.int64)
         xn, kn, st, count, dropped = throw_one_traj(
-            x0, k0, om, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w, part.beta, part.d,
-            part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, o.n_samples, rec, rows, tags,
-            dt)
+            x0, k0, om, arm.h, arm.g, float(alpha), arm.length_or_inf, arm.back, part.radius_of_gyration**2, part.w,
+            part.beta, part.d, part.uL, part.uR, part.ell, stable_at(part, alpha), o.tol, o.max_iter, o.max_impacts,
+            o.n_samples, rec, rows, tags, dt)
         if dropped == 0:
             break
         m = count + dropped + 1
@@ -145,7 +150,12 @@ def record_trajectory(part, arm, x0, k0, om, dt, o: PaperOptions):
     else:
         events.append((float(t[-1]), "rest" if status == Status.OK else f"escape: {status.label}"))
     poses = rows[:, None, 1:4]
-    traj = Trajectory(t=t, arm_angle=np.zeros_like(t), poses=poses, parts=(part,), h=h,
+    if alpha != 0.0:  # arm frame → world: turn by the rest angle
+        ca, sa = np.cos(alpha), np.sin(alpha)
+        rot = np.array([[ca, -sa], [sa, ca]])
+        poses = np.concatenate((rows[:, 1:3] @ rot.T, rows[:, 3:4] + alpha), axis=1)[:, None, :]
+        contacts = [c @ rot.T if len(c) else c for c in contacts]
+    traj = Trajectory(t=t, arm_angle=np.full_like(t, float(alpha)), poses=poses, parts=(part,), h=h,
                       length=drawn_length(arm, poses, (part,)), fixtures=(), contacts=tuple(contacts),
                       events=tuple(events), source="paper",
                       meta={"outcomes": (out,), "arm": arm, "arm_unbounded": arm.length is None})

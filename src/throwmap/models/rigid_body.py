@@ -5,7 +5,8 @@ Drops the paper's two contact assumptions: the pivot may lift off and may slip
 the one-step velocity-level impacts of time-stepping engines), sticking and sliding pivots, flat
 slides and the Zeno rocking rule, as a hybrid automaton
 (:mod:`throwmap.kernels.rigid_body`). Validated against pymunk and MuJoCo
-(README, "Validation"). Plain arm only (no fixtures, α = 0) for now.
+(README, "Validation"). The arm may rest at an angle α (``alpha=``, rad, CCW +;
+draft Sec. VI): gravity (−g sin α, −g cos α) in the arm frame, :mod:`throwmap.kernels.rigid_body.tilt`.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import numpy as np
 from ..kernels import codes as C
 from ..errors import InvalidStateError, shown
 from ..kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY, count_samples, pick, throw_one_rigid_body
+from ..kernels.rigid_body.tilt import tilted_stable
 from ..throws.outcome import ThrowOutcome
 from ..throws.trajectory import Trajectory, world_vertices
 from ._checks import int_at_least, tolerance
@@ -68,12 +70,22 @@ class RigidBodyOptions:
         return IMPACT_LAWS[self.impact_law]
 
 
-def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt: float = 1.0):
-    """One kernel call: ``(x', side', status, record)``; ``traj`` (M, 4) receives the sampled motion."""
+def stable_at(part, alpha: float) -> np.ndarray:
+    """The sides of ``part`` that stand on an arm at rest angle ``alpha`` (rad): u_L < −d tan α < u_R
+    (:func:`~throwmap.kernels.rigid_body.tilt.tilted_stable`); ``part.stable`` for α = 0."""
+    if alpha == 0.0:
+        return part.stable
+    return tilted_stable(part.d, part.uL, part.uR, float(alpha))
+
+
+def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt: float = 1.0, alpha: float = 0.0):
+    """One kernel call: ``(x', side', status, record)``; ``traj`` (M, 4) receives the sampled motion;
+    ``alpha`` the arm's rest angle (rad)."""
     rec = np.empty(C.NREC)
-    xn, kn, st = throw_one_rigid_body(x, side, omega, arm.h, arm.g, arm.length_or_inf, arm.back,
+    xn, kn, st = throw_one_rigid_body(x, side, omega, arm.h, arm.g, float(alpha), arm.length_or_inf, arm.back,
                                       part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d,
-                                      part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter, o.max_impacts, rec, traj, dt)
+                                      part.uL, part.uR, part.ell, stable_at(part, alpha), o.tol, o.max_iter,
+                                      o.max_impacts, rec, traj, dt)
     return xn, kn, st, rec
 
 
@@ -82,18 +94,19 @@ class RigidBodyModel:
     summary = ("the exact rigid-body dynamics of one polygon on the arm line with plastic impacts and Coulomb "
                "friction Arm.mu: lift-off, sliding impacts and pivots, flat slides, Painlevé status")
     options_type = RigidBodyOptions
-    features = Features(trajectory=True, friction=True)
+    features = Features(trajectory=True, friction=True, tilt=True)
 
     def throw_one(self, part, system, x, side, omega, o: RigidBodyOptions):
-        return run_kernel(part, system.arm, x, side, omega, o)
+        return run_kernel(part, system.arm, x, side, omega, o, alpha=system.alpha)
 
     def throw_batch(self, part, system, x, side, omega, valid, o: RigidBodyOptions, progress=None):
         arm = system.arm
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
-        pick(m)(x, side, omega, valid, arm.h, arm.g, arm.length_or_inf, arm.back, part.radius_of_gyration**2, arm.mu,
-                o.law_code, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, o.tol, o.max_iter,
-                o.max_impacts, out.x, out.side, out.status, out.records)
+        pick(m)(x, side, omega, valid, arm.h, arm.g, system.alpha, arm.length_or_inf, arm.back,
+                part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d, part.uL, part.uR, part.ell,
+                stable_at(part, system.alpha), o.tol, o.max_iter, o.max_impacts, out.x, out.side, out.status,
+                out.records)
         return out
 
     def assumptions(self, records, mu, status) -> str:
@@ -105,14 +118,15 @@ class RigidBodyModel:
                 f"inconsistent (Painlevé) {100 * inc.mean():.1f} %")
 
     def trajectory(self, part, system, x, side, omega, o: RigidBodyOptions, dt):
-        return record_trajectory(part, system.arm, x, side, omega, dt, o)
+        return record_trajectory(part, system.arm, x, side, omega, dt, o, alpha=system.alpha)
 
 
-def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples: int = 200_000):
+def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples: int = 200_000, alpha: float = 0.0):
     """The kernel's rows (t, x, y, φ) every ``dt`` s and at every event, as ``(ThrowOutcome, Trajectory)``;
-    contacts are the vertices within 1 µm of the arm line at each sample."""
+    contacts are the vertices within 1 µm of the arm line at each sample. Poses are in the arm
+    frame; the trajectory's ``arm_angle`` is the rest angle ``alpha`` (rad) at every sample."""
     traj = np.full((max_samples, 4), np.nan)
-    xn, kn, st, rec = run_kernel(part, arm, x0, k, om, o, traj, float(dt))
+    xn, kn, st, rec = run_kernel(part, arm, x0, k, om, o, traj, float(dt), alpha=alpha)
     out = ThrowOutcome.from_record(part, x0, k, om, "rigid_body", xn, kn, st, rec)
     m = count_samples(traj)
     rows = traj[:m]
@@ -123,6 +137,11 @@ def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples
     for p in rows:
         v = world_vertices(part, p[1:4])
         contacts.append(v[np.abs(v[:, 1] - arm.h) < 1e-6])
+    if alpha != 0.0:  # the kernel's arm-frame rows, turned into the world by the rest angle
+        ca, sa = np.cos(alpha), np.sin(alpha)
+        rot = np.array([[ca, -sa], [sa, ca]])
+        poses = np.concatenate((rows[:, 1:3] @ rot.T, rows[:, 3:4] + alpha), axis=1)[:, None, :]
+        contacts = [c @ rot.T for c in contacts]
     reach = float(np.nanmax(rows[:, 1])) + float(np.max(part.ell)) if m else x0
     length = arm.length if arm.length is not None else max(reach, x0) + 0.05
     events = [(0.0, "release")]
@@ -130,7 +149,7 @@ def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples
         events.append((out.t_flight, f"impact v{out.contact_vertex}"))
     if out.ok:
         events.append((float(rows[-1, 0]) if m else 0.0, "rest"))
-    traj_obj = Trajectory(rows[:, 0], np.zeros(m), poses, (part,), arm.h, length, (), tuple(contacts),
+    traj_obj = Trajectory(rows[:, 0], np.full(m, float(alpha)), poses, (part,), arm.h, length, (), tuple(contacts),
                           tuple(events), "rigid_body", {"outcomes": (out,)})
     return out, traj_obj
 

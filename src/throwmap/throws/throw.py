@@ -24,7 +24,7 @@ from ..system.system import System
 from .outcome import BatchOutcome, ThrowOutcome
 
 __all__ = ["MODELS", "DEFAULT_MODEL", "throw", "throw_batch", "check_model", "check_start", "prepare",
-           "start_interval"]
+           "start_interval", "tilted_rest_reason"]
 
 MODELS = model_names()
 """The registered model names at import (see :func:`throwmap.models.model_names` for later registrations)."""
@@ -145,6 +145,38 @@ def check_start(part: Part, arm: Arm, x: float, side: int, omega: float) -> tupl
     return x, k, omega
 
 
+def tilted_rest_reason(part: Part, arm: Arm, side: int, alpha: float, friction: bool = True) -> str:
+    """Why a part flat on ``side`` is NOT at rest on an arm resting at ``alpha`` (rad, CCW +); ``""`` if it is.
+
+    Draft Sec. VI (the tilted arm), gravity (−g sin α, −g cos α) in the arm frame. A part
+    flat on side k rests iff (a) it stands: the vertical through its CM meets the arm at
+    −d_k tan α from the CM along the arm, strictly between the support vertices,
+    u_L < −d_k tan α < u_R (else it tips over the vertex its CM overhangs), and (b)
+    friction holds it: |tan α| ≤ μ (``Arm.mu``; checked only where the model uses
+    friction, ``friction=True``; model "paper" assumes no slip). Independent of x.
+    """
+    k = part.check_side(side)
+    if alpha == 0.0:
+        return ""
+    d, uL, uR = float(part.d[k]), float(part.uL[k]), float(part.uR[k])
+    p = -d * math.tan(alpha)
+    if not uL < p < uR:
+        j = (k + 1) % part.n_sides if uL >= p else k
+        return (f"tips over vertex {part.user_vertex(j)}: at α = {math.degrees(alpha):.4g}° the vertical through the "
+                f"CM meets side {k} {100 * p:+.4g} cm from the CM, outside its support "
+                f"[{100 * uL:+.4g}, {100 * uR:+.4g}] cm")
+    if friction and abs(math.tan(alpha)) > arm.mu:
+        return f"slides: |tan α| = {abs(math.tan(alpha)):.4g} > μ = {arm.mu:g} (α = {math.degrees(alpha):.4g}°)"
+    return ""
+
+
+def _invalid_outcome(part, x0, k, om, model, reason) -> ThrowOutcome:
+    """A start that was not thrown: status INVALID_START, the start kept, the record nan, ``message`` the reason."""
+    rec = np.full(C.NREC, np.nan)
+    out = ThrowOutcome.from_record(part, x0, k, om, model, x0, k, C.INVALID_START, rec)
+    return dataclasses.replace(out, message=reason)
+
+
 def throw(
     part: Part,
     arm: Arm,
@@ -164,6 +196,9 @@ def throw(
     Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible start:
     unknown or unstable side, a left support vertex at x ≤ −arm.back (x ≤ 0 by default), a right
     support vertex beyond ``arm.length``, negative ω (:func:`start_interval` gives the admissible x).
+    On a tilted arm (``alpha`` ≠ 0) a start that is not at rest there (it tips, or it slides:
+    :func:`tilted_rest_reason`) is not thrown: the outcome has status INVALID_START and
+    ``message`` says why.
 
     ``model`` is a registered model name (default ``"rigid_body"``, see
     :mod:`throwmap.models`). ``fixtures`` and ``alpha`` (rad) describe the
@@ -174,6 +209,10 @@ def throw(
     """
     m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     x0, k, om = check_start(part, arm, x, side, omega)
+    if system.alpha != 0.0:
+        reason = tilted_rest_reason(part, arm, k, system.alpha, m.features.friction)
+        if reason:
+            return _invalid_outcome(part, x0, k, om, m.name, reason)
     warn_if_outside_regime(part, arm)
     own = getattr(m, "outcome", None)
     if own is not None:
@@ -207,7 +246,9 @@ def throw_batch(
     throws the rest. Model, ``fixtures``, ``alpha`` and options as :func:`throw`;
     the analytic models run their compiled kernels in parallel over the entries,
     the engine in ``workers`` processes. ``progress(done, total)``, where a model
-    reports progress, is called as throws finish.
+    reports progress, is called as throws finish. On a tilted arm a start on a side
+    where the part does not rest (:func:`tilted_rest_reason`) is inadmissible: refused
+    with that reason (``"raise"``) or marked INVALID_START (``"status"``).
     """
     m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     if on_invalid not in ("raise", "status"):
@@ -242,9 +283,23 @@ def throw_batch(
     uR = np.where(in_range, part.uR[np.clip(sf, 0, n - 1)], np.nan)
     L = arm.length_or_inf
     valid = stable & np.isfinite(xf) & np.isfinite(of) & (of >= 0) & (xf + uL > -arm.back) & (xf + uR <= L)
+    tilt_reason = {}
+    if system.alpha != 0.0:
+        for k in part.stable_sides:
+            r = tilted_rest_reason(part, arm, int(k), system.alpha, m.features.friction)
+            if r:
+                tilt_reason[int(k)] = r
+                valid &= sf != k
     if on_invalid == "raise" and not np.all(valid):
         i = int(np.flatnonzero(~valid)[0])
         idx = np.unravel_index(i, shape) if shape else ()
+        if in_range[i] and int(sf[i]) in tilt_reason and stable[i]:
+            try:
+                check_start(part, arm, xf[i], int(sf[i]), of[i])
+            except InvalidStateError as err:
+                raise InvalidStateError(f"{err.field}[{', '.join(map(str, idx))}]", err.reason) from None
+            raise InvalidStateError(f"side[{', '.join(map(str, idx))}]",
+                                    f"not at rest on the tilted arm: {tilt_reason[int(sf[i])]}")
         try:
             check_start(part, arm, xf[i], int(sf[i]) if in_range[i] else int(sf[i]), of[i])
         except InvalidStateError as err:

@@ -9,6 +9,12 @@ any contact --leave_arm--> BEHIND_JOINT / OFF_END;  PIVOT_SLIDE --painleve--> IN
 function with the signature of :func:`~throwmap.kernels.rigid_body.stick.pivot_stick`),
 so the closed-form phase (:func:`throw_one_rigid_body`) and the RK4 reference
 (:func:`throw_one_rigid_body_rk4`) share every other line.
+
+Arm rest angle ``alpha`` (rad, CCW +, |α| < π/2; draft Sec. VI, :mod:`~.tilt`): the
+automaton runs in the arm frame with gravity (−g sin α, −g cos α). α = 0 runs the
+horizontal code unchanged (bit for bit); α ≠ 0 uses the tilted sticking phase
+:func:`~.tilt.pivot_stick_tilted` for both sticking-phase variants, and the tilted
+flat slide / rest :func:`~.tilt.settle`.
 """
 
 import math
@@ -29,12 +35,13 @@ from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_B, EV_LIFT_OFF, EV
 from .slide import pivot_slide, select_contact_mode
 from .stick import pivot_stick
 from .stick_exact import pivot_stick_exact
+from .tilt import pivot_stick_tilted, settle
 from .trajectory import _put, clear
 
 
 @njit(cache=True, inline='always')
-def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, tol,
-              max_iter, max_events, rec, traj, traj_dt):
+def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
+              tol, max_iter, max_events, rec, traj, traj_dt):
     """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`."""
     n = w.shape[0]
     start_record(rec)
@@ -42,12 +49,22 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
     clear(traj, ts, traj_dt)
     sample = traj.shape[0] > 0
     dk = d[side]
-    rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + g * dk
+    tilted = alpha != 0.0
+    gn = g * math.cos(alpha)  # gravity normal to the arm and along it (−gt): (−g sin α, −g cos α)
+    gt = g * math.sin(alpha)
+    if tilted:
+        rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + gn * dk + gt * x0
+    else:
+        rec[C.E_RELEASE] = 0.5 * omega * omega * (x0 * x0 + (h + dk) * (h + dk) + rho2) + g * dk
     if sample:
         _put(traj, ts, 0.0, x0, h + dk, beta[side])
         ts[1] = ts[2]
     if omega == 0.0:
         rec[C.N_MIN] = 1.0
+        if tilted:
+            x, k, st, _t = settle(x0, 0.0, 0.0, side, mu, g, alpha, h, d, uL, uR, beta, length, back, beta[side], traj,
+                                  ts, rec)
+            return x, k, st
         return rest(x0, side, 0.0, h, g, d, uL, uR, beta, length, back, beta[side], traj, ts, rec)
     # ------------------------------------------------------------------ reset release (Eq. 1)
     vx, vy, om = release_state(x0, dk, h, omega)
@@ -80,8 +97,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
             return x, last_side, C.NO_REST
         if mode == MODE_FLIGHT:
             # ---------------------------------------------------------- FLIGHT until guard touch
-            jc, t, x, y, vy, phi, rx, ry = fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol,
-                                               max_iter, traj, ts)
+            jc, t, x, y, vy, phi, rx, ry, vx = fly(t, x, y, vx, vy, phi, om, c0, ru, rv, gn, ell, excl_j, excl_t, tol,
+                                                   max_iter, traj, ts, gt)
             if jc < 0:
                 if jc != UNRESOLVED_J:
                     rec[C.CAP_HIT] = 1.0  # max_iter steps without contact: not resolved, not a missed contact
@@ -89,7 +106,9 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
             pxc = x + rx
             k_pre = 0.5 * (vx * vx + vy * vy + rho2 * om * om)
             if first:
-                record_first_contact(rec, t, jc, pxc, vx, vy, om, k_pre, y - h, g)
+                record_first_contact(rec, t, jc, pxc, vx, vy, om, k_pre, y - h, gn)
+                if tilted:
+                    rec[C.U_IMPACT] += gt * x
             status = leave_arm(pxc, back, length)
             if status != C.OK:
                 return x, last_side, status
@@ -114,7 +133,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
                 excl_j = jc
                 # a departing normal velocity at rounding level (relative to the motion's speed) gets the window
                 vscale = max(1.0, abs(vx) + abs(vy) + abs(om) * ell[jc])
-                excl_t = departure_window(un, rx, ry, om, g, ell[jc]) if un <= 1e-12 * vscale else 0.0
+                excl_t = departure_window(un, rx, ry, om, gn, ell[jc]) if un <= 1e-12 * vscale else 0.0
                 flight_frame(phi, y, h, w, ru, rv, c0, jc)
                 continue
             jp = jc
@@ -132,7 +151,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
         tb = theta_b(jp, d, uR)
         theta = min(max(theta, ta), tb)
         if mode == MODE_SELECT:
-            mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, False)
+            mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, False, alpha)
             if mode < 0:
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
             if mode == MODE_SLIDE and va == 0.0:
@@ -140,12 +159,16 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
             if mode == MODE_FLIGHT:
                 ev = EV_LIFT_OFF
         if mode == MODE_STICK:
-            ev, theta, thdot, t = stick_phase(theta, thdot, ta, tb, lj, I, g, mu, t, max_iter, px, h, phi_off, traj,
-                                              ts, rec)
+            if tilted:
+                ev, theta, thdot, t = pivot_stick_tilted(theta, thdot, ta, tb, lj, I, g, mu, t, px, h, phi_off, traj,
+                                                         ts, rec, alpha)
+            else:
+                ev, theta, thdot, t = stick_phase(theta, thdot, ta, tb, lj, I, g, mu, t, max_iter, px, h, phi_off,
+                                                  traj, ts, rec)
             va = 0.0
         elif mode == MODE_SLIDE:
             ev, px, theta, va, thdot, t = pivot_slide(px, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu_s, length, back,
-                                                      t, max_iter, h, phi_off, traj, ts, rec)
+                                                      t, max_iter, h, phi_off, traj, ts, rec, alpha)
             if ev == EV_INCONSISTENT:
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
             if ev == EV_BEHIND_JOINT:
@@ -154,7 +177,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
                 return px + lj * math.cos(theta), last_side, C.OFF_END
         if ev == EV_SLIP or ev == EV_LIFT_OFF or ev == EV_STICK:
             # ---------------------------------------------------------- resets slip_start / stick_start / lift
-            new_mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, ev != EV_STICK)
+            new_mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, ev != EV_STICK, alpha)
             if new_mode < 0:
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
             if new_mode == MODE_SLIDE:
@@ -172,7 +195,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
         if ev == EV_LIFT_OFF:
             # ---------------------------------------------------------- reset lift
             rec[C.N_LIFTOFFS] += 1.0
-            x, y, vx, vy, om, excl_t = lift(px, h, lj, theta, thdot, va, phi, g, w, ru, rv, c0, jp)
+            x, y, vx, vy, om, excl_t = lift(px, h, lj, theta, thdot, va, phi, gn, w, ru, rv, c0, jp)
             if excl_t <= 0.0:
                 # N = 0 with a friction force that only infinite friction supplies and a free
                 # motion that would sink the vertex: no consistent contact (μ = ∞ only)
@@ -182,10 +205,11 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
             mode = MODE_FLIGHT
             continue
         # -------------------------------------------------------------- guard land: reset land_side
+        land_dir = 1 if ev == EV_LAND_B else -1
         (mode, status, x, y, vx, vy, om, phi, t, jp, px, theta, thdot, va, phi_off, j_ex, t_ex,
-         last_side) = land_side(1 if ev == EV_LAND_B else -1, jp, px, thdot, va, phi, t, last_side, h, g, length,
+         last_side) = land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length,
                                 back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, ta, tb, ru, rv, c0, traj, ts,
-                                rec)
+                                rec, alpha)
         if mode == MODE_REST:
             return x, last_side, status
         if mode == MODE_FLIGHT:
@@ -194,13 +218,16 @@ def run_throw(stick_phase, x0, side, omega, h, g, length, back, rho2, mu, law, w
 
 
 @njit(cache=True)
-def throw_one_rigid_body(x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, tol,
-                         max_iter, max_events, rec, traj, traj_dt):
+def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
+                         tol, max_iter, max_events, rec, traj, traj_dt):
     """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s), model "rigid_body".
 
     Fills ``rec`` (layout :mod:`~throwmap.kernels.codes`) and ``traj`` (see
     :mod:`throwmap.kernels.rigid_body`; rows not written are NaN) and returns
-    ``(x, side, status)``. ``length`` (m, inf: unbounded) and ``back`` (m, ``Arm.back``)
+    ``(x, side, status)``. ``g`` (m/s²) is gravity's magnitude and ``alpha`` (rad, CCW +,
+    |α| < π/2) the arm's rest angle: gravity is (−g sin α, −g cos α) in the arm frame
+    (:mod:`~.tilt`; ``stable`` must be the table for α, :func:`~.tilt.tilted_stable`).
+    ``length`` (m, inf: unbounded) and ``back`` (m, ``Arm.back``)
     bound the arm's surface: a contact at x ≤ −back is BEHIND_JOINT, beyond length
     OFF_END. ``mu`` is the Coulomb coefficient (``inf``: no slip, 0: frictionless),
     ``law`` the impact law of resets ``impact`` and ``land_side`` (:data:`~.impact.LAW_ROUTH`,
@@ -209,13 +236,13 @@ def throw_one_rigid_body(x0, side, omega, h, g, length, back, rho2, mu, law, w, 
     ``max_events`` the mode changes (status NO_REST beyond). The caller has
     checked the start. The sticking phase is closed form (:func:`pivot_stick_exact`).
     """
-    return run_throw(pivot_stick_exact, x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
+    return run_throw(pivot_stick_exact, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
                      stable, tol, max_iter, max_events, rec, traj, traj_dt)
 
 
 @njit(cache=True)
-def throw_one_rigid_body_rk4(x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, tol,
-                             max_iter, max_events, rec, traj, traj_dt):
+def throw_one_rigid_body_rk4(x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
+                             tol, max_iter, max_events, rec, traj, traj_dt):
     """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`pivot_stick`): the reference it is checked against."""
-    return run_throw(pivot_stick, x0, side, omega, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
+    return run_throw(pivot_stick, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
                      tol, max_iter, max_events, rec, traj, traj_dt)

@@ -26,7 +26,7 @@ the cores are busy, up to milliseconds per call (issue 10: ``critical_points`` t
 
 
 @njit(cache=True)
-def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
+def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
                                  stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
@@ -34,7 +34,7 @@ def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, length, back, rho
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR,
                                         ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
@@ -42,7 +42,7 @@ def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, length, back, rho
 
 
 @njit(cache=True, parallel=True)
-def throw_many_rigid_body(x0, side, omega, valid, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
+def throw_many_rigid_body(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
                           tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """Batch of independent throws (flat arrays), model "rigid_body"; invalid starts get INVALID_START.
 
@@ -55,7 +55,7 @@ def throw_many_rigid_body(x0, side, omega, valid, h, g, length, back, rho2, mu, 
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR,
                                         ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
@@ -63,7 +63,7 @@ def throw_many_rigid_body(x0, side, omega, valid, h, g, length, back, rho2, mu, 
 
 
 @njit(cache=True, parallel=True)
-def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
+def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
                               stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body` with the RK4 sticking phase (:func:`~.automaton.throw_one_rigid_body_rk4`)."""
     no_traj = np.empty((0, 4))
@@ -71,7 +71,7 @@ def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, back, rho2, 
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, law, w, beta, d, uL,
+        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL,
                                             uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
@@ -79,7 +79,7 @@ def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, length, back, rho2, 
 
 
 @njit(cache=True)
-def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
+def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
                                      stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body_rk4` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
@@ -87,7 +87,7 @@ def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, length, back,
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, length, back, rho2, mu, law, w, beta, d, uL,
+        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL,
                                             uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k

@@ -5,6 +5,10 @@ shared kernels of :mod:`~throwmap.kernels.flight`: reset ``release`` (Eq. 1) is
 :func:`~throwmap.kernels.flight.release_state`, guard ``touch`` is
 :func:`~throwmap.kernels.flight.first_contact` from the flight frame
 (ru_j, rv_j) = R(φ0) w_j, c0_j = y0 − h + rv_j (:func:`flight_frame`).
+
+On an arm at rest angle α (:mod:`~.tilt`) gravity in the arm frame is (−g_t, −g_n):
+``touch`` sees the normal component g_n only (the gaps are normal distances), and
+the CM's x gets −½ g_t t² (:func:`fly` with ``gt``).
 """
 
 import math
@@ -40,23 +44,29 @@ def leave_arm(px, back, length):
 
 
 @njit(cache=True)
-def fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol, max_iter, traj, ts):
+def fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol, max_iter, traj, ts, gt=0.0):
     """Mode FLIGHT until guard ``touch``; samples the trajectory on the way.
 
-    ``excl_j`` (−1: none) is a vertex that just left the line, known to stay above
-    it for ``excl_t`` s. Returns ``(j, t, x, y, v_y, φ, r_x, r_y)`` at contact: vertex j (−1 if the
-    search hit ``max_iter``; ``UNRESOLVED_J`` past the spin angle the search resolves) and
-    its offset (r_x, r_y) from the CM (m).
+    Gravity (−gt, −g) in the arm frame (m/s²: ``g`` normal to the arm, ``gt`` along it,
+    0 on a horizontal arm). ``excl_j`` (−1: none) is a vertex that just left the line,
+    known to stay above it for ``excl_t`` s. Returns ``(j, t, x, y, v_y, φ, r_x, r_y, v_x)``
+    at contact: vertex j (−1 if the search hit ``max_iter``; ``UNRESOLVED_J`` past the spin
+    angle the search resolves), its offset (r_x, r_y) from the CM (m) and the CM's v_x.
     """
     tc, jc = first_contact(c0, ru, rv, vy, om, g, ell, excl_j, excl_t, tol, max_iter)
     if jc < 0:
-        return jc, t, x, y, vy, phi, 0.0, 0.0
+        return jc, t, x, y, vy, phi, 0.0, 0.0, vx
     if traj.shape[0] > 0:
         while ts[1] <= t + tc:
             tq = ts[1] - t
-            _put(traj, ts, ts[1], x + vx * tq, y + vy * tq - 0.5 * g * tq * tq, phi + om * tq)
+            _put(traj, ts, ts[1], x + vx * tq - 0.5 * gt * tq * tq, y + vy * tq - 0.5 * g * tq * tq, phi + om * tq)
             ts[1] += ts[2]
-    x += vx * tc
+    if gt != 0.0:
+        x -= 0.5 * gt * tc * tc
+        x += vx * tc
+        vx -= gt * tc
+    else:
+        x += vx * tc
     y += vy * tc - 0.5 * g * tc * tc
     vy -= g * tc
     phi += om * tc
@@ -67,7 +77,7 @@ def fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol, max_i
     ry = sp * ru[jc] + cp * rv[jc]
     if traj.shape[0] > 0:
         _put(traj, ts, t, x, y, phi)
-    return jc, t, x, y, vy, phi, rx, ry
+    return jc, t, x, y, vy, phi, rx, ry, vx
 
 
 @njit(cache=True)

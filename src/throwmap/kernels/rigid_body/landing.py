@@ -26,6 +26,7 @@ from .impact import coulomb_impact, record_impact
 from .modes import (HALF_PI, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST, MODE_SELECT,
                     MODE_STICK, N_ARC, TWO_PI)
 from .stick import _n_min_range, _n_stick
+from .tilt import rocking_rest_tilted, settle, tip_vertex, topple_barrier
 from .trajectory import _put, _put_final
 
 
@@ -140,12 +141,17 @@ def slide_away(x_cm, vx, t, k, uL, uR, length, back, y, phi, traj, ts, rec):
 
 
 @njit(cache=True)
-def tip_from_rest(k, x_cm, n, d, uL, uR):
+def tip_from_rest(k, x_cm, n, d, uL, uR, alpha=0.0):
     """Flat on an unstable side k: the pivot the part tips over from rest (the vertex its CM overhangs).
 
-    Returns ``(j, x_j, θ)``: the pivot vertex, its world x (m) and the angle of pivot→CM.
+    On an arm at rest angle ``alpha`` the CM overhangs along gravity
+    (:func:`~.tilt.tip_vertex`). Returns ``(j, x_j, θ)``: the pivot vertex, its
+    world x (m) and the angle of pivot→CM.
     """
-    if uL[k] >= 0.0:
+    left = uL[k] >= 0.0
+    if alpha != 0.0:
+        left = tip_vertex(k, n, uL, d, alpha)
+    if left:
         j = (k + 1) % n
         return j, x_cm + uL[k], theta_a(j, n, d, uL)
     return k, x_cm + uR[k], theta_b(k, d, uR)
@@ -153,8 +159,15 @@ def tip_from_rest(k, x_cm, n, d, uL, uR):
 
 @njit(cache=True)
 def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
-              ell, stable, ta, tb, ru, rv, c0, traj, ts, rec):
+              ell, stable, ta, tb, ru, rv, c0, traj, ts, rec, alpha=0.0):
     """Reset ``land_side``: pivoting on A = w_jp, θ reached θb (``land_dir`` +1) or θa (−1) and B touches.
+
+    On an arm at rest angle ``alpha`` ≠ 0 (rad; :mod:`~.tilt`): the departure window
+    sees the normal gravity g cos α, the Zeno rule uses the tilted topple barriers
+    and swings (:func:`~.tilt.rocking_rest_tilted`), a flat part slides and settles
+    under the tilted gravity (:func:`~.tilt.settle`: rests only where |tan α| ≤ μ),
+    an unstable side (``stable`` is the table for α) tips about the vertex its CM
+    overhangs along gravity, at once, sliding if it still moves.
 
     ``law`` is the impact law of the impulse at B (:data:`~.impact.LAW_ROUTH` or
     :data:`~.impact.LAW_VELOCITY`, see :func:`~.impact.coulomb_impact`).
@@ -200,7 +213,17 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
         if kind != IMP_STICK:
             rec[C.N_SLIPS] += 1.0
         th_new = theta_a(jB, n, d, uL) if land_dir > 0 else theta_b(jB, d, uR)
-        if mu == 0.0 and stable[k] and k_after - 0.5 * vxp * vxp < min(g * (ell[jp] - dk), g * (ell[jB] - dk)):
+        th_A = tb if land_dir > 0 else ta
+        if alpha != 0.0:
+            barrier = topple_barrier(th_A, th_new, ell[jp], ell[jB], g, alpha)
+        else:
+            barrier = min(g * (ell[jp] - dk), g * (ell[jB] - dk))
+        if mu == 0.0 and stable[k] and k_after - 0.5 * vxp * vxp < barrier:
+            if alpha != 0.0:
+                x, k, status, t = settle(x_cm, vxp, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj,
+                                         ts, rec)
+                return (MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0,
+                        last_side)
             # frictionless Zeno rule: the CM's horizontal motion is free (no friction), the rocking
             # relative to it is below both topple barriers and dies out: flat on side k, sliding at v_x
             if vxp == 0.0:
@@ -209,8 +232,16 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
                 x, status, t = slide_away(x_cm, vxp, t, k, uL, uR, length, back, h + dk, phi, traj, ts, rec)
             return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
         if kind == IMP_STICK and stable[k]:
-            th_A = tb if land_dir > 0 else ta
-            if rocking_rest(th_new, th_A, k_after, ell[jp], ell[jB], rho2, dk, g, mu, land_dir):
+            if alpha != 0.0:
+                zeno = rocking_rest_tilted(th_new, th_A, k_after, ell[jp], ell[jB], rho2, g, mu, land_dir, alpha)
+            else:
+                zeno = rocking_rest(th_new, th_A, k_after, ell[jp], ell[jB], rho2, dk, g, mu, land_dir)
+            if zeno and alpha != 0.0:
+                x, k, status, t = settle(x_cm, 0.0, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj,
+                                         ts, rec)
+                return (MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0,
+                        last_side)
+            if zeno:
                 x, k, status = rest(x_cm, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec)
                 return (MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0,
                         last_side)
@@ -219,7 +250,7 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
             # B bounced: flight again, B excluded from touch while it provably stays above the line
             un = vyp + wp * uB
             vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * ell[jB])
-            excl_t = (departure_window(un if un > 0.0 else 0.0, uB, -dk, wp, g, ell[jB])
+            excl_t = (departure_window(un if un > 0.0 else 0.0, uB, -dk, wp, g * math.cos(alpha), ell[jB])
                       if un <= 1e-12 * vscale else 0.0)
             flight_frame(phi, h + dk, h, w, ru, rv, c0, jB)
             return (MODE_FLIGHT, C.OK, x_cm, h + dk, vxp, vyp, wp, phi, t, jB, pxB, th_new, wp, 0.0, phi_off, jB,
@@ -235,6 +266,20 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
     vx_after = vxm + jt
     record_impact(jt, jn, k_before, 0.5 * vx_after * vx_after, rec)
     phi = beta[k] + TWO_PI * round((phi - beta[k]) / TWO_PI)
+    if alpha != 0.0:
+        if stable[k]:
+            x, k, status, t = settle(x_cm, vx_after, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj,
+                                     ts, rec)
+            return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, jp, px, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
+        # an unstable side tips at once over the vertex its CM overhangs along gravity (sliding if it moves)
+        jt_, px_t, theta = tip_from_rest(k, x_cm, n, d, uL, uR, alpha)
+        status = leave_arm(px_t, back, length)
+        if status != C.OK:
+            mode = MODE_REST
+        else:
+            mode = MODE_STICK if vx_after == 0.0 else MODE_SELECT
+        return (mode, status, x_cm, h + dk, vx_after, 0.0, 0.0, phi, t, jt_, px_t, theta, 0.0, vx_after,
+                phi - theta, -1, 0.0, last_side)
     if vx_after != 0.0 and mu == 0.0:
         # frictionless arm: nothing stops the horizontal motion
         if stable[k]:

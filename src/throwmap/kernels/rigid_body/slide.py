@@ -5,6 +5,10 @@ friction −μσN, σ = sgn v_A (:func:`slide_rhs`), integrated with classical R
 step Δt = DTH/(|θ̇| + Ω); guards ``stick`` (v_A = 0), ``land`` (θa, θb),
 ``lift_off`` (N = 0), ``painleve`` (D ≤ 0) and ``leave_arm`` are checked at step
 ends and located on the step length (:func:`_locate_guard`). μ = ∞ slides with ``MU_SKID``.
+
+On an arm at rest angle α (rad; :mod:`~.tilt`) gravity in the arm frame is
+(−g_t, −g_n) = (−g sin α, −g cos α): ``g`` below is the normal component g_n and
+``gt`` the one along the arm (0 for α = 0, the horizontal equations unchanged).
 """
 
 import math
@@ -20,12 +24,12 @@ from .trajectory import _put
 
 
 @njit(cache=True)
-def slide_rhs(th, w, lj, rho2, g, musig):
-    """PIVOT_SLIDE dynamics with friction −μσN (musig = μσ).
+def slide_rhs(th, w, lj, rho2, g, musig, gt=0.0):
+    """PIVOT_SLIDE dynamics with friction −μσN (musig = μσ), gravity (−gt, −g) in the arm frame (m/s²).
 
     With c = cos θ, s = sin θ and A → CM = ℓ(c, s):
     ÿ_A = 0 gives N D = g − ℓ s θ̇², D = 1 + ℓ² c (c + μσ s)/ρ²;
-    ρ² θ̈ = −ℓ N (c + μσ s);  ẍ_A = −μσ N + ℓ (s θ̈ + c θ̇²).
+    ρ² θ̈ = −ℓ N (c + μσ s);  ẍ_A = −μσ N − g_t + ℓ (s θ̈ + c θ̇²).
     Returns ``(θ̈, ẍ_A, N, D)`` (N per unit mass, m/s²).
     """
     c = math.cos(th)
@@ -34,22 +38,22 @@ def slide_rhs(th, w, lj, rho2, g, musig):
     D = 1.0 + lj * lj * c * q / rho2
     N = (g - lj * s * w * w) / D
     thdd = -lj * q * N / rho2
-    xdd = -musig * N + lj * (s * thdd + c * w * w)
+    xdd = -musig * N - gt + lj * (s * thdd + c * w * w)
     return thdd, xdd, N, D
 
 
 @njit(cache=True)
-def _rk4_slide(xa, th, va, w, dt, lj, rho2, g, musig):
-    a1, b1, _n, _d = slide_rhs(th, w, lj, rho2, g, musig)
+def _rk4_slide(xa, th, va, w, dt, lj, rho2, g, musig, gt):
+    a1, b1, _n, _d = slide_rhs(th, w, lj, rho2, g, musig, gt)
     th2 = th + 0.5 * dt * w
     w2 = w + 0.5 * dt * a1
-    a2, b2, _n, _d = slide_rhs(th2, w2, lj, rho2, g, musig)
+    a2, b2, _n, _d = slide_rhs(th2, w2, lj, rho2, g, musig, gt)
     th3 = th + 0.5 * dt * w2
     w3 = w + 0.5 * dt * a2
-    a3, b3, _n, _d = slide_rhs(th3, w3, lj, rho2, g, musig)
+    a3, b3, _n, _d = slide_rhs(th3, w3, lj, rho2, g, musig, gt)
     th4 = th + dt * w3
     w4 = w + dt * a3
-    a4, b4, _n, _d = slide_rhs(th4, w4, lj, rho2, g, musig)
+    a4, b4, _n, _d = slide_rhs(th4, w4, lj, rho2, g, musig, gt)
     va2 = va + 0.5 * dt * b1
     va3 = va + 0.5 * dt * b2
     va4 = va + dt * b3
@@ -61,8 +65,8 @@ def _rk4_slide(xa, th, va, w, dt, lj, rho2, g, musig):
 
 
 @njit(cache=True)
-def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back):
-    _a, _b, N, D = slide_rhs(th, w, lj, rho2, g, musig)
+def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, gt):
+    _a, _b, N, D = slide_rhs(th, w, lj, rho2, g, musig, gt)
     gmin = sig * va
     which = EV_STICK
     if th - ta < gmin:
@@ -86,7 +90,7 @@ def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back):
 
 
 @njit(cache=True)
-def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back):
+def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, gt):
     """The value of one guard of :func:`_slide_guards` (a smooth function of the state)."""
     if which == EV_STICK:
         return sig * va
@@ -95,7 +99,7 @@ def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, 
     if which == EV_LAND_B:
         return tb - th
     if which == EV_LIFT_OFF:
-        _a, _b, N, _D = slide_rhs(th, w, lj, rho2, g, musig)
+        _a, _b, N, _D = slide_rhs(th, w, lj, rho2, g, musig, gt)
         return N / g
     if which == EV_BEHIND_JOINT:
         return xa + back
@@ -105,7 +109,7 @@ def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, 
 
 
 @njit(cache=True)
-def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back):
+def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back, gt):
     """Smallest RK4 step length τ ∈ (0, dt] at which the guard function (:func:`_slide_guards`) is ≤ 0.
 
     Bracket [lo, hi] with min-guard G(lo) > 0 ≥ G(hi). Each trial point is a
@@ -120,7 +124,7 @@ def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, 
     lo = 0.0
     hi = dt
     x_lo, th_lo, v_lo, w_lo = xa, theta, va, thdot
-    x_hi, th_hi, v_hi, w_hi = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig)
+    x_hi, th_hi, v_hi, w_hi = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig, gt)
     falsi = True
     for _ in range(4 * N_BISECT):
         width = hi - lo
@@ -129,13 +133,13 @@ def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, 
             break
         mid = lo + 0.5 * width
         if falsi:
-            c_lo = _guard_value(which, x_lo, th_lo, v_lo, w_lo, sig, ta, tb, lj, rho2, g, musig, length, back)
-            c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length, back)
+            c_lo = _guard_value(which, x_lo, th_lo, v_lo, w_lo, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
+            c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
             if c_lo > 0.0 and c_hi <= 0.0:
                 mid = lo + width * c_lo / (c_lo - c_hi)
                 mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
-        xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig)
-        gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length, back)
+        xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig, gt)
+        gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
         if gmid <= 0.0:
             hi = mid
             which = wh
@@ -149,8 +153,11 @@ def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, 
 
 @njit(cache=True)
 def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back, t, max_steps, h, phi_off, traj, ts,
-                rec):
+                rec, alpha=0.0):
     """Mode PIVOT_SLIDE on vertex A at (x_A, h), slip sense σ = sgn v_A, until a guard fires.
+
+    ``g`` (m/s²) is gravity's magnitude and ``alpha`` the arm's rest angle (rad):
+    the dynamics use g cos α normal to the arm and −g sin α along it (:func:`slide_rhs`).
 
     Guards ``stick`` (σ v_A = 0), ``land`` (θa, θb), ``lift_off`` (N = 0),
     ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ −back or > length). RK4, the guard
@@ -158,6 +165,8 @@ def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back
     ``(event, x_A, θ, v_A, θ̇, t)``.
     """
     musig = mu * sig
+    gt = g * math.sin(alpha)
+    g = g * math.cos(alpha)
     om = math.sqrt(g / lj)
     x_start = xa
     if mu > rec[C.MU_MAX]:
@@ -165,20 +174,20 @@ def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back
     sample = traj.shape[0] > 0
     for _ in range(max_steps):
         dt = DTH / (abs(thdot) + om)
-        x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig)
-        gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back)
+        x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig, gt)
+        gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
         step = dt
         if gm <= 0.0:
-            hi = _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back)
+            hi = _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
             step = hi
-            x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, hi, lj, rho2, g, musig)
-            gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back)
+            x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, hi, lj, rho2, g, musig, gt)
+            gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
         if sample:
             while ts[1] <= t + step:
-                xq, thq, _v, _w = _rk4_slide(xa, theta, va, thdot, ts[1] - t, lj, rho2, g, musig)
+                xq, thq, _v, _w = _rk4_slide(xa, theta, va, thdot, ts[1] - t, lj, rho2, g, musig, gt)
                 _put(traj, ts, ts[1], xq + lj * math.cos(thq), h + lj * math.sin(thq), thq + phi_off)
                 ts[1] += ts[2]
-        _a, _b, N, _D = slide_rhs(th1, w1, lj, rho2, g, musig)
+        _a, _b, N, _D = slide_rhs(th1, w1, lj, rho2, g, musig, gt)
         if N / g < rec[C.N_MIN]:
             rec[C.N_MIN] = N / g
         xa, theta, va, thdot = x1, th1, v1, w1
@@ -202,20 +211,22 @@ def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back
 
 
 @njit(cache=True)
-def slide_sense(theta, thdot, va, f_stick, lj, rho2, g, mu):
+def slide_sense(theta, thdot, va, f_stick, lj, rho2, g, mu, alpha=0.0):
     """Reset ``slip_start``: the slip sense σ (±1) of a consistent sliding motion, 0 if none.
 
     v_A ≠ 0 fixes σ = sgn v_A (needs D > 0). From v_A = 0 the slip starts against
     the friction that sticking would need (σ = −sgn F); it must satisfy σ ẍ_A > 0
-    and D > 0, else the other sense is tried.
+    and D > 0, else the other sense is tried. ``alpha``: the arm's rest angle (rad).
     """
+    gt = g * math.sin(alpha)
+    g = g * math.cos(alpha)
     if va != 0.0:
         sig = 1.0 if va > 0.0 else -1.0
-        _a, _x, _n, D = slide_rhs(theta, thdot, lj, rho2, g, mu * sig)
+        _a, _x, _n, D = slide_rhs(theta, thdot, lj, rho2, g, mu * sig, gt)
         return sig if D > 0.0 else 0.0
     sig = -1.0 if f_stick > 0.0 else 1.0
     for _ in range(2):
-        _a, xdd, _n, D = slide_rhs(theta, thdot, lj, rho2, g, mu * sig)
+        _a, xdd, _n, D = slide_rhs(theta, thdot, lj, rho2, g, mu * sig, gt)
         if D > 0.0 and sig * xdd > 0.0:
             return sig
         sig = -sig
@@ -223,7 +234,7 @@ def slide_sense(theta, thdot, va, f_stick, lj, rho2, g, mu):
 
 
 @njit(cache=True)
-def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip):
+def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip, alpha=0.0):
     """Which mode continues from a one-vertex contact state (the single-contact Coulomb LCP).
 
     In order: ``PIVOT_STICK`` (v_A = 0, N > 0, |F| ≤ μN; not offered right after a
@@ -232,27 +243,31 @@ def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip):
     (D > 0, N > 0, and σ ẍ_A > 0 when starting from v_A = 0 — right after ``slip``
     ẍ_A = 0 exactly, so σ = −sgn F is taken); else no consistent motion.
     ``mu_s`` is the coefficient used for sliding (μ, or MU_SKID for μ = ∞).
+    ``alpha`` is the arm's rest angle (rad): normal gravity g cos α, along the arm
+    −g sin α, sticking forces as :func:`~.stick.stick_forces`.
     Returns ``(mode, σ)`` with mode −1 for INCONSISTENT.
     """
+    gt = g * math.sin(alpha)
+    gn = g * math.cos(alpha)
     I = rho2 + lj * lj
     c = math.cos(theta)
     s = math.sin(theta)
     if va != 0.0:
         sig = 1.0 if va > 0.0 else -1.0
-        _a, _x, N, D = slide_rhs(theta, thdot, lj, rho2, g, mu_s * sig)
+        _a, _x, N, D = slide_rhs(theta, thdot, lj, rho2, gn, mu_s * sig, gt)
         if D > 0.0 and N > 0.0:
             return MODE_SLIDE, sig
-        if departure_window(0.0, -lj * c, -lj * s, thdot, g, lj) > 0.0:
+        if departure_window(0.0, -lj * c, -lj * s, thdot, gn, lj) > 0.0:
             return MODE_FLIGHT, 0.0
         return -1, 0.0
-    nf, ff = stick_forces(theta, thdot, lj, I, g)
+    nf, ff = stick_forces(theta, thdot, lj, I, g, alpha)
     if not from_slip and nf > 0.0 and abs(ff) <= mu * nf:
         return MODE_STICK, 0.0
-    if departure_window(0.0, -lj * c, -lj * s, thdot, g, lj) > 0.0:
+    if departure_window(0.0, -lj * c, -lj * s, thdot, gn, lj) > 0.0:
         return MODE_FLIGHT, 0.0
     sig = -1.0 if ff > 0.0 else 1.0
     for _ in range(2):
-        _a, xdd, N, D = slide_rhs(theta, thdot, lj, rho2, g, mu_s * sig)
+        _a, xdd, N, D = slide_rhs(theta, thdot, lj, rho2, gn, mu_s * sig, gt)
         if D > 0.0 and N > 0.0 and (sig * xdd > 0.0 or from_slip):
             return MODE_SLIDE, sig
         if from_slip:
@@ -260,7 +275,7 @@ def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip):
         sig = -sig
     if from_slip:
         sig = -sig
-        _a, xdd, N, D = slide_rhs(theta, thdot, lj, rho2, g, mu_s * sig)
+        _a, xdd, N, D = slide_rhs(theta, thdot, lj, rho2, gn, mu_s * sig, gt)
         if D > 0.0 and N > 0.0 and sig * xdd > 0.0:
             return MODE_SLIDE, sig
     return -1, 0.0

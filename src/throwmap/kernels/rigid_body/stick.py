@@ -186,9 +186,35 @@ def pivot_stick(theta, thdot, ta, tb, lj, I, g, mu, t, max_steps, px, h, phi_off
 
 
 @njit(cache=True)
-def stick_forces(theta, thdot, lj, I, g):
-    """Normal force N and friction F (units m g, F along +x) while sticking at (θ, θ̇)."""
+def stick_forces(theta, thdot, lj, I, g, alpha=0.0):
+    """Normal force N and friction F (units m g, F along +x) while sticking at (θ, θ̇).
+
+    On an arm at rest angle ``alpha`` (rad, CCW +; draft Sec. VI) the pendulum is the
+    horizontal one in ψ = θ + α (gravity (−g sin α, −g cos α) in the arm frame), whose
+    contact force (F_w, N_w) in the gravity-aligned frame is given by the formulas above
+    with s = sin ψ; the arm-frame components are N = cos α N_w − sin α F_w and
+    F = cos α F_w + sin α N_w (:func:`tilted_forces`).
+    """
+    if alpha != 0.0:
+        k = lj * lj / I
+        psi = theta + alpha
+        e = (0.5 * I * thdot * thdot + g * lj * math.sin(psi)) / (g * lj)
+        s = math.sin(psi)
+        return tilted_forces(s, math.cos(psi), e, k, math.cos(alpha), math.sin(alpha))
     k = lj * lj / I
     e = (0.5 * I * thdot * thdot + g * lj * math.sin(theta)) / (g * lj)
     s = math.sin(theta)
     return _n_stick(s, e, k), k * math.cos(theta) * (3.0 * s - 2.0 * e)
+
+
+@njit(cache=True, inline="always")
+def tilted_forces(s, c, e, k, ca, sa):
+    """Arm-frame contact force ``(N, F)`` (units m g) of a sticking pivot at ψ = θ + α with sin ψ = s, cos ψ = c.
+
+    (F_w, N_w) = (k c (3s − 2e), 1 − k + 3k s² − 2k e s) is the force in the frame of
+    gravity (the horizontal-arm formulas in ψ); rotated by −α into the arm frame:
+    N = cos α N_w − sin α F_w, F = cos α F_w + sin α N_w.
+    """
+    nw = _n_stick(s, e, k)
+    fw = k * c * (3.0 * s - 2.0 * e)
+    return ca * nw - sa * fw, ca * fw + sa * nw
