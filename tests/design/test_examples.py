@@ -19,16 +19,17 @@ def rerun():
 
 def test_stored_feeder_design_still_meets_its_targets_on_the_exact_model(rerun):
     fd = feeder_design()
-    # the stored part at the stored ω: exact r_i within 1 mm of the targets (re-evaluated, not read back)
+    # the stored part at the stored ω: exact r_i within 1 mm of the targets (re-evaluated, not read back), and
+    # within 0.1 mm of the stored r_i (else the data file is stale: regenerate it)
     r = exact_r(fd.part, fd.arm, fd.omega)
     for s, v in fd.targets.items():
         assert abs(r[s] - v) <= 1e-3
-        assert abs(r[s] - fd.r[s]) <= 1e-5
+        assert abs(r[s] - fd.r[s]) <= 1e-4
     # and the design re-run from scratch lands on the stored numbers
     res, new = rerun
     assert res.success, res.message
-    assert np.allclose(new.weight_at, fd.weight_at, atol=1e-5)
-    assert new.omega == pytest.approx(fd.omega, abs=1e-4)
+    assert np.allclose(new.weight_at, fd.weight_at, atol=1e-4)
+    assert new.omega == pytest.approx(fd.omega, abs=1e-3)
     for s in fd.targets:
         assert abs(new.r[s] - fd.targets[s]) <= 1e-4
 
@@ -42,7 +43,7 @@ def test_feeder_separation_holds(rerun):
     assert all(math.isfinite(new.bottoms[s]) for s in new.bottoms)  # every side visited: one band over all sides
     lo, hi, S = end_wall_window(fd.part, fd.arm, fd.omega, fd.target_side, fd.jitter)
     assert S > 0.02
-    assert (lo, hi) == pytest.approx(fd.wall_window, abs=1e-5)
+    assert (lo, hi) == pytest.approx(fd.wall_window, abs=1e-4)
 
 
 def test_feeder_part_is_plate_plus_weight_inside_the_margin():
