@@ -22,9 +22,9 @@ same outcome % (same side at rest, or the same escape) and |Δx| ≤ 0.5 mm %, e
 with its Wilson 95 % interval, median and 95th percentile |Δx|, and the throws each
 side refused (``unresolved``, ``timeout``, …), with the worst misses as reproducers.
 
-:func:`wall_fixed_point` finds, with :func:`throwmap.limit_set`, the fixed point a
-wall makes where jogs saturate (x* = length − u_R) and checks its multiplier by
-finite differences of the map.
+:func:`~throwmap.analysis.wall.wall_fixed_point` finds, with :func:`throwmap.limit_set`,
+the fixed point a wall makes where jogs saturate (x* = length − u_R) and checks its
+multiplier by finite differences of the map; the report prints it.
 """
 
 from __future__ import annotations
@@ -44,10 +44,11 @@ from ..system.fixtures import Wall
 from ..system.part import Part
 from ..throws.outcome import Status
 from ..throws.throw import start_interval, throw_batch
+from ..analysis.wall import wall_fixed_point
 from .validation import default_parts
 
-__all__ = ["CONDITIONS", "REFUSED", "TiltWallCases", "TiltWallReport", "make_cases", "validate_tilt_wall",
-           "wall_fixed_point", "compare_rows"]
+__all__ = ["CONDITIONS", "REFUSED", "TiltWallCases", "TiltWallReport", "compare_rows", "make_cases",
+           "validate_tilt_wall", "wall_fixed_point"]
 
 ALPHA_RANGE = (-math.radians(15.0), math.radians(15.0))
 """Arm rest angles α, rad (issue 11: ±15°)."""
@@ -359,54 +360,6 @@ def _mu(v) -> str:
     return "∞" if v is None or math.isinf(v) else f"{v:g}"
 
 
-def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wall | None = None, alpha: float = 0.0,
-                     model: str = "rigid_body", n_starts: int = 16, rng=0, fd_steps=(1e-3, 1e-4, 1e-5, 1e-6),
-                     **options) -> dict:
-    """The fixed point at the wall, x* = length − u_R on ``side``, found by :func:`throwmap.limit_set`.
-
-    A jog that would carry the part past the wall stops against it, so T(x) = x* for
-    every x near x* on that side: x* is a fixed point with multiplier 0 (superstable:
-    reached in finitely many throws). The map is defined only for x ≤ x* (x + u_R ≤
-    length), so its derivative there is one-sided: the left difference quotient
-    (T(x*) − T(x* − h))/h, computed here for each h in ``fd_steps`` (m), must be 0, and
-    limit_set's multiplier (:func:`throwmap.analysis.recurrence._slopes`, one-sided
-    where the right neighbour is no valid start) must agree. ``free_slope`` is the
-    same quotient of the map without the wall, for comparison. Returns a dict (JSON-ready).
-    """
-    from ..analysis import limit_set
-    from ..throws.throw import throw_batch as tb
-
-    wall = Wall(WALL_HEIGHT, mu=0.0) if wall is None else wall
-    kw = {"fixtures": (wall,), "alpha": alpha, **options}
-    k = part.check_side(side)
-    x_wall = start_interval(part, arm, k)[1]
-    info = {"model": model, "part": part.name, "side": k, "omega_rad_s": float(omega), "length_m": arm.length,
-            "h_m": arm.h, "mu": arm.mu, "alpha_deg": math.degrees(alpha), "wall_mu": wall.mu, "x_wall_m": x_wall,
-            "fd_steps_m": list(fd_steps)}
-    try:
-        ls = limit_set(part, arm, omega, model, n_starts=n_starts, rng=rng, **kw)
-    except ThrowmapError as err:
-        return {**info, "found": False, "message": str(err)}
-    fps = [a for a in ls.attractors if a.kind == "fixed_point" and a.points[0][0] == k
-           and abs(a.points[0][1] - x_wall) <= 1e-6]
-    if not fps:
-        return {**info, "found": False, "message": f"limit_set found {ls.kind}: " + "; ".join(
-            a.describe() for a in ls.attractors) + f"; escapes {ls.escapes}", "range": ls.range_text}
-    a = fps[0]
-    xs = a.points[0][1]
-
-    def left(extra: dict, x0: float) -> list:
-        xa = np.array([x0] + [x0 - h for h in fd_steps])
-        b = tb(part, arm, xa, k, omega, model=model, on_invalid="status", **extra)
-        ok = (b.status == C.OK) & (b.side == b.side[0])
-        return [float((b.x[0] - b.x[j + 1]) / h) if ok[0] and ok[j + 1] else math.nan for j, h in enumerate(fd_steps)]
-
-    free = left({kk: v for kk, v in kw.items() if kk != "fixtures"}, xs)
-    return {**info, "found": True, "x_star_m": xs, "multiplier": a.multiplier, "residual_m": a.residual,
-            "fraction": a.fraction, "n_starts": ls.n_starts, "range": ls.range_text, "fd_left": left(kw, xs),
-            "free_slope": free[-1] if free else math.nan, "limit_set": ls.summary()}
-
-
 def _timer(parts: dict) -> float:
     """Seconds per engine throw, measured on three tilted throws against a wall (after one that warms the engine)."""
     first = dict([next(iter(parts.items()))])
@@ -418,7 +371,8 @@ def _timer(parts: dict) -> float:
 
 
 def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, seed: int = 0, conditions=None,
-                       models=None, alpha_range=ALPHA_RANGE, baseline: bool = True, rigid_body_options: dict | None = None, fixed_point: bool = True, progress=None,
+                       models=None, alpha_range=ALPHA_RANGE, baseline: bool = True,
+                       rigid_body_options: dict | None = None, fixed_point: bool = True, progress=None,
                        max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
                        force: bool = False) -> TiltWallReport:
     """Throw ``n`` random cases per condition (:data:`CONDITIONS`) through the models and the engine; compare.
@@ -446,16 +400,15 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
     n = check_count("n", n, minimum=1)
     max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
     n_engine = n * sum(1 + bool(CONDITIONS[c]["wall"]) + bool(baseline) for c in conditions)
-    guard_work("validate-fixtures", "n", n_engine, 400.0, max_memory, max_seconds, force,
-               throws_per_config=1.0, timer=lambda: _timer(parts), hint="fewer throws per condition (--n)",
-               unit="engine throws")
+    guard_work("validate-fixtures", "n", n_engine, 400.0, max_memory, max_seconds, force, throws_per_config=1.0,
+               timer=lambda: _timer(parts), hint="fewer throws per condition (--n)", unit="engine throws")
     rb = dict(rigid_body_options or {})
     if models is not None:
         from ..models import check_model
 
         models = tuple(check_model(m) for m in ([models] if isinstance(models, str) else models))
     seqs = np.random.SeedSequence(seed).spawn(len(CONDITIONS))
-    total = n * sum(1 + bool(CONDITIONS[c]["wall"]) + bool(baseline) for c in conditions)
+    total = n_engine
     done = [0]
 
     def tick():
@@ -491,12 +444,14 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
     if fixed_point:
         from ..system.catalogue import triangle_30_60_90
 
-        fp = wall_fixed_point(triangle_30_60_90(), Arm(h=-0.01, mu=1.0, length=0.30), 5.0, 0, **rb)
+        fp = wall_fixed_point(triangle_30_60_90(), Arm(h=-0.01, mu=1.0, length=0.30), 5.0, 0,
+                              wall=Wall(WALL_HEIGHT, mu=0.0), **rb)
     settings = {"n_per_condition": n, "seed": seed, "conditions": {c: {**CONDITIONS[c], "models": list(
         CONDITIONS[c]["models"] if models is None else models)} for c in conditions}, "parts": list(parts),
         "alpha_range_deg": [round(math.degrees(float(a)), 9) for a in alpha_range], "mu_range": list(MU_RANGE),
         "p_mu_inf": P_MU_INF, "omega_range_rad_s": list(OMEGA_RANGE), "h_m": list(H_VALUES),
         "length_range_m": list(LENGTH_RANGE), "wall_height_m": WALL_HEIGHT, "within_m": WITHIN,
-        "rigid_body_options": rb, "baseline_alpha_0": bool(baseline), "mu_bands": [_band(*b) for b in MU_BANDS], "reference": "engine (pymunk, default EngineSettings)",
+        "rigid_body_options": rb, "baseline_alpha_0": bool(baseline), "mu_bands": [_band(*b) for b in MU_BANDS],
+        "reference": "engine (pymunk, default EngineSettings)",
         "refused_statuses": [Status(c).label for c in REFUSED]}
     return TiltWallReport(tuple(rows), goals, fp, settings, cases_out, results)

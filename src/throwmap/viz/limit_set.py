@@ -35,10 +35,16 @@ def wall_stops(map_info: dict) -> dict:
 
 def system_suffix(map_info: dict) -> str:
     """``", α = 5°, wall 5 cm (μ 0)"`` for a figure title; empty on the paper's plain arm."""
-    from ..analysis.attractors import system_short
-
-    text = system_short(map_info or {}).replace("alpha=", "α = ")
-    return f", {text}" if text else ""
+    info = map_info or {}
+    bits = [f"α = {math.degrees(float(info['alpha_rad'])):.3g}°"] if info.get("alpha_rad") else []
+    for f in info.get("fixtures") or ():
+        if f.get("kind") == "wall":
+            mu = f.get("mu")
+            bits.append(f"wall {100 * f['height_m']:.3g} cm ("
+                        + ("arm μ" if mu == "arm" else "μ ∞" if mu is None else f"μ {mu:g}") + ")")
+        elif f.get("kind") == "cavity":
+            bits.append("cavity")
+    return ", " + ", ".join(bits) if bits else ""
 
 
 def draw_wall_stops(ax, map_info: dict, k: float, where, handles=None, *, horizontal: bool = False):
