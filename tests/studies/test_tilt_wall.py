@@ -14,7 +14,7 @@ from throwmap.errors import InvalidStateError
 from throwmap.kernels import codes as C
 from throwmap.studies import tilt_wall as tw
 from throwmap.studies.validation import default_parts
-from throwmap.throws.throw import start_interval
+from throwmap.throws.throw import start_interval, tilted_rest_reason
 
 PARTS = default_parts()
 
@@ -28,6 +28,8 @@ def test_draws_stay_in_their_ranges(condition):
         part = PARTS[cases.part[i]]
         lo, hi = start_interval(part, Arm(h=cases.h[i], length=cases.length[i]), int(cases.side[i]))
         assert lo < cases.x[i] <= hi  # a start throw() accepts
+        arm = Arm(h=cases.h[i], mu=cases.mu[i], length=cases.length[i])
+        assert tilted_rest_reason(part, arm, int(cases.side[i]), float(cases.alpha[i])) == ""  # at rest at α
         if spec["wall"] is not None:  # the outer quarter of the starts, where jogs reach the wall
             assert cases.x[i] >= hi - tw.WALL_X_SHARE * (hi - lo) - 1e-12
     assert np.all(np.abs(cases.alpha) <= math.radians(15) + 1e-12)
@@ -44,13 +46,13 @@ def test_draws_stay_in_their_ranges(condition):
         assert np.array_equal(cases.wall_mu, cases.mu)
 
 
-def test_same_seed_same_draws_and_level_baseline_keeps_them():
+def test_same_seed_same_draws():
     a = tw.make_cases(PARTS, "tilt", 20, np.random.default_rng(3))
     b = tw.make_cases(PARTS, "tilt", 20, np.random.default_rng(3))
     c = tw.make_cases(PARTS, "tilt", 20, np.random.default_rng(3), alpha_range=(0.0, 0.0))
     for f in ("x", "side", "omega", "alpha", "mu", "h", "length"):
         assert np.array_equal(getattr(a, f), getattr(b, f))
-    assert np.all(c.alpha == 0.0) and np.array_equal(a.x, c.x) and np.array_equal(a.mu, c.mu)
+    assert np.all(c.alpha == 0.0) and np.all(a.alpha != 0.0)
 
 
 def _res(x, side, status):

@@ -43,7 +43,7 @@ from ..system.arm import Arm
 from ..system.fixtures import Wall
 from ..system.part import Part
 from ..throws.outcome import Status
-from ..throws.throw import start_interval, throw_batch
+from ..throws.throw import start_interval, throw_batch, tilted_rest_reason
 from ..analysis.wall import wall_fixed_point
 from .validation import default_parts
 
@@ -70,8 +70,8 @@ WITHIN = 0.5e-3
 """|Δx| counted as agreement, m (issue 3's 0.5 mm)."""
 GOALS = {"same_pct": 99.0, "within_pct": 95.0}
 """Targets of issue 11 per row: same outcome ≥ 99 %, |Δx| ≤ 0.5 mm in ≥ 95 %."""
-REFUSED = (C.UNRESOLVED, C.TIMEOUT, C.PENETRATION, C.UNCONVERGED, C.INCONSISTENT)
-"""Statuses that refuse a result rather than give one; such throws are counted, not compared."""
+REFUSED = (C.UNRESOLVED, C.TIMEOUT, C.PENETRATION, C.UNCONVERGED, C.INCONSISTENT, C.INVALID_START)
+"""Statuses that refuse a result rather than give one (or a start not thrown); counted, not compared."""
 CONDITIONS = {
     "tilt, μ = ∞": {"wall": None, "mu": "inf", "models": ("paper", "rigid_body")},
     "tilt": {"wall": None, "mu": "random", "models": ("rigid_body",)},
@@ -125,29 +125,35 @@ class TiltWallCases:
 def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Generator,
                alpha_range=ALPHA_RANGE) -> TiltWallCases:
     """``n`` random throws of ``condition`` (a key of :data:`CONDITIONS`) drawn with ``rng``; α uniform
-    over ``alpha_range`` (rad; ``(0, 0)``: the plain arm's baseline on the same draws)."""
+    over ``alpha_range`` (rad; ``(0, 0)``: the plain arm's baseline on the same draws). The side is
+    drawn among those the part rests on at that α (:func:`throwmap.throws.throw.tilted_rest_reason`:
+    it neither tips nor slides); a draw where every side tips is drawn again."""
     spec = CONDITIONS[condition]
     names = list(parts)
     cols: dict[str, list] = {k: [] for k in ("part", "x", "side", "omega", "alpha", "mu", "h", "length", "wall_mu")}
-    for _ in range(n):
+    while len(cols["x"]) < n:
         name = names[int(rng.integers(len(names)))]
         part = parts[name]
-        k = int(rng.choice(part.stable_sides))
+        alpha = float(rng.uniform(*alpha_range))
         length = float(rng.uniform(*LENGTH_RANGE))
         h = float(rng.choice(H_VALUES))
-        lo, hi = start_interval(part, Arm(h=h, length=length), k)
-        if spec["wall"] is not None:
-            lo = hi - WALL_X_SHARE * (hi - lo)
-        x = float(rng.uniform(lo, hi))
-        x = min(max(x, math.nextafter(lo, math.inf)), hi)
         if spec["mu"] == "inf" or rng.uniform() < P_MU_INF:
             mu = math.inf
         else:
             mu = float(math.exp(rng.uniform(math.log(MU_RANGE[0]), math.log(MU_RANGE[1]))))
+        arm = Arm(h=h, mu=mu, length=length)
+        at_rest = [k for k in part.stable_sides if not tilted_rest_reason(part, arm, k, alpha)]
+        if not at_rest:  # every side tips at this α: draw again
+            continue
+        k = int(rng.choice(at_rest))
+        lo, hi = start_interval(part, arm, k)
+        if spec["wall"] is not None:
+            lo = hi - WALL_X_SHARE * (hi - lo)
+        x = float(rng.uniform(lo, hi))
+        x = min(max(x, math.nextafter(lo, math.inf)), hi)
         wall_mu = {None: math.nan, "zero": 0.0, "arm": mu}[spec["wall"]]
         for key, v in (("part", name), ("x", x), ("side", k), ("omega", float(rng.uniform(*OMEGA_RANGE))),
-                       ("alpha", float(rng.uniform(*alpha_range))), ("mu", mu), ("h", h), ("length", length),
-                       ("wall_mu", wall_mu)):
+                       ("alpha", alpha), ("mu", mu), ("h", h), ("length", length), ("wall_mu", wall_mu)):
             cols[key].append(v)
     return TiltWallCases(condition, np.array(cols["part"], dtype=object),
                          *(np.array(cols[k], dtype=np.int64 if k == "side" else float)
