@@ -105,6 +105,11 @@ class TiltWallCases:
     def n(self) -> int:
         return int(self.x.size)
 
+    def subset(self, keep) -> "TiltWallCases":
+        """The throws where ``keep`` (a boolean array) holds."""
+        return TiltWallCases(self.condition, *(getattr(self, f)[keep] for f in
+                                               ("part", "x", "side", "omega", "alpha", "mu", "h", "length", "wall_mu")))
+
     def case(self, i: int) -> dict:
         """Throw ``i`` as plain values (its reproducer)."""
         wm = float(self.wall_mu[i])
@@ -166,7 +171,7 @@ def _throw_all(cases: TiltWallCases, parts: dict, model: str, options: dict, tic
     refused keywords (a model without tilt or fixtures) end the run with the refusal's message."""
     n = cases.n
     out = {"x": np.full(n, np.nan), "side": np.full(n, -1, dtype=np.int64), "status": np.full(n, -1, dtype=np.int64),
-           "message": None}
+           "n_min": np.full(n, np.nan), "message": None}
     for i in range(n):
         part, arm, fixtures, alpha = cases.system(i, parts)
         fixtures = fixtures if walls else ()
@@ -180,9 +185,14 @@ def _throw_all(cases: TiltWallCases, parts: dict, model: str, options: dict, tic
             out["message"] = str(err)
             return out
         out["x"][i], out["side"][i], out["status"][i] = float(b.x[0]), int(b.side[0]), int(b.status[0])
+        out["n_min"][i] = float(b.records[0, C.N_MIN])  # < 0: the pivot lifts off (paper assumes it does not)
         if tick is not None:
             tick()
     return out
+
+
+def _take(res: dict, keep) -> dict:
+    return {k: (v[keep] if isinstance(v, np.ndarray) else v) for k, v in res.items()}
 
 
 def _wilson(k: int, n: int) -> list:
@@ -441,6 +451,14 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
         if "paper" in res and "rigid_body" in res:  # two exact models: no engine between them
             rows.append(compare_rows(f"{c}: paper vs rigid_body", cases, parts, res["paper"], res["rigid_body"], None,
                                      (res0["paper"], res0["rigid_body"]) if baseline else None))
+        if "paper" in res and not res["paper"]["message"]:  # where its no-lift-off assumption holds
+            holds = np.nan_to_num(res["paper"]["n_min"], nan=1.0) >= 0
+            sub = cases.subset(holds)
+            for name, other in (("engine", ref), ("rigid_body", res.get("rigid_body"))):
+                if other is not None and holds.any():
+                    row = compare_rows(f"{c}: paper vs {name}, no lift-off ({100 * holds.mean():.0f} %)", sub, parts,
+                                       _take(res["paper"], holds), _take(other, holds))
+                    rows.append(row)
     goals = {}
     for r in rows:
         if r["available"] and r["n_compared"]:
