@@ -1,0 +1,271 @@
+"""Experiment ``feed``: the draft's feeding experiment (Sec. V-C, Fig. 9), in the pymunk engine.
+
+The draft dropped its designed triangle onto the arm 20 times and threw it until it lay in the
+cavity at the arm's end on side 2: 19/20 = 95 %. Here one trial is:
+
+1. **drop** the part onto the arm from a random pose and height (:func:`~throwmap.experiments.drop.drop_part`,
+   with the cavity and its end wall in place; the trial's arm μ drawn by the noise model);
+2. **throw** it again and again from where it settled, each throw with its own jittered ω and
+   the chosen arm motion (:class:`~throwmap.experiments.noise.Noise`: 3 % ω jitter and the
+   Flatland recoil by default), every engine run starting from the previous run's end
+   (:meth:`throwmap.engine.EngineRun.next_scene`: the part is never restarted flat);
+3. variant ``"closed"`` (the cavity of :func:`throwmap.design.cavity.design_cavity`): **captured**
+   when, at rest after a throw, it lies flat on the target side in the cavity
+   (:meth:`~throwmap.design.cavity.CavityDesign.where`) within ``max_throws`` throws; then
+   ``hold_throws`` more throws; **success** = still captured on the target side after them.
+   Failures: ``not_captured`` (never captured within ``max_throws``), ``wrong_side_captured``
+   (in the cavity on another side at the end), ``ejected`` (captured, then outside the cavity or
+   off the arm at the end), ``off_arm`` (left the arm before being captured), ``refused:<status>``
+   (an engine run refused — timeout, penetration, unconverged, unresolved — or every drop refused:
+   never counted as a success).
+   Variant ``"open"`` (no cavity, no wall; the arm ``open_length`` long): the part is thrown until
+   it leaves over the end; **success** = it was resting on the target side when the throw that
+   carried it off began. ``purity`` (the experiment's reading) is the share of the parts that
+   left over the end that left on the target side: successes / (successes + ``wrong_side``).
+   Failures: ``wrong_side`` (left over the end from another side), ``behind_joint``,
+   ``not_fed`` (still on the arm after ``max_throws``), ``refused:<status>``.
+
+Per-trial values: ``throws_to_capture`` (closed; nan if never), ``hold_breaks`` (hold throws
+after which the part was not captured on the target side: 0 = held at every throw),
+``throws``, final ``x``/``y``/``phi`` (arm frame, m, rad), ``side`` and ``tilt`` (rad), ``where``,
+the drop (``drop_x``, ``drop_side``, ``drop_redraws``), the trial's ``mu``, the extreme ω used
+(``omega_min``, ``omega_max``), and in the open variant ``side_before``/``side_exit``.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from ..errors import InvalidStateError
+from .base import Trial, seed_of
+from .drop import DEFAULT_HEIGHT, drop_part
+from .noise import NoiseConfig
+from .registry import register_experiment
+
+__all__ = ["FeedConfig", "CavityConfig", "Feed", "FEED", "build_design", "open_length"]
+
+Finite = Annotated[float, Field(allow_inf_nan=False)]
+
+
+class CavityConfig(BaseModel):
+    """The cavity's design inputs (:func:`throwmap.design.cavity.design_cavity`; SI units, rad)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    depth: Finite = Field(0.02, gt=0, description="cavity depth below the arm surface, m")
+    clearance: Finite = Field(0.005, ge=0, description="floor length beyond the target side's length, m")
+    ramp_angle: Finite = Field(math.radians(60.0), gt=0, le=math.pi / 2, description="lip ramp angle, rad")
+    end_gap: Finite | None = Field(0.0, ge=0, description="floor ends this short of the end wall, in a ramp, m "
+                                                           "(0: flush; None: the part's outward sweep in flight + 3 mm)")
+    end_angle: Finite = Field(math.radians(60.0), gt=0, le=math.pi / 2, description="end ramp angle, rad")
+    wall_mu: Finite = Field(0.0, ge=0, description="end wall friction (0: a low-friction facing)")
+    wall_margin: Finite = Field(0.01, ge=0, description="end wall height above the energy bound, m")
+    z_hold: Finite = Field(3.0, ge=0, description="σ of ω jitter up to which the target side is held")
+    z_release: Finite = Field(1.0, ge=0, description="σ of ω jitter down to which the other sides leave")
+    place: Finite = Field(0.5, ge=0, le=1, description="where in the window for the arm's end L (0: low end)")
+    length: Finite | None = Field(None, gt=0, description="override the designed arm end L, m (None: designed)")
+
+
+class FeedConfig(BaseModel):
+    """Config of ``feed`` (SI units). The defaults are the built-in example: the feeder design of
+    :func:`throwmap.design.examples.feeder_design` (17 cm plexiglas triangle + 50 g lead, side 0),
+    arm μ = 1 ± 10 %, 3 % ω jitter, the Flatland recoil (3°, ζ = 0.2), the designed cavity,
+    drops of 2–10 cm anywhere over the arm, at most 60 throws to capture, then 50 more."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    part: str = Field("feeder", description="'feeder' (the feeder design) or a built-in part name / part file")
+    side: int | None = Field(None, ge=0, description="target side (None: the feeder design's)")
+    omega: Finite | None = Field(None, gt=0, description="nominal release rate, rad/s (None: the feeder design's)")
+    h: Finite | None = Field(None, description="arm surface height, m (None: the feeder design's)")
+    mu: float | None = Field(1.0, ge=0, description="nominal arm–part friction (None: ∞, no slip)")
+    variant: Literal["closed", "open"] = Field("closed", description="'closed': the cavity; 'open': thrown off the end")
+    cavity: CavityConfig = Field(default_factory=CavityConfig)
+    open_length: Finite | None = Field(None, gt=0, description="arm length of the open variant, m (None: from the "
+                                                                    "feeder design's limit set)")
+    noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
+                                                                   zeta=0.2))
+    height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
+    x_range: tuple[Finite, Finite] | None = Field(None, description="CM abscissa range of the drop, m (None: the arm)")
+    max_throws: int = Field(60, ge=1, le=100_000, description="throws allowed until captured (open: until fed)")
+    hold_throws: int = Field(50, ge=0, le=100_000, description="throws after capture the part must stay")
+    settings: dict | None = Field(None, description="EngineSettings fields to override (e.g. {'t_max': 5.0})")
+
+
+def _base(cfg: FeedConfig):
+    """``(part, arm without length, omega, side, feeder or None)``."""
+    from ..system.arm import Arm
+
+    fd = None
+    if cfg.part == "feeder":
+        from ..design.examples import feeder_design
+
+        fd = feeder_design()
+        part = fd.part
+        h = fd.arm.h if cfg.h is None else cfg.h
+        omega = fd.omega if cfg.omega is None else cfg.omega
+        side = fd.target_side if cfg.side is None else cfg.side
+    else:
+        from ..io.config import resolve_part
+
+        part = resolve_part(cfg.part).part
+        for name in ("h", "omega", "side"):
+            if getattr(cfg, name) is None:
+                raise InvalidStateError(f"config.{name}", f"must be given for part {cfg.part!r} (only 'feeder' has defaults)")
+        h, omega, side = cfg.h, cfg.omega, cfg.side
+    arm = Arm(h=h, mu=math.inf if cfg.mu is None else cfg.mu)
+    return part, arm, float(omega), part.check_side(side, field="config.side"), fd
+
+
+@functools.lru_cache(maxsize=8)
+def _design_cached(key: str):
+    cfg = FeedConfig.model_validate_json(key)
+    from ..design.cavity import design_cavity
+
+    part, arm, omega, side, _ = _base(cfg)
+    c, nz = cfg.cavity, cfg.noise
+    d = design_cavity(part, arm, omega, side, sigma=nz.omega_rel, z_hold=c.z_hold, z_release=c.z_release,
+                      realisation=nz.realisation, recoil=nz.recoil, zeta=nz.zeta, depth=c.depth, clearance=c.clearance,
+                      ramp_angle=c.ramp_angle, end_gap=c.end_gap, end_angle=c.end_angle, wall_mu=c.wall_mu, wall_margin=c.wall_margin, place=c.place, length=c.length, verify=False)
+    return d
+
+
+def build_design(cfg: FeedConfig):
+    """The :class:`~throwmap.design.cavity.CavityDesign` a config uses (computed once per process)."""
+    keep = {"part", "side", "omega", "h", "mu", "cavity", "noise"}
+    return _design_cached(FeedConfig(**{k: getattr(cfg, k) for k in keep}).model_dump_json())
+
+
+def open_length(cfg: FeedConfig) -> float:
+    """The open variant's arm length, m: ``open_length``, else midway between the farthest outer vertex
+    of the other sides' limit set and the target side's (the feeder design's exact-model band tops)."""
+    if cfg.open_length is not None:
+        return float(cfg.open_length)
+    part, _, _, side, fd = _base(cfg)
+    if fd is None:
+        raise InvalidStateError("config.open_length", f"must be given for part {cfg.part!r}")
+    lo = max(fd.tops[j] + float(part.uR[j]) for j in fd.tops if j != side)
+    hi = fd.tops[side] + float(part.uR[side])
+    return 0.5 * (lo + hi)
+
+
+def _settings(cfg: FeedConfig):
+    from ..engine.settings import EngineSettings
+
+    if not cfg.settings:
+        return None
+    try:
+        return EngineSettings(**cfg.settings)
+    except TypeError as err:
+        raise InvalidStateError("config.settings", f"unknown EngineSettings field ({err})") from None
+
+
+class Feed:
+    """Drop, then throw until captured in the cavity on the target side and held (see the module docstring)."""
+
+    name = "feed"
+    summary = ("drop the designed part, throw it (3 % ω jitter, recoil) until it lies in the cavity on the target "
+               "side, then hold it for 50 more throws (variant 'open': fed off the end, orientation purity)")
+    config_type = FeedConfig
+
+    def setup(self, cfg: FeedConfig):
+        """``(part, arm with its length, fixtures, omega, side, design or None)`` of a config."""
+        import dataclasses
+
+        part, arm, omega, side, _ = _base(cfg)
+        if cfg.variant == "open":
+            return part, dataclasses.replace(arm, length=open_length(cfg)), (), omega, side, None
+        d = build_design(cfg)
+        return part, d.arm, d.fixtures, omega, side, d
+
+    def trial(self, cfg: FeedConfig, index: int, rng) -> Trial:
+        from ..engine import simulate
+        from ..throws.outcome import Status
+
+        part, arm, fixtures, omega, side, design = self.setup(cfg)
+        noise = cfg.noise.noise()
+        settings = _settings(cfg)
+        arm = noise.arm(arm, rng)
+        drop = drop_part(part, arm, rng, fixtures=fixtures, x_range=cfg.x_range, height=cfg.height, settings=settings)
+        values = {"mu": arm.mu if math.isfinite(arm.mu) else None, "drop_x": drop.x, "drop_side": drop.side,
+                  "drop_redraws": drop.redraws, "throws": 0, "throws_to_capture": math.nan, "hold_breaks": 0,
+                  "omega_min": math.nan, "omega_max": math.nan}
+        if not drop.ok:
+            return self._end(index, rng, "refused:drop", values, drop.pose, drop.x, drop.side, drop.tilt, "dropped")
+        scene, state = drop.scene, (drop.x, drop.side, drop.tilt)
+        pose = drop.pose
+        w_min, w_max = math.inf, -math.inf
+        captured_at = None
+        total = cfg.max_throws + (cfg.hold_throws if cfg.variant == "closed" else 0)
+        for t in range(1, total + 1):
+            w, real = noise.throw(omega, rng)
+            w_min, w_max = min(w_min, w), max(w_max, w)
+            values.update(throws=t, omega_min=w_min, omega_max=w_max)
+            run = simulate(scene, real, settings)
+            st = Status(run.statuses[0])
+            before = state
+            pose, state = tuple(run.poses[0]), run.states[0]
+            if cfg.variant == "open":
+                if st == Status.OFF_END:
+                    values.update(side_before=int(before[1]), side_exit=int(state[1]))
+                    ok = int(before[1]) == side
+                    return self._end(index, rng, None if ok else "wrong_side", values, pose, *state, "off_end")
+                if st == Status.BEHIND_JOINT:
+                    return self._end(index, rng, "behind_joint", values, pose, *state, "behind_joint")
+                if st != Status.OK:
+                    return self._end(index, rng, f"refused:{st.label}", values, pose, *state, st.label)
+                scene = run.next_scene()
+                continue
+            if st in (Status.OFF_END, Status.BEHIND_JOINT):
+                kind = "off_arm" if captured_at is None else "ejected"
+                return self._end(index, rng, kind, values, pose, *state, st.label)
+            if st != Status.OK:
+                return self._end(index, rng, f"refused:{st.label}", values, pose, *state, st.label)
+            where = design.where(pose)
+            if captured_at is None:
+                if where == "target":
+                    captured_at = t
+                    values["throws_to_capture"] = t
+                elif t >= cfg.max_throws:
+                    kind = "wrong_side_captured" if where == "other" else "not_captured"
+                    return self._end(index, rng, kind, values, pose, *state, where)
+            else:
+                if where != "target":
+                    values["hold_breaks"] += 1
+            if captured_at is not None and t - captured_at >= cfg.hold_throws:
+                kind = None if where == "target" else ("wrong_side_captured" if where == "other" else "ejected")
+                return self._end(index, rng, kind, values, pose, *state, where)
+            scene = run.next_scene()
+        if cfg.variant == "open":
+            return self._end(index, rng, "not_fed", values, pose, *state, "on_arm")
+        raise AssertionError("unreachable: the closed loop ends by its caps")  # pragma: no cover
+
+    @staticmethod
+    def _end(index, rng, failure, values, pose, x, k, tilt, where) -> Trial:
+        values = dict(values, x=float(pose[0]), y=float(pose[1]), phi=float(pose[2]), side=int(k), tilt=float(tilt),
+                      where=str(where))
+        return Trial(index, seed_of(rng), failure is None, failure, values)
+
+    def parameters(self, cfg: FeedConfig) -> dict:
+        part, arm, fixtures, omega, side, design = self.setup(cfg)
+        out = {"variant": cfg.variant, "part": part.name, "part_mass_kg": part.mass, "part_com_m": list(part.com),
+               "part_vertices_m": [list(v) for v in part.vertices], "target_side": side, "omega_rad_s": omega,
+               "h_m": arm.h, "length_m": arm.length, "mu": None if math.isinf(arm.mu) else arm.mu, "g_m_s2": arm.g,
+               "noise": cfg.noise.noise().to_dict(), "drop_height_m": list(cfg.height),
+               "drop_x_range_m": list(cfg.x_range) if cfg.x_range else [0.0 - arm.back, arm.length],
+               "max_throws": cfg.max_throws, "hold_throws": cfg.hold_throws if cfg.variant == "closed" else 0,
+               "engine": "pymunk, EngineSettings() defaults" if not cfg.settings else {"pymunk overrides": cfg.settings}}
+        if design is not None:
+            out["cavity"] = design.to_dict()
+            out["success"] = ("at rest flat (|tilt| < 0.05 rad) on the target side in the cavity within max_throws "
+                              "throws, and so again after hold_throws more")
+        else:
+            out["success"] = "left over the arm's end from a rest on the target side (purity = successes / parts fed)"
+        return out
+
+
+FEED = register_experiment(Feed())
