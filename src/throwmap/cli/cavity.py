@@ -20,7 +20,7 @@ from .. import __version__
 from ..errors import InvalidStateError
 from .options import JsonOpt, arm_dict, figure_format, guard, save_figure, to_json
 
-__all__ = ["register", "cavity_cmd"]
+__all__ = ["cavity_cmd", "register"]
 
 
 def cavity_cmd(
@@ -44,6 +44,8 @@ def cavity_cmd(
     as_json: JsonOpt = False,
 ) -> None:
     """Design the cavity at the arm's end that captures the designed part on its target side."""
+    from pydantic import ValidationError
+
     from ..design.cavity import evaluate_cavity
     from ..experiments.feed import FeedConfig, build_design
 
@@ -58,11 +60,9 @@ def cavity_cmd(
                 "cavity": {"depth": depth, "end_gap": end_gap, "wall_mu": wall_mu, "place": place, "length": length},
                 "noise": {"omega_rel": sigma, "mu_rel": 0.1, "realisation": realisation, "zeta": zeta,
                           "recoil": recoil}})
-        except Exception as err:  # pydantic's ValidationError: name the first bad field
-            errs = getattr(err, "errors", lambda: [])()
-            field = ".".join(str(v) for v in errs[0]["loc"]) if errs else "option"
-            raise InvalidStateError(field.split(".")[-1].replace("_", "-"),
-                                    errs[0]["msg"] if errs else str(err)) from None
+        except ValidationError as err:  # name the first bad option
+            first = err.errors(include_url=False)[0]
+            raise InvalidStateError(str(first["loc"][-1]).replace("_", "-"), first["msg"]) from None
         d = build_design(cfg)
         if verify:
             d = evaluate_cavity(d, verify=True)

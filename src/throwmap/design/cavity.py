@@ -1,54 +1,42 @@
 """The cavity at the arm's end that turns the designed limit set into a fixed point (paper Sec. V-C, Fig. 9(b)).
 
-The draft adds "a cavity at the end of the arm … to capture the part in a unique configuration.
-Because of the shaped limit set, the part only reaches the cavity on side 2 … The cavity is deep
-enough that subsequent throws do not eject the part", and reports one failure in 20 because "the
-part hit the wall of the cavity … when its center of mass is very close to the end of the arm
-before it falls in".
+The draft's cavity "captures the part in a unique configuration. Because of the shaped limit set,
+the part only reaches the cavity on side 2 … deep enough that subsequent throws do not eject
+the part"; its one failure in 20: "the part hit the wall of the cavity … when its center of mass
+is very close to the end of the arm before it falls in".
 
-What holds a part in a cavity (our reading, checked in the engine)
--------------------------------------------------------------------
-A part resting in a cavity is thrown again by every throw: from the cavity's floor at CM
-abscissa x it leaves at |ω × r| ≈ x ω (≈ 1.4 m/s at x = 28 cm, ω = 4.9 rad/s, a 10 cm rise) and
-turns by ω t ≈ 2 ω² x / g (≈ 1.4 rad) before it lands. No practical depth keeps it from rising
-out, and a part that reached the cavity *beyond* its side's critical point r_k (as "only side k
-reaches the cavity" needs: the other sides' limit sets end below r_k's flips) is flipped out
-again by the next throw. The cavity therefore does not hold the part by depth but by the throw
-map: jogs move a part outward (paper Sec. III-D), so a part on side i ends against the end
-wall with its CM at x_i = L − u_R(i) (L: the arm's end, u_R: CM → outer support vertex), and it
-stays there iff the throw from there is a jog, x_i < r_i; it is thrown away iff x_i > r_i. The
-designed limit set — r_k far beyond the other sides' r_j — leaves a window of L,
+What holds the part (checked in the engine)
+-------------------------------------------
+Every throw throws the captured part again: from the floor at CM abscissa x it leaves at ≈ x ω
+(1.4 m/s at x = 28 cm, ω = 4.9 rad/s: a 10 cm rise) and turns ≈ 2 ω² x / g (1.4 rad). No
+practical depth keeps it in, and a part that reached the cavity beyond its side's critical point
+r_k (what "only side k reaches the cavity" needs) is flipped out by the next throw. So the cavity
+holds by the throw map: jogs move a part outward (Sec. III-D) until it rests against the end wall
+with its CM at x_i = L − u_R(i) (u_R: CM → outer support vertex); it stays iff the throw from
+there is a jog. The designed limit set (r_k far beyond the other sides' r_j) leaves a window of
+arm ends L in which only side k jogs at the wall, for every ω in [ω(1 − z_release σ),
+ω(1 + z_hold σ)] (σ the ω jitter). :func:`jog_map` evaluates the throw map on the cavity's floor
+(h − depth) on a 5 mm grid — the exact model (``rigid_body``) for the impulse, the engine for the
+recoil arm, whose map differs (with ζ = 0.5 side 2 jogs again beyond 32 cm: no window) — and
+:func:`design_cavity` puts L in the middle of the widest window.
 
-    max_{j≠k} [r_j(ω_lo) + u_R(j)]  <  L  <  r_k(ω_hi) + u_R(k),
+The other numbers
+-----------------
+* floor ℓ_k + clearance (side k lies flat on it); lip ramp steeper than the friction angle (a
+  vertex landing on the lip slides in rather than catching on its edge).
+* end wall (a :class:`~throwmap.system.fixtures.Wall`) high enough by energy: after release the
+  part has at most the kinetic energy of the arm point under its CM, ½ m ω_hi² (x² + y²), and
+  only gravity works in flight, so its CM rises at most Δ = ω_hi² (x² + y²)/(2g); a wall top above
+  that keeps the CM inside x < L (beyond L and below the top it would be inside the wall).
+* the draft's failure, reproduced: a part whose jog is cut short by the end wall swings its outer
+  vertex into it and, with friction there, comes to rest leaning on it (0.4–0.9 rad, μ_wall = 1),
+  from where the next throw flips it out. Hence a low-friction wall (μ 0) and a flush floor: the
+  part resting against the wall cannot start its turn (its outer vertex would move into the wall),
+  so it hops in place; with a gap before the wall it turns, jogs 6–8 cm and lands leaning.
 
-in which side k alone is held, for every ω between ω_lo = ω(1 − z_release σ) (the other sides
-still leave) and ω_hi = ω(1 + z_hold σ) (side k still stays), σ the relative ω jitter. r_i are
-taken on the cavity's floor (h − depth) with the arm's motion of the experiment: the exact
-model (``rigid_body``) for the impulse, the engine for the recoil arm (its r_i differ).
-
-The cavity's other numbers
---------------------------
-* **floor** ℓ_k + clearance: the target side lies flat on it against the end wall.
-* **lip**: a ramp at ``ramp_angle`` (steeper than the friction angle, so a part whose joint-side
-  vertex lands on it slides down into the cavity instead of resting on the lip's edge).
-* **end wall** (a :class:`~throwmap.system.fixtures.Wall` at L, low friction): its height bounds
-  the escape by energy. After release a part has at most the kinetic energy of the arm point
-  under its CM, ½ m ω_hi² (x² + y²) (x, y its CM in the arm frame), and gravity is the only force
-  doing work in flight, so its CM rises at most Δ = ω_hi² (x² + y²) / (2g). A wall whose top is
-  above the CM's highest point keeps the CM on the inner side of x = L (a CM beyond L below the
-  wall's top would be inside the wall): H ≥ d_k − depth + Δ + margin above the arm surface.
-* **the draft's failure**: a jog that would carry the part past the end swings its outer vertex
-  into the end wall; with friction there the part comes to rest leaning on the wall (measured in
-  the engine: 0.4–0.9 rad tilts with μ_wall = μ_arm = 1), from where the next throw flips it out —
-  "the part hit the wall of the cavity when its CM is very close to the end". The design gives
-  the end wall a low-friction facing (``wall_mu`` 0: it slides down to the floor) and the lip a
-  ramp; the engine checks below throw the part into the cavity and hold it there.
-
-Checks (:class:`Check`, each a named pass/fail with its figure): ``window``, ``hold`` (side k at
-the wall jogs up to ω_hi), ``release_<j>`` (side j at the wall flips down to ω_lo), ``fits``,
-``wall_energy``, and with ``verify`` the engine's ``engine_capture`` (a part on side k short of
-the lip is thrown into the cavity), ``engine_hold`` (held through throws at ω_hi) and
-``engine_release_<j>``.
+Checks (:class:`Check`: name, pass/fail, figure): ``window``, ``hold``, ``release_<j>``,
+``fits``, ``wall_energy`` (``end_gap`` with a gap), and with ``verify`` the engine's
+``engine_capture``, ``engine_hold`` and ``engine_release_<j>``.
 """
 
 from __future__ import annotations
@@ -63,7 +51,16 @@ from ..system.arm import Arm
 from ..system.fixtures import Cavity, Wall
 from ..system.part import Part
 
-__all__ = ["Check", "CavityDesign", "design_cavity", "evaluate_cavity", "outward_sweep", "switch_points", "CAPTURE_TILT"]
+__all__ = [
+    "CAPTURE_TILT",
+    "CavityDesign",
+    "Check",
+    "JogMap",
+    "design_cavity",
+    "evaluate_cavity",
+    "jog_map",
+    "outward_sweep",
+]
 
 CAPTURE_TILT = 0.05
 """rad: a part in the cavity within this angle of the target side's resting orientation lies on it."""
@@ -92,57 +89,15 @@ class Check:
 def _realisation(kind: str, omega: float, recoil: float, zeta: float):
     from ..engine.realisation import ImpulseThrow, RecoilThrow
 
-    if kind == "recoil":
-        return RecoilThrow.for_release_rate(float(omega), recoil=recoil, zeta=zeta)
-    return ImpulseThrow(float(omega))
-
-
-class _OnlyR:
-    """Stands in for a LimitSet in :func:`throwmap.critical_points` so that only r_i is computed."""
-
-    def l(self, side):  # noqa: E741 - the paper's l_i
-        return math.nan
-
-
-def switch_points(part: Part, arm: Arm, omega: float, *, realisation: str = "impulse", recoil: float = math.radians(3.0),
-                  zeta: float = 0.5, x_max: float = 0.6) -> dict:
-    """r_i (m) of every stable side on the plain, unbounded ``arm`` at rate ``omega`` (rad/s).
-
-    The impulse on the exact model (``rigid_body``, 1 µm); the recoil arm
-    (:class:`~throwmap.engine.RecoilThrow` with ``recoil`` rad, ``zeta``) in the engine, 24
-    grid points per side to 0.5 mm (:func:`throwmap.critical_points`: the first x above the
-    first jog whose throw is not a jog).
-    """
-    import warnings
-
-    from ..analysis.critical import critical_points
-    from ..errors import RegimeWarning
-
-    with warnings.catch_warnings():  # a cavity's floor may lie below −min d: r_i are still the map's
-        warnings.simplefilter("ignore", RegimeWarning)
-        return _switch_points(critical_points, part, arm, omega, realisation, recoil, zeta, x_max)
-
-
-def _switch_points(critical_points, part, arm, omega, realisation, recoil, zeta, x_max) -> dict:
-    plain = Arm(h=arm.h, g=arm.g, length=None, mu=arm.mu, back=arm.back)
-    if realisation == "impulse":
-        return dict(critical_points(part, plain, omega, "rigid_body", x_max=x_max, limit=_OnlyR()).r)
-    if realisation != "recoil":
-        raise InvalidStateError("realisation", f"must be 'impulse' or 'recoil', got {shown(realisation)}")
-    real = _realisation("recoil", omega, recoil, zeta)
-    cp = critical_points(part, plain, omega, "engine", x_max=x_max, realisation=real, n_grid=24, n_split=4, xtol=5e-4,
-                         limit=_OnlyR())
-    return dict(cp.r)
+    w = float(omega)
+    return RecoilThrow.for_release_rate(w, recoil=recoil, zeta=zeta) if kind == "recoil" else ImpulseThrow(w)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
 class JogMap:
-    """Whether a throw from rest on the cavity's floor is a jog, on a grid (SI).
-
-    ``jog[a, j, i]`` is True when the throw at rate ``omegas[a]`` (rad/s) from side ``sides[j]``
-    at CM abscissa ``x[i]`` (m) lands on the same side, False for a flip (or any other landing),
-    and stays False where the side cannot rest (x + u_L ≤ 0).
-    """
+    """Whether a throw from rest on the cavity's floor is a jog: ``jog[a, j, i]`` True when the throw at
+    ``omegas[a]`` (rad/s) from side ``sides[j]`` at CM abscissa ``x[i]`` (m) lands on the same side
+    (False for a flip, any other landing, or where the side cannot rest, x + u_L ≤ 0)."""
 
     x: np.ndarray
     omegas: tuple
@@ -206,15 +161,12 @@ def _windows(jm: JogMap, part: Part, side: int, gap: float) -> list:
         ok = ok and all(jm.margin(j, L - gap - float(part.uR[j]), False) >= step for j in jm.sides if j != side)
         good.append(ok)
     runs, start = [], None
-    for L, ok in zip(Ls, good):
+    for i, ok in enumerate(good):
         if ok and start is None:
-            start = L
-        if not ok and start is not None:
-            runs.append((float(start), float(prev)))
+            start = i
+        if start is not None and (not ok or i == len(good) - 1):
+            runs.append((float(Ls[start]), float(Ls[i if ok else i - 1])))
             start = None
-        prev = L
-    if start is not None:
-        runs.append((float(start), float(prev)))
     return runs
 
 
@@ -251,13 +203,8 @@ class CavityDesign:
         object.__setattr__(self, "success", not bad)
         object.__setattr__(self, "message", "all checks passed" if not bad else "failed: " + ", ".join(bad))
 
-    @property
-    def fixtures(self) -> tuple:
-        return (self.cavity, self.wall)
-
-    @property
-    def length(self) -> float:
-        return float(self.arm.length)
+    fixtures = property(lambda self: (self.cavity, self.wall))
+    length = property(lambda self: float(self.arm.length), doc="The arm's end L, m.")
 
     @property
     def lip_x(self) -> float:
@@ -269,10 +216,7 @@ class CavityDesign:
         return self.arm.h - self.cavity.depth
 
     def check(self, name: str) -> Check:
-        for c in self.checks:
-            if c.name == name:
-                return c
-        raise KeyError(name)
+        return next(c for c in self.checks if c.name == name)
 
     def where(self, pose) -> str:
         """Where a part at rest at arm-frame ``pose`` (x, y, φ) is: ``"target"`` (in the cavity, flat
@@ -289,20 +233,19 @@ class CavityDesign:
 
     def table(self) -> str:
         n = self.numbers
-        lines = [f"Cavity for {self.part.name or 'the part'} on side {self.side}, ω = {self.omega:.4g} rad/s "
-                 f"({self.realisation['kind']}), σ_ω = {100 * self.realisation['sigma']:.3g} %: {self.message}",
-                 f"  arm end (end wall) L = {100 * self.length:.2f} cm, lip at {100 * self.lip_x:.2f} cm, "
+        lines = [(f"Cavity for {self.part.name or 'the part'} on side {self.side}, ω = {self.omega:.4g} rad/s "
+                 f"({self.realisation['kind']}), σ_ω = {100 * self.realisation['sigma']:.3g} %: {self.message}"),
+                 (f"  arm end (end wall) L = {100 * self.length:.2f} cm, lip at {100 * self.lip_x:.2f} cm, "
                  f"depth {100 * self.cavity.depth:.2f} cm, floor {100 * n['floor_m']:.2f} cm, "
-                 f"ramp {100 * n['ramp_m']:.2f} cm, wall {100 * self.wall.height:.2f} cm (μ {self.wall.mu:g})",
-                 f"  window for L: [{100 * n['L_lo_m']:.2f}, {100 * n['L_hi_m']:.2f}] cm at ω ∈ "
-                 f"[{n['omega_lo']:.4g}, {n['omega_hi']:.4g}] rad/s"]
+                 f"ramp {100 * n['ramp_m']:.2f} cm, wall {100 * self.wall.height:.2f} cm (μ {self.wall.mu:g})"),
+                 (f"  window for L: [{100 * n['L_lo_m']:.2f}, {100 * n['L_hi_m']:.2f}] cm at ω ∈ "
+                 f"[{n['omega_lo']:.4g}, {n['omega_hi']:.4g}] rad/s")]
         lines += [f"  {c}" for c in self.checks]
         lines += [f"  why: {r}" for r in self.reasons]
         return "\n".join(lines)
 
     def __repr__(self) -> str:
-        return (f"CavityDesign(side {self.side}, L={self.length:.4g} m, depth={self.cavity.depth:.3g} m, "
-                f"floor={self.numbers['floor_m']:.4g} m, wall={self.wall.height:.3g} m; {self.message})")
+        return f"CavityDesign(side {self.side}, L={self.length:.4g} m, wall={self.wall.height:.3g} m; {self.message})"
 
     def to_dict(self) -> dict:
         def fin(v):
@@ -336,79 +279,48 @@ def outward_sweep(part: Part, side: int, x: float, y: float, omega: float, g: fl
     return float(max(0.0, vx.max() - (x + float(part.uR[side]))))
 
 
-def _num(v, name: str, *, lo=None, positive=False) -> float:
+def _num(v, name: str, *, lo=None, hi=None, positive=False) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
         raise InvalidStateError(name, f"must be a finite number, got {shown(v)}")
-    if positive and v <= 0:
-        raise InvalidStateError(name, f"must be > 0, got {shown(v)}")
-    if lo is not None and v < lo:
-        raise InvalidStateError(name, f"must be ≥ {lo}, got {shown(v)}")
+    if (positive and v <= 0) or (lo is not None and v < lo) or (hi is not None and v > hi):
+        rng = "> 0" if positive and hi is None else f"in [{lo if lo is not None else 0}, {hi}]" if hi is not None else f"≥ {lo}"
+        raise InvalidStateError(name, f"must be {rng}, got {shown(v)}")
     return float(v)
-
-
-def _inputs(part, arm, omega, side, realisation):
-    if not isinstance(part, Part):
-        raise InvalidStateError("part", f"must be a Part, got {type(part).__name__}")
-    if not isinstance(arm, Arm):
-        raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
-    omega = _num(omega, "omega", positive=True)
-    side = part.check_side(side)
-    if realisation not in ("impulse", "recoil"):
-        raise InvalidStateError("realisation", f"must be 'impulse' or 'recoil', got {shown(realisation)}")
-    return omega, side
 
 
 def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float = 0.03, z_hold: float = 3.0,
                   z_release: float = 1.0, realisation: str = "impulse", recoil: float = math.radians(3.0),
                   zeta: float = 0.5, depth: float = 0.02, clearance: float = 0.005, ramp_angle: float = math.radians(60.0),
-                  end_gap: float | None = 0.0, end_angle: float = math.radians(60.0), wall_mu: float = 0.0,
+                  end_gap: float = 0.0, end_angle: float = math.radians(60.0), wall_mu: float = 0.0,
                   wall_margin: float = 0.01, place: float = 0.5, length: float | None = None, verify: bool = True,
                   settings=None) -> CavityDesign:
     """Design the cavity at the arm's end that holds ``part`` on ``side`` (see the module docstring).
 
-    ``arm``: h, μ, g of the arm (its length is replaced by the designed L); ``omega`` the
-    release rate (rad/s); ``sigma`` the relative ω jitter; the window for L is taken at
-    ω_hi = ω(1 + ``z_hold`` σ) for the target side and ω_lo = ω(1 − ``z_release`` σ) for the
-    others, and L placed at ``place`` of the way from its low to its high end (or set to ``length``, m). ``depth`` (m),
-    ``clearance`` (m, floor beyond the target side's length), ``ramp_angle`` (rad, lip),
-    ``end_gap`` (m; default 0: the floor runs to the end wall; None: the target side's outward sweep
-    in flight, :func:`outward_sweep`, + 3 mm) and ``end_angle`` (rad): with a gap the floor ends
-    ``end_gap`` short of the end wall in a ramp rising at ``end_angle`` (the outer vertex rests at its
-    foot and the part turns freely in flight). The default, a flush wall, is the engine's choice:
-    a part resting against it cannot start its turn (its outer vertex would move into the wall),
-    so side k hops in place; with a gap it turns, jogs 6–8 cm outward and lands leaning on the
-    wall, from where the next throw flips it out (README, evidence). ``wall_mu`` (end wall friction), ``wall_margin``
-    (m above the energy bound).
-    ``realisation`` ``"impulse"`` or ``"recoil"`` (``recoil`` rad, ``zeta``) — how the arm moves
-    in the experiment. ``verify`` runs the engine checks. Returns a :class:`CavityDesign`
-    (``success`` False, with the failed checks named, when the window is empty or a check fails).
+    ``arm`` gives h, μ, g (its length becomes the designed L); ``omega`` rad/s; ``sigma`` the
+    relative ω jitter: side k must jog at the wall for ω from ω(1 − ``z_release`` σ) to
+    ω(1 + ``z_hold`` σ) and the other sides flip there; L goes ``place`` of the way through the
+    widest window (or is ``length``, m). ``realisation`` ``"impulse"`` or ``"recoil"`` (``recoil``
+    rad, ``zeta``): the arm's motion in the experiment. Geometry (m, rad): ``depth``, ``clearance``
+    (floor beyond side k's length), ``ramp_angle`` (lip), ``end_gap`` (0: the floor runs to the
+    wall; > 0: it ends that short of it in a ramp at ``end_angle``), ``wall_mu``, ``wall_margin``
+    (wall top above the energy bound). ``verify``: engine checks. Returns a :class:`CavityDesign`
+    (``success`` False, naming the failed checks, when there is no window or a check fails).
     """
-    omega, side = _inputs(part, arm, omega, side, realisation)
-    sigma = _num(sigma, "sigma", lo=0.0)
-    depth = _num(depth, "depth", positive=True)
+    if not isinstance(part, Part) or not isinstance(arm, Arm):
+        bad = "part" if not isinstance(part, Part) else "arm"
+        raise InvalidStateError(bad, f"must be a {bad.title()}, got {type(part if bad == 'part' else arm).__name__}")
+    if realisation not in ("impulse", "recoil"):
+        raise InvalidStateError("realisation", f"must be 'impulse' or 'recoil', got {shown(realisation)}")
+    omega, side = _num(omega, "omega", positive=True), part.check_side(side)
+    sigma, depth = _num(sigma, "sigma", lo=0.0), _num(depth, "depth", positive=True)
     clearance = _num(clearance, "clearance", lo=0.0)
-    ramp_angle = _num(ramp_angle, "ramp_angle", positive=True)
-    if ramp_angle > math.pi / 2:
-        raise InvalidStateError("ramp_angle", f"must be in (0, π/2] rad, got {shown(ramp_angle)}")
-    end_angle = _num(end_angle, "end_angle", positive=True)
-    if end_angle > math.pi / 2:
-        raise InvalidStateError("end_angle", f"must be in (0, π/2] rad, got {shown(end_angle)}")
-    gap_max = depth / math.tan(end_angle) if end_angle < math.pi / 2 else 0.0
-    if end_gap is not None:
-        end_gap = _num(end_gap, "end_gap", lo=0.0)
-        if end_gap > gap_max + 1e-12:
-            raise InvalidStateError("end_gap", f"the end ramp ({100 * end_gap:.3g} cm at {math.degrees(end_angle):.3g}°) "
-                                               f"must not rise above the arm surface (depth {100 * depth:.3g} cm)")
-    place = _num(place, "place", lo=0.0)
-    if place > 1:
-        raise InvalidStateError("place", f"must be in [0, 1], got {shown(place)}")
+    ramp_angle = _num(ramp_angle, "ramp_angle", lo=1e-6, hi=math.pi / 2)
+    end_angle = _num(end_angle, "end_angle", lo=1e-6, hi=math.pi / 2)
+    end_gap = _num(end_gap, "end_gap", lo=0.0, hi=depth / math.tan(end_angle) + 1e-12)
+    place = _num(place, "place", lo=0.0, hi=1.0)
     w_hi = omega * (1.0 + _num(z_hold, "z_hold", lo=0.0) * sigma)
     w_lo = omega * max(0.05, 1.0 - _num(z_release, "z_release", lo=0.0) * sigma)
     floor_arm = Arm(h=arm.h - depth, g=arm.g, mu=arm.mu, back=arm.back)
-    if end_gap is None:  # the sweep at the hold position barely depends on L: estimate it at r_k(ω)
-        r0 = switch_points(part, floor_arm, omega, realisation="impulse").get(side, math.nan)
-        sweep0 = outward_sweep(part, side, r0, arm.h - depth + float(part.d[side]), w_hi, arm.g) if math.isfinite(r0) else 0.0
-        end_gap = min(gap_max, sweep0 + 0.003)
     jm = jog_map(part, floor_arm, (w_lo, omega, w_hi), realisation=realisation, recoil=recoil, zeta=zeta)
     uR = {j: float(part.uR[j]) for j in part.stable_sides}
     runs = _windows(jm, part, side, end_gap)
@@ -423,38 +335,32 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
             raise InvalidStateError("side", f"side {side} never jogs on the cavity's floor for ω in "
                                             f"[{w_lo:.4g}, {w_hi:.4g}] rad/s: nothing can hold it")
         L = float(jogs_k.max()) + uR[side] + end_gap - 0.005
-    floor = float(part.length[side]) + clearance
-    ramp = depth / math.tan(ramp_angle)
-    top = -depth + end_gap * math.tan(end_angle) if end_gap > 0 else -depth
-    cavity = Cavity(((floor + end_gap + ramp, 0.0), (floor + end_gap, -depth), (end_gap, -depth), (0.0, min(0.0, top))))
-    x_c = L - end_gap - uR[side]
-    y_c = arm.h - depth + float(part.d[side])
+    floor, ramp = float(part.length[side]) + clearance, depth / math.tan(ramp_angle)
+    top = min(0.0, -depth + end_gap * math.tan(end_angle)) if end_gap > 0 else -depth
+    cavity = Cavity(((floor + end_gap + ramp, 0.0), (floor + end_gap, -depth), (end_gap, -depth), (0.0, top)))
+    x_c, y_c = L - end_gap - uR[side], arm.h - depth + float(part.d[side])
     rise = w_hi**2 * (x_c**2 + y_c**2) / (2.0 * arm.g)
     H = float(part.d[side]) - depth + rise + _num(wall_margin, "wall_margin", lo=0.0)
     wall = Wall(height=H, mu=_num(wall_mu, "wall_mu", lo=0.0))
-    numbers = {"L_m": L, "L_lo_m": L_lo, "L_hi_m": L_hi, "omega_lo": w_lo, "omega_hi": w_hi, "floor_m": floor,
-               "ramp_m": ramp, "depth_m": depth, "end_gap_m": end_gap, "end_angle_rad": end_angle, "lip_x_m": L - cavity.span, "x_hold_m": x_c, "y_hold_m": y_c,
-               "rise_bound_m": rise, "wall_height_m": H,
-               "drift_speed_m_s": -y_c * omega}
-    numbers["n_windows"] = len(runs)
+    sweep = outward_sweep(part, side, x_c, y_c, w_hi, arm.g)
+    numbers = {"L_m": L, "L_lo_m": L_lo, "L_hi_m": L_hi, "n_windows": len(runs), "omega_lo": w_lo, "omega_hi": w_hi,
+               "floor_m": floor, "ramp_m": ramp, "depth_m": depth, "end_gap_m": end_gap, "end_angle_rad": end_angle,
+               "lip_x_m": L - cavity.span, "x_hold_m": x_c, "y_hold_m": y_c, "rise_bound_m": rise, "wall_height_m": H,
+               "drift_speed_m_s": -y_c * omega, "sweep_m": sweep}
     reasons = (
-        f"L in the window where side {side} alone is held against the end wall: the throw from there is a jog "
-        f"for every ω in [{w_lo:.3g}, {w_hi:.3g}] rad/s (−{z_release:g}σ … +{z_hold:g}σ), and for every other side a "
-        f"flip (the throw map on the cavity's floor, {realisation}, on a 5 mm grid with one step of margin)",
-        f"floor = side {side}'s length {100 * part.length[side]:.2f} cm + {100 * clearance:.2f} cm: it lies flat against the wall",
-        f"lip ramp at {math.degrees(ramp_angle):.0f}° (friction angle {math.degrees(math.atan(arm.mu)):.0f}°): a vertex "
-        "landing on it slides into the cavity",
-        f"end wall {100 * H:.1f} cm: the CM rises at most ω_hi²(x²+y²)/2g = {100 * rise:.1f} cm after a throw, so it can "
-        "never pass the wall's top",
+        (f"L in the middle of the widest window where only side {side} stays at the end wall: there the throw is a jog "
+        f"for every ω in [{w_lo:.3g}, {w_hi:.3g}] rad/s (−{z_release:g}σ … +{z_hold:g}σ) and a flip for every other side "
+        f"(the throw map on the cavity's floor, {realisation}, 5 mm grid, one step of margin)"),
+        f"floor = side {side}'s length + {100 * clearance:.2f} cm: it lies flat against the wall",
+        (f"lip ramp at {math.degrees(ramp_angle):.0f}° (friction angle {math.degrees(math.atan(arm.mu)):.0f}°): a vertex "
+        "landing on it slides into the cavity"),
+        f"end wall {100 * H:.1f} cm: after a throw the CM rises at most ω_hi²(x²+y²)/2g = {100 * rise:.1f} cm",
         f"end wall μ = {wall_mu:g}: a part swung into it slides down instead of resting against it (the draft's failure)",
-        (f"floor ends {100 * end_gap:.2f} cm short of the end wall in a {math.degrees(end_angle):.0f}° ramp: the outer vertex "
-         "rests at its foot and the part turns in flight without touching the wall") if end_gap > 0 else
-        (f"floor runs to the end wall: side {side} resting against it cannot start its turn (its outer vertex would move "
-         f"{100 * outward_sweep(part, side, x_c, y_c, w_hi, arm.g):.2f} cm into the wall), so it hops in place; a gap "
-         "lets it turn, jog 6–8 cm outward and land leaning on the wall (measured in the engine)"),
-        f"L at {place:.0%} of the window (middle: the margins of holding and releasing balanced)",
+        (f"floor ends {100 * end_gap:.2f} cm short of the end wall in a {math.degrees(end_angle):.0f}° ramp: the part "
+         "turns in flight without touching the wall") if end_gap > 0 else
+        (f"floor runs to the end wall: side {side} resting there cannot start its turn (its outer vertex would move "
+         f"{100 * sweep:.2f} cm into the wall), so it hops in place; with a gap it turns, jogs 6–8 cm and lands leaning"),
     )
-    numbers["sweep_m"] = outward_sweep(part, side, x_c, y_c, w_hi, arm.g)
     design = CavityDesign(part, Arm(h=arm.h, g=arm.g, length=L, mu=arm.mu, back=arm.back), omega, side, cavity, wall,
                           {"kind": realisation, "recoil": recoil, "zeta": zeta, "sigma": sigma}, numbers, reasons, (),
                           jogs=jm)

@@ -46,7 +46,7 @@ from .drop import DEFAULT_HEIGHT, drop_part
 from .noise import NoiseConfig
 from .registry import register_experiment
 
-__all__ = ["FeedConfig", "CavityConfig", "Feed", "FEED", "build_design", "open_length"]
+__all__ = ["FEED", "CavityConfig", "Feed", "FeedConfig", "build_design", "open_length"]
 
 Finite = Annotated[float, Field(allow_inf_nan=False)]
 
@@ -59,8 +59,7 @@ class CavityConfig(BaseModel):
     depth: Finite = Field(0.02, gt=0, description="cavity depth below the arm surface, m")
     clearance: Finite = Field(0.005, ge=0, description="floor length beyond the target side's length, m")
     ramp_angle: Finite = Field(math.radians(60.0), gt=0, le=math.pi / 2, description="lip ramp angle, rad")
-    end_gap: Finite | None = Field(0.0, ge=0, description="floor ends this short of the end wall, in a ramp, m "
-                                                           "(0: flush; None: the part's outward sweep in flight + 3 mm)")
+    end_gap: Finite = Field(0.0, ge=0, description="floor ends this short of the end wall, in a ramp, m (0: flush)")
     end_angle: Finite = Field(math.radians(60.0), gt=0, le=math.pi / 2, description="end ramp angle, rad")
     wall_mu: Finite = Field(0.0, ge=0, description="end wall friction (0: a low-friction facing)")
     wall_margin: Finite = Field(0.01, ge=0, description="end wall height above the energy bound, m")
@@ -130,7 +129,8 @@ def _design_cached(key: str):
     c, nz = cfg.cavity, cfg.noise
     d = design_cavity(part, arm, omega, side, sigma=nz.omega_rel, z_hold=c.z_hold, z_release=c.z_release,
                       realisation=nz.realisation, recoil=nz.recoil, zeta=nz.zeta, depth=c.depth, clearance=c.clearance,
-                      ramp_angle=c.ramp_angle, end_gap=c.end_gap, end_angle=c.end_angle, wall_mu=c.wall_mu, wall_margin=c.wall_margin, place=c.place, length=c.length, verify=False)
+                      ramp_angle=c.ramp_angle, end_gap=c.end_gap, end_angle=c.end_angle, wall_mu=c.wall_mu,
+                      wall_margin=c.wall_margin, place=c.place, length=c.length, verify=False)
     return d
 
 
@@ -251,7 +251,7 @@ class Feed:
         return Trial(index, seed_of(rng), failure is None, failure, values)
 
     def parameters(self, cfg: FeedConfig) -> dict:
-        part, arm, fixtures, omega, side, design = self.setup(cfg)
+        part, arm, _fixtures, omega, side, design = self.setup(cfg)
         out = {"variant": cfg.variant, "part": part.name, "part_mass_kg": part.mass, "part_com_m": list(part.com),
                "part_vertices_m": [list(v) for v in part.vertices], "target_side": side, "omega_rad_s": omega,
                "h_m": arm.h, "length_m": arm.length, "mu": None if math.isinf(arm.mu) else arm.mu, "g_m_s2": arm.g,

@@ -64,7 +64,7 @@ def plot_capture(design, ax=None, path=None, pose=None, title: str | None = None
     n = d.numbers
     y_ann = (h + w.height) * cm + 1.0
     ax.annotate("", xy=(d.lip_x * cm, y_ann), xytext=(L * cm, y_ann),
-                arrowprops=dict(arrowstyle="<->", color="0.3", lw=0.8))
+                arrowprops={"arrowstyle": "<->", "color": "0.3", "lw": 0.8})
     ax.plot([d.lip_x * cm] * 2, [h * cm, y_ann], ":", color="0.5", lw=0.8)
     ax.text(0.5 * (d.lip_x + L) * cm, y_ann + 0.3, f"cavity {100 * d.cavity.span:.1f} cm: floor {100 * n['floor_m']:.1f} cm, "
             f"depth {100 * d.cavity.depth:.1f} cm", ha="center", va="bottom", fontsize=8, color="0.25")

@@ -1,0 +1,70 @@
+"""The feeding experiment (issue 11, item 3): seeded trials end to end through the runner, refusals
+counted as refusals, the open variant, config errors.
+
+Short runs on the impulse arm (its cavity design uses the exact model: about a second) with few
+throws; the full experiment's numbers are in the README and /tmp evidence, not asserted here.
+"""
+
+import math
+
+import pytest
+
+from throwmap.errors import ConfigError
+from throwmap.experiments import get_experiment
+from throwmap.experiments.base import config_of, trial_generator
+from throwmap.experiments.runner import run_experiment
+
+QUICK = {"noise": {"omega_rel": 0.03, "mu_rel": 0.1, "realisation": "impulse"}, "max_throws": 6, "hold_throws": 3}
+KINDS = {"wrong_side_captured", "ejected", "not_captured", "off_arm"}
+
+
+@pytest.mark.slow
+def test_seeded_trials_run_end_to_end_and_repeat():
+    a = run_experiment("feed", QUICK, n=3, seed=11, workers=1)
+    b = run_experiment("feed", QUICK, n=3, seed=11, workers=1)
+    assert [t.to_json() for t in a.trials] == [t.to_json() for t in b.trials]
+    assert a.n == 3 and a.successes == sum(t.success for t in a.trials)
+    lo, hi = a.ci95
+    assert 0.0 <= lo <= a.success_rate <= hi <= 1.0
+    for t in a.trials:
+        assert t.success or t.failure in KINDS or t.failure.startswith("refused:")
+        v = t.values
+        assert 1 <= v["throws"] <= QUICK["max_throws"] + QUICK["hold_throws"]
+        if t.success:  # captured within the cap, then held through exactly hold_throws more throws
+            assert v["where"] == "target" and v["side"] == 0
+            assert v["throws"] == v["throws_to_capture"] + QUICK["hold_throws"]
+        elif t.failure == "not_captured":
+            assert math.isnan(v["throws_to_capture"]) and v["throws"] == QUICK["max_throws"]
+    assert a.parameters["cavity"]["success"] in (True, False)
+    assert a.parameters["hold_throws"] == 3 and a.parameters["noise"]["omega_rel"] == 0.03
+
+
+@pytest.mark.slow
+def test_engine_refusal_is_a_failure_never_a_success():
+    # a tiny drop settles within 0.15 s; every throw needs ≈ 0.3 s of flight, so the engine times out
+    cfg = dict(QUICK, height=(0.0, 0.001), settings={"t_max": 0.15, "settle_hold": 0.02, "verify": False, "retries": 0})
+    res = run_experiment("feed", cfg, n=2, seed=5, workers=1)
+    assert res.successes == 0
+    assert all(t.failure.startswith("refused:") for t in res.trials)
+    assert sum(res.failures.values()) == 2 and all(k.startswith("refused:") for k in res.failures)
+
+
+@pytest.mark.slow
+def test_open_variant_feeds_off_the_end():
+    exp = get_experiment("feed")
+    cfg = config_of(exp, dict(QUICK, variant="open", max_throws=40))
+    t = exp.trial(cfg, 0, trial_generator(2, 0))
+    assert t.success or t.failure in {"wrong_side", "behind_joint", "not_fed"} or t.failure.startswith("refused:")
+    if t.failure != "not_fed" and not (t.failure or "").startswith("refused:") and t.failure != "behind_joint":
+        assert t.values["where"] == "off_end" and t.success == (t.values["side_before"] == 0)
+    assert exp.parameters(cfg)["length_m"] > 0
+
+
+def test_config_errors_name_the_field():
+    exp = get_experiment("feed")
+    with pytest.raises(ConfigError, match="variant"):
+        config_of(exp, {"variant": "ajar"})
+    with pytest.raises(ConfigError, match="hold_thorws|allowed"):
+        config_of(exp, {"hold_thorws": 5})
+    cfg = config_of(exp, None)
+    assert cfg.hold_throws == 50 and cfg.noise.omega_rel == 0.03 and cfg.noise.realisation == "recoil"
