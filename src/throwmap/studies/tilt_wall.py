@@ -12,19 +12,15 @@ plain arm, and compares them throw by throw. Four conditions, ``n`` throws each:
 ``wall, μ_w = μ``      the wall as rough as the arm; ``rigid_body``
 =====================  ==========================================================
 
-The paper model assumes a pivot that never slips (Sec. III), so it is compared at
-μ = ∞ only. Every throw draws a part from the validation set
-(:func:`~throwmap.studies.validation.default_parts`), a side, x uniform over the
-starts :func:`throwmap.throw` accepts (with a wall: over their outer quarter, where
-jogs reach the wall), ω ∈ [3, 7] rad/s, h ∈ {−1, −0.5} cm (the paper's
-regime 0 > h > −min d), the arm length in [0.25, 0.40] m. Per row: throws compared,
-same outcome % (same side at rest, or the same escape) and |Δx| ≤ 0.5 mm %, each
-with its Wilson 95 % interval, median and 95th percentile |Δx|, and the throws each
-side refused (``unresolved``, ``timeout``, …), with the worst misses as reproducers.
-
-:func:`~throwmap.analysis.wall.wall_fixed_point` finds, with :func:`throwmap.limit_set`,
-the fixed point a wall makes where jogs saturate (x* = length − u_R) and checks its
-multiplier by finite differences of the map; the report prints it.
+The paper model assumes a pivot that never slips (Sec. III), so it is compared at μ = ∞ only. Every throw
+draws a part from the validation set (:func:`~throwmap.studies.validation.default_parts`), a side, x uniform
+over the starts :func:`throwmap.throw` accepts (with a wall: over their outer quarter, where jogs reach the
+wall), ω ∈ [3, 7] rad/s, h ∈ {−1, −0.5} cm (the paper's regime 0 > h > −min d), the arm length in
+[0.25, 0.40] m. Per row: throws compared, same outcome % (same side at rest, or the same escape) and
+|Δx| ≤ 0.5 mm %, each with its Wilson 95 % interval, median and 95th percentile |Δx|, and the throws each
+side refused (``unresolved``, ``timeout``, …) with their reasons, and the worst misses as reproducers.
+:func:`~throwmap.analysis.wall.wall_fixed_point` finds, with :func:`throwmap.limit_set`, the fixed point a
+wall makes where jogs saturate (x* = length − u_R) and checks its multiplier by finite differences.
 """
 
 from __future__ import annotations
@@ -43,7 +39,7 @@ from ..system.arm import Arm
 from ..system.fixtures import Wall
 from ..system.part import Part
 from ..throws.outcome import Status
-from ..throws.throw import start_interval, throw_batch, tilted_rest_reason
+from ..throws.throw import start_interval, throw, throw_batch, tilted_rest_reason
 from ..analysis.wall import wall_fixed_point
 from .validation import default_parts
 
@@ -81,8 +77,6 @@ CONDITIONS = {
 """The conditions thrown, ``n`` throws each: the wall's μ (None: no wall), how μ is drawn, the models compared."""
 N_WORST = 8
 """Misses kept per row as reproducers: side or status disagreements first, then the largest |Δx|."""
-SECONDS_PER_THROW_GUESS = 0.03
-"""Engine seconds per throw assumed by the work guard before it measures (s)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -171,7 +165,7 @@ def _throw_all(cases: TiltWallCases, parts: dict, model: str, options: dict, tic
     refused keywords (a model without tilt or fixtures) end the run with the refusal's message."""
     n = cases.n
     out = {"x": np.full(n, np.nan), "side": np.full(n, -1, dtype=np.int64), "status": np.full(n, -1, dtype=np.int64),
-           "n_min": np.full(n, np.nan), "message": None}
+           "n_min": np.full(n, np.nan), "why": np.full(n, "", dtype=object), "message": None}
     for i in range(n):
         part, arm, fixtures, alpha = cases.system(i, parts)
         fixtures = fixtures if walls else ()
@@ -186,6 +180,12 @@ def _throw_all(cases: TiltWallCases, parts: dict, model: str, options: dict, tic
             return out
         out["x"][i], out["side"][i], out["status"][i] = float(b.x[0]), int(b.side[0]), int(b.status[0])
         out["n_min"][i] = float(b.records[0, C.N_MIN])  # < 0: the pivot lifts off (paper assumes it does not)
+        if int(b.status[0]) in REFUSED:  # the model's reason, from the one-throw call
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                o = throw(part, arm, float(cases.x[i]), int(cases.side[i]), float(cases.omega[i]), model,
+                          fixtures=fixtures, alpha=alpha, **options)
+            out["why"][i] = o.message or o.status.label
         if tick is not None:
             tick()
     return out
@@ -204,6 +204,14 @@ def _wilson(k: int, n: int) -> list:
 
 def _refusals(status) -> dict:
     return {Status(int(c)).label: int(np.sum(status == c)) for c in REFUSED if np.any(status == c)}
+
+
+def _reasons(res: dict) -> dict:
+    """``{reason: count}`` over the refused throws (the model's message, cut at 90 characters), most frequent first."""
+    from collections import Counter
+
+    why = [str(w)[:90] for w in res.get("why", ()) if w]
+    return dict(Counter(why).most_common())
 
 
 MU_BANDS = ((0.3, 0.6), (0.6, 1.0), (1.0, 3.0), (math.inf, math.inf))
@@ -272,6 +280,7 @@ def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: 
         "dx_p95_mm": float(np.percentile(d, 95)) if d.size else math.nan,
         "dx_max_mm": float(d.max()) if d.size else math.nan,
         "model_refused": _refusals(res["status"]), "engine_refused": _refusals(ref["status"]),
+        "model_refused_why": _reasons(res), "engine_refused_why": _reasons(ref),
         "engine_leaning": int(leaning.sum()),
         "at_wall_pct": (100.0 * float(np.mean((ref["status"] == C.OK) & (np.abs(ref["x"] + uR - cases.length) < 1e-3)))
                         if not np.all(np.isnan(cases.wall_mu)) else 0.0),
@@ -330,6 +339,15 @@ class TiltWallReport:
     def goal_lines(self) -> list[str]:
         return [f"{name}: {g['value']:.2f} % (goal ≥ {g['goal']:g} %) — {'met' if g['met'] else 'NOT met'}"
                 for name, g in self.goals.items()]
+
+    def refusal_lines(self) -> list[str]:
+        """Why throws were refused, per row and side (the model's own message)."""
+        out = []
+        for r in self.rows:
+            for side, key in (("model", "model_refused_why"), ("reference", "engine_refused_why")):
+                for why, count in (r.get(key) or {}).items():
+                    out.append(f"{r['row']}: {side} refused {count}: {why}")
+        return out
 
     def fixed_point_lines(self) -> list[str]:
         fp = self.fixed_point
