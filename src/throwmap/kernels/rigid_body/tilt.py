@@ -26,7 +26,8 @@ The guards ``lift_off`` (N = 0) and ``slip`` (F = ±μN) are each p N_w + q F_w 
 since F_w = ± k √(1 − s²)(3s − 2e) on a piece of monotone s = sin ψ, each one's roots
 are among the roots of the quartic p² N_w² − q² F_w² (:func:`_lin_quartic`): all roots
 of the three quartics on the piece are isolated exactly (monotone between the roots of
-the derivative, as :func:`~.swing.first_quartic_root`), and between consecutive roots the
+the derivative, as :func:`~.swing.first_quartic_root`; those are breakpoints too, so a
+double root is not lost), and between consecutive breakpoints the
 contact state is feasible or not throughout, decided at the midpoint
 (:func:`first_exit`). The first infeasible interval starts at the event. (A guard
 function that only touches zero without changing sign is not an event, as for α = 0.)
@@ -107,13 +108,18 @@ def _lin_quartic(e, k, p, q):
 
 @njit(cache=True)
 def _quartic_roots(lo, hi, p0, p1, p2, p3, p4, out, m):
-    """Append to ``out`` (from index m) every root of the quartic in [lo, hi] (sign changes, exact zeros); returns m.
+    """Append to ``out`` (from index m) the breakpoints of the quartic in [lo, hi]; returns the new m.
 
     The quartic is monotone between consecutive roots of its derivative
-    (:func:`~.swing._dpoly_roots`); each monotone piece with a sign change holds one
-    root, found by bisection to rounding.
+    (:func:`~.swing._dpoly_roots`), which are appended too (a double root, where the
+    squared guard only touches 0 while the guard itself changes sign — e.g. N = 0 as
+    α → 0 — is one of them); each monotone piece with a sign change holds one root,
+    found by bisection to rounding.
     """
     mc, r1, r2, r3 = _dpoly_roots(lo, hi, p1, p2, p3, p4)
+    for i in range(mc):
+        out[m] = r1 if i == 0 else (r2 if i == 1 else r3)
+        m += 1
     u = lo
     pu = _poly4(u, p0, p1, p2, p3, p4)
     if pu == 0.0:
@@ -160,7 +166,7 @@ def first_exit(s_a, s_b, sig_c, e, k, ca, sa, mu):
         return math.nan, -1
     lo = min(s_a, s_b)
     hi = max(s_a, s_b)
-    br = np.empty(16)
+    br = np.empty(32)
     p0, p1, p2, p3, p4 = _lin_quartic(e, k, ca, -sa)
     m = _quartic_roots(lo, hi, p0, p1, p2, p3, p4, br, 0)
     if not math.isinf(mu):
