@@ -290,10 +290,14 @@ def test_every_rest_is_a_rest_of_the_tilted_arm(model):
 # ---------------------------------------------------------------------------------------------- the engine
 @pytest.mark.slow
 def test_tilted_throws_agree_with_the_pymunk_engine():
-    """30 random tilted throws (α ∈ [−15°, 15°], μ ∈ {0.6, 1, ∞}, three parts): same status and side in all but
-    at most one, |Δx| ≤ 0.5 mm in ≥ 90 % (the engine realises the same impulse throw, ImpulseThrow)."""
+    """30 random tilted throws (α ∈ [−15°, 15°], μ ∈ {0.6, 1, ∞}, three parts) against the engine's impulse throw
+    (ImpulseThrow): the same outcome (the same escape, or at rest on the same side; both never resting — a part
+    rolling down an unbounded arm: NO_REST / engine TIMEOUT — agree) in all but at most one, and within 0.5 mm
+    in ≥ 90 %. Engine results it refuses itself (UNCONVERGED, PENETRATION) are not compared (the convention of
+    the tilt/wall validation table, studies/tilt_wall.py)."""
     rng = np.random.default_rng(11)
     names = list(PARTS)
+    norest = {C.NO_REST, C.TIMEOUT}
     same = close = n = 0
     while n < 30:
         part = PARTS[names[n % 3]]
@@ -303,13 +307,102 @@ def test_tilted_throws_agree_with_the_pymunk_engine():
         k = int(rng.choice(part.stable_sides))
         if tilted_rest_reason(part, arm, k, alpha):
             continue
-        x = rng.uniform(0.08, 0.35)
+        x = -float(part.uL[k]) + rng.uniform(0.01, 0.3)
         om = rng.uniform(3, 9)
-        r = tm.throw(part, arm, x, k, om, alpha=alpha)
         e = tm.throw(part, arm, x, k, om, "engine", alpha=alpha)
-        s = r.status == e.status and r.side == e.side
+        if e.status in (C.UNCONVERGED, C.PENETRATION):
+            continue
+        r = tm.throw(part, arm, x, k, om, alpha=alpha)
+        if r.status in norest and e.status in norest:
+            s = c = True
+        elif r.status == e.status and r.status != C.OK:
+            s = c = True  # the same escape
+        else:
+            s = r.status == e.status and r.side == e.side
+            c = s and abs(r.x - e.x) <= 5e-4
         same += s
-        close += s and abs(r.x - e.x) <= 5e-4
+        close += c
         n += 1
     assert same >= n - 1
     assert close >= 0.9 * n
+
+
+# ---------------------------------------------------------------------------------------------- sticking phase
+def _newton_euler_forces(th, w, lj, I, g, alpha):
+    """Arm-frame contact force (N, F) / (m g) of a sticking pivot from Newton–Euler: R = a_cm − g⃗, independent of
+    the kernel's rotated closed form."""
+    thdd = -(g * lj / I) * math.cos(th + alpha)
+    ax = lj * (-thdd * math.sin(th) - w * w * math.cos(th))
+    ay = lj * (thdd * math.cos(th) - w * w * math.sin(th))
+    return (ay + g * math.cos(alpha)) / g, (ax + g * math.sin(alpha)) / g
+
+
+def _rk4_stick(th, w, ta, tb, lj, I, g, mu, alpha, dt=2e-5, t_max=3.0):
+    """The tilted pendulum I θ̈ = −g ℓ cos(θ + α) by RK4 until θ leaves [θa, θb], N ≤ 0 or |F| > μN."""
+    c = g * lj / I
+
+    def f(th, w):
+        return w, -c * math.cos(th + alpha)
+
+    def bad(th, w):
+        if th <= ta:
+            return 1
+        if th >= tb:
+            return 2
+        N, F = _newton_euler_forces(th, w, lj, I, g, alpha)
+        if N <= 0.0:
+            return 3
+        if abs(F) > mu * N:
+            return 4
+        return 0
+
+    t = 0.0
+    while t < t_max:
+        k1 = f(th, w)
+        k2 = f(th + 0.5 * dt * k1[0], w + 0.5 * dt * k1[1])
+        k3 = f(th + 0.5 * dt * k2[0], w + 0.5 * dt * k2[1])
+        k4 = f(th + dt * k3[0], w + dt * k3[1])
+        th1 = th + dt * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0]) / 6
+        w1 = w + dt * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1]) / 6
+        ev = bad(th1, w1)
+        if ev:
+            return ev, (th, th1), (t, t + dt)
+        th, w, t = th1, w1, t + dt
+    return 0, (th, th), (t, t)
+
+
+def test_the_tilted_sticking_phase_matches_a_newton_euler_integration():
+    """pivot_stick_tilted vs RK4 of the tilted pendulum with forces from Newton–Euler: same event (land A/B,
+    lift-off, slip), the event's angle and time inside the RK4 step where the reference's guard fired (±1e-7),
+    in random swings (step 2e-5 s, RK4 error far below that)."""
+    from throwmap.kernels.rigid_body.modes import EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_SLIP
+
+    code = {EV_LAND_A: 1, EV_LAND_B: 2, EV_LIFT_OFF: 3, EV_SLIP: 4}
+    rng = np.random.default_rng(21)
+    g = 9.81
+    seen = set()
+    n = 0
+    while n < 60:
+        lj = rng.uniform(0.02, 0.08)
+        rho2 = rng.uniform(0.2, 0.6) * lj * lj
+        I = rho2 + lj * lj
+        ta = rng.uniform(0.3, 1.2)
+        tb = math.pi - rng.uniform(0.3, 1.2)
+        alpha = math.radians(rng.uniform(-20, 20))
+        mu = [0.3, 0.8, 2.0, math.inf][n % 4]
+        th0 = rng.uniform(ta + 0.05, tb - 0.05)
+        w0 = rng.uniform(-12, 12)
+        N0, F0 = _newton_euler_forces(th0, w0, lj, I, g, alpha)
+        if N0 <= 0.0 or abs(F0) > mu * N0:
+            continue
+        rec = np.zeros(C.NREC)
+        rec[C.N_MIN] = math.inf
+        ev, th, w, t = T.pivot_stick_tilted(th0, w0, ta, tb, lj, I, g, mu, 0.0, 0.1, 0.0, 0.0, np.empty((0, 4)),
+                                            np.zeros(3), rec, alpha)
+        ev_ref, th_ref, t_ref = _rk4_stick(th0, w0, ta, tb, lj, I, g, mu, alpha)
+        assert code[ev] == ev_ref, (n, ev, ev_ref, th, th_ref)
+        assert min(th_ref) - 1e-7 <= th <= max(th_ref) + 1e-7
+        assert t_ref[0] - 1e-7 <= t <= t_ref[1] + 1e-7
+        seen.add(ev_ref)
+        n += 1
+    assert seen == {1, 2, 3, 4}  # every guard was exercised
