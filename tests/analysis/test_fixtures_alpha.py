@@ -219,3 +219,15 @@ def test_the_throw_map_figure_is_sampled_up_to_the_wall_and_draws_it(model):
     import matplotlib.pyplot as plt
 
     plt.close(fig)
+
+
+def test_an_animation_draws_the_tilted_arm_and_the_wall_and_names_them():
+    pytest.importorskip("pymunk")
+    pytest.importorskip("matplotlib")
+    from throwmap.throws.orbit_trajectory import throw_trajectory
+    from throwmap.viz.frames import _default_title
+
+    _, traj = throw_trajectory(PART, ARM, 0.2, 0, 5.0, "engine", fixtures=(WALL,), alpha=math.radians(8))
+    assert np.allclose(traj.arm_angle, math.radians(8)) and traj.fixtures == (WALL,)
+    title = _default_title(traj)
+    assert "α = 8°" in title and "wall 5 cm (μ 0)" in title

@@ -114,6 +114,16 @@ def _default_title(traj: Trajectory) -> str:
     text = describe_setting(names, traj.h, omegas if len(omegas) <= 4 else (), model, mu)
     if len(omegas) > 4:
         text = text.replace("ω = ?", f"{len(omegas)} release rates")
+    angles = np.unique(np.round(np.asarray(traj.arm_angle, dtype=float), 12)) if traj.n_samples else np.zeros(0)
+    if angles.size == 1 and angles[0] != 0.0:  # an arm resting tilted throughout (an impulsive throw)
+        text += f", α = {math.degrees(float(angles[0])):.3g}°"
+    for f in traj.fixtures:
+        kind = type(f).__name__.lower()
+        if kind == "wall":
+            mu = getattr(f, "mu", None)
+            text += f", wall {100 * f.height:.3g} cm ({'arm μ' if mu is None else f'μ {mu:g}'})"
+        elif kind == "cavity":
+            text += ", cavity"
     return text
 
 
