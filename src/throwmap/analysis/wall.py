@@ -24,7 +24,7 @@ __all__ = ["wall_fixed_point"]
 
 def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wall | None = None, alpha: float = 0.0,
                      model: str = "rigid_body", n_starts: int = 16, rng=0, fd_steps=(1e-3, 1e-4, 1e-5, 1e-6),
-                     **options) -> dict:
+                     reference: str | None = None, **options) -> dict:
     """The fixed point at the wall, x* = length − u_R on ``side``, found by :func:`throwmap.limit_set`.
 
     A jog that would carry the part past the wall stops against it, so T(x) = x* for
@@ -34,7 +34,9 @@ def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wal
     (T(x*) − T(x* − h))/h, computed here for each h in ``fd_steps`` (m), must be 0, and
     limit_set's multiplier (:func:`throwmap.analysis.recurrence._slopes`, one-sided
     where the right neighbour is no valid start) must agree. ``free_slope`` is the
-    same quotient of the map without the wall, for comparison. Returns a dict (JSON-ready).
+    same quotient of the map without the wall, for comparison. ``reference`` (e.g.
+    ``"engine"``) also throws x*, x* − 1 mm and x* − 5 mm in that model (``"reference"``:
+    each start's offset, x' − x* and side, m). Returns a dict (JSON-ready).
     """
     from .limitset import limit_set
 
@@ -64,6 +66,15 @@ def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wal
         return [float((b.x[0] - b.x[j + 1]) / h) if ok[0] and ok[j + 1] else math.nan for j, h in enumerate(fd_steps)]
 
     free = left({kk: v for kk, v in kw.items() if kk != "fixtures"}, xs)
+    ref = None
+    if reference is not None:
+        offsets = (0.0, -1e-3, -5e-3)
+        b = throw_batch(part, arm, np.array([xs + d for d in offsets]), k, omega, model=reference, on_invalid="status",
+                        fixtures=(wall,), alpha=alpha)
+        ref = {"model": reference, "images": [{"start_offset_m": d, "dx_from_x_star_m": float(b.x[j] - xs),
+                                               "side": int(b.side[j]), "status": int(b.status[j])}
+                                              for j, d in enumerate(offsets)]}
     return {**info, "found": True, "x_star_m": xs, "multiplier": a.multiplier, "residual_m": a.residual,
             "fraction": a.fraction, "n_starts": ls.n_starts, "range": ls.range_text, "fd_left": left(kw, xs),
-            "free_slope": free[-1] if free else math.nan, "limit_set": ls.summary()}
+            "free_slope": free[-1] if free else math.nan, "n_at_wall": len(ls.wall_points), "reference": ref,
+            "limit_set": ls.summary()}

@@ -324,15 +324,10 @@ class TiltWallReport:
         bands = [_band(*b) for b in MU_BANDS]
         lines += ["", "| |Δx| ≤ 0.5 mm % by arm μ (throws), tilted [α = 0] | " + " | ".join(f"μ {b}" for b in bands)
                   + " |", "|" + "---|" * (len(bands) + 1)]
-        for r in self.rows:
-            if not r["available"]:
-                continue
-            cells = []
-            for b in bands:
-                v = r["by_mu"].get(b)
-                w = (r.get("baseline") or {}).get("by_mu", {}).get(b)
-                cells.append("—" if v is None else f"{v['within_pct']:.1f} ({v['n']})"
-                             + (f" [{w['within_pct']:.1f}]" if w else ""))
+        for r in (r for r in self.rows if r["available"]):
+            base = (r.get("baseline") or {}).get("by_mu", {})
+            cells = ["—" if b not in r["by_mu"] else f"{r['by_mu'][b]['within_pct']:.1f} ({r['by_mu'][b]['n']})"
+                     + (f" [{base[b]['within_pct']:.1f}]" if b in base else "") for b in bands]
             lines.append(f"| {r['row']} | " + " | ".join(cells) + " |")
         return "\n".join(lines)
 
@@ -356,13 +351,16 @@ class TiltWallReport:
         if not fp.get("found"):
             return [f"wall fixed point ({fp['model']}, {fp['part']}, side {fp['side']}): NOT found — {fp['message']}"]
         fd = ", ".join(f"h = {h:g} m: {v:+.3g}" for h, v in zip(fp["fd_steps_m"], fp["fd_left"]))
+        ref = fp.get("reference") or {}
+        imgs = "; ".join(f"T(x* {1e3 * g['start_offset_m']:+g} mm) − x* = {1e6 * g['dx_from_x_star_m']:+.3g} µm "
+                         f"(side {g['side']}, {Status(g['status']).label})" for g in ref.get("images", ()))
         return [f"wall fixed point ({fp['model']}, {fp['part']}, ω = {fp['omega_rad_s']:g} rad/s, L = "
-                f"{fp['length_m']:g} m, α = {fp['alpha_deg']:g}°, wall μ {_mu(fp['wall_mu'])}): x* = "
-                f"{fp['x_star_m']:.6f} m on side {fp['side']} (length − u_R = {fp['x_wall_m']:.6f} m), multiplier "
-                f"{fp['multiplier']:+.3g}, residual {fp['residual_m']:.3g} m, reached from "
-                f"{100 * fp['fraction']:.1f} % of {fp['n_starts']} starts ({fp['range']})",
+                f"{fp['length_m']:g} m, μ = {_mu(fp['mu'])}, α = {fp['alpha_deg']:g}°, wall μ {_mu(fp['wall_mu'])}): "
+                f"x* = {fp['x_star_m']:.6f} m on side {fp['side']} (length − u_R = {fp['x_wall_m']:.6f} m), multiplier "
+                f"{fp['multiplier']:+.3g}, residual {fp['residual_m']:.3g} m, reached from {100 * fp['fraction']:.1f} % "
+                f"of {fp['n_starts']} starts ({fp['range']}; {fp['n_at_wall']} fixed point(s) at the wall in all)",
                 f"  left difference quotients (T(x*) − T(x* − h))/h: {fd}; the map without the wall at x*: slope "
-                f"{_f(fp['free_slope'], '+.3g')}"]
+                f"{_f(fp['free_slope'], '+.3g')}"] + ([f"  {ref['model']}: {imgs}"] if imgs else [])
 
     def to_dict(self) -> dict:
         from ..io.files import json_ready
@@ -419,8 +417,8 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
     level arm, a baseline). ``seed`` seeds one child generator per condition (``SeedSequence(seed).spawn``), so a
     condition's throws do not depend on which others run. ``rigid_body_options`` (e.g.
     ``{"impact_law": "velocity"}``) go to every rigid_body throw. ``fixed_point`` also runs
-    :func:`wall_fixed_point` on the canonical triangle (side 0, ω = 5 rad/s, L = 0.30 m,
-    frictionless wall, μ = 1). ``progress(done, total)`` counts engine throws. Work
+    :func:`wall_fixed_point` on a 6 cm square (side 0, ω = 3 rad/s: jogs of ≈ 5 mm, L = 0.30 m,
+    μ = 1, frictionless wall), with the engine's images of x*, x* − 1 mm, x* − 5 mm. ``progress(done, total)`` counts engine throws. Work
     guard (:mod:`throwmap.budget`) on ``n``: the engine time per throw is measured first.
     """
     parts = default_parts() if parts is None else parts
@@ -484,10 +482,10 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
                 goals[f"{r['row']}: {name}"] = {"value": r[key], "goal": GOALS[key], "met": bool(r[key] >= GOALS[key])}
     fp = None
     if fixed_point:
-        from ..system.catalogue import triangle_30_60_90
+        from ..system.catalogue import rectangle
 
-        fp = wall_fixed_point(triangle_30_60_90(), Arm(h=-0.01, mu=1.0, length=0.30), 5.0, 0,
-                              wall=Wall(WALL_HEIGHT, mu=0.0), **rb)
+        fp = wall_fixed_point(rectangle(0.06, 0.06), Arm(h=-0.01, mu=1.0, length=0.30), 3.0, 0,
+                              wall=Wall(WALL_HEIGHT, mu=0.0), reference="engine", **rb)
     settings = {"n_per_condition": n, "seed": seed, "conditions": {c: {**CONDITIONS[c], "models": list(
         CONDITIONS[c]["models"] if models is None else models)} for c in conditions}, "parts": list(parts),
         "alpha_range_deg": [round(math.degrees(float(a)), 9) for a in alpha_range], "mu_range": list(MU_RANGE),
