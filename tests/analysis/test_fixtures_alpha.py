@@ -231,3 +231,20 @@ def test_an_animation_draws_the_tilted_arm_and_the_wall_and_names_them():
     assert np.allclose(traj.arm_angle, math.radians(8)) and traj.fixtures == (WALL,)
     title = _default_title(traj)
     assert "α = 8°" in title and "wall 5 cm (μ 0)" in title
+
+
+def test_wall_fixed_point_checks_the_multiplier_by_left_differences(model):
+    from throwmap.analysis.wall import wall_fixed_point
+    from throwmap.studies.tilt_wall import TiltWallReport
+
+    fp = wall_fixed_point(PART, ARM, 1.0, 0, wall=WALL, model=model.name, n_starts=4, reference=model.name)
+    x_star = start_interval(PART, ARM, 0)[1]
+    assert fp["found"] and fp["x_star_m"] == x_star == fp["x_wall_m"]
+    assert fp["multiplier"] == 0.0 and fp["fd_left"] == [0.0] * 4 and fp["n_at_wall"] == 3
+    assert math.isnan(fp["free_slope"])  # without the wall x* jogs off the end: no slope there
+    assert [g["dx_from_x_star_m"] for g in fp["reference"]["images"]] == [0.0, 0.0, 0.0]
+    lines = TiltWallReport((), {}, fp, {}).fixed_point_lines()
+    assert "multiplier +0" in lines[0] and "h = 1e-06 m: +0" in lines[1] and "T(x* -5 mm) − x* = +0 µm" in lines[2]
+    missing = wall_fixed_point(PART, ARM, 1.0, 0, wall=WALL, model="small_angle")
+    assert not missing["found"] and "fixtures" in missing["message"]
+    assert "NOT found" in TiltWallReport((), {}, missing, {}).fixed_point_lines()[0]
