@@ -119,3 +119,19 @@ def test_engine_against_itself_agrees_on_every_throw_and_the_report_round_trips(
 def test_wall_fixed_point_reports_a_refusal_as_not_found():
     fp = tw.wall_fixed_point(triangle_30_60_90(), Arm(h=-0.01, mu=1.0, length=0.3), 5.0, 0, model="small_angle")
     assert fp["found"] is False and "fixtures" in fp["message"]
+
+
+@pytest.mark.slow
+def test_a_small_real_run_has_every_row_with_its_baseline_and_by_mu_bands():
+    rep = tw.validate_tilt_wall({"square": PARTS["square"]}, n=4, seed=2, conditions=("tilt, μ = ∞", "tilt"),
+                                fixed_point=False)
+    names = [r["row"] for r in rep.rows]
+    assert names[:3] == ["tilt, μ = ∞: paper vs engine", "tilt, μ = ∞: rigid_body vs engine",
+                         "tilt, μ = ∞: paper vs rigid_body"] and names[-1] == "tilt: rigid_body vs engine"
+    for r in rep.rows:
+        assert r["available"], r.get("message")
+        assert sum(v["n"] for v in r["by_mu"].values()) == r["n_compared"] <= r["n"]
+        if "no lift-off" not in r["row"]:
+            assert r["baseline"] is not None and 0 <= r["baseline"]["within_pct"] <= 100
+    assert all(set(r["by_mu"]) == {"∞"} for r in rep.rows if r["row"].startswith("tilt, μ = ∞"))
+    assert set(rep.results["tilt"]) == {"engine", "rigid_body", "engine, α = 0", "rigid_body, α = 0"}
