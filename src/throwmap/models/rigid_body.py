@@ -7,6 +7,10 @@ slides and the Zeno rocking rule, as a hybrid automaton
 (:mod:`throwmap.kernels.rigid_body`). Validated against pymunk and MuJoCo
 (README, "Validation"). The arm may rest at an angle α (``alpha=``, rad, CCW +;
 draft Sec. VI): gravity (−g sin α, −g cos α) in the arm frame, :mod:`throwmap.kernels.rigid_body.tilt`.
+A :class:`~throwmap.system.fixtures.Wall` at the arm's end (``fixtures=(Wall(),)``, finite arm length)
+is modelled exactly where it can be (:mod:`throwmap.kernels.rigid_body.wall`: impacts against the wall
+with its own μ, a jog that slides or hops into it stops there, resting flat or leaning against it);
+what it cannot follow is refused as status UNRESOLVED with the reason. A Cavity needs model "engine".
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ from ..kernels import codes as C
 from ..errors import InvalidStateError, shown
 from ..kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY, count_samples, pick, throw_one_rigid_body
 from ..kernels.rigid_body.tilt import tilted_stable
+from ..system.fixtures import Cavity, Wall
 from ..throws.outcome import ThrowOutcome
 from ..throws.trajectory import Trajectory, world_vertices
 from ._checks import int_at_least, tolerance
@@ -78,14 +83,25 @@ def stable_at(part, alpha: float) -> np.ndarray:
     return tilted_stable(part.d, part.uL, part.uR, float(alpha))
 
 
-def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt: float = 1.0, alpha: float = 0.0):
+def wall_args(arm, fixtures) -> tuple[float, float]:
+    """The kernel's wall arguments ``(wall_h, wall_mu)`` from a System's fixtures: the wall's height (m; 0: no
+    wall) and its μ, ``Wall.mu`` or, where that is None, the arm's μ."""
+    for f in fixtures:
+        if isinstance(f, Wall):
+            return float(f.height), float(arm.mu if f.mu is None else f.mu)
+    return 0.0, 0.0
+
+
+def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt: float = 1.0, alpha: float = 0.0,
+               fixtures=()):
     """One kernel call: ``(x', side', status, record)``; ``traj`` (M, 4) receives the sampled motion;
-    ``alpha`` the arm's rest angle (rad)."""
+    ``alpha`` the arm's rest angle (rad), ``fixtures`` at most one Wall."""
     rec = np.empty(C.NREC)
+    wall_h, wall_mu = wall_args(arm, fixtures)
     xn, kn, st = throw_one_rigid_body(x, side, omega, arm.h, arm.g, float(alpha), arm.length_or_inf, arm.back,
                                       part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d,
                                       part.uL, part.uR, part.ell, stable_at(part, alpha), o.tol, o.max_iter,
-                                      o.max_impacts, rec, traj, dt)
+                                      o.max_impacts, rec, traj, dt, wall_h, wall_mu)
     return xn, kn, st, rec
 
 
@@ -94,19 +110,29 @@ class RigidBodyModel:
     summary = ("the exact rigid-body dynamics of one polygon on the arm line with plastic impacts and Coulomb "
                "friction Arm.mu: lift-off, sliding impacts and pivots, flat slides, Painlevé status")
     options_type = RigidBodyOptions
-    features = Features(trajectory=True, friction=True, tilt=True)
+    features = Features(trajectory=True, friction=True, tilt=True, fixtures=True)
+
+    def check_system(self, system) -> None:
+        """Refuse what this model cannot take: a Cavity (model "engine" can), a Wall on an unbounded arm."""
+        for f in system.fixtures:
+            if isinstance(f, Cavity):
+                raise InvalidStateError("fixtures", "rigid_body takes a Wall; a Cavity needs model 'engine'")
+        if any(isinstance(f, Wall) for f in system.fixtures) and system.arm.length is None:
+            raise InvalidStateError("arm.length", "a Wall stands at the arm's end: give the arm a finite length")
 
     def throw_one(self, part, system, x, side, omega, o: RigidBodyOptions):
-        return run_kernel(part, system.arm, x, side, omega, o, alpha=system.alpha)
+        self.check_system(system)
+        return run_kernel(part, system.arm, x, side, omega, o, alpha=system.alpha, fixtures=system.fixtures)
 
     def throw_batch(self, part, system, x, side, omega, valid, o: RigidBodyOptions, progress=None):
+        self.check_system(system)
         arm = system.arm
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
         pick(m)(x, side, omega, valid, arm.h, arm.g, system.alpha, arm.length_or_inf, arm.back,
                 part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d, part.uL, part.uR, part.ell,
                 stable_at(part, system.alpha), o.tol, o.max_iter, o.max_impacts, out.x, out.side, out.status,
-                out.records)
+                out.records, *wall_args(arm, system.fixtures))
         return out
 
     def assumptions(self, records, mu, status) -> str:
@@ -118,15 +144,18 @@ class RigidBodyModel:
                 f"inconsistent (Painlevé) {100 * inc.mean():.1f} %")
 
     def trajectory(self, part, system, x, side, omega, o: RigidBodyOptions, dt):
-        return record_trajectory(part, system.arm, x, side, omega, dt, o, alpha=system.alpha)
+        self.check_system(system)
+        return record_trajectory(part, system.arm, x, side, omega, dt, o, alpha=system.alpha,
+                                 fixtures=system.fixtures)
 
 
-def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples: int = 200_000, alpha: float = 0.0):
+def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples: int = 200_000, alpha: float = 0.0,
+                      fixtures=()):
     """The kernel's rows (t, x, y, φ) every ``dt`` s and at every event, as ``(ThrowOutcome, Trajectory)``;
     contacts are the vertices within 1 µm of the arm line at each sample. Poses are in the arm
     frame; the trajectory's ``arm_angle`` is the rest angle ``alpha`` (rad) at every sample."""
     traj = np.full((max_samples, 4), np.nan)
-    xn, kn, st, rec = run_kernel(part, arm, x0, k, om, o, traj, float(dt), alpha=alpha)
+    xn, kn, st, rec = run_kernel(part, arm, x0, k, om, o, traj, float(dt), alpha=alpha, fixtures=fixtures)
     out = ThrowOutcome.from_record(part, x0, k, om, "rigid_body", xn, kn, st, rec)
     m = count_samples(traj)
     rows = traj[:m]
@@ -149,7 +178,7 @@ def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples
         events.append((out.t_flight, f"impact v{out.contact_vertex}"))
     if out.ok:
         events.append((float(rows[-1, 0]) if m else 0.0, "rest"))
-    traj_obj = Trajectory(rows[:, 0], np.full(m, float(alpha)), poses, (part,), arm.h, length, (), tuple(contacts),
+    traj_obj = Trajectory(rows[:, 0], np.full(m, float(alpha)), poses, (part,), arm.h, length, tuple(fixtures), tuple(contacts),
                           tuple(events), "rigid_body", {"outcomes": (out,)})
     return out, traj_obj
 

@@ -69,6 +69,21 @@ Resets
                  only if the next swings at that energy about both support vertices
                  keep N > 0 and |F| ≤ μN (checked at 16 points per arc).
 
+A wall at the arm's end (``wall_h`` > 0; :mod:`.wall`)
+-----------------------------------------------------
+Guards ``wall_touch`` (FLIGHT: a vertex reaches the face x = length below the top),
+``corner_touch`` (FLIGHT: the top corner enters the part through an edge), ``wall_reach``
+(PIVOT_*: a closed-form lower bound on θ, face or corner; PIVOT_SLIDE: a guard of the RK4
+phase) and ``slide_hit`` (FLAT_SLIDE, closed form). Resets: ``wall_impact`` (the impact law
+above along the contact's normal, μ_w), the pivot's wall reset (impulse at the wall alone if
+the pivot then lifts; else both stop if the impulse lies in the two cones; then rest leaning,
+swing back, or refuse), and the flat slide's impact (stop dead, turn about the corner vertex,
+or refuse); rests against the wall by exact cone statics. What it cannot follow ends as
+UNRESOLVED (reason codes ``WHY_*`` of :mod:`.wall`): an edge pressed onto the top corner,
+a vertex pressed on the face in flight, two-contact impacts with slip, ladder slides, a pivot
+driven into the wall's foot. A rest leaning on arm and wall reports the nearest side and the
+CM's x, as the engines do.
+
 Numerics and accuracy (plainly)
 -------------------------------
 * FLIGHT is closed form; ``touch`` cannot miss a crossing (lower-bound stepping)
@@ -120,6 +135,9 @@ Modules (the automaton's pieces)
 ``trajectory``   trajectory rows
 ``automaton``    one throw: the loop over modes
 ``batch``        many throws: parallel kernels and their serial twins, chosen by batch size
+``tilt``         an arm at rest angle α: tilted sticking phase, flat slides and rests
+``wall``         a wall at the arm's end: FLIGHT with a wall, the pivot's wall reset (and
+                 ``wall_contact``, ``wall_guards``, ``wall_statics``: contacts, guards, statics)
 """
 
 from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4

@@ -4,6 +4,9 @@ FLIGHT --touch--> impact --> SELECT --> PIVOT_STICK | PIVOT_SLIDE | FLIGHT
 PIVOT_STICK --slip--> PIVOT_SLIDE --stick--> PIVOT_STICK   (slip_start / stick_start)
 PIVOT_* --lift_off--> FLIGHT (lift) --land--> land_side --> REST | FLAT_SLIDE | pivot on B | FLIGHT
 any contact --leave_arm--> BEHIND_JOINT / OFF_END;  PIVOT_SLIDE --painleve--> INCONSISTENT.
+With a wall (``wall_h`` > 0, :mod:`.wall`): FLIGHT --wall_touch/corner_touch--> wall_impact --> FLIGHT;
+PIVOT_* --wall_reach--> pivot wall reset --> FLIGHT | REST (leaning) | PIVOT (swing back);
+land_side's flat slides --> settle_walled --> REST | PIVOT on the corner vertex; else UNRESOLVED.
 
 :func:`run_throw` takes the sticking phase as its first argument (a jitted
 function with the signature of :func:`~throwmap.kernels.rigid_body.stick.pivot_stick`),
@@ -29,19 +32,22 @@ from ..rows import start_record
 from .flight import departure_window, flight_frame, fly, leave_arm, lift
 from .impact import coulomb_impact, record_first_contact, record_first_impact, record_impact
 from .landing import land_side, rest
-from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_B, EV_LIFT_OFF, EV_NONE, EV_OFF_END, EV_SLIP,
+from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE, EV_OFF_END, EV_SLIP,
                     EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST,
                     MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID)
-from .slide import pivot_slide, select_contact_mode
+from .slide import pivot_slide, pivot_slide_walled, select_contact_mode
 from .stick import pivot_stick
 from .stick_exact import pivot_stick_exact
 from .tilt import pivot_stick_tilted, settle
-from .trajectory import _put, clear
+from .trajectory import _put, _put_final, clear
+from .wall import (ACT_FLIGHT, ACT_INCONSISTENT, ACT_REFUSE, ACT_REST, EV_WALL, WHY_CORNER, WHY_SLIDE_WALL,
+                   WHY_WALL_TOP, corner_inside, fill_wall_vertices, fly_walled, nearest_side, pivot_wall_hit,
+                   refresh_frame, refuse, wall_contact_angle, wall_hit_in_flight)
 
 
 @njit(cache=True, inline='always')
 def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-              tol, max_iter, max_events, rec, traj, traj_dt):
+              tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
     """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`."""
     n = w.shape[0]
     start_record(rec)
@@ -91,14 +97,60 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
     sig = 0.0
     mu_s = MU_SKID if math.isinf(mu) else mu
     ev = EV_NONE
+    walled = wall_h > 0.0  # a Wall at x = length, wall_h (m) high, μ_w = wall_mu (wall.py)
+    gx = -g * math.sin(alpha)  # gravity along the arm
+    cw = np.empty(n)
+    wv = np.zeros((n, 2))
+    off = np.zeros(n)  # vertices that passed the wall's plane above its top in this flight
+    cexcl_e = -1  # an edge that just left the wall's top corner, and until when it provably stays off it
+    cexcl_until = 0.0
+    wexcl_j = -1  # a vertex that just left the wall, and until when (absolute time, s) it provably stays off it
+    wexcl_until = 0.0
+    lref = math.sqrt(rho2) + ell.max()
     while True:
         n_events += 1
         if n_events > max_events:
             return x, last_side, C.NO_REST
         if mode == MODE_FLIGHT:
             # ---------------------------------------------------------- FLIGHT until guard touch
-            jc, t, x, y, vy, phi, rx, ry, vx = fly(t, x, y, vx, vy, phi, om, c0, ru, rv, gn, ell, excl_j, excl_t, tol,
-                                                   max_iter, traj, ts, gt)
+            if walled:
+                t_seg = t
+                (where, jc, t, x, y, vx, vy, phi, rx, ry, nx,
+                 ny) = fly_walled(t, x, y, vx, vy, phi, om, c0, ru, rv, gx, gn, ell, excl_j, excl_t, wexcl_j,
+                                  wexcl_until - t, cexcl_e, cexcl_until - t, length, wall_h, h, tol, max_iter, cw, off,
+                                  traj, ts)
+                if where == -2:
+                    rec[C.CAP_HIT] = 1.0
+                    return x, last_side, C.UNRESOLVED
+                if where >= 1:
+                    # ------------------------------------------------------ reset wall_impact (wall.py)
+                    k_pre = 0.5 * (vx * vx + vy * vy + rho2 * om * om)
+                    vxp, vyp, wp, pt, pn, kind, wex, why = wall_hit_in_flight(vx, vy, om, rx, ry, nx, ny, where == 2,
+                                                                              rho2, wall_mu, law, gx, gn,
+                                                                              math.hypot(rx, ry))
+                    rec[C.N_IMPACTS] += 1.0
+                    if why != 0:
+                        return x, last_side, refuse(rec, why)
+                    if kind == IMP_INCONSISTENT:
+                        return x, last_side, C.INCONSISTENT
+                    rec[C.N_IMPACTS] -= 1.0
+                    record_impact(pt, pn, k_pre, 0.5 * (vxp * vxp + vyp * vyp + rho2 * wp * wp), rec)
+                    if kind != IMP_STICK:
+                        rec[C.N_SLIPS] += 1.0
+                    vx, vy, om = vxp, vyp, wp
+                    if where == 1:
+                        wexcl_j = jc
+                        wexcl_until = t + wex
+                    else:
+                        cexcl_e = jc
+                        cexcl_until = t + wex
+                    if excl_j >= 0:
+                        excl_t -= t - t_seg
+                    refresh_frame(phi, y, h, w, ell, ru, rv, c0)
+                    continue
+            else:
+                jc, t, x, y, vy, phi, rx, ry, vx = fly(t, x, y, vx, vy, phi, om, c0, ru, rv, gn, ell, excl_j, excl_t,
+                                                       tol, max_iter, traj, ts, gt)
             if jc < 0:
                 if jc != UNRESOLVED_J:
                     rec[C.CAP_HIT] = 1.0  # max_iter steps without contact: not resolved, not a missed contact
@@ -150,7 +202,17 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
         ta = theta_a(jp, n, d, uL)
         tb = theta_b(jp, d, uR)
         theta = min(max(theta, ta), tb)
-        if mode == MODE_SELECT:
+        ev = EV_NONE
+        ta_w = ta  # the pivot angle's lower bound: side j−1 lands, or a vertex meets the wall (guard wall_reach)
+        if walled:
+            th_w, _c, _j, _x, _y, _nx, _ny = wall_contact_angle(px, length, wall_h, theta, theta + phi_off, w, jp)
+            if th_w > ta:
+                ta_w = min(th_w, tb)
+                if theta < ta_w:
+                    theta = ta_w
+        if walled and ta_w > ta and theta <= ta_w and thdot < 0.0:
+            ev = EV_WALL  # a vertex is on the wall and the part turns into it
+        elif mode == MODE_SELECT:
             mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, False, alpha)
             if mode < 0:
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
@@ -158,29 +220,44 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                 rec[C.N_SLIPS] += 1.0  # (a sliding impact was counted already)
             if mode == MODE_FLIGHT:
                 ev = EV_LIFT_OFF
-        if mode == MODE_STICK:
+        if ev == EV_WALL:
+            pass
+        elif mode == MODE_STICK:
             if tilted:
-                ev, theta, thdot, t = pivot_stick_tilted(theta, thdot, ta, tb, lj, I, g, mu, t, px, h, phi_off, traj,
+                ev, theta, thdot, t = pivot_stick_tilted(theta, thdot, ta_w, tb, lj, I, g, mu, t, px, h, phi_off, traj,
                                                          ts, rec, alpha)
             else:
-                ev, theta, thdot, t = stick_phase(theta, thdot, ta, tb, lj, I, g, mu, t, max_iter, px, h, phi_off,
+                ev, theta, thdot, t = stick_phase(theta, thdot, ta_w, tb, lj, I, g, mu, t, max_iter, px, h, phi_off,
                                                   traj, ts, rec)
             va = 0.0
         elif mode == MODE_SLIDE:
-            ev, px, theta, va, thdot, t = pivot_slide(px, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu_s, length, back,
-                                                      t, max_iter, h, phi_off, traj, ts, rec, alpha)
+            if walled and sig > 0.0 and px >= length:
+                return px + lj * math.cos(theta), last_side, refuse(rec, WHY_CORNER)
+            if walled:
+                fill_wall_vertices(theta, theta + phi_off, w, jp, wv)
+                ev, px, theta, va, thdot, t = pivot_slide_walled(px, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu_s,
+                                                                 length, back, t, max_iter, h, phi_off, traj, ts, rec,
+                                                                 alpha, length, wv)
+            else:
+                ev, px, theta, va, thdot, t = pivot_slide(px, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu_s, length,
+                                                          back, t, max_iter, h, phi_off, traj, ts, rec, alpha)
             if ev == EV_INCONSISTENT:
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
             if ev == EV_BEHIND_JOINT:
                 return px + lj * math.cos(theta), last_side, C.BEHIND_JOINT
             if ev == EV_OFF_END:
                 return px + lj * math.cos(theta), last_side, C.OFF_END
+            if walled and ev != EV_WALL and corner_inside(px, h, theta, theta + phi_off, w, jp, length, wall_h):
+                # an edge slid onto the wall's top corner (the sliding phase watches vertices only)
+                return px + lj * math.cos(theta), last_side, refuse(rec, WHY_SLIDE_WALL)
         if ev == EV_SLIP or ev == EV_LIFT_OFF or ev == EV_STICK:
             # ---------------------------------------------------------- resets slip_start / stick_start / lift
             new_mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, ev != EV_STICK, alpha)
             if new_mode < 0:
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
             if new_mode == MODE_SLIDE:
+                if walled and sig > 0.0 and px >= length:
+                    return px + lj * math.cos(theta), last_side, refuse(rec, WHY_CORNER)
                 rec[C.N_SLIPS] += 1.0
                 mode = MODE_SLIDE
                 continue
@@ -192,6 +269,48 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
             rec[C.CAP_HIT] = 1.0  # max_iter integration steps in one contact mode: not resolved
             return px + lj * math.cos(theta), last_side, C.UNRESOLVED
         phi = theta + phi_off
+        if ev == EV_WALL or (ev == EV_LAND_A and ta_w > ta and mode == MODE_STICK):
+            # -------------------------------------------------------------- guard wall_reach: reset (wall.py)
+            # the contact where the bound was reached (evaluated just before it, so that it is found)
+            th_c, w_corner, w_j, w_cx, w_cy, w_nx, w_ny = wall_contact_angle(px, length, wall_h, theta + 1e-9,
+                                                                             phi + 1e-9, w, jp)
+            if not abs(th_c - theta) <= 1e-7:
+                # the vertex that reached the wall's plane is above its top (watched by a sliding pivot)
+                return px + lj * math.cos(theta), last_side, refuse(rec, WHY_WALL_TOP)
+            act, xw, yw, vxw, vyw, omw, wex, why = pivot_wall_hit(px, h, lj, theta, thdot, va, w_cx, w_cy, w_nx, w_ny,
+                                                                  w_corner, rho2, mu, wall_mu, law, gx, -gn, lref)
+            rec[C.N_IMPACTS] += 1.0
+            if act == ACT_REFUSE:
+                return px + lj * math.cos(theta), last_side, refuse(rec, why)
+            if act == ACT_INCONSISTENT:
+                return xw, last_side, C.INCONSISTENT
+            if act == ACT_FLIGHT:
+                x, y, vx, vy, om = xw, yw, vxw, vyw, omw
+                refresh_frame(phi, y, h, w, ell, ru, rv, c0)
+                excl_j = -1  # the pivot leaves the line with a positive normal velocity
+                excl_t = 0.0
+                off[:] = 0.0
+                wexcl_j = -1
+                cexcl_e = -1
+                if w_corner:
+                    cexcl_e = w_j
+                    cexcl_until = t + wex
+                else:
+                    wexcl_j = w_j
+                    wexcl_until = t + wex
+                sig = 0.0
+                mode = MODE_FLIGHT
+                continue
+            if act == ACT_REST:
+                # at rest leaning on the arm and the wall: read as the nearest side, as the engines do
+                rec[C.E_FINAL] = gn * (yw - h) - gx * xw
+                rec[C.T_REST] = t
+                _put_final(traj, ts, t, xw, yw, phi)
+                return xw, nearest_side(phi, beta), C.OK
+            thdot = 0.0  # ACT_SWING: stopped against the wall, gravity turns it back about the pivot
+            va = 0.0
+            mode = MODE_SELECT
+            continue
         if ev == EV_LIFT_OFF:
             # ---------------------------------------------------------- reset lift
             rec[C.N_LIFTOFFS] += 1.0
@@ -201,6 +320,9 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                 # motion that would sink the vertex: no consistent contact (μ = ∞ only)
                 return x, last_side, C.INCONSISTENT
             excl_j = jp
+            wexcl_j = -1
+            cexcl_e = -1
+            off[:] = 0.0
             sig = 0.0
             mode = MODE_FLIGHT
             continue
@@ -209,17 +331,20 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
         (mode, status, x, y, vx, vy, om, phi, t, jp, px, theta, thdot, va, phi_off, j_ex, t_ex,
          last_side) = land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length,
                                 back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, ta, tb, ru, rv, c0, traj, ts,
-                                rec, alpha)
+                                rec, alpha, wall_h, wall_mu)
         if mode == MODE_REST:
             return x, last_side, status
         if mode == MODE_FLIGHT:
             excl_j = j_ex
             excl_t = t_ex
+            wexcl_j = -1
+            cexcl_e = -1
+            off[:] = 0.0
 
 
 @njit(cache=True)
 def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                         tol, max_iter, max_events, rec, traj, traj_dt):
+                         tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
     """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s), model "rigid_body".
 
     Fills ``rec`` (layout :mod:`~throwmap.kernels.codes`) and ``traj`` (see
@@ -235,14 +360,16 @@ def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, l
     ``max_iter`` caps the contact-search and integration steps of one mode,
     ``max_events`` the mode changes (status NO_REST beyond). The caller has
     checked the start. The sticking phase is closed form (:func:`pivot_stick_exact`).
+    ``wall_h`` (m, > 0) puts a :class:`~throwmap.system.fixtures.Wall` that high at x = ``length``
+    (finite) with Coulomb ``wall_mu`` (:mod:`~.wall`); 0: no wall.
     """
     return run_throw(pivot_stick_exact, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                     stable, tol, max_iter, max_events, rec, traj, traj_dt)
+                     stable, tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu)
 
 
 @njit(cache=True)
 def throw_one_rigid_body_rk4(x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                             tol, max_iter, max_events, rec, traj, traj_dt):
+                             tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
     """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`pivot_stick`): the reference it is checked against."""
     return run_throw(pivot_stick, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                     tol, max_iter, max_events, rec, traj, traj_dt)
+                     tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu)

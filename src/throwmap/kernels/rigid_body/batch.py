@@ -27,7 +27,7 @@ the cores are busy, up to milliseconds per call (issue 10: ``critical_points`` t
 
 @njit(cache=True)
 def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                                 stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
+                                 stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out, wall_h=0.0, wall_mu=0.0):
     """:func:`throw_many_rigid_body` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
     for i in range(x0.shape[0]):
@@ -35,7 +35,7 @@ def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, alpha, length, ba
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
         x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR,
-                                        ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+                                        ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0, wall_h, wall_mu)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
@@ -43,12 +43,12 @@ def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, alpha, length, ba
 
 @njit(cache=True, parallel=True)
 def throw_many_rigid_body(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                          tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
+                          tol, max_iter, max_events, x_out, side_out, status_out, rec_out, wall_h=0.0, wall_mu=0.0):
     """Batch of independent throws (flat arrays), model "rigid_body"; invalid starts get INVALID_START.
 
     Fills ``x_out``, ``side_out``, ``status_out`` (n,) and ``rec_out`` (n, NREC) in
     place; each throw as :func:`~.automaton.throw_one_rigid_body` (``law``: the impact-law code,
-    :data:`~.impact.LAW_ROUTH` or :data:`~.impact.LAW_VELOCITY`).
+    :data:`~.impact.LAW_ROUTH` or :data:`~.impact.LAW_VELOCITY`; ``wall_h``, ``wall_mu``: the wall, 0: none).
     """
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
@@ -56,7 +56,7 @@ def throw_many_rigid_body(x0, side, omega, valid, h, g, alpha, length, back, rho
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
         x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR,
-                                        ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+                                        ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0, wall_h, wall_mu)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
@@ -64,7 +64,7 @@ def throw_many_rigid_body(x0, side, omega, valid, h, g, alpha, length, back, rho
 
 @njit(cache=True, parallel=True)
 def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                              stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
+                              stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out, wall_h=0.0, wall_mu=0.0):
     """:func:`throw_many_rigid_body` with the RK4 sticking phase (:func:`~.automaton.throw_one_rigid_body_rk4`)."""
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
@@ -72,7 +72,7 @@ def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, alpha, length, back,
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
         x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL,
-                                            uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+                                            uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0, wall_h, wall_mu)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
@@ -80,7 +80,7 @@ def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, alpha, length, back,
 
 @njit(cache=True)
 def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                                     stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out):
+                                     stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out, wall_h=0.0, wall_mu=0.0):
     """:func:`throw_many_rigid_body_rk4` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
     for i in range(x0.shape[0]):
@@ -88,7 +88,7 @@ def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, alpha, length
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
         x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL,
-                                            uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0)
+                                            uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0, wall_h, wall_mu)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st

@@ -28,6 +28,7 @@ from .modes import (HALF_PI, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLI
 from .stick import _n_min_range, _n_stick
 from .tilt import rocking_rest_tilted, settle, tip_vertex, topple_barrier
 from .trajectory import _put, _put_final
+from .wall import refuse, settle_walled
 
 
 @njit(cache=True)
@@ -158,8 +159,26 @@ def tip_from_rest(k, x_cm, n, d, uL, uR, alpha=0.0):
 
 
 @njit(cache=True)
+def settle_at_wall(x_cm, v, t, k, phi, last_side, h, g, alpha, length, back, rho2, mu, w, beta, d, uL, uR, wall_h,
+                   wall_mu, traj, ts, rec):
+    """Flat on side k moving at v (m/s) on an arm with a wall (:func:`~.wall.settle_walled`), as ``land_side`` returns it:
+    at rest or gone (MODE_REST), refused (MODE_REST, UNRESOLVED), or turning about the corner vertex k at
+    (length, h) (MODE_SELECT)."""
+    dk = d[k]
+    st, x, t, wc, why = settle_walled(x_cm, v, t, k, mu, -g * math.sin(alpha), g * math.cos(alpha), h, length, wall_h,
+                                      wall_mu, back, rho2, w, beta, d, uL, uR, phi, traj, ts, rec)
+    if st == -1:
+        th = theta_b(k, d, uR)
+        return (MODE_SELECT, C.OK, x, h + dk, 0.0, 0.0, wc, phi, t, k, length, th, wc, 0.0, phi - th, -1, 0.0,
+                last_side)
+    if st == C.UNRESOLVED:
+        refuse(rec, why)
+    return MODE_REST, st, x, h + dk, 0.0, 0.0, 0.0, phi, t, k, length, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
+
+
+@njit(cache=True)
 def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
-              ell, stable, ta, tb, ru, rv, c0, traj, ts, rec, alpha=0.0):
+              ell, stable, ta, tb, ru, rv, c0, traj, ts, rec, alpha=0.0, wall_h=0.0, wall_mu=0.0):
     """Reset ``land_side``: pivoting on A = w_jp, θ reached θb (``land_dir`` +1) or θa (−1) and B touches.
 
     On an arm at rest angle ``alpha`` ≠ 0 (rad; :mod:`~.tilt`): the departure window
@@ -168,6 +187,9 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
     under the tilted gravity (:func:`~.tilt.settle`: rests only where |tan α| ≤ μ),
     an unstable side (``stable`` is the table for α) tips about the vertex its CM
     overhangs along gravity, at once, sliding if it still moves.
+
+    With a wall (``wall_h`` > 0, m; Coulomb ``wall_mu``) every flat slide and rest goes to
+    :func:`settle_at_wall` (:mod:`~.wall`).
 
     ``law`` is the impact law of the impulse at B (:data:`~.impact.LAW_ROUTH` or
     :data:`~.impact.LAW_VELOCITY`, see :func:`~.impact.coulomb_impact`).
@@ -219,6 +241,9 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
         else:
             barrier = min(g * (ell[jp] - dk), g * (ell[jB] - dk))
         if mu == 0.0 and stable[k] and k_after - 0.5 * vxp * vxp < barrier:
+            if wall_h > 0.0:
+                return settle_at_wall(x_cm, vxp, t, k, phi, last_side, h, g, alpha, length, back, rho2, mu, w, beta, d,
+                                      uL, uR, wall_h, wall_mu, traj, ts, rec)
             if alpha != 0.0:
                 x, k, status, t = settle(x_cm, vxp, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj,
                                          ts, rec)
@@ -236,6 +261,9 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
                 zeno = rocking_rest_tilted(th_new, th_A, k_after, ell[jp], ell[jB], rho2, g, mu, land_dir, alpha)
             else:
                 zeno = rocking_rest(th_new, th_A, k_after, ell[jp], ell[jB], rho2, dk, g, mu, land_dir)
+            if zeno and alpha != 0.0 and wall_h > 0.0:
+                return settle_at_wall(x_cm, 0.0, t, k, phi, last_side, h, g, alpha, length, back, rho2, mu, w, beta, d,
+                                      uL, uR, wall_h, wall_mu, traj, ts, rec)
             if zeno and alpha != 0.0:
                 x, k, status, t = settle(x_cm, 0.0, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj,
                                          ts, rec)
@@ -266,6 +294,9 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
     vx_after = vxm + jt
     record_impact(jt, jn, k_before, 0.5 * vx_after * vx_after, rec)
     phi = beta[k] + TWO_PI * round((phi - beta[k]) / TWO_PI)
+    if wall_h > 0.0 and stable[k]:
+        return settle_at_wall(x_cm, vx_after, t, k, phi, last_side, h, g, alpha, length, back, rho2, mu, w, beta, d,
+                              uL, uR, wall_h, wall_mu, traj, ts, rec)
     if alpha != 0.0:
         if stable[k]:
             x, k, status, t = settle(x_cm, vx_after, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj,

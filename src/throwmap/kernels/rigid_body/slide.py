@@ -13,6 +13,7 @@ On an arm at rest angle α (rad; :mod:`~.tilt`) gravity in the arm frame is
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .. import codes as C
@@ -21,6 +22,11 @@ from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B,
                     EV_STEP_CAP, EV_STICK, MODE_FLIGHT, MODE_SLIDE, MODE_STICK, N_BISECT)
 from .stick import stick_forces
 from .trajectory import _put
+
+EV_WALL = 10
+"""Guard ``wall_reach`` of a sliding pivot (as :data:`throwmap.kernels.rigid_body.wall.EV_WALL`)."""
+NO_WALL = np.zeros((0, 2))
+"""No vertex watched for a wall."""
 
 
 @njit(cache=True)
@@ -65,7 +71,20 @@ def _rk4_slide(xa, th, va, w, dt, lj, rho2, g, musig, gt):
 
 
 @njit(cache=True)
-def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, gt):
+def _wall_gap(xa, th, wall, wv):
+    """Guard ``wall_reach`` while the pivot slides: least gap L − x_j (m) of the vertices to the wall x = ``wall``;
+    ``wv`` rows (ℓ_j, δ_j): vertex j at A + ℓ_j (cos(θ + δ_j), sin(θ + δ_j)) (ℓ_j = 0: not watched)."""
+    gmin = math.inf
+    for j in range(wv.shape[0]):
+        if wv[j, 0] > 0.0:
+            gj = wall - xa - wv[j, 0] * math.cos(th + wv[j, 1])
+            if gj < gmin:
+                gmin = gj
+    return gmin
+
+
+@njit(cache=True)
+def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv):
     _a, _b, N, D = slide_rhs(th, w, lj, rho2, g, musig, gt)
     gmin = sig * va
     which = EV_STICK
@@ -86,11 +105,16 @@ def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, 
     if length - xa < gmin:
         gmin = length - xa
         which = EV_OFF_END
+    if wall < math.inf:
+        gw = _wall_gap(xa, th, wall, wv)
+        if gw < gmin:
+            gmin = gw
+            which = EV_WALL
     return gmin, which
 
 
 @njit(cache=True)
-def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, gt):
+def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv):
     """The value of one guard of :func:`_slide_guards` (a smooth function of the state)."""
     if which == EV_STICK:
         return sig * va
@@ -105,11 +129,14 @@ def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, 
         return xa + back
     if which == EV_OFF_END:
         return length - xa
+    if which == EV_WALL:
+        return _wall_gap(xa, th, wall, wv)
     return math.nan
 
 
 @njit(cache=True)
-def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back, gt):
+def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall,
+                  wv):
     """Smallest RK4 step length τ ∈ (0, dt] at which the guard function (:func:`_slide_guards`) is ≤ 0.
 
     Bracket [lo, hi] with min-guard G(lo) > 0 ≥ G(hi). Each trial point is a
@@ -133,13 +160,15 @@ def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, 
             break
         mid = lo + 0.5 * width
         if falsi:
-            c_lo = _guard_value(which, x_lo, th_lo, v_lo, w_lo, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
-            c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
+            c_lo = _guard_value(which, x_lo, th_lo, v_lo, w_lo, sig, ta, tb, lj, rho2, g, musig, length, back, gt,
+                                wall, wv)
+            c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length, back, gt,
+                                wall, wv)
             if c_lo > 0.0 and c_hi <= 0.0:
                 mid = lo + width * c_lo / (c_lo - c_hi)
                 mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
         xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig, gt)
-        gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
+        gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv)
         if gmid <= 0.0:
             hi = mid
             which = wh
@@ -154,13 +183,24 @@ def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, 
 @njit(cache=True)
 def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back, t, max_steps, h, phi_off, traj, ts,
                 rec, alpha=0.0):
+    """Mode PIVOT_SLIDE on vertex A at (x_A, h), slip sense σ = sgn v_A, until a guard fires; see
+    :func:`pivot_slide_walled` (this is it without a wall)."""
+    return pivot_slide_walled(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back, t, max_steps, h,
+                              phi_off, traj, ts, rec, alpha, math.inf, NO_WALL)
+
+
+@njit(cache=True)
+def pivot_slide_walled(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back, t, max_steps, h, phi_off, traj,
+                       ts, rec, alpha, wall, wv):
     """Mode PIVOT_SLIDE on vertex A at (x_A, h), slip sense σ = sgn v_A, until a guard fires.
 
     ``g`` (m/s²) is gravity's magnitude and ``alpha`` the arm's rest angle (rad):
     the dynamics use g cos α normal to the arm and −g sin α along it (:func:`slide_rhs`).
 
     Guards ``stick`` (σ v_A = 0), ``land`` (θa, θb), ``lift_off`` (N = 0),
-    ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ −back or > length). RK4, the guard
+    ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ −back or > length), and with a wall at x = ``wall``
+    (:mod:`~.wall`) ``wall_reach``: a vertex of ``wv`` (rows ℓ_j, δ_j relative to A) reaches it
+    (``EV_WALL``). RK4, the guard
     located inside a step by :func:`_locate_guard`. Updates N_MIN, MU_MAX, SLIP_DISTANCE. Returns
     ``(event, x_A, θ, v_A, θ̇, t)``.
     """
@@ -175,13 +215,14 @@ def pivot_slide(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, length, back
     for _ in range(max_steps):
         dt = DTH / (abs(thdot) + om)
         x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig, gt)
-        gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
+        gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv)
         step = dt
         if gm <= 0.0:
-            hi = _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
+            hi = _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back, gt,
+                               wall, wv)
             step = hi
             x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, hi, lj, rho2, g, musig, gt)
-            gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back, gt)
+            gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv)
         if sample:
             while ts[1] <= t + step:
                 xq, thq, _v, _w = _rk4_slide(xa, theta, va, thdot, ts[1] - t, lj, rho2, g, musig, gt)

@@ -1,0 +1,160 @@
+"""The wall's contacts for model "rigid_body": reason codes, the impact along any normal, departure windows.
+
+Part of :mod:`.wall` (see there for the wall, its guards and resets): the plastic Coulomb
+impact at a contact with any unit normal (the arm's law, :func:`~.impact.coulomb_impact`, in a
+turned frame), and the exact windows for which a contact that just closed stays open.
+"""
+
+import math
+
+from numba import njit
+
+from .. import codes as C
+from .impact import coulomb_impact
+
+WHY_NONE = 0
+WHY_WALL_TOP = 1
+WHY_WALL_SLIDE = 2
+WHY_TWO_CONTACT = 3
+WHY_LADDER = 4
+WHY_CORNER = 5
+WHY_SLIDE_WALL = 6
+WHY_MESSAGES = {
+    WHY_WALL_TOP: ("the part reached the wall above its top while sliding flat or on a sliding pivot (only "
+                   "flights and sticking pivots watch the wall's top corner): not modelled by rigid_body"),
+    WHY_WALL_SLIDE: ("after an impact with the wall a vertex stays pressed on its face, or an edge on its top "
+                     "corner: the part would slide along the wall or over its corner, which rigid_body does not "
+                     "model (use model 'engine')"),
+    WHY_TWO_CONTACT: ("an impact at the arm and the wall at once needs slip at a contact: this two-contact "
+                      "impact is not modelled by rigid_body"),
+    WHY_LADDER: ("the part leans on the arm and the wall and slides at both (a ladder-like slide): this "
+                 "two-contact motion is not modelled by rigid_body"),
+    WHY_CORNER: ("the pivot at the wall's foot is driven into the wall while the part swings: this "
+                 "two-contact motion is not modelled by rigid_body"),
+    WHY_SLIDE_WALL: ("a pivot sliding along the arm brought the part to the wall: this contact is not located "
+                     "by rigid_body's sliding phase"),
+}
+"""Why a walled throw was refused (status UNRESOLVED), by reason code."""
+
+EV_WALL = 10
+"""Event code of guard ``wall_reach`` (after the codes of :mod:`.modes`): a vertex is on the wall and the part turns into it."""
+WHY_COL = getattr(C, "WHY", -1)
+"""Record column receiving the reason code of a refusal (``kernels.codes.WHY``), if the record has one."""
+
+CONE_TOL = 1e-11
+"""Relative tolerance of :func:`cone_contains` (residual and negative coefficients, relative to |b|)."""
+
+
+ACT_FLIGHT = 0
+ACT_REST = 1
+ACT_SWING = 2
+ACT_REFUSE = 3
+ACT_INCONSISTENT = 4
+"""Outcomes of the pivot's wall reset (:func:`~.wall.pivot_wall_hit`)."""
+
+
+@njit(cache=True)
+def refuse(rec, why):
+    """Status UNRESOLVED for a walled throw the automaton cannot follow; the reason ``why`` goes to the record."""
+    if WHY_COL >= 0:
+        rec[WHY_COL] = why
+    return C.UNRESOLVED
+
+
+@njit(cache=True)
+def wall_impact(vx, vy, om, rx, ry, rho2, mu_w, law):
+    """Reset ``wall_impact``: plastic Coulomb impact of the vertex at (r_x, r_y) from the CM (m) on the wall x = L.
+
+    The arm's law :func:`~.impact.coulomb_impact` in the frame (x', y') = (y, −x), a proper
+    rotation by −90° in which the wall's inward normal −x̂ is ŷ' and its tangent ŷ is x̂';
+    ω is unchanged. ``mu_w`` is the wall's μ (``inf``: no slip), ``law`` the impact law.
+    Returns ``(vx⁺, vy⁺, ω⁺, P_t, P_n, kind, jt0, jn0)``: P_n (m/s, ≥ 0) the impulse along −x̂,
+    P_t along +ŷ, kind as :func:`~.impact.coulomb_impact` (IMP_SEPARATE if the vertex is not
+    moving into the wall).
+    """
+    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vy, -vx, om, ry, -rx, rho2, mu_w, law)
+    return -vyp, vxp, wp, pt, pn, kind, jt0, jn0
+
+
+@njit(cache=True)
+def contact_impact(vx, vy, om, rx, ry, nx, ny, rho2, mu_c, law):
+    """Reset ``impact`` at a contact with unit normal (n_x, n_y) into the part: the arm's law in the frame (t, n),
+    t = n turned by −90° (a proper rotation). Returns as :func:`wall_impact`, with P_n along n and P_t along t."""
+    tx = ny
+    ty = -nx
+    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vx * tx + vy * ty, vx * nx + vy * ny, om,
+                                                          rx * tx + ry * ty, rx * nx + ry * ny, rho2, mu_c, law)
+    return vxp * tx + vyp * nx, vxp * ty + vyp * ny, wp, pt, pn, kind, jt0, jn0
+
+
+@njit(cache=True, inline="always")
+def _step_lb(gj, dg, M):
+    """Smallest positive root of gj + dg s − ½ M s² (gj clipped at 0; M ≥ 0): a step that cannot pass a root."""
+    gp = gj if gj > 0.0 else 0.0
+    if M <= 0.0:
+        if dg >= 0.0:
+            return math.inf
+        return gp / (-dg)
+    disc = math.sqrt(dg * dg + 2.0 * M * gp)
+    if dg >= 0.0:
+        return (dg + disc) / M
+    return 2.0 * gp / (disc - dg)
+
+
+@njit(cache=True)
+def wall_departure(un, rx, ry, om, gx, gy, lj):
+    """Time (s) for which a vertex that just left the wall (gap 0, outward rate ``un`` ≥ 0) stays off it.
+
+    Exact Taylor bound of its gap W(s) ≥ W' s + ½W'' s² + W''' s³/6 − ω⁴ℓ s⁴/24 with
+    W'' = −g_x + ω² r_x and W''' = −ω³ r_y ((r_x, r_y): CM → vertex, m): returns 0.9 × the
+    positive root of ½W'' + W''' s/6 − ω⁴ℓ s²/24, or 0 if W'' < 0 (the vertex is pressed
+    against the wall: it cannot leave). ``gy`` does not enter (the wall is vertical).
+    """
+    g2 = -gx + om * om * rx
+    g3 = -om * om * om * ry
+    if g2 < 0.0 and g2 > -1e-9 * (abs(gx) + abs(gy) + 1e-300):
+        g2 = 0.0
+    if g2 < 0.0:
+        return 0.0
+    a = om * om * om * om * lj / 24.0
+    bb = g3 / 6.0
+    cc = 0.5 * g2
+    if a <= 0.0:
+        if bb > 0.0 or cc > 0.0:
+            return 1.0
+        return 0.0
+    root = (bb + math.sqrt(bb * bb + 4.0 * a * cc)) / (2.0 * a)
+    if root <= 0.0:
+        return 0.0
+    return 0.9 * root
+
+
+@njit(cache=True)
+def corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max):
+    """Bounds (M2, M3) on the second and third time derivatives of every edge's corner distance f_e
+    (:func:`corner_touch_time`) over a flight of ``t_max`` s from Q − CM = (q_x, q_y) (m) and CM velocity (v_x, v_y)."""
+    ga = math.hypot(gx, gn)
+    v0 = math.hypot(vx, vy)
+    D = math.hypot(qx, qy) + v0 * t_max + 0.5 * ga * t_max * t_max
+    vm = v0 + ga * t_max
+    aw = abs(om)
+    return om * om * D + 2.0 * aw * vm + ga, aw * aw * aw * D + 3.0 * om * om * vm + 3.0 * aw * ga
+
+
+@njit(cache=True)
+def corner_departure(qx, qy, vx, vy, om, gx, gn, nx, ny, t_max):
+    """Time (s) for which an edge that just stopped on the wall's top corner (normal velocity 0) stays off it.
+
+    With Q − CM = (q_x, q_y) (m) and the edge's outward normal (n_x, n_y) now: f(s) ≥ ½ f2 s² − M3 s³/6 with
+    f2 = −ω² n·(Q − X) − 2ω (Jn)·V − n·g (J: +90°, M3 of :func:`corner_bounds`); returns 0.9 · 3 f2/M3
+    (``t_max`` if M3 = 0), or 0 if f2 ≤ 0 (the edge is pressed on the corner: it would slide over it).
+    """
+    jx = -ny
+    jy = nx
+    f2 = -om * om * (nx * qx + ny * qy) - 2.0 * om * (jx * vx + jy * vy) - (nx * gx - ny * gn)
+    if f2 <= 0.0:
+        return 0.0
+    _m2, M3 = corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max)
+    if M3 <= 0.0:
+        return t_max
+    return min(0.9 * 3.0 * f2 / M3, t_max)
