@@ -337,7 +337,8 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
         L = float(jogs_k.max()) + uR[side] + end_gap - 0.005
     floor, ramp = float(part.length[side]) + clearance, depth / math.tan(ramp_angle)
     top = min(0.0, -depth + end_gap * math.tan(end_angle)) if end_gap > 0 else -depth
-    cavity = Cavity(((floor + end_gap + ramp, 0.0), (floor + end_gap, -depth), (end_gap, -depth), (0.0, top)))
+    prof = ((floor + end_gap + ramp, 0.0), (floor + end_gap, -depth), (end_gap, -depth))
+    cavity = Cavity(prof + ((0.0, top),) if end_gap > 0 else prof)
     x_c, y_c = L - end_gap - uR[side], arm.h - depth + float(part.d[side])
     rise = w_hi**2 * (x_c**2 + y_c**2) / (2.0 * arm.g)
     H = float(part.d[side]) - depth + rise + _num(wall_margin, "wall_margin", lo=0.0)
