@@ -151,6 +151,7 @@ def corner_touch_time(qx, qy, vx, vy, om, gx, gn, ru, rv, excl_e, excl_t, t_max,
         wy = vy - gn * t
         fmax = -math.inf
         emax = -1
+        dfmax = 0.0
         step = 0.0
         clear = False  # the excluded edge still provably keeps Q out
         for e in range(n):
@@ -169,11 +170,12 @@ def corner_touch_time(qx, qy, vx, vy, om, gx, gn, ru, rv, excl_e, excl_t, t_max,
             if f > fmax:
                 fmax = f
                 emax = e
-            if f > 0.0:
+                dfmax = df
+            if f > 0.0 or (t == 0.0 and df > 0.0):
                 step = max(step, _step_lb(f, df, M2))
         scale = math.hypot(px, py) + math.hypot(ru[0], rv[0])
-        if not clear and fmax <= tol * scale:
-            return t, emax
+        if not clear and fmax <= tol * scale and (t > 0.0 or dfmax <= 0.0):
+            return t, emax  # (at t = 0 only if Q is closing in: an edge through Q that opens is no contact)
         if t + step == t:
             return t, emax if not clear else -3
         t += step
