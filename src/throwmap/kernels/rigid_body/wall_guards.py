@@ -149,6 +149,7 @@ def corner_touch_time(qx, qy, vx, vy, om, gx, gn, ru, rv, excl_e, excl_t, t_max,
         py = qy - vy * t + 0.5 * gn * t * t
         wx = vx + gx * t
         wy = vy - gn * t
+        scale = math.hypot(px, py) + math.hypot(ru[0], rv[0])
         fmax = -math.inf
         emax = -1
         dfmax = 0.0
@@ -171,9 +172,8 @@ def corner_touch_time(qx, qy, vx, vy, om, gx, gn, ru, rv, excl_e, excl_t, t_max,
                 fmax = f
                 emax = e
                 dfmax = df
-            if f > 0.0 or (t == 0.0 and df > 0.0):
+            if f > 0.0 or (t == 0.0 and df > 0.0 and f >= -tol * scale):
                 step = max(step, _step_lb(f, df, M2))
-        scale = math.hypot(px, py) + math.hypot(ru[0], rv[0])
         if not clear and fmax <= tol * scale and (t > 0.0 or dfmax <= 0.0):
             return t, emax  # (at t = 0 only if Q is closing in: an edge through Q that opens is no contact)
         if t + step == t:
