@@ -11,7 +11,7 @@ from throwmap.models import DEFAULT_MODEL, BatchArrays, Features, ThrowModel, ge
 from throwmap.models.paper import PaperOptions
 from throwmap.models.registry import unregister
 from throwmap.models.rigid_body import RigidBodyOptions
-from throwmap.system.fixtures import Wall
+from throwmap.system.fixtures import Cavity, Wall
 from throwmap.system.system import System
 
 TRI = tm.triangle_30_60_90(0.17)
@@ -51,7 +51,7 @@ def test_unknown_model_is_one_line_naming_the_field():
 
 @pytest.mark.parametrize("model, kw, field", [
     ("paper", {"fixtures": (Wall(),)}, "fixtures"),
-    ("rigid_body", {"fixtures": (Wall(),)}, "fixtures"),
+    ("rigid_body", {"fixtures": (Cavity(((0.05, 0.0), (0.05, -0.01), (0.0, -0.01))),)}, "fixtures"),
     ("small_angle", {"alpha": 0.1}, "alpha"),
     ("rigid_body", {"alpha": -0.17}, "alpha"),
     ("paper", {"settings": None}, "settings"),
@@ -76,7 +76,7 @@ def test_unsupported_features_and_bad_options_are_refused(model, kw, field):
 
 
 def test_feature_refusal_names_the_models_that_support_it():
-    with pytest.raises(InvalidStateError, match=r"only the 'engine' model takes 'fixtures' \(model is 'paper'\)"):
+    with pytest.raises(InvalidStateError, match=r"only the 'rigid_body', 'engine' models take 'fixtures' \(model is 'paper'\)"):
         tm.throw(TRI, ARM, 0.2, 0, 4.0, model="paper", fixtures=(Wall(),))
     with pytest.raises(InvalidStateError, match=r"only the 'engine', 'mujoco' models take 'settings'"):
         tm.throw(TRI, ARM, 0.2, 0, 4.0, model="rigid_body", settings=None)
@@ -110,7 +110,8 @@ def test_features_are_declared():
     assert get_model("engine").features.fixtures and get_model("engine").features.tilt
     for name in ("paper", "small_angle", "small_angle2", "rigid_body"):
         f = get_model(name).features
-        assert not f.fixtures and not f.tilt and not f.realisation
+        assert f.fixtures == (name == "rigid_body") and not f.realisation  # rigid_body: a Wall (not a Cavity)
+        assert f.tilt == (name in ("paper", "rigid_body"))
     assert get_model("rigid_body").features.friction and not get_model("paper").features.friction
     assert set(get_model("engine").features.supported()) >= {"fixtures", "tilt", "realisation", "trajectory"}
 

@@ -37,7 +37,8 @@ def test_models_without_trajectories_and_bad_keywords_are_refused():
     with pytest.raises(InvalidStateError, match="^model: model 'small_angle' records no trajectory"):
         throw_trajectory(TRI, ARM, 0.34, 1, 4.0, "small_angle")
     with pytest.raises(InvalidStateError, match="^fixtures:"):
-        throw_trajectory(TRI, ARM, 0.34, 1, 4.0, "rigid_body", fixtures=(tm.system.fixtures.Wall(),))
+        throw_trajectory(TRI, ARM, 0.34, 1, 4.0, "rigid_body",
+                         fixtures=(tm.system.fixtures.Cavity(((0.05, 0.0), (0.05, -0.01), (0.0, -0.01))),))
     with pytest.raises(InvalidStateError, match="^dt:"):
         throw_trajectory(TRI, ARM, 0.34, 1, 4.0, "paper", dt=-1.0)
     with pytest.raises(InvalidStateError, match="^x:"):
