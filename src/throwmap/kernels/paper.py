@@ -168,8 +168,9 @@ def throw_one(x0, side, omega, h, g, alpha, length, back, rho2, w, beta, d, uL, 
     """
     ta_j, tb_j = side_angles(d, uL, uR)
     work = np.empty((4, w.shape[0]))
-    return _throw(x0, side, omega, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter, max_impacts,
-                  n_samples, ta_j, tb_j, work, rec, np.empty((0, 4)), np.empty(0, np.int64), np.zeros(R.NTS))
+    return _throw(x0, side, omega, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+                  max_impacts, n_samples, ta_j, tb_j, work, rec, np.empty((0, 4)), np.empty(0, np.int64),
+                  np.zeros(R.NTS))
 
 
 @njit(cache=True)
@@ -204,8 +205,8 @@ def _chunk(c, x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, 
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = _throw(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
-                          max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec_out[i], traj, tags, ts)
+        x, k, st = _throw(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable,
+                          tol, max_iter, max_impacts, n_samples, ta_j, tb_j, work, rec_out[i], traj, tags, ts)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
@@ -223,8 +224,8 @@ def throw_many(x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta,
     ta_j, tb_j = side_angles(d, uL, uR)
     n_chunks = (x0.shape[0] + CHUNK - 1) // CHUNK
     for c in prange(n_chunks):
-        _chunk(c, x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
-               max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out)
+        _chunk(c, x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
+               max_iter, max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out)
 
 
 @njit(cache=True)
@@ -234,5 +235,5 @@ def throw_many_serial(x0, side, omega, valid, h, g, alpha, length, back, rho2, w
     ta_j, tb_j = side_angles(d, uL, uR)
     n_chunks = (x0.shape[0] + CHUNK - 1) // CHUNK
     for c in range(n_chunks):
-        _chunk(c, x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol, max_iter,
-               max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out)
+        _chunk(c, x0, side, omega, valid, h, g, alpha, length, back, rho2, w, beta, d, uL, uR, ell, stable, tol,
+               max_iter, max_impacts, n_samples, ta_j, tb_j, x_out, side_out, status_out, rec_out)

@@ -136,7 +136,7 @@ def _check_arc(th1, th2, E, ell, I, g, n_samples, rec):
         s, c = s * cd + c * sd, c * cd - s * sd
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _check_arc_tilted(th1, th2, E, ell, I, g, n_samples, rec, alpha):
     """:func:`_check_arc` on a tilted arm: ψ ∈ [th1, th2] (ψ = θ + α), arm-frame N and |F|/N at ``n_samples`` angles."""
     k = ell * ell / I
@@ -222,26 +222,21 @@ def pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec, alpha=0.0):
     dirn = swing_sense(theta, thdot)
     if reach_end(theta, dirn, ta, tb, E, g, lj):
         end = tb if dirn > 0 else ta
-        if alpha != 0.0:
-            _check_arc_tilted(theta, end, E, lj, I, g, n_samples, rec, alpha)
-        else:
-            _check_arc(theta, end, E, lj, I, g, n_samples, rec)
+        a1 = theta  # the arc swept
+        a2 = end
         land_dir = dirn
         th_turn = math.nan
     else:
         # turns back below the barrier and lands on the side behind
         th_turn = turn_back(E, g, lj, dirn)
-        if alpha != 0.0:
-            if dirn > 0:
-                _check_arc_tilted(ta, th_turn, E, lj, I, g, n_samples, rec, alpha)
-            else:
-                _check_arc_tilted(th_turn, tb, E, lj, I, g, n_samples, rec, alpha)
-        elif dirn > 0:
-            _check_arc(ta, th_turn, E, lj, I, g, n_samples, rec)
-        else:
-            _check_arc(th_turn, tb, E, lj, I, g, n_samples, rec)
+        a1 = ta if dirn > 0 else th_turn
+        a2 = th_turn if dirn > 0 else tb
         end = ta if dirn > 0 else tb
         land_dir = -dirn
+    if alpha != 0.0:
+        _check_arc_tilted(a1, a2, E, lj, I, g, n_samples, rec, alpha)
+    else:
+        _check_arc(a1, a2, E, lj, I, g, n_samples, rec)
     w2 = 2.0 * (E - g * lj * math.sin(end)) / I
     speed = math.sqrt(w2) if w2 > 0.0 else 0.0
     return E, end, land_dir, th_turn, (speed if land_dir > 0 else -speed)
@@ -370,21 +365,15 @@ def pivot_cascade(j, theta, thdot, px, side0, rho2, d, uL, uR, ell, stable, ta_j
         elif theta > tb:
             theta = tb
         theta0 = theta
-        if alpha != 0.0:
-            E, end, land_dir, th_turn, thdot = pivot_swing(theta + alpha, thdot, ta + alpha, tb + alpha, lj, I, g,
-                                                           n_samples, rec, alpha)
-        else:
-            E, end, land_dir, th_turn, thdot = pivot_swing(theta, thdot, ta, tb, lj, I, g, n_samples, rec)
+        # the swing in ψ = θ + α (α = 0: θ itself, bit for bit)
+        E, end, land_dir, th_turn, thdot = pivot_swing(theta + alpha, thdot, ta + alpha, tb + alpha, lj, I, g,
+                                                       n_samples, rec, alpha)
         # ---------------------------------------------------------- reset land_side
         k = j if land_dir > 0 else (j - 1) % n
         uA = uR[k] if land_dir > 0 else uL[k]
         if record:
-            if alpha != 0.0:
-                t_end, phi_end = swing_rows(traj, tags, ts, j, px, lj, math.atan2(w[j, 1], w[j, 0]), h,
-                                            theta0 + alpha, th_turn, end, E, I, g, alpha)
-            else:
-                t_end, phi_end = swing_rows(traj, tags, ts, j, px, lj, math.atan2(w[j, 1], w[j, 0]), h, theta0,
-                                            th_turn, end, E, I, g)
+            t_end, phi_end = swing_rows(traj, tags, ts, j, px, lj, math.atan2(w[j, 1], w[j, 0]), h, theta0 + alpha,
+                                        th_turn, end, E, I, g, alpha)
             put(traj, tags, ts, t_end, px - uA, h + d[k], continue_angle(beta[k], phi_end), n + k)
         if k != last_side:
             rec[C.N_FLIPS] += 1.0

@@ -57,7 +57,7 @@ from numba import njit
 
 from .. import codes as C
 from .modes import EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_SLIP, HALF_PI, N_ARC, TWO_PI
-from .stick import _n_stick, tilted_forces
+from .stick import tilted_forces
 from .swing import _dpoly_roots, _poly4, swing_pieces, swing_time, theta_on_piece
 from ..roll import swing_sense
 from .trajectory import _put, _put_final
@@ -92,7 +92,8 @@ def tip_vertex(k, n, uL, d, alpha):
 
 @njit(cache=True)
 def _lin_quartic(e, k, p, q):
-    """Coefficients (p0 … p4) of p² N_w(s)² − q² F_w(s)², F_w² = k² (1 − s²)(3s − 2e)² (see :func:`~.swing.slip_quartic`)."""
+    """Coefficients (p0 … p4) of p² N_w(s)² − q² F_w(s)², F_w² = k² (1 − s²)(3s − 2e)²
+    (as :func:`~.swing.slip_quartic`)."""
     a0 = 1.0 - k
     a1 = -2.0 * k * e
     a2 = 3.0 * k
@@ -373,7 +374,7 @@ def _slide_rows(x0, v0, a, t0, t1, y, phi, traj, ts):
 
 @njit(cache=True)
 def settle(x, v, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj, ts, rec):
-    """Flat on side k (statically stable) with the CM at x moving at v (m/s) along a tilted arm: slide, then rest or leave.
+    """Flat on side k (statically stable), the CM at x moving at v (m/s) along a tilted arm: slide, then rest or leave.
 
     Mode FLAT_SLIDE under gravity (−g sin α, −g cos α): acceleration −g_t − μ g_n sgn v
     while sliding. A slide that decelerates stops after |v|/|a|; a part at rest stays
