@@ -242,9 +242,9 @@ def test_wall_fixed_point_checks_the_multiplier_by_left_differences(model):
     assert fp["found"] and fp["x_star_m"] == x_star == fp["x_wall_m"]
     assert fp["multiplier"] == 0.0 and fp["fd_left"] == [0.0] * 4 and fp["n_at_wall"] == 3
     assert math.isnan(fp["free_slope"])  # without the wall x* jogs off the end: no slope there
-    assert [g["dx_from_x_star_m"] for g in fp["reference"]["images"]] == [0.0, 0.0, 0.0]
+    assert [g["dx_from_x_wall_m"] for g in fp["reference"]["images"]] == [0.0, 0.0, 0.0] and fp["gap_m"] == 0.0
     lines = TiltWallReport((), {}, fp, {}).fixed_point_lines()
-    assert "multiplier +0" in lines[0] and "h = 1e-06 m: +0" in lines[1] and "T(x* -5 mm) − x* = +0 µm" in lines[2]
+    assert "multiplier +0" in lines[0] and "h = 1e-06 m: +0" in lines[1] and "T(x_w -5 mm) − x_w = +0 µm" in lines[2]
     missing = wall_fixed_point(PART, ARM, 1.0, 0, wall=WALL, model="small_angle")
     assert not missing["found"] and "fixtures" in missing["message"]
     assert "NOT found" in TiltWallReport((), {}, missing, {}).fixed_point_lines()[0]

@@ -33,8 +33,9 @@ from .recurrence import check_starts, find_attractors, start_grid
 
 __all__ = ["LimitSet", "limit_set", "RecurrenceCaps", "DEFAULT_CAPS", "check_caps", "WALL_TOL"]
 
-WALL_TOL = 1e-9
-"""A fixed point within this distance (m) of a wall's resting configuration x* = length − u_R rests against it."""
+WALL_TOL = 1e-5
+"""A fixed point within this distance (m) below a wall's resting configuration x* = length − u_R rests against it
+(10 µm: rigid_body ends a slide into the wall a few µm short of x*, at its contact tolerance)."""
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -118,8 +119,8 @@ class LimitSet:
         out = {}
         for a in self.attractors:
             for side, x in a.points:
-                hi = dom.get(int(side), (math.nan, math.nan))[1]
-                if hi < x_max and abs(x - hi) <= WALL_TOL:
+                hi = dom.get(int(side), (math.nan, math.nan))[1]  # = length − u_R unless x_max cut it
+                if hi < x_max and 0.0 <= hi - x <= WALL_TOL:
                     out[a.id] = (int(side), float(x))
                     break
         return out
@@ -168,8 +169,10 @@ class LimitSet:
             lines.append(f"  {a.describe()}  [{100 * a.fraction:.1f} % of starts]")
             if a.id in wall:
                 s, x = wall[a.id]
-                lines.append(f"     against the wall: x* = {x:.6f} m on side {s} = length − u_R (the last valid start); "
-                             f"multiplier {a.multiplier:+.3g} is the left derivative (T is defined for x ≤ x* only)")
+                gap = dom_hi(self.map_info, s) - x
+                lines.append(f"     against the wall: x = {x:.6f} m on side {s}, {1e6 * gap:.3g} µm below length − u_R (the "
+                             f"last valid start); multiplier {a.multiplier:+.3g} is the left derivative (T is defined "
+                             f"for x ≤ length − u_R only)")
         for k, v in self.escapes.items():
             lines.append(f"  -1 {k}: {100 * v:.1f} % of starts")
         return "\n".join(lines)
@@ -208,6 +211,12 @@ class LimitSet:
         from ..viz.limit_set import plot_limit_set
 
         return plot_limit_set(self, ax=ax, **kwargs)
+
+
+def dom_hi(map_info: dict, side: int) -> float:
+    """The upper end of the analysed domain on ``side`` (m; nan if not recorded)."""
+    dom, _ = domain_of(map_info)
+    return dom.get(int(side), (math.nan, math.nan))[1]
 
 
 def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: RecurrenceCaps = RecurrenceCaps(),

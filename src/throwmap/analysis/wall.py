@@ -27,6 +27,10 @@ def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wal
                      reference: str | None = None, **options) -> dict:
     """The fixed point at the wall, x* = length − u_R on ``side``, found by :func:`throwmap.limit_set`.
 
+    Found means a fixed point on ``side`` that :attr:`LimitSet.wall_points` calls against the
+    wall (within :data:`~throwmap.analysis.limitset.WALL_TOL` below length − u_R; ``gap_m``
+    says how far below). Its ``x_star_m`` is the map's own fixed point.
+
     A jog that would carry the part past the wall stops against it, so T(x) = x* for
     every x near x* on that side: x* is a fixed point with multiplier 0 (superstable:
     reached in finitely many throws). The map is defined only for x ≤ x* (x + u_R ≤
@@ -35,8 +39,8 @@ def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wal
     limit_set's multiplier (:func:`throwmap.analysis.recurrence._slopes`, one-sided
     where the right neighbour is no valid start) must agree. ``free_slope`` is the
     same quotient of the map without the wall, for comparison. ``reference`` (e.g.
-    ``"engine"``) also throws x*, x* − 1 mm and x* − 5 mm in that model (``"reference"``:
-    each start's offset, x' − x* and side, m). Returns a dict (JSON-ready).
+    ``"engine"``) also throws x_w = length − u_R, x_w − 1 mm and x_w − 5 mm in that model
+    (``"reference"``: each start's offset from x_w, x' − x_w and side, m). Returns a dict (JSON-ready).
     """
     from .limitset import limit_set
 
@@ -51,8 +55,7 @@ def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wal
         ls = limit_set(part, arm, omega, model, n_starts=n_starts, rng=rng, **kw)
     except ThrowmapError as err:
         return {**info, "found": False, "message": str(err)}
-    fps = [a for a in ls.attractors if a.kind == "fixed_point" and a.points[0][0] == k
-           and abs(a.points[0][1] - x_wall) <= 1e-6]
+    fps = [a for a in ls.attractors if a.kind == "fixed_point" and ls.wall_points.get(a.id, (None,))[0] == k]
     if not fps:
         return {**info, "found": False, "message": f"limit_set found {ls.kind}: " + "; ".join(
             a.describe() for a in ls.attractors) + f"; escapes {ls.escapes}", "range": ls.range_text}
@@ -69,12 +72,12 @@ def wall_fixed_point(part: Part, arm: Arm, omega: float, side: int, *, wall: Wal
     ref = None
     if reference is not None:
         offsets = (0.0, -1e-3, -5e-3)
-        b = throw_batch(part, arm, np.array([xs + d for d in offsets]), k, omega, model=reference, on_invalid="status",
-                        fixtures=(wall,), alpha=alpha)
-        ref = {"model": reference, "images": [{"start_offset_m": d, "dx_from_x_star_m": float(b.x[j] - xs),
+        b = throw_batch(part, arm, np.array([x_wall + d for d in offsets]), k, omega, model=reference,
+                        on_invalid="status", fixtures=(wall,), alpha=alpha)
+        ref = {"model": reference, "images": [{"start_offset_m": d, "dx_from_x_wall_m": float(b.x[j] - x_wall),
                                                "side": int(b.side[j]), "status": int(b.status[j])}
                                               for j, d in enumerate(offsets)]}
-    return {**info, "found": True, "x_star_m": xs, "multiplier": a.multiplier, "residual_m": a.residual,
+    return {**info, "found": True, "x_star_m": xs, "gap_m": x_wall - xs, "multiplier": a.multiplier, "residual_m": a.residual,
             "fraction": a.fraction, "n_starts": ls.n_starts, "range": ls.range_text, "fd_left": left(kw, xs),
             "free_slope": free[-1] if free else math.nan, "n_at_wall": len(ls.wall_points), "reference": ref,
             "limit_set": ls.summary()}

@@ -352,11 +352,12 @@ class TiltWallReport:
             return [f"wall fixed point ({fp['model']}, {fp['part']}, side {fp['side']}): NOT found — {fp['message']}"]
         fd = ", ".join(f"h = {h:g} m: {v:+.3g}" for h, v in zip(fp["fd_steps_m"], fp["fd_left"]))
         ref = fp.get("reference") or {}
-        imgs = "; ".join(f"T(x* {1e3 * g['start_offset_m']:+g} mm) − x* = {1e6 * g['dx_from_x_star_m']:+.3g} µm "
+        imgs = "; ".join(f"T(x_w {1e3 * g['start_offset_m']:+g} mm) − x_w = {1e6 * g['dx_from_x_wall_m']:+.3g} µm "
                          f"(side {g['side']}, {Status(g['status']).label})" for g in ref.get("images", ()))
         return [f"wall fixed point ({fp['model']}, {fp['part']}, ω = {fp['omega_rad_s']:g} rad/s, L = "
                 f"{fp['length_m']:g} m, μ = {_mu(fp['mu'])}, α = {fp['alpha_deg']:g}°, wall μ {_mu(fp['wall_mu'])}): "
-                f"x* = {fp['x_star_m']:.6f} m on side {fp['side']} (length − u_R = {fp['x_wall_m']:.6f} m), multiplier "
+                f"x* = {fp['x_star_m']:.6f} m on side {fp['side']} ({1e6 * fp['gap_m']:.3g} µm below x_w = length − u_R = "
+                f"{fp['x_wall_m']:.6f} m), multiplier "
                 f"{fp['multiplier']:+.3g}, residual {fp['residual_m']:.3g} m, reached from {100 * fp['fraction']:.1f} % "
                 f"of {fp['n_starts']} starts ({fp['range']}; {fp['n_at_wall']} fixed point(s) at the wall in all)",
                 f"  left difference quotients (T(x*) − T(x* − h))/h: {fd}; the map without the wall at x*: slope "
