@@ -53,7 +53,9 @@ def test_unknown_model_is_one_line_naming_the_field():
     ("paper", {"fixtures": (Wall(),)}, "fixtures"),
     ("rigid_body", {"fixtures": (Cavity(((0.05, 0.0), (0.05, -0.01), (0.0, -0.01))),)}, "fixtures"),
     ("small_angle", {"alpha": 0.1}, "alpha"),
-    ("rigid_body", {"alpha": -0.17}, "alpha"),
+    ("small_angle2", {"alpha": -0.17}, "alpha"),
+    ("rigid_body", {"alpha": 2.0}, "alpha"),  # |α| < π/2
+    ("paper", {"alpha": -1.6}, "alpha"),
     ("paper", {"settings": None}, "settings"),
     ("paper", {"realisation": None}, "realisation"),
     ("rigid_body", {"n_samples": 8}, "n_samples"),
