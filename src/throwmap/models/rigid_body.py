@@ -152,8 +152,9 @@ class RigidBodyModel:
 def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples: int = 200_000, alpha: float = 0.0,
                       fixtures=()):
     """The kernel's rows (t, x, y, φ) every ``dt`` s and at every event, as ``(ThrowOutcome, Trajectory)``;
-    contacts are the vertices within 1 µm of the arm line at each sample. Poses are in the arm
-    frame; the trajectory's ``arm_angle`` is the rest angle ``alpha`` (rad) at every sample."""
+    contacts are the vertices within 1 µm of the arm line at each sample. The kernel's rows are in the
+    arm frame; on an arm at rest angle ``alpha`` (rad) poses and contacts are turned into the world by
+    α, and the trajectory's ``arm_angle`` is α at every sample."""
     traj = np.full((max_samples, 4), np.nan)
     xn, kn, st, rec = run_kernel(part, arm, x0, k, om, o, traj, float(dt), alpha=alpha, fixtures=fixtures)
     out = ThrowOutcome.from_record(part, x0, k, om, "rigid_body", xn, kn, st, rec)
