@@ -39,7 +39,7 @@ def test_wall_impact_stops_the_normal_motion_and_never_gains_energy(s, mu_w, law
     if un0 <= 0.0:
         assert kind == IMP_SEPARATE and (vxp, vyp, wp) == (vx, vy, w)
         return
-    assert pn >= 0.0
+    assert pn >= -1e-12 * (abs(vx) + abs(vy) + abs(w) * 0.1)  # ≥ 0 up to rounding
     assert abs(vxp - wp * ry) <= 1e-9 * (abs(vx) + abs(w * ry) + 1e-12)  # plastic: zero normal velocity after
     k0 = 0.5 * (vx * vx + vy * vy + rho2 * w * w)
     k1 = 0.5 * (vxp * vxp + vyp * vyp + rho2 * wp * wp)

@@ -93,3 +93,22 @@ def test_trajectories_draw_the_wall():
     tri = tm.triangle_30_60_90()
     out, traj = throw_trajectory(tri, tm.Arm(h=-0.01, length=0.36, mu=1.5), 0.28, 0, 3.5, fixtures=(Wall(0.06),))
     assert out.status == Status.OK and any(isinstance(f, Wall) for f in traj.fixtures)
+
+
+@pytest.mark.parametrize("alpha", [0.0, math.radians(-8.0), math.radians(6.0)])
+def test_a_wall_that_is_never_reached_changes_nothing(alpha):
+    """Random throws on a 2 m arm: with a wall at its end (never reached) the results equal the plain arm's bit for bit."""
+    rng = np.random.default_rng(4)
+    parts = default_parts()
+    for name, part in parts.items():
+        for mu in (0.0, 0.5, math.inf):
+            arm = tm.Arm(h=-0.01, mu=mu, length=2.0)
+            k = int(rng.choice(part.stable_sides))
+            lo, _hi = start_interval(part, arm, k)
+            x = rng.uniform(lo, 0.4, 12)
+            om = rng.uniform(3, 7, 12)
+            kw = dict(alpha=alpha, on_invalid="status")
+            a = tm.throw_batch(part, arm, x, k, om, **kw)
+            b = tm.throw_batch(part, arm, x, k, om, fixtures=(Wall(0.05),), **kw)
+            assert np.array_equal(a.status, b.status) and np.array_equal(a.side, b.side), name
+            assert np.array_equal(a.x, b.x), (name, mu, np.max(np.abs(a.x - b.x)))

@@ -29,6 +29,7 @@ from .stick import _n_min_range, _n_stick
 from .tilt import rocking_rest_tilted, settle, tip_vertex, topple_barrier
 from .trajectory import _put, _put_final
 from .wall import refuse, settle_walled
+from .wall_statics import flat_offsets
 
 
 @njit(cache=True)
@@ -159,14 +160,48 @@ def tip_from_rest(k, x_cm, n, d, uL, uR, alpha=0.0):
 
 
 @njit(cache=True)
+def reaches_wall(x, v, gx, fr, x_wall):
+    """Whether a part flat on a side, CM at x (m) moving at v (m/s), ever gets its leading vertex to the wall (CM at
+    ``x_wall``, m) under acceleration g_x − fr sgn v while sliding (fr = μ g_n: friction's largest deceleration)."""
+    if x >= x_wall:
+        return True
+    if v > 0.0:
+        a = gx - fr
+        if a >= 0.0:
+            return True
+        if x - 0.5 * v * v / a >= x_wall:
+            return True
+        return gx > fr  # stopped short: slides on outward only if downhill beats friction
+    if v < 0.0 and gx + fr <= 0.0:
+        return False  # runs inward for ever: leaves behind the joint
+    return gx > fr
+
+
+@njit(cache=True)
 def settle_at_wall(x_cm, v, t, k, phi, last_side, h, g, alpha, length, back, rho2, mu, w, beta, d, uL, uR, wall_h,
                    wall_mu, traj, ts, rec):
-    """Flat on side k moving at v (m/s) on an arm with a wall (:func:`~.wall.settle_walled`), as ``land_side`` returns it:
-    at rest or gone (MODE_REST), refused (MODE_REST, UNRESOLVED), or turning about the corner vertex k at
-    (length, h) (MODE_SELECT)."""
+    """Flat on side k moving at v (m/s) on an arm with a wall, as ``land_side`` returns it: at rest or gone
+    (MODE_REST), refused (MODE_REST, UNRESOLVED), or turning about the corner vertex k at (length, h) (MODE_SELECT).
+
+    A slide that never reaches the wall (:func:`reaches_wall`) is the plain arm's (:func:`flat_slide` and
+    :func:`rest`, or :func:`~.tilt.settle`), to the last bit; one that does is :func:`~.wall.settle_walled`."""
     dk = d[k]
-    st, x, t, wc, why = settle_walled(x_cm, v, t, k, mu, -g * math.sin(alpha), g * math.cos(alpha), h, length, wall_h,
-                                      wall_mu, back, rho2, w, beta, d, uL, uR, phi, traj, ts, rec)
+    gx = -g * math.sin(alpha)
+    gn = g * math.cos(alpha)
+    u, _v = flat_offsets(k, w, beta)
+    if not reaches_wall(x_cm, v, gx, mu * gn, length - u.max()):
+        if alpha != 0.0:
+            x, k, status, t = settle(x_cm, v, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj, ts,
+                                     rec)
+        elif v != 0.0 and mu == 0.0:  # frictionless, inward (outward reaches the wall)
+            x, status, t = slide_away(x_cm, v, t, k, uL, uR, length, back, h + dk, phi, traj, ts, rec)
+        else:
+            if v != 0.0:
+                x_cm, t = flat_slide(x_cm, v, t, mu, g, h + dk, phi, traj, ts, rec)
+            x, k, status = rest(x_cm, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec)
+        return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, k, length, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
+    st, x, t, wc, why = settle_walled(x_cm, v, t, k, mu, gx, gn, h, length, wall_h, wall_mu, back, rho2, w, beta, d,
+                                      uL, uR, phi, traj, ts, rec)
     if st == -1:
         th = theta_b(k, d, uR)
         return (MODE_SELECT, C.OK, x, h + dk, 0.0, 0.0, wc, phi, t, k, length, th, wc, 0.0, phi - th, -1, 0.0,

@@ -150,8 +150,12 @@ def fly_walled(t, x, y, vx, vy, phi, om, c0, ru, rv, gx, g, ell, excl_j, excl_t,
             tq_ = ts[1] - t
             _put(traj, ts, ts[1], x + vx * tq_ + 0.5 * gx * tq_ * tq_, y + vy * tq_ - 0.5 * g * tq_ * tq_, phi + om * tq_)
             ts[1] += ts[2]
-    x += vx * tc + 0.5 * gx * tc * tc
-    vx += gx * tc
+    if gx != 0.0:  # the same arithmetic as the plain arm's fly(): a flight that meets no wall is the same
+        x += 0.5 * gx * tc * tc
+        x += vx * tc
+        vx += gx * tc
+    else:
+        x += vx * tc
     y += vy * tc - 0.5 * g * tc * tc
     vy -= g * tc
     phi += om * tc

@@ -77,7 +77,7 @@ def wall_touch_time(c, ru, rv, vx, om, gx, ell, excl_j, excl_t, t_max, tol, max_
                 if sj < step:
                     step = sj
                 continue
-            if t == 0.0 and gj <= tol * scale and dg == 0.0:
+            if t == 0.0 and gj <= tol * scale and (dg == 0.0 or abs(dg) < 1e-300):
                 # on the wall at rest relative to it: pressed (contact now) unless it curves away
                 win = wall_departure(0.0, ru[j], rv[j], om, gx, 0.0, ell[j])
                 if win > 0.0:
@@ -85,6 +85,7 @@ def wall_touch_time(c, ru, rv, vx, om, gx, ell, excl_j, excl_t, t_max, tol, max_
                         step = win
                     continue
                 gj = 0.0
+                dg = 0.0
             if gj <= tol * scale and (t > 0.0 or dg <= 0.0):
                 if gj < gmin:
                     gmin = gj
