@@ -207,10 +207,11 @@ def _refusals(status) -> dict:
 
 
 def _reasons(res: dict) -> dict:
-    """``{reason: count}`` over the refused throws (the model's message, cut at 90 characters), most frequent first."""
+    """``{reason: count}`` over refused throws (messages, numbers as ``#``, 90 characters), most frequent first."""
     from collections import Counter
 
-    why = [str(w)[:90] for w in res.get("why", ()) if w]
+    import re
+    why = [re.sub(r"[-+]?\d[\d.e+-]*", "#", str(w))[:90] for w in res.get("why", ()) if w]  # numbers → #
     return dict(Counter(why).most_common())
 
 
