@@ -66,5 +66,48 @@ def test_config_errors_name_the_field():
         config_of(exp, {"variant": "ajar"})
     with pytest.raises(ConfigError, match="hold_thorws|allowed"):
         config_of(exp, {"hold_thorws": 5})
+    with pytest.raises(ConfigError, match="fixture"):
+        config_of(exp, {"fixture": "trough"})
+    with pytest.raises(ConfigError, match="clear_every"):
+        config_of(exp, {"clear_every": -1})
     cfg = config_of(exp, None)
     assert cfg.hold_throws == 50 and cfg.noise.omega_rel == 0.03 and cfg.noise.realisation == "recoil"
+
+
+def test_plain_end_wall_fixture_classifies_rest_poses():
+    # fixture "wall": the feeder design's end-wall window, a wall above the energy bound; a part resting
+    # flush against it is "target" only on the target side, one far from it is "outside"
+    from throwmap.design import feeder_design
+    from throwmap.experiments.feed import FeedConfig, build_wall
+    from throwmap.throws.trajectory import pose_at_rest
+
+    fd = feeder_design()
+    d = build_wall(FeedConfig(fixture="wall"))
+    lo, hi = fd.wall_window
+    assert lo < d.arm.length < hi and d.fixtures == (d.wall,)
+    assert d.wall.height > d.numbers["rise_bound_m"] and d.wall.mu == 0.0
+    part, h, L = d.part, d.arm.h, d.arm.length
+    assert d.where(pose_at_rest(part, h, L - float(part.uR[0]) - 1e-4, 0)) == "target"
+    assert d.where(pose_at_rest(part, h, L - float(part.uR[2]) - 1e-4, 2)) == "other"
+    assert d.where(pose_at_rest(part, h, 0.12, 0)) == "outside"
+    exp = get_experiment("feed")
+    cfg = config_of(exp, {"fixture": "wall", "wall": {"length": 0.31}})
+    assert exp.parameters(cfg)["wall"]["length_m"] == 0.31 and "cavity" not in exp.parameters(cfg)
+
+
+@pytest.mark.slow
+def test_clearing_throws_raise_the_wall_and_the_throw_rate():
+    from throwmap.experiments.feed import FeedConfig, build_design
+
+    base = {"noise": QUICK["noise"]}
+    plain = build_design(FeedConfig.model_validate(base))
+    cleared = build_design(FeedConfig.model_validate(dict(base, clear_every=2, clear_factor=1.5)))
+    assert FeedConfig().clear_every == 0  # the default protocol has no clearing throws
+    rise = plain.numbers["rise_bound_m"]
+    assert math.isclose(cleared.wall.height - plain.wall.height, 1.25 * rise, rel_tol=1e-12)
+    assert cleared.length == plain.length and cleared.cavity == plain.cavity
+    exp = get_experiment("feed")
+    cfg = config_of(exp, dict(QUICK, clear_every=2, clear_factor=1.5, max_throws=4, hold_throws=0))
+    t = exp.trial(cfg, 0, trial_generator(3, 0))
+    if t.values["throws"] >= 2:  # throw 2 was a clearing throw: ω·1.5·(1 + 0.03 N), N > −6
+        assert t.values["omega_max"] > 1.5 * 0.82 * exp.setup(cfg)[3]

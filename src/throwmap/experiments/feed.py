@@ -34,6 +34,7 @@ the drop (``drop_x``, ``drop_side``, ``drop_redraws``), the trial's ``mu``, the 
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from typing import Annotated, Literal
@@ -46,7 +47,8 @@ from .drop import DEFAULT_HEIGHT, drop_part
 from .noise import NoiseConfig
 from .registry import register_experiment
 
-__all__ = ["FEED", "CavityConfig", "Feed", "FeedConfig", "build_design", "open_length"]
+__all__ = ["FEED", "CavityConfig", "EndWall", "Feed", "FeedConfig", "WallConfig", "build_design", "build_wall",
+           "open_length"]
 
 Finite = Annotated[float, Field(allow_inf_nan=False)]
 
@@ -69,6 +71,49 @@ class CavityConfig(BaseModel):
     length: Finite | None = Field(None, gt=0, description="override the designed arm end L, m (None: designed)")
 
 
+class WallConfig(BaseModel):
+    """The plain end wall (fixture ``"wall"``: no cavity, a :class:`~throwmap.system.fixtures.Wall`
+    at the arm's end; SI units)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    length: Finite | None = Field(None, gt=0, description="arm end (wall face) L, m (None: the middle of the feeder "
+                                                          "design's end-wall window)")
+    mu: Finite = Field(0.0, ge=0, description="wall friction (0: a low-friction facing)")
+    margin: Finite = Field(0.01, ge=0, description="wall height above the energy bound ω_hi²(x²+y²)/2g, m")
+    zone: Finite = Field(0.02, gt=0, description="'at the end': the part's outermost vertex within this of the wall, m")
+
+
+@dataclasses.dataclass(frozen=True)
+class EndWall:
+    """A plain end wall holding the part at the arm's end (fixture ``"wall"``): ``arm`` (its length
+    = the wall face L, m), ``wall``, target ``side``, ``zone`` (m), ``numbers`` (m, rad/s)."""
+
+    part: object
+    arm: object
+    wall: object
+    side: int
+    zone: float
+    numbers: dict
+
+    fixtures = property(lambda self: (self.wall,))
+
+    def where(self, pose) -> str:
+        """``"target"`` (outermost vertex within ``zone`` of the wall, flat on the target side within
+        :data:`~throwmap.design.cavity.CAPTURE_TILT`), ``"other"`` (at the wall otherwise) or ``"outside"``."""
+        from ..design.cavity import CAPTURE_TILT
+        from ..throws.trajectory import state_from_pose, world_vertices
+
+        if float(world_vertices(self.part, pose)[:, 0].max()) < self.arm.length - self.zone:
+            return "outside"
+        _, k, tilt = state_from_pose(self.part, pose)
+        return "target" if (k == self.side and abs(tilt) < CAPTURE_TILT) else "other"
+
+    def to_dict(self) -> dict:
+        return {"fixture": "wall", "length_m": self.arm.length, "height_m": self.wall.height, "mu": self.wall.mu,
+                "zone_m": self.zone, **{k: v for k, v in self.numbers.items()}}
+
+
 class FeedConfig(BaseModel):
     """Config of ``feed`` (SI units). The defaults are the built-in example: the feeder design of
     :func:`throwmap.design.examples.feeder_design` (17 cm plexiglas triangle + 50 g lead, side 0),
@@ -82,14 +127,20 @@ class FeedConfig(BaseModel):
     omega: Finite | None = Field(None, gt=0, description="nominal release rate, rad/s (None: the feeder design's)")
     h: Finite | None = Field(None, description="arm surface height, m (None: the feeder design's)")
     mu: float | None = Field(1.0, ge=0, description="nominal arm–part friction (None: ∞, no slip)")
-    variant: Literal["closed", "open"] = Field("closed", description="'closed': the cavity; 'open': thrown off the end")
+    variant: Literal["closed", "open"] = Field("closed", description="'closed': held at the end; 'open': thrown off it")
+    fixture: Literal["cavity", "wall"] = Field("cavity", description="closed variant: the designed cavity or a plain "
+                                                                     "end wall")
     cavity: CavityConfig = Field(default_factory=CavityConfig)
+    wall: WallConfig = Field(default_factory=WallConfig)
     open_length: Finite | None = Field(None, gt=0, description="arm length of the open variant, m (None: from the "
                                                                     "feeder design's limit set)")
     noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
                                                                    zeta=0.2))
     height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
     x_range: tuple[Finite, Finite] | None = Field(None, description="CM abscissa range of the drop, m (None: the arm)")
+    clear_every: int = Field(0, ge=0, le=100_000, description="every this many throws (throw t with t % clear_every "
+                                                               "== 0) is a clearing throw (0: none)")
+    clear_factor: Finite = Field(1.55, gt=0, description="clearing throw's nominal ω / omega (jittered like the others)")
     max_throws: int = Field(60, ge=1, le=100_000, description="throws allowed until captured (open: until fed)")
     hold_throws: int = Field(50, ge=0, le=100_000, description="throws after capture the part must stay")
     settings: dict | None = Field(None, description="EngineSettings fields to override (e.g. {'t_max': 5.0})")
@@ -131,13 +182,52 @@ def _design_cached(key: str):
                       realisation=nz.realisation, recoil=nz.recoil, zeta=nz.zeta, depth=c.depth, clearance=c.clearance,
                       ramp_angle=c.ramp_angle, end_gap=c.end_gap, end_angle=c.end_angle, wall_mu=c.wall_mu,
                       wall_margin=c.wall_margin, place=c.place, length=c.length, verify=False)
-    return d
+    return _clearing_wall(d, cfg)
+
+
+def _clearing_wall(d, cfg: FeedConfig):
+    """``d`` with its end wall raised to the energy bound of the clearing throw, ω·clear_factor·(1 + 3σ)
+    (the wall of the design covers ω(1 + z_hold σ) only)."""
+    import dataclasses as dc
+
+    f = cfg.clear_factor if cfg.clear_every else 1.0
+    if f <= 1.0:
+        return d
+    H = d.wall.height + (f * f - 1.0) * d.numbers["rise_bound_m"]
+    n = dict(d.numbers, wall_height_m=H, rise_bound_m=f * f * d.numbers["rise_bound_m"], clear_factor=f)
+    return dc.replace(d, wall=dc.replace(d.wall, height=H), numbers=n)
 
 
 def build_design(cfg: FeedConfig):
     """The :class:`~throwmap.design.cavity.CavityDesign` a config uses (computed once per process)."""
-    keep = {"part", "side", "omega", "h", "mu", "cavity", "noise"}
+    keep = {"part", "side", "omega", "h", "mu", "cavity", "noise", "clear_every", "clear_factor"}
     return _design_cached(FeedConfig(**{k: getattr(cfg, k) for k in keep}).model_dump_json())
+
+
+def build_wall(cfg: FeedConfig) -> EndWall:
+    """The plain end wall of a config (fixture ``"wall"``): at ``wall.length`` or the middle of the
+    feeder design's end-wall window (plain arm, impulse, ω ± 6 %), as high as the energy bound at
+    ω(1 + 3σ) plus ``wall.margin``."""
+    from ..system.arm import Arm
+    from ..system.fixtures import Wall
+
+    part, arm, omega, side, fd = _base(cfg)
+    w = cfg.wall
+    if w.length is not None:
+        L = float(w.length)
+    elif fd is not None:
+        L = 0.5 * (fd.wall_window[0] + fd.wall_window[1])
+    else:
+        raise InvalidStateError("config.wall.length", f"must be given for part {cfg.part!r}")
+    w_hi = omega * (1.0 + 3.0 * cfg.noise.omega_rel) * max(1.0, cfg.clear_factor if cfg.clear_every else 1.0)
+    x_c, y_c = L - float(part.uR[side]), arm.h + float(part.d[side])
+    rise = w_hi**2 * (x_c**2 + y_c**2) / (2.0 * arm.g)
+    H = float(part.d[side]) + rise + w.margin
+    numbers = {"omega_hi": w_hi, "rise_bound_m": rise, "x_hold_m": x_c}
+    if fd is not None:
+        numbers.update(window_lo_m=float(fd.wall_window[0]), window_hi_m=float(fd.wall_window[1]))
+    arm = Arm(h=arm.h, g=arm.g, length=L, mu=arm.mu, back=arm.back)
+    return EndWall(part, arm, Wall(height=H, mu=w.mu), side, float(w.zone), numbers)
 
 
 def open_length(cfg: FeedConfig) -> float:
@@ -174,12 +264,10 @@ class Feed:
 
     def setup(self, cfg: FeedConfig):
         """``(part, arm with its length, fixtures, omega, side, design or None)`` of a config."""
-        import dataclasses
-
         part, arm, omega, side, _ = _base(cfg)
         if cfg.variant == "open":
             return part, dataclasses.replace(arm, length=open_length(cfg)), (), omega, side, None
-        d = build_design(cfg)
+        d = build_design(cfg) if cfg.fixture == "cavity" else build_wall(cfg)
         return part, d.arm, d.fixtures, omega, side, d
 
     def trial(self, cfg: FeedConfig, index: int, rng) -> Trial:
@@ -202,7 +290,8 @@ class Feed:
         captured_at = None
         total = cfg.max_throws + (cfg.hold_throws if cfg.variant == "closed" else 0)
         for t in range(1, total + 1):
-            w, real = noise.throw(omega, rng)
+            clearing = cfg.variant == "closed" and cfg.clear_every > 0 and t % cfg.clear_every == 0
+            w, real = noise.throw(omega * cfg.clear_factor if clearing else omega, rng)
             w_min, w_max = min(w_min, w), max(w_max, w)
             values.update(throws=t, omega_min=w_min, omega_max=w_max)
             run = simulate(scene, real, settings)
@@ -259,7 +348,11 @@ class Feed:
                "drop_x_range_m": list(cfg.x_range) if cfg.x_range else [0.0 - arm.back, arm.length],
                "max_throws": cfg.max_throws, "hold_throws": cfg.hold_throws if cfg.variant == "closed" else 0,
                "engine": "pymunk, EngineSettings() defaults" if not cfg.settings else {"pymunk overrides": cfg.settings}}
-        if design is not None:
+        if isinstance(design, EndWall):
+            out["wall"] = design.to_dict()
+            out["success"] = ("at rest flat (|tilt| < 0.05 rad) on the target side with its outermost vertex within "
+                              "wall.zone of the end wall within max_throws throws, and so again after hold_throws more")
+        elif design is not None:
             out["cavity"] = design.to_dict()
             out["success"] = ("at rest flat (|tilt| < 0.05 rad) on the target side in the cavity within max_throws "
                               "throws, and so again after hold_throws more")
