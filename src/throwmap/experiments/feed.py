@@ -25,11 +25,18 @@ cavity at the arm's end on side 2: 19/20 = 95 %. Here one trial is:
    Failures: ``wrong_side`` (left over the end from another side), ``behind_joint``,
    ``not_fed`` (still on the arm after ``max_throws``), ``refused:<status>``.
 
+Options of the closed variant (measured, none beats the designed cavity; README "The cavity and the
+feeding experiment"): ``fixture = "wall"`` replaces the cavity by a plain end wall
+(:func:`build_wall`, :class:`EndWall`: "target" = flat on the target side with its outermost vertex
+within ``wall.zone`` of the wall); ``clear_every``/``clear_factor`` make every ``clear_every``-th
+throw a clearing throw at ω·``clear_factor`` (it frees side 2 flush at the wall of the feeder
+design for factors 1.55–1.6; the design's wall is raised to that throw's energy bound).
+
 Per-trial values: ``throws_to_capture`` (closed; nan if never), ``hold_breaks`` (hold throws
 after which the part was not captured on the target side: 0 = held at every throw),
 ``throws``, final ``x``/``y``/``phi`` (arm frame, m, rad), ``side`` and ``tilt`` (rad), ``where``,
 the drop (``drop_x``, ``drop_side``, ``drop_redraws``), the trial's ``mu``, the extreme ω used
-(``omega_min``, ``omega_max``), and in the open variant ``side_before``/``side_exit``.
+(``omega_min``, ``omega_max``, clearing throws included), and in the open variant ``side_before``/``side_exit``.
 """
 
 from __future__ import annotations
