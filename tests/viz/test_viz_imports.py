@@ -14,9 +14,11 @@ import pytest
 VIZ = Path(__file__).resolve().parents[2] / "src" / "throwmap" / "viz"
 
 ALLOWED = ("throwmap.viz", "throwmap.errors", "throwmap.conventions", "throwmap.io",
-           "throwmap.throws.outcome", "throwmap.throws.trajectory", "throwmap.system.part")
+           "throwmap.throws.outcome", "throwmap.throws.trajectory", "throwmap.system.part",
+           "throwmap.system.fixtures")
 """Package modules a figure module may import (each with its submodules); ``system.part``: the
-part's type and its descriptive name for titles (:func:`throwmap.system.part.default_name`), no throws."""
+part's type and its descriptive name for titles (:func:`throwmap.system.part.default_name`), no throws;
+``system.fixtures``: the outline of a wall or cavity to draw (:func:`~throwmap.system.fixtures.surface_profile`)."""
 
 PHYSICS_NAMES = {"throw", "throw_batch", "iterate", "engine_batch", "as_map", "sample_map", "throw_map_samples",
                  "limit_set", "critical_points", "basins", "funnels", "push", "compare_models", "kernels"}
