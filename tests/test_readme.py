@@ -86,9 +86,20 @@ def test_toml_part_files_load(tmp_path):
 def _help(command: str) -> str:
     from throwmap.cli.app import app
 
-    res = CliRunner().invoke(app, [command, "--help"], terminal_width=200, env={"COLUMNS": "200", "NO_COLOR": "1"})
+    res = CliRunner().invoke(app, [*command.split(), "--help"], terminal_width=200,
+                             env={"COLUMNS": "200", "NO_COLOR": "1"})
     assert res.exit_code == 0, f"`throwmap {command} --help` fails: {res.output}"
     return res.output
+
+
+def _subcommands(command: str) -> set[str]:
+    """The subcommands of a command group (empty for a plain command)."""
+    import typer.main
+
+    from throwmap.cli.app import app
+
+    group = typer.main.get_command(app).commands[command]
+    return set(getattr(group, "commands", {}) or {})
 
 
 def _has_option(help_text: str, opt: str) -> bool:
@@ -117,8 +128,10 @@ def test_shell_commands_exist_with_their_options():
             continue
         assert words[0] == "throwmap", f"unexpected command in a bash block: {' '.join(words)}"
         cmd = words[1]
-        text = _help(cmd)
         rest = words[2:]
+        if rest and rest[0] in _subcommands(cmd):  # a group: check the subcommand's own options
+            cmd, rest = f"{cmd} {rest[0]}", rest[1:]
+        text = _help(cmd)
         for k, w in enumerate(rest):
             if w.startswith("-") and not re.fullmatch(r"-?\d+(\.\d+)?", w):
                 assert _has_option(text, w.split("=")[0]), f"`throwmap {cmd}` has no option {w}"
@@ -126,7 +139,7 @@ def test_shell_commands_exist_with_their_options():
                     nxt = rest[k + 1] if k + 1 < len(rest) else ""
                     assert nxt and not (nxt.startswith("-") and not re.fullmatch(r"-?\d+(\.\d+)?", nxt)), \
                         f"`throwmap {cmd} … {w}` is shown without its value"
-        seen.add(cmd)
+        seen.add(cmd.split()[0])
     assert {"throw", "iterate", "compare", "validate", "animate", "demo", "limitset", "basins", "funnels"} <= seen
 
 
