@@ -51,4 +51,5 @@ SLIP_DISTANCE = 25  # total distance contact points slid along the arm, m
 T_REST = 26  # time from release until at rest, s (nan where a model does not resolve time)
 PENETRATION_MAX = 27  # deepest penetration of any vertex into the arm or a fixture, m (engines; 0 for rigid models)
 CAP_HIT = 28  # 1: the throw was refused (UNRESOLVED) because a search or integration used its max_iter steps; else 0
-NREC = 29
+WHY = 29  # reason code of an UNRESOLVED throw a model refused (rigid_body's wall: kernels.rigid_body.wall_contact.WHY_*; 0 or nan: none)
+NREC = 30

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import dataclasses
 import enum
 from dataclasses import dataclass
@@ -78,10 +80,15 @@ class Status(enum.IntEnum):
 _STATUS = tuple(Status(c) for c in range(len(Status)))
 
 
-def _why(status: int, cap_hit: bool, model: str) -> str:
-    """The analytic models' reason for an UNRESOLVED throw ("" for every other status)."""
+def _why(status: int, cap_hit: bool, model: str, why: float = math.nan) -> str:
+    """The analytic models' reason for an UNRESOLVED throw ("" for every other status); ``why``: the
+    record's reason code (:data:`throwmap.kernels.codes.WHY`), e.g. a walled throw rigid_body cannot follow."""
     if status != C.UNRESOLVED:
         return ""
+    if why == why and why > 0:
+        from ..kernels.rigid_body.wall_contact import WHY_MESSAGES
+
+        return WHY_MESSAGES.get(int(why), f"refused by the model (reason code {int(why)})")
     if cap_hit:
         return ("a contact search or integration used all its max_iter steps without an event: "
                 "not resolved (raise the model option max_iter)")
@@ -219,7 +226,7 @@ class ThrowOutcome:
             r[C.T_REST],
             r[C.PENETRATION_MAX],
             r[C.CAP_HIT] == 1.0,
-            _why(int(status), r[C.CAP_HIT] == 1.0, model),
+            _why(int(status), r[C.CAP_HIT] == 1.0, model, r[C.WHY]),
         )
 
     def to_record(self, part) -> np.ndarray:

@@ -1,0 +1,43 @@
+"""An UNRESOLVED throw says why: rigid_body's wall refusals carry their reason code (codes.WHY), not the
+flight's spin-angle text."""
+
+import numpy as np
+
+import throwmap as tm
+from throwmap.kernels import codes as C
+from throwmap.kernels.rigid_body.wall_contact import WHY_MESSAGES
+from throwmap.studies.validation import default_parts
+from throwmap.throws.throw import start_interval
+
+
+def test_a_walled_refusal_names_its_wall_reason():
+    rng = np.random.default_rng(0)
+    parts = list(default_parts().values())
+    wall = (tm.Wall(0.05, mu=0.0),)
+    found = []
+    for _ in range(300):
+        part = parts[rng.integers(len(parts))]
+        k = part.stable_sides[rng.integers(len(part.stable_sides))]
+        L = rng.uniform(0.25, 0.4)
+        arm = tm.Arm(h=-0.01, mu=1.0, length=L)
+        lo, hi = start_interval(part, arm, k)
+        x = rng.uniform(L - 0.1, L - 0.03)
+        if not lo < x <= hi:
+            continue
+        o = tm.throw(part, arm, x, k, rng.uniform(3, 6), fixtures=wall)
+        if o.status == tm.Status.UNRESOLVED:
+            found.append(o)
+            if len(found) == 3:
+                break
+    assert found, "no refused walled throw in 300 draws"
+    for o in found:
+        assert o.message in WHY_MESSAGES.values()
+        assert "spin angle" not in o.message
+
+
+def test_the_why_column_is_empty_for_resolved_throws():
+    part, arm = tm.triangle_30_60_90(), tm.Arm(h=-0.01, length=0.5)
+    o = tm.throw(part, arm, 0.2, 0, 4.0)
+    assert o.ok and o.message == ""
+    rec = tm.throw_batch(part, arm, [0.2, 0.25], [0, 0], 4.0).records
+    assert rec.shape[1] == C.NREC and not np.any(rec[:, C.WHY] > 0)
