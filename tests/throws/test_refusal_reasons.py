@@ -41,3 +41,18 @@ def test_the_why_column_is_empty_for_resolved_throws():
     assert o.ok and o.message == ""
     rec = tm.throw_batch(part, arm, [0.2, 0.25], [0, 0], 4.0).records
     assert rec.shape[1] == C.NREC and not np.any(rec[:, C.WHY] > 0)
+
+
+def test_a_trajectory_refuses_a_start_that_is_not_at_rest_on_the_tilted_arm():
+    import math
+
+    import pytest
+
+    from throwmap.errors import InvalidStateError
+    from throwmap.throws.orbit_trajectory import throw_trajectory
+
+    part, arm = tm.triangle_30_60_90(), tm.Arm(h=-0.01, mu=0.1, length=0.5)
+    alpha = math.radians(-12)  # |tan α| = 0.21 > μ: the part slides
+    assert tm.throw(part, arm, 0.2, 0, 4.0, alpha=alpha).status == tm.Status.INVALID_START
+    with pytest.raises(InvalidStateError, match="^side: not at rest on the tilted arm: slides"):
+        throw_trajectory(part, arm, 0.2, 0, 4.0, alpha=alpha)

@@ -20,7 +20,7 @@ from ..system.part import Part
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
 from .orbit import ThrowGuard, planned_throws, throw_rates
 from .outcome import Status, ThrowOutcome
-from .throw import check_start, prepare
+from .throw import check_start, prepare, tilted_rest_reason
 from .trajectory import DEFAULT_DT, Trajectory, check_dt, drawn_length
 
 __all__ = ["throw_trajectory", "paper_trajectory", "paper_throw_trajectory", "orbit_trajectory", "trajectory_models",
@@ -55,7 +55,8 @@ def throw_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, mo
 
     Returns ``(ThrowOutcome, Trajectory)``; the outcome equals :func:`throwmap.throw` with the
     same arguments. Keywords as :func:`throwmap.throw`; the engines sample at their own
-    ``record_dt`` (:class:`throwmap.engine.EngineSettings`) instead of ``dt``.
+    ``record_dt`` (:class:`throwmap.engine.EngineSettings`) instead of ``dt``. A start that is not
+    at rest on a tilted arm (:func:`~throwmap.throws.throw.tilted_rest_reason`) is refused naming ``side``.
     """
     m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     if not m.features.trajectory:
@@ -63,6 +64,10 @@ def throw_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, mo
                                          f"(choose from {', '.join(trajectory_models())})")
     dt = check_dt(dt)
     x0, k0, om = check_start(part, arm, x, side, omega)
+    if system.alpha != 0.0:  # throw() returns INVALID_START there; a trajectory has nothing to show
+        reason = tilted_rest_reason(part, arm, k0, system.alpha, m.features.friction)
+        if reason:
+            raise InvalidStateError("side", f"not at rest on the tilted arm: {reason}")
     return m.trajectory(part, system, x0, k0, om, opts, dt)
 
 
