@@ -56,3 +56,15 @@ def test_a_trajectory_refuses_a_start_that_is_not_at_rest_on_the_tilted_arm():
     assert tm.throw(part, arm, 0.2, 0, 4.0, alpha=alpha).status == tm.Status.INVALID_START
     with pytest.raises(InvalidStateError, match="^side: not at rest on the tilted arm: slides"):
         throw_trajectory(part, arm, 0.2, 0, 4.0, alpha=alpha)
+
+
+def test_the_cli_refuses_a_tilted_start_that_slides_with_one_line():
+    from typer.testing import CliRunner
+
+    from throwmap.cli.app import app
+
+    res = CliRunner().invoke(app, ["throw", "--part", "triangle", "--h", "-0.01", "--length", "0.3", "--mu", "0.05",
+                                   "--x", "0.2", "--side", "0", "--omega", "5", "--alpha", "5deg"])
+    assert res.exit_code == 2
+    lines = [ln for ln in res.output.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: side: not at rest on the tilted arm: slides")

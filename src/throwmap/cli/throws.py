@@ -61,6 +61,8 @@ def throw_cmd(
         check_finite(x, "x")
         check_finite(omega, "omega")
         out = throw(the_part, arm, x, side, omega, model=model, **opts, **sysk)
+        if out.status.label == "invalid_start":  # a start the tilted arm cannot hold: bad input, as any other start
+            raise InvalidStateError("side", f"not at rest on the tilted arm: {out.message}")
         if as_json:
             doc = {**out.to_dict(), "part": the_part.name, "arm": arm_dict(arm), **system_doc(sysk),
                    "model_options": options_doc(opts), "version": __version__}

@@ -151,6 +151,11 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
     for t in targets:
         if t.side not in range(plate.n_sides):
             raise InvalidStateError("target", f"side {t.side} does not exist (the part has sides 0..{plate.n_sides - 1})")
+        if isinstance(t, Target):  # a position the searched range cannot hold is bad input, not a failed design
+            reach = x_max if x_max is not None else (arm.length if arm.length is not None else 0.6)
+            if not 0.0 < t.value <= reach:
+                raise InvalidStateError("target", f"{t.label} = {t.value:g} m is outside the searched range "
+                                                  f"0 < x ≤ {reach:g} m (the arm length, or x_max)")
         if model == SMALL_ANGLE_F and not (isinstance(t, Target) and t.kind == "r"):
             raise InvalidStateError("target", f"model {SMALL_ANGLE_F!r} gives r_i only, not {t.label}")
     # fixed rows: the separation's rows cover every side of the plate
