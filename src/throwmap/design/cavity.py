@@ -1,9 +1,8 @@
 """The cavity at the arm's end that turns the designed limit set into a fixed point (paper Sec. V-C, Fig. 9(b)).
 
-The draft's cavity "captures the part in a unique configuration. Because of the shaped limit set,
-the part only reaches the cavity on side 2 … deep enough that subsequent throws do not eject
-the part"; its one failure in 20: "the part hit the wall of the cavity … when its center of mass
-is very close to the end of the arm before it falls in".
+The draft's cavity "captures the part in a unique configuration … deep enough that subsequent throws do
+not eject the part"; its one failure in 20: "the part hit the wall of the cavity … when its center of
+mass is very close to the end of the arm before it falls in".
 
 What holds the part (checked in the engine)
 -------------------------------------------
@@ -238,8 +237,8 @@ class CavityDesign:
                  (f"  arm end (end wall) L = {100 * self.length:.2f} cm, lip at {100 * self.lip_x:.2f} cm, "
                  f"depth {100 * self.cavity.depth:.2f} cm, floor {100 * n['floor_m']:.2f} cm, "
                  f"ramp {100 * n['ramp_m']:.2f} cm, wall {100 * self.wall.height:.2f} cm (μ {self.wall.mu:g})"),
-                 (f"  window for L: [{100 * n['L_lo_m']:.2f}, {100 * n['L_hi_m']:.2f}] cm at ω ∈ "
-                 f"[{n['omega_lo']:.4g}, {n['omega_hi']:.4g}] rad/s")]
+                 ((f"  window for L: [{100 * n['L_lo_m']:.2f}, {100 * n['L_hi_m']:.2f}] cm" if n["n_windows"] else
+                   "  window for L: none") + f" at ω ∈ [{n['omega_lo']:.4g}, {n['omega_hi']:.4g}] rad/s")]
         lines += [f"  {c}" for c in self.checks]
         lines += [f"  why: {r}" for r in self.reasons]
         return "\n".join(lines)
@@ -348,10 +347,13 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
                "floor_m": floor, "ramp_m": ramp, "depth_m": depth, "end_gap_m": end_gap, "end_angle_rad": end_angle,
                "lip_x_m": L - cavity.span, "x_hold_m": x_c, "y_hold_m": y_c, "rise_bound_m": rise, "wall_height_m": H,
                "drift_speed_m_s": -y_c * omega, "sweep_m": sweep}
+    where = ((f"L in the middle of the widest window where only side {side} stays at the end wall: there the throw is a jog "
+              f"for every ω in [{w_lo:.3g}, {w_hi:.3g}] rad/s (−{z_release:g}σ … +{z_hold:g}σ) and a flip for every other side "
+              f"(the throw map on the cavity's floor, {realisation}, 5 mm grid, one step of margin)")
+             if runs else
+             f"NO window ({realisation}): L only where side {side}'s last jog on the floor ends (check 'window' fails)")
     reasons = (
-        (f"L in the middle of the widest window where only side {side} stays at the end wall: there the throw is a jog "
-        f"for every ω in [{w_lo:.3g}, {w_hi:.3g}] rad/s (−{z_release:g}σ … +{z_hold:g}σ) and a flip for every other side "
-        f"(the throw map on the cavity's floor, {realisation}, 5 mm grid, one step of margin)"),
+        where,
         f"floor = side {side}'s length + {100 * clearance:.2f} cm: it lies flat against the wall",
         (f"lip ramp at {math.degrees(ramp_angle):.0f}° (friction angle {math.degrees(math.atan(arm.mu)):.0f}°): a vertex "
         "landing on it slides into the cavity"),
