@@ -102,6 +102,13 @@ def _why(status: int, cap_hit: bool, model: str, why: float = math.nan) -> str:
     return spin
 
 
+def _why_code(message: str) -> float:
+    """The reason code (:data:`throwmap.kernels.codes.WHY`) of a refusal message; 0 for the generic ones."""
+    from ..kernels.rigid_body.wall_contact import WHY_MESSAGES
+
+    return float(next((k for k, m in WHY_MESSAGES.items() if m == message), 0))
+
+
 def _count(v: float) -> int:
     return int(v) if v == v else 0
 
@@ -248,6 +255,7 @@ class ThrowOutcome:
         r[C.N_LIFTOFFS], r[C.N_SLIPS], r[C.SLIP_DISTANCE] = self.n_lift_offs, self.n_slips, self.slip_distance
         r[C.T_REST], r[C.PENETRATION_MAX] = self.t_rest, self.penetration_max
         r[C.CAP_HIT] = 1.0 if self.cap_hit else 0.0
+        r[C.WHY] = _why_code(self.message) if self.status == C.UNRESOLVED else 0.0
         return r
 
     def to_dict(self) -> dict:
