@@ -114,6 +114,10 @@ def test_engine_against_itself_agrees_on_every_throw_and_the_report_round_trips(
     back = tw.TiltWallReport.from_dict(doc)
     assert back.table() == rep.table() and back.goals == rep.goals
     assert doc["settings"]["seed"] == 1 and doc["settings"]["alpha_range_deg"] == [-15.0, 15.0]
+    for line in rep.goal_lines():  # a verdict on a handful of throws shows how little it says
+        assert "by the estimate; 95 % interval [" in line and "throws" in line
+        lo = float(line.split("interval [")[1].split(",")[0])
+        assert lo < 95.0  # ≤ 6 throws all agreeing: the Wilson lower bound is far below the goal
 
 
 def test_wall_fixed_point_reports_a_refusal_as_not_found():

@@ -68,3 +68,13 @@ def test_the_cli_refuses_a_tilted_start_that_slides_with_one_line():
     assert res.exit_code == 2
     lines = [ln for ln in res.output.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("error: side: not at rest on the tilted arm: slides")
+
+
+def test_two_walls_are_refused_naming_fixtures():
+    import pytest
+
+    from throwmap.errors import InvalidStateError
+
+    arm = tm.Arm(h=-0.01, length=0.3)
+    with pytest.raises(InvalidStateError, match="^fixtures: at most one Wall"):
+        tm.throw(tm.triangle_30_60_90(), arm, 0.2, 0, 4.0, fixtures=[tm.Wall(0.05), tm.Wall(0.03)])

@@ -333,8 +333,8 @@ class TiltWallReport:
         return "\n".join(lines)
 
     def goal_lines(self) -> list[str]:
-        return [f"{name}: {g['value']:.2f} % (goal ≥ {g['goal']:g} %) — {'met' if g['met'] else 'NOT met'}"
-                for name, g in self.goals.items()]
+        return [f"{name}: {g['value']:.2f} % (goal ≥ {g['goal']:g} %) — {'met' if g['met'] else 'NOT met'} by the estimate; "
+                f"95 % interval [{g['ci95'][0]:.1f}, {g['ci95'][1]:.1f}] % over {g['n']} throws" for name, g in self.goals.items()]
 
     def refusal_lines(self) -> list[str]:
         """Why throws were refused, per row and side (the model's own message)."""
@@ -481,7 +481,8 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
     for r in rows:
         if r["available"] and r["n_compared"]:
             for key, name in (("same_pct", "same outcome"), ("within_pct", "|Δx| ≤ 0.5 mm")):
-                goals[f"{r['row']}: {name}"] = {"value": r[key], "goal": GOALS[key], "met": bool(r[key] >= GOALS[key])}
+                goals[f"{r['row']}: {name}"] = {"value": r[key], "goal": GOALS[key], "met": bool(r[key] >= GOALS[key]),
+                                                "ci95": r[key.replace("_pct", "_ci95")], "n": r["n_compared"]}
     fp = None
     if fixed_point:
         from ..system.catalogue import rectangle

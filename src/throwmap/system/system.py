@@ -47,6 +47,10 @@ class System:
         for i, f in enumerate(fx):
             if not isinstance(f, (Wall, Cavity)):
                 raise InvalidStateError(f"fixtures[{i}]", f"must be a Wall or a Cavity, got {type(f).__name__}")
+        for kind in (Wall, Cavity):  # one arm end: one wall, one cavity (engine.scene and rigid_body take one)
+            if sum(isinstance(f, kind) for f in fx) > 1:
+                raise InvalidStateError("fixtures", f"at most one {kind.__name__} (the arm has one end), got "
+                                                    f"{sum(isinstance(f, kind) for f in fx)}")
         object.__setattr__(self, "fixtures", fx)
         a = self.alpha
         if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a):
