@@ -8,9 +8,7 @@ discovered on first look-up).
 
 from __future__ import annotations
 
-import importlib
-import pkgutil
-
+from ..discovery import import_submodules
 from ..errors import InvalidStateError, shown
 from .base import Experiment
 
@@ -27,10 +25,7 @@ def _discover() -> None:
     if _DISCOVERED:
         return
     _DISCOVERED = True
-    pkg = importlib.import_module(__package__)
-    for info in pkgutil.iter_modules(pkg.__path__):
-        if not info.name.startswith("_") and info.name not in _INFRA:
-            importlib.import_module(f"{__package__}.{info.name}")
+    import_submodules(__package__, skip=_INFRA)
 
 
 def register_experiment(exp, *, replace: bool = False):

@@ -7,9 +7,7 @@ discovered on first look-up), or a user's code calling :func:`register` at run t
 
 from __future__ import annotations
 
-import importlib
-import pkgutil
-
+from ..discovery import import_submodules
 from ..errors import InvalidStateError
 from .base import ThrowModel
 
@@ -32,10 +30,7 @@ def _discover() -> None:
     if _DISCOVERED:
         return
     _DISCOVERED = True
-    pkg = importlib.import_module(__package__)
-    for info in pkgutil.iter_modules(pkg.__path__):
-        if not info.name.startswith("_") and info.name not in ("base", "registry"):
-            importlib.import_module(f"{__package__}.{info.name}")
+    import_submodules(__package__, skip=("base", "registry"))
 
 
 def register(model: ThrowModel, *, replace: bool = False) -> ThrowModel:
