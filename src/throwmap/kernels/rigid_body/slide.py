@@ -36,12 +36,15 @@ def slide_rhs(th, w, lj, rho2, g, musig, gt=0.0):
     With c = cos θ, s = sin θ and A → CM = ℓ(c, s):
     ÿ_A = 0 gives N D = g − ℓ s θ̇², D = 1 + ℓ² c (c + μσ s)/ρ²;
     ρ² θ̈ = −ℓ N (c + μσ s);  ẍ_A = −μσ N − g_t + ℓ (s θ̈ + c θ̇²).
-    Returns ``(θ̈, ẍ_A, N, D)`` (N per unit mass, m/s²).
+    Returns ``(θ̈, ẍ_A, N, D)`` (N per unit mass, m/s²); at D = 0 exactly ``(nan, nan, nan, 0)``
+    (compiled code would raise ZeroDivisionError there).
     """
     c = math.cos(th)
     s = math.sin(th)
     q = c + musig * s
     D = 1.0 + lj * lj * c * q / rho2
+    if D == 0.0:  # the Painlevé boundary: no finite normal force (callers refuse D ≤ 0 as inconsistent)
+        return math.nan, math.nan, math.nan, 0.0
     N = (g - lj * s * w * w) / D
     thdd = -lj * q * N / rho2
     xdd = -musig * N - gt + lj * (s * thdd + c * w * w)
