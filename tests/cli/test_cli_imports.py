@@ -19,7 +19,7 @@ CLI_DIR = Path(throwmap.cli.__file__).parent
 MODULES = sorted(p.stem for p in CLI_DIR.glob("*.py"))
 COMMAND_MODULES = ("analysis", "animate", "design", "experiment", "studies", "throws")
 SUPPORT_MODULES = ("usage",)  # the app's command group (usage errors as one line); imports options only
-SUBCOMMAND_MODULES = {"cavity": "design"}  # module → the command group that registers it (by name, at run time)
+SUBCOMMAND_MODULES = {"cavity": "design", "passage": "design"}  # module → the command group that registers it (by name, at run time)
 GROUP_MODULES = ("design",)  # commands that are groups of subcommands (they use usage's ThrowmapGroup)
 
 

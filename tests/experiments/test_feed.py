@@ -15,7 +15,7 @@ from throwmap.experiments.base import config_of, trial_generator
 from throwmap.experiments.runner import run_experiment
 
 QUICK = {"noise": {"omega_rel": 0.03, "mu_rel": 0.1, "realisation": "impulse"}, "max_throws": 6, "hold_throws": 3}
-KINDS = {"wrong_side_captured", "ejected", "not_captured", "off_arm"}
+KINDS = {"wrong_side_captured", "tilted_in_cavity", "ejected", "not_captured", "off_arm"}
 
 
 @pytest.mark.slow
@@ -111,3 +111,10 @@ def test_clearing_throws_raise_the_wall_and_the_throw_rate():
     t = exp.trial(cfg, 0, trial_generator(3, 0))
     if t.values["throws"] >= 2:  # throw 2 was a clearing throw: ω·1.5·(1 + 0.03 N), N > −6
         assert t.values["omega_max"] > 1.5 * 0.82 * exp.setup(cfg)[3]
+
+
+def test_left_in_the_fixture_is_named_by_side():
+    from throwmap.experiments.feed import Feed
+
+    assert Feed._other((0.3, 0, 0.1), 0) == "tilted_in_cavity"
+    assert Feed._other((0.3, 2, 0.0), 0) == "wrong_side_captured"

@@ -41,6 +41,10 @@ def cavity_cmd(
                                                                       "release).")] = True,
     plot: Annotated[Path | None, typer.Option("--plot", help="Draw the captured part in the cavity here "
                                                             "(e.g. capture.png).")] = None,
+    config: Annotated[Path | None, typer.Option("--config", help="Take part, side, ω, h, μ, noise and cavity from "
+                                                                 "this `experiment feed` config (TOML/JSON; e.g. "
+                                                                 "examples/feed_recoil.toml) instead of the options "
+                                                                 "above.")] = None,
     as_json: JsonOpt = False,
 ) -> None:
     """Design the cavity at the arm's end that captures the designed part on its target side."""
@@ -55,8 +59,15 @@ def cavity_cmd(
         if realisation not in ("recoil", "impulse"):
             raise InvalidStateError("realisation", f"must be recoil or impulse, got {realisation!r}")
         fmt = figure_format(plot, "plot")
+        if config is not None:
+            from ..experiments.base import read_config
+            from ..experiments.feed import FEED
+
+            cfg = read_config(FEED, config)
+            if cfg.variant != "closed" or cfg.fixture != "cavity":
+                raise InvalidStateError("config", "must be a closed-variant config with fixture = 'cavity'")
         try:
-            cfg = FeedConfig.model_validate({
+            cfg = cfg if config is not None else FeedConfig.model_validate({
                 "cavity": {"depth": depth, "end_gap": end_gap, "wall_mu": wall_mu, "place": place, "length": length},
                 "noise": {"omega_rel": sigma, "mu_rel": 0.1, "realisation": realisation, "zeta": zeta,
                           "recoil": recoil}})

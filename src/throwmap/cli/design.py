@@ -203,13 +203,15 @@ def example_cmd(
 
 
 def _register_cavity(group: typer.Typer) -> None:
-    """Add ``design cavity`` from :mod:`throwmap.cli.cavity` if that module exists and defines ``register``."""
-    if importlib.util.find_spec(f"{__package__}.cavity") is None:
-        return
-    mod = importlib.import_module(f"{__package__}.cavity")
-    reg = getattr(mod, "register", None)
-    if callable(reg):
-        reg(group)
+    """Add ``design cavity`` and ``design passage`` from :mod:`throwmap.cli.cavity` and
+    :mod:`throwmap.cli.passage` where those modules exist and define ``register``."""
+    for name in ("cavity", "passage"):
+        if importlib.util.find_spec(f"{__package__}.{name}") is None:
+            continue
+        mod = importlib.import_module(f"{__package__}.{name}")
+        reg = getattr(mod, "register", None)
+        if callable(reg):
+            reg(group)
 
 
 _register_cavity(design_app)

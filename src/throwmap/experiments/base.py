@@ -184,10 +184,17 @@ def config_of(experiment: Any, config=None, source=None):
 def read_config(experiment: Any, path):
     """An experiment's config from a ``.toml`` or ``.json`` file (the document is the config's table
     of keys), validated by its ``config_type``; errors as :func:`config_of` (``field="file"`` when the
-    file cannot be read or parsed)."""
+    file cannot be read or parsed). A ``part`` that names a ``.toml``/``.json`` file not found from the
+    working directory is looked for next to the config file."""
     from pathlib import Path
 
     from ..io.config import _read_document
 
     path = Path(path)
-    return config_of(experiment, _read_document(path), source=path)
+    doc = _read_document(path)
+    part = doc.get("part") if isinstance(doc, dict) else None
+    if isinstance(part, str) and part.lower().endswith((".toml", ".json")):
+        p = Path(part)
+        if not p.is_absolute() and not p.exists() and (path.parent / p).exists():
+            doc = dict(doc, part=str(path.parent / p))  # a part file named relative to the config file
+    return config_of(experiment, doc, source=path)

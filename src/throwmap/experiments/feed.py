@@ -14,7 +14,8 @@ cavity at the arm's end on side 2: 19/20 = 95 %. Here one trial is:
    (:meth:`~throwmap.design.cavity.CavityDesign.where`) within ``max_throws`` throws; then
    ``hold_throws`` more throws; **success** = still captured on the target side after them.
    Failures: ``not_captured`` (never captured within ``max_throws``), ``wrong_side_captured``
-   (in the cavity on another side at the end), ``ejected`` (captured, then outside the cavity or
+   (in the cavity on another side at the end), ``tilted_in_cavity`` (in the cavity on the target
+   side but not flat, e.g. across the lip), ``ejected`` (captured, then outside the cavity or
    off the arm at the end), ``off_arm`` (left the arm before being captured), ``refused:<status>``
    (an engine run refused — timeout, penetration, unconverged, unresolved — or every drop refused:
    never counted as a success).
@@ -327,18 +328,23 @@ class Feed:
                     captured_at = t
                     values["throws_to_capture"] = t
                 elif t >= cfg.max_throws:
-                    kind = "wrong_side_captured" if where == "other" else "not_captured"
+                    kind = self._other(state, side) if where == "other" else "not_captured"
                     return self._end(index, rng, kind, values, pose, *state, where)
             else:
                 if where != "target":
                     values["hold_breaks"] += 1
             if captured_at is not None and t - captured_at >= cfg.hold_throws:
-                kind = None if where == "target" else ("wrong_side_captured" if where == "other" else "ejected")
+                kind = None if where == "target" else (self._other(state, side) if where == "other" else "ejected")
                 return self._end(index, rng, kind, values, pose, *state, where)
             scene = run.next_scene()
         if cfg.variant == "open":
             return self._end(index, rng, "not_fed", values, pose, *state, "on_arm")
         raise AssertionError("unreachable: the closed loop ends by its caps")  # pragma: no cover
+
+    @staticmethod
+    def _other(state, side: int) -> str:
+        """The failure of a part left in the fixture but not flat on the target side."""
+        return "tilted_in_cavity" if int(state[1]) == side else "wrong_side_captured"
 
     @staticmethod
     def _end(index, rng, failure, values, pose, x, k, tilt, where) -> Trial:

@@ -1,0 +1,47 @@
+"""The recoil feeder's experiment config (examples/feed_recoil.toml) as a user runs it."""
+
+import os
+from pathlib import Path
+
+import pytest
+
+from throwmap.experiments.base import read_config, trial_generator
+from throwmap.experiments.feed import FEED
+
+ROOT = Path(__file__).resolve().parents[2]
+CONFIG = ROOT / "examples" / "feed_recoil.toml"
+
+
+def test_config_reads_from_any_directory(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # the part file is named relative to the config file
+    cfg = read_config(FEED, CONFIG)
+    assert Path(cfg.part).is_file()
+    part, arm, fixtures, omega, side, design = FEED.setup(cfg)
+    assert arm.length == pytest.approx(0.38)
+    assert design.cavity.depth == pytest.approx(0.01)
+    # side 0 (17 cm) lies in the pocket: its floor is longer than the side
+    assert design.numbers["floor_m"] >= float(part.length[side])
+    # the chute drops clear of the end wall: every side's outer vertex short of L from the farthest drop
+    assert max(cfg.x_range[1] + float(u) for u in part.uR) < arm.length
+    assert cfg.x_range == (0.0, 0.25) and cfg.settings == {"agreement": 0.005, "retries": 4}
+
+
+def test_config_part_missing_is_named(tmp_path):
+    bad = tmp_path / "feed.toml"
+    bad.write_text('part = "nowhere.toml"\nside = 0\nomega = 4.5\nh = -0.02\n')
+    from throwmap.errors import ThrowmapError
+
+    cfg = read_config(FEED, bad)
+    with pytest.raises(ThrowmapError):
+        FEED.setup(cfg)
+
+
+@pytest.mark.slow
+def test_one_trial_runs_and_reports(tmp_path):
+    cfg = read_config(FEED, CONFIG).model_copy(update={"max_throws": 40, "hold_throws": 3})
+    t = FEED.trial(cfg, 0, trial_generator(5, 0))
+    assert t.success in (True, False)
+    assert t.success == (t.failure is None)
+    assert 1 <= t.values["throws"] <= 43
+    lo, hi = cfg.x_range
+    assert lo - 1e-9 <= t.values["drop_x"] <= hi + 1e-9
