@@ -75,8 +75,8 @@ def cavity_cmd(
             first = err.errors(include_url=False)[0]
             raise InvalidStateError(str(first["loc"][-1]).replace("_", "-"), first["msg"]) from None
         d = build_design(cfg)
-        if verify:
-            d = evaluate_cavity(d, verify=True)
+        if verify:  # with a config: the capture check may use as many throws as its trials do
+            d = evaluate_cavity(d, verify=True, **({"n_capture": cfg.max_throws} if config is not None else {}))
         if plot is not None:
             save_figure(d.plot(), plot, fmt, "plot")
         if as_json:

@@ -30,9 +30,11 @@ def plot_capture(design, ax=None, path=None, pose=None, title: str | None = None
     from .style import side_colors
 
     d, part, k = design, design.part, design.side
+    what = "at rest on side" if pose is not None else "captured on side"
     if pose is None:
         pose = d.captured_pose
     if pose is None:
+        what = "designed rest (no engine capture) on side"
         gap = d.numbers.get("end_gap_m", 0.0)
         pose = pose_at_rest(part, d.floor_y, d.length - gap - float(part.uR[k]), k)
     fig = None
@@ -77,7 +79,7 @@ def plot_capture(design, ax=None, path=None, pose=None, title: str | None = None
     ax.set_xlabel("x along the arm (cm)")
     ax.set_ylabel("y (cm)")
     real = d.realisation
-    ax.set_title(title or (f"{part.name or 'part'}\ncaptured on side {k}: arm end L = {100 * L:.1f} cm, "
+    ax.set_title(title or (f"{part.name or 'part'}\n{what} {k}: arm end L = {100 * L:.1f} cm, "
                            f"ω = {d.omega:.3g} rad/s ({real['kind']})"), fontsize=9)
     fig.tight_layout()
     if path is not None:
