@@ -12,6 +12,8 @@ import pytest
 from typer.testing import CliRunner
 
 from throwmap.cli.app import app
+from throwmap.errors import InvalidStateError
+from throwmap.experiments.feed import FeedConfig, _settings
 
 runner = CliRunner()
 PROFILE = "[[0.06, 0.0], [0.06, -0.02], [0.0, -0.02]]"
@@ -40,3 +42,31 @@ def test_workers_below_zero_are_refused_and_zero_is_documented_as_all_cores():
     assert "got -1" in line and "0: all cores" in line
     one_error(invoke("experiment", "feed", "--workers", "1.5", "--n", 2), "workers")
     assert "0: all cores" in invoke("experiment", "--help").stdout
+
+
+# ---------------------------------------------------------------- 2. feed settings
+def test_an_unknown_settings_key_is_named_with_its_path_and_the_allowed_fields(tmp_path):
+    cfg = tmp_path / "feed.toml"
+    cfg.write_text("settings = { foo = 1 }\n" + FEED, encoding="utf-8")
+    line = one_error(invoke("experiment", "feed", cfg, "--n", 1, "--workers", 1), "config.settings.foo")
+    assert "unknown EngineSettings field" in line and "allowed: dt, " in line and "t_max" in line
+
+
+def test_a_settings_value_of_the_wrong_type_is_named_with_its_path(tmp_path):
+    cfg = tmp_path / "feed.toml"
+    cfg.write_text('settings = { dt = "x" }\n' + FEED, encoding="utf-8")
+    line = one_error(invoke("experiment", "feed", cfg, "--n", 1, "--workers", 1), "config.settings.dt")
+    assert "'x'" in line
+
+
+@pytest.mark.parametrize("settings, field, text", [
+    ({"t_mx": 5.0}, "config.settings.t_mx", "did you mean 't_max'?"),
+    ({"dt": "x"}, "config.settings.dt", "must be a finite number"),
+    ({"coarse_dt": 1e-5}, "config.settings.coarse_dt", "must be ≥ dt"),
+])
+def test_settings_errors_name_the_key_path(settings, field, text):
+    with pytest.raises(InvalidStateError) as err:
+        _settings(FeedConfig(settings=settings))
+    assert err.value.field == field and text in err.value.reason
+    assert _settings(FeedConfig(settings={"t_max": 5.0})).t_max == 5.0
+    assert _settings(FeedConfig()) is None

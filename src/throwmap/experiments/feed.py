@@ -252,14 +252,24 @@ def open_length(cfg: FeedConfig) -> float:
 
 
 def _settings(cfg: FeedConfig):
+    """The config's EngineSettings overrides (None: the defaults), refused on ``config.settings.<key>``."""
+    import difflib
+
     from ..engine.settings import EngineSettings
 
     if not cfg.settings:
         return None
+    allowed = [f.name for f in dataclasses.fields(EngineSettings)]
+    for key in cfg.settings:
+        if key not in allowed:
+            close = difflib.get_close_matches(str(key), allowed, n=1)
+            hint = f"did you mean {close[0]!r}? " if close else ""
+            raise InvalidStateError(f"config.settings.{key}",
+                                    f"unknown EngineSettings field ({hint}allowed: {', '.join(allowed)})")
     try:
         return EngineSettings(**cfg.settings)
-    except TypeError as err:
-        raise InvalidStateError("config.settings", f"unknown EngineSettings field ({err})") from None
+    except InvalidStateError as err:  # EngineSettings names its own field "settings.<key>"
+        raise InvalidStateError(f"config.{err.field}", err.reason) from None
 
 
 class Feed:
