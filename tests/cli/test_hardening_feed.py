@@ -12,7 +12,8 @@ import pytest
 from typer.testing import CliRunner
 
 from throwmap.cli.app import app
-from throwmap.errors import InvalidStateError
+from throwmap.cli.options import _cavity_profile
+from throwmap.errors import ConfigError, InvalidStateError
 from throwmap.experiments.feed import FeedConfig, _settings
 
 runner = CliRunner()
@@ -70,3 +71,39 @@ def test_settings_errors_name_the_key_path(settings, field, text):
     assert err.value.field == field and text in err.value.reason
     assert _settings(FeedConfig(settings={"t_max": 5.0})).t_max == 5.0
     assert _settings(FeedConfig()) is None
+
+
+# ---------------------------------------------------------------- 3. --cavity keys
+@pytest.mark.parametrize("name, content, text", [
+    ("cav.toml", f"[cavity]\nprofle = {PROFILE}\n", "unknown key 'profle' in [cavity] (did you mean 'profile'? "
+                                                    "allowed: profile, kind)"),
+    ("cav.toml", f"profle = {PROFILE}\n", "unknown key 'profle' (did you mean 'profile'? allowed: profile, kind, "
+                                          "cavity)"),
+    ("cav.toml", f"[cavty]\nprofile = {PROFILE}\n", "unknown key 'cavty' (did you mean 'cavity'?"),
+    ("cav.json", f'{{"profile": {PROFILE}, "mu": 0.3}}', "unknown key 'mu' (allowed: profile, kind, cavity)"),
+    ("cav.toml", f"profile = {PROFILE}\n[cavity]\nprofile = {PROFILE}\n", "not both"),
+    ("cav.json", f'{{"kind": "wall", "profile": {PROFILE}}}', "kind must be 'cavity', got 'wall'"),
+])
+def test_an_unknown_cavity_file_key_is_named_with_the_allowed_keys(tmp_path, name, content, text):
+    f = tmp_path / name
+    f.write_text(content, encoding="utf-8")
+    line = one_error(invoke(*THROW, "--cavity", f), "cavity")
+    assert text in line and str(f) in line
+
+
+@pytest.mark.parametrize("name, content", [
+    ("cav.toml", f"profile = {PROFILE}\n"),
+    ("cav.toml", f"[cavity]\nprofile = {PROFILE}\n"),
+    ("cav.json", f'{{"kind": "cavity", "profile": {PROFILE}}}'),  # a fixture record of Outcome JSON
+])
+def test_the_documented_cavity_file_forms_still_read(tmp_path, name, content):
+    f = tmp_path / name
+    f.write_text(content, encoding="utf-8")
+    assert _cavity_profile(f) == ((0.06, 0.0), (0.06, -0.02), (0.0, -0.02))
+
+
+def test_a_cavity_file_without_a_profile_is_still_refused(tmp_path):
+    f = tmp_path / "cav.json"
+    f.write_text("{}", encoding="utf-8")
+    with pytest.raises(ConfigError, match="needs profile"):
+        _cavity_profile(f)

@@ -185,12 +185,45 @@ def _cavity_profile(path: Path) -> tuple:
     except (ValueError, UnicodeDecodeError) as err:
         raise ConfigError("cavity", f"{path} is not valid {path.suffix.lstrip('.').upper() or 'JSON'}: "
                                     f"{str(err).splitlines()[0]}") from None
-    prof = data.get("profile") if isinstance(data, dict) else None
-    if prof is None and isinstance(data, dict) and isinstance(data.get("cavity"), dict):
-        prof = data["cavity"].get("profile")
+    prof = _cavity_table(data, path).get("profile") if isinstance(data, dict) else None
     if not isinstance(prof, list):
         raise ConfigError("cavity", f"{path} needs profile = [[s, y], …] (m), at the top or in a [cavity] table")
     return tuple(tuple(p) if isinstance(p, list) else p for p in prof)
+
+
+_CAVITY_KEYS = ("profile", "kind")  # kind = "cavity": as in the fixture records of Outcome/Orbit JSON
+
+
+def _cavity_table(data: dict, path: Path) -> dict:
+    """The table of a cavity file holding its keys (the top level, or its ``[cavity]`` table alone);
+    an unknown key is refused on ``cavity``, named with the allowed keys (and a close match)."""
+    from ..errors import shown
+
+    _cavity_keys(data, _CAVITY_KEYS + ("cavity",), "", path)
+    if "cavity" in data:
+        if not isinstance(data["cavity"], dict):
+            raise ConfigError("cavity", f"{path}: cavity must be a table holding profile = [[s, y], …], "
+                                        f"got {shown(data['cavity'])}")
+        if len(data) > 1:
+            raise ConfigError("cavity", f"{path}: give the keys at the top or in a [cavity] table, not both "
+                                        f"(got {', '.join(map(str, data))})")
+        data = data["cavity"]
+        _cavity_keys(data, _CAVITY_KEYS, " in [cavity]", path)
+    if data.get("kind", "cavity") != "cavity":
+        raise ConfigError("cavity", f"{path}: kind must be 'cavity', got {shown(data['kind'])}")
+    return data
+
+
+def _cavity_keys(table: dict, allowed: tuple, where: str, path: Path) -> None:
+    """Refuse the first key of ``table`` not in ``allowed``: ``<path>: unknown key 'profle'<where> (…)``."""
+    import difflib
+
+    for key in table:
+        if key not in allowed:
+            close = difflib.get_close_matches(str(key), allowed, n=1)
+            hint = f"did you mean {close[0]!r}? " if close else ""
+            raise ConfigError("cavity", f"{path}: unknown key {str(key)!r}{where} "
+                                        f"({hint}allowed: {', '.join(allowed)})")
 
 
 def system_doc(system_kw: dict) -> dict:
