@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["Wall", "Cavity", "arm_solids", "surface_profile"]
+__all__ = ["Wall", "Cavity", "arm_solids", "surface_profile", "fixture_to_dict", "fixture_from_dict"]
 
 
 def _num(value, field: str, *, positive=False, nonneg=False) -> float:
@@ -158,3 +158,23 @@ def arm_solids(h: float, length: float, thickness: float, fixtures=()) -> tuple[
     for w in walls:
         fixture_pieces += w.solids(h, length, depth)
     return pieces, fixture_pieces
+
+
+def fixture_to_dict(f) -> dict:
+    """A fixture as a JSON-ready dict: ``{"kind": "wall", "height": …, "thickness": …, "mu": …}`` or
+    ``{"kind": "cavity", "profile": [[s, y], …]}`` (m; ``mu`` None: the arm's)."""
+    if isinstance(f, Wall):
+        return {"kind": "wall", "height": f.height, "thickness": f.thickness, "mu": f.mu}
+    if isinstance(f, Cavity):
+        return {"kind": "cavity", "profile": [list(p) for p in f.profile]}
+    raise InvalidStateError("fixtures", f"unknown fixture {f!r} (use Wall or Cavity)")
+
+
+def fixture_from_dict(d: dict):
+    """Inverse of :func:`fixture_to_dict`."""
+    kind = d.get("kind") if isinstance(d, dict) else None
+    if kind == "wall":
+        return Wall(d["height"], d["thickness"], d.get("mu"))
+    if kind == "cavity":
+        return Cavity(tuple(tuple(p) for p in d["profile"]))
+    raise InvalidStateError("fixtures", f"unknown fixture record {d!r} (kind must be 'wall' or 'cavity')")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,7 +36,8 @@ class Orbit:
     was, else the escape that ended the orbit early (its outcome is the last one).
     ``poses`` (model ``"engine"`` only, else None): the part's arm-frame pose
     ``(x, y, φ)`` (m, m, rad) at the start and after each completed throw — the pose
-    the next throw starts from, tilted where a fixture holds the part so.
+    the next throw starts from, tilted where a fixture holds the part so. ``alpha`` (rad) and
+    ``fixtures`` are the system the orbit was thrown in.
     """
 
     x: np.ndarray
@@ -45,6 +47,8 @@ class Orbit:
     status: Status
     model: str
     poses: tuple | None = None
+    alpha: float = 0.0
+    fixtures: tuple = ()
 
     def __repr__(self) -> str:
         om = np.asarray(self.omegas, dtype=float)
@@ -57,7 +61,9 @@ class Orbit:
         kinds = self.kinds
         jogs, flips = kinds.count("jog"), kinds.count("flip")
         sides = ", ".join(str(int(s)) for s in np.unique(self.side))
-        return (f"Orbit(model={self.model!r}, {omega}, {self.n_throws} throws ({jogs} jogs, {flips} flips), "
+        from .outcome import _system_text
+
+        return (f"Orbit(model={self.model!r}{_system_text(self)}, {omega}, {self.n_throws} throws ({jogs} jogs, {flips} flips), "
                 f"{self.status.label}, sides {sides}, x∈[{np.min(self.x):.4g}, {np.max(self.x):.4g}] m, "
                 f"final (x={self.x[-1]:.4g} m, side {int(self.side[-1])}))")
 
@@ -74,6 +80,8 @@ class Orbit:
         return tuple(o.kind for o in self.outcomes)
 
     def to_dict(self) -> dict:
+        from ..system.fixtures import fixture_to_dict
+
         return {
             "model": self.model,
             "status": self.status.label,
@@ -82,17 +90,22 @@ class Orbit:
             "omegas": [float(v) for v in self.omegas],
             "kinds": list(self.kinds),
             "outcomes": [o.to_dict() for o in self.outcomes],
+            "alpha": float(self.alpha),
+            "fixtures": [fixture_to_dict(f) for f in self.fixtures],
             **({} if self.poses is None else {"poses": [[float(c) for c in p] for p in self.poses]}),
         }
 
     @classmethod
     def from_dict(cls, d: dict) -> "Orbit":
         """Inverse of :meth:`to_dict`."""
+        from ..system.fixtures import fixture_from_dict
+
         return cls(x=np.array(d["x"], dtype=float), side=np.array(d["side"], dtype=int),
                    omegas=np.array(d["omegas"], dtype=float),
                    outcomes=tuple(ThrowOutcome.from_dict(o) for o in d["outcomes"]),
                    status=Status.from_label(d["status"]), model=d["model"],
-                   poses=None if d.get("poses") is None else tuple(tuple(float(c) for c in p) for p in d["poses"]))
+                   poses=None if d.get("poses") is None else tuple(tuple(float(c) for c in p) for p in d["poses"]),
+                   alpha=float(d.get("alpha", 0.0)), fixtures=tuple(fixture_from_dict(f) for f in d.get("fixtures", ())))
 
     def table(self) -> str:
         """One line per throw: ω, the start, the kind of throw and where it ended."""
@@ -223,6 +236,7 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
             break
         xs.append(o.x)
         ss.append(o.side)
+    first = outs[0] if outs else None
     return Orbit(
         x=np.array(xs),
         side=np.array(ss, dtype=int),
@@ -230,6 +244,8 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
         outcomes=tuple(outs),
         status=status,
         model=model,
+        alpha=first.alpha if first is not None else float(throw_kwargs.get("alpha", 0.0) or 0.0),
+        fixtures=first.fixtures if first is not None else tuple(throw_kwargs.get("fixtures", ()) or ()),
     )
 
 
@@ -288,6 +304,8 @@ def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs, st
                                                                else opts.realisation)
         run = simulate(scene, realisation, opts.settings)
         o = run.outcome(0, x0=xs[-1], side0=ss[-1], omega=w)
+        if system.alpha != 0.0 or system.fixtures:
+            o = dataclasses.replace(o, alpha=float(system.alpha), fixtures=tuple(system.fixtures))
         outs.append(o)
         gd.tick()
         if progress is not None:
@@ -300,4 +318,5 @@ def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs, st
         poses.append(tuple(float(c) for c in run.poses[0]))
         scene = run.next_scene()
     return Orbit(x=np.array(xs), side=np.array(ss, dtype=int), omegas=om[: len(outs)].copy(), outcomes=tuple(outs),
-                 status=status, model="engine", poses=tuple(poses))
+                 status=status, model="engine", poses=tuple(poses), alpha=float(system.alpha),
+                 fixtures=tuple(system.fixtures))

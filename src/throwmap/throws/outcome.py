@@ -138,7 +138,8 @@ class ThrowOutcome:
     ``unresolved`` because a search or integration used its ``max_iter`` steps
     (record ``CAP_HIT``). ``message``: why the result was refused or what limited it
     (``unresolved``, and the engines' ``unconverged``, ``penetration``, ``timeout``…);
-    ``""`` when there is nothing to say.
+    ``""`` when there is nothing to say. ``alpha`` (rad) and ``fixtures`` (Wall/Cavity) are the
+    system the throw was made in (the arm's rest angle and what stands on it).
     """
 
     x: float
@@ -174,11 +175,13 @@ class ThrowOutcome:
     penetration_max: float = 0.0
     cap_hit: bool = False
     message: str = ""
+    alpha: float = 0.0
+    fixtures: tuple = ()
 
     def __repr__(self) -> str:
         end = (f"(x={self.x:.4g} m, side {self.side}), {self.kind}" if self.ok
                else f"{self.status.label} at x={self.x:.4g} m")
-        return (f"ThrowOutcome(model={self.model!r}, omega={self.omega:g} rad/s, "
+        return (f"ThrowOutcome(model={self.model!r}, omega={self.omega:g} rad/s{_system_text(self)}, "
                 f"(x={self.x0:.4g} m, side {self.side0}) → {end}, {self.n_impacts} impacts)")
 
     @property
@@ -262,9 +265,12 @@ class ThrowOutcome:
         """JSON-ready dict (SI units; non-finite numbers become ``None``)."""
         from ..io.files import json_ready
 
+        from ..system.fixtures import fixture_to_dict
+
         out = {name: getattr(self, name) for name in self.__dataclass_fields__}
         out["status"] = self.status.label
         out["kind"] = self.kind
+        out["fixtures"] = [fixture_to_dict(f) for f in self.fixtures]
         return json_ready(out)
 
     @classmethod
@@ -277,6 +283,10 @@ class ThrowOutcome:
             v = d[name]
             if name == "status":
                 v = Status.from_label(v)
+            elif name == "fixtures":
+                from ..system.fixtures import fixture_from_dict
+
+                v = tuple(fixture_from_dict(f) for f in v)
             elif isinstance(v, list):
                 v = tuple(float("nan") if e is None else e for e in v)
             elif v is None:
@@ -292,6 +302,8 @@ class ThrowOutcome:
                  else f"{self.status.label} at x = {self.x:.6g} m")
         first = (f"  first impact: t = {self.t_flight:.6g} s, vertex {self.contact_vertex}, x = {self.contact_x:.6g} m"
                  if self.contact_vertex >= 0 or self.omega == 0.0 else "  first impact: none resolved")
+        if self.alpha or self.fixtures:
+            head += f" [{_system_text(self).lstrip(', ')}]"
         lines = [head, first,
                  f"  impacts {self.n_impacts}, flips {self.n_flips}, lift-offs {self.n_lift_offs}, slips {self.n_slips},"
                  f" friction needed {self.friction_ratio_max:.3g}"]
@@ -305,7 +317,8 @@ class BatchOutcome:
     """Results of :func:`throwmap.throw_batch`: arrays in the broadcast shape of the inputs.
 
     ``x`` (m), ``side`` (int), ``status`` (int codes of :class:`Status`) and
-    ``records`` (shape + (NREC,), per-unit-mass record, see :mod:`throwmap.kernels.codes`).
+    ``records`` (shape + (NREC,), per-unit-mass record, see :mod:`throwmap.kernels.codes`);
+    ``alpha`` (rad) and ``fixtures`` the system the throws were made in.
     """
 
     x: np.ndarray
@@ -313,11 +326,13 @@ class BatchOutcome:
     status: np.ndarray
     records: np.ndarray
     model: str
+    alpha: float = 0.0
+    fixtures: tuple = ()
 
     def __repr__(self) -> str:
         counts = ", ".join(f"{k} {v}" for k, v in self.counts().items()) or "none"
-        return (f"BatchOutcome(model={self.model!r}, {int(self.status.size)} throws, shape {tuple(self.x.shape)}: "
-                f"{counts})")
+        return (f"BatchOutcome(model={self.model!r}{_system_text(self)}, {int(self.status.size)} throws, shape "
+                f"{tuple(self.x.shape)}: {counts})")
 
     @property
     def ok(self) -> np.ndarray:
@@ -344,9 +359,12 @@ class BatchOutcome:
         """JSON-ready arrays (records as rows of the kernel layout, :mod:`throwmap.kernels.codes`)."""
         from ..io.files import json_ready
 
-        return json_ready({"model": self.model, "shape": list(self.x.shape), "x": self.x.ravel().tolist(),
-                           "side": self.side.ravel().tolist(), "status": self.status.ravel().tolist(),
-                           "records": self.records.reshape(-1, C.NREC).tolist()})
+        from ..system.fixtures import fixture_to_dict
+
+        return json_ready({"model": self.model, "alpha": self.alpha,
+                           "fixtures": [fixture_to_dict(f) for f in self.fixtures], "shape": list(self.x.shape),
+                           "x": self.x.ravel().tolist(), "side": self.side.ravel().tolist(),
+                           "status": self.status.ravel().tolist(), "records": self.records.reshape(-1, C.NREC).tolist()})
 
     @classmethod
     def from_dict(cls, d: dict) -> "BatchOutcome":
@@ -357,4 +375,21 @@ class BatchOutcome:
         return cls(x=np.array([np.nan if v is None else v for v in d["x"]], dtype=float).reshape(shape),
                    side=np.array(d["side"], dtype=np.int64).reshape(shape),
                    status=np.array(d["status"], dtype=np.int64).reshape(shape),
-                   records=rec.reshape(shape + (C.NREC,)), model=d["model"])
+                   records=rec.reshape(shape + (C.NREC,)), model=d["model"], alpha=float(d.get("alpha", 0.0)),
+                   fixtures=_fixtures_from(d.get("fixtures", ())))
+
+
+def _system_text(o) -> str:
+    """``", α=5°, fixtures Wall(…)"`` for an outcome made on a tilted arm or with fixtures, else ``""``."""
+    parts = []
+    if o.alpha:
+        parts.append(f"α={math.degrees(o.alpha):.4g}°")
+    if o.fixtures:
+        parts.append("fixtures " + ", ".join(type(f).__name__ for f in o.fixtures))
+    return "".join(", " + p for p in parts)
+
+
+def _fixtures_from(items) -> tuple:
+    from ..system.fixtures import fixture_from_dict
+
+    return tuple(fixture_from_dict(f) for f in items)

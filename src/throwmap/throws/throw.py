@@ -214,13 +214,20 @@ def throw(
     if system.alpha != 0.0:
         reason = tilted_rest_reason(part, arm, k, system.alpha, m.features.friction)
         if reason:
-            return _invalid_outcome(part, x0, k, om, m.name, reason)
+            return _in_system(_invalid_outcome(part, x0, k, om, m.name, reason), system)
     warn_if_outside_regime(part, arm)
     own = getattr(m, "outcome", None)
     if own is not None:
-        return own(part, system, x0, k, om, opts)
+        return _in_system(own(part, system, x0, k, om, opts), system)
     xn, kn, st, rec = m.throw_one(part, system, x0, k, om, opts)
-    return ThrowOutcome.from_record(part, x0, k, om, m.name, xn, kn, st, rec)
+    return _in_system(ThrowOutcome.from_record(part, x0, k, om, m.name, xn, kn, st, rec), system)
+
+
+def _in_system(out, system):
+    """``out`` stamped with the system's α and fixtures (unchanged on a level, bare arm)."""
+    if system.alpha == 0.0 and not system.fixtures:
+        return out
+    return dataclasses.replace(out, alpha=float(system.alpha), fixtures=tuple(system.fixtures))
 
 
 _KINDS = {"U": "text", "S": "bytes", "O": "object", "c": "complex", "M": "date", "m": "time-delta", "V": "record"}
@@ -319,4 +326,6 @@ def throw_batch(
         status=np.asarray(res.status, dtype=np.int64).reshape(shape),
         records=np.asarray(res.records, dtype=float).reshape(shape + (C.NREC,)),
         model=m.name,
+        alpha=float(system.alpha),
+        fixtures=tuple(system.fixtures),
     )
