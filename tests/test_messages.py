@@ -80,3 +80,17 @@ def test_shown(value, text):
 
 def test_shown_is_short():
     assert len(shown(list(range(10_000)))) <= 80
+
+
+def test_errors_survive_pickling_across_processes():
+    """An error raised in a worker comes back to the parent as itself (issue 11: a bad feed setting with
+    --workers 2 crashed the pool with a TypeError instead of the one-line error)."""
+    import pickle
+
+    from throwmap.errors import ConfigError, InvalidArmError, InvalidPartError, InvalidStateError, ThrowmapError
+
+    for cls in (ThrowmapError, InvalidStateError, InvalidPartError, InvalidArmError, ConfigError):
+        err = cls("config.settings.foo", "unknown EngineSettings field")
+        back = pickle.loads(pickle.dumps(err))
+        assert type(back) is cls and back.field == err.field and back.reason == err.reason
+        assert str(back) == str(err)

@@ -32,6 +32,11 @@ class ThrowmapError(Exception):
         self.reason = _plain(str(reason))
         super().__init__(f"{self.field}: {self.reason}")
 
+    def __reduce__(self):
+        """Pickle as ``(type, (field, reason))``: an error raised in a worker process reaches the
+        parent as itself (the default would call ``__init__`` with the message alone and fail)."""
+        return (type(self), (self.field, self.reason))
+
 
 def shown(value, limit: int = 80) -> str:
     """``value`` as an error message shows it: NumPy scalars as plain Python numbers
