@@ -91,13 +91,15 @@ def test_cavity_subcommand_registers_only_when_present(monkeypatch):
         def register(group):
             calls.append(group)
 
+    imported = []
     monkeypatch.setattr(cli_design.importlib.util, "find_spec", lambda name: object())
-    monkeypatch.setattr(cli_design.importlib, "import_module", lambda name: Fake)
+    monkeypatch.setattr(cli_design.importlib, "import_module", lambda name: imported.append(name) or Fake)
     cli_design._register_cavity("group")
-    assert calls == ["group"]
+    assert calls == ["group", "group"]  # design cavity and design passage/feed-search
+    assert [n.rsplit(".", 1)[-1] for n in imported] == ["cavity", "passage"]
     monkeypatch.setattr(cli_design.importlib.util, "find_spec", lambda name: None)
     cli_design._register_cavity("other")
-    assert calls == ["group"]
+    assert calls == ["group", "group"]
 
 
 def test_benchmark_script_runs_small(tmp_path, capsys):
