@@ -109,3 +109,17 @@ def test_inconsistent_samples_are_refused():
         MapSamples(**{**kw, "x_lo": ()})
     with pytest.raises(InvalidStateError, match="side"):
         MapSamples(**kw).panel(3)
+
+
+def test_walled_map_stops_at_the_wall(triangle):
+    """With a Wall (and no x_max) each side's samples end where its outer vertex meets the wall: every
+    sample is an admissible rest, the last one exactly at x + u_R = L."""
+    arm = tm.Arm(h=-0.01, mu=1.0, length=0.35)
+    s = throw_map_samples(triangle, arm, OMEGA, model="rigid_body", n=12, fixtures=(tm.Wall(0.05, mu=0.0),))
+    for i, k in enumerate(s.sides):
+        sl = s.panel(k)
+        assert s.x_hi[i] == pytest.approx(0.35 - float(triangle.uR[k]), abs=1e-12)
+        assert s.x[sl][-1] == pytest.approx(s.x_hi[i])
+        assert np.all(s.status[sl] != tm.Status.INVALID_START)
+    open_ = throw_map_samples(triangle, arm, OMEGA, model="rigid_body", n=12)
+    assert open_.x_hi == (0.35,) * len(open_.sides)  # no wall: the arm's length, as before

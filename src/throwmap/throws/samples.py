@@ -178,21 +178,33 @@ def throw_map_samples(part: Part, arm: Arm, omega: float, *, model: str = DEFAUL
     ``omega`` is the release rate (rad/s); ``sides`` the starting sides (default:
     every stable side); each side is sampled over ``(part.x_min(side), x_max]``
     (m), ``x_max`` defaulting to the arm length, or :data:`DEFAULT_X_MAX` for an
-    unbounded arm. Inadmissible starts get status ``INVALID_START`` rather than an
+    unbounded arm; with a :class:`~throwmap.Wall` in ``fixtures`` and ``x_max`` not given,
+    each side stops where its outer vertex meets the wall (x + u_R = L). Inadmissible starts get status ``INVALID_START`` rather than an
     error; ``throw_options`` go to :func:`throwmap.throw_batch`.
     """
     n = _check_n(n, 1)
     sides = list(part.stable_sides) if sides is None else [part.check_side(s) for s in sides]
+    from ..system.fixtures import Wall
+
+    fx = throw_options.get("fixtures") or ()
+    walled = x_max is None and arm.length is not None and any(isinstance(f, Wall) for f in (
+        fx if isinstance(fx, (tuple, list)) else (fx,)))
     if x_max is None:
         x_max = arm.length if arm.length is not None else DEFAULT_X_MAX
     x_max = float(x_max)
     if not math.isfinite(x_max):
         raise InvalidStateError("x_max", f"must be finite, got {x_max}")
     x_lo = [part.x_min(s) for s in sides]
-    x, side = _grid(sides, x_lo, [x_max] * len(sides), n)
+    x_hi = [x_max] * len(sides)
+    if walled:  # stop each side where its outer vertex meets the wall (beyond, no rest exists)
+        from .throw import start_interval
+
+        x_hi = [min(x_max, start_interval(part, arm, s)[1]) for s in sides]
+        x_hi = [hi if hi > lo else x_max for hi, lo in zip(x_hi, x_lo)]
+    x, side = _grid(sides, x_lo, x_hi, n)
     res = throw_batch(part, arm, x, side, omega, model=model, on_invalid="status", **throw_options)
     label = f"throw map, model {model!r}, ω = {omega:g} rad/s, h = {arm.h:g} m"
     info = {"kind": "throw", "part": part.name, "h_m": arm.h, "g_m_s2": arm.g, "arm_length_m": arm.length,
             "omega_rad_s": float(omega), "model": model, "x_max_m": x_max}
     return MapSamples(x=x, side=side, x_next=res.x, side_next=res.side, status=res.status, sides=sides, x_lo=x_lo,
-                      x_hi=[x_max] * len(sides), label=label, info=info)
+                      x_hi=x_hi, label=label, info=info)
