@@ -20,6 +20,7 @@ time, θ(t) (rad, CCW +), and its rate θ̇(t) (rad/s); t = 0 is the start of th
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -113,6 +114,7 @@ class RecoilThrow:
         object.__setattr__(self, "zeta", z)
 
     @staticmethod
+    @functools.lru_cache(maxsize=64)
     def _shape(zeta: float) -> tuple[float, float, float]:
         """(M, set point per unit recoil, peak-rate factor f): peak rate = (θ_s + θ_r) ω_n f."""
         sq = math.sqrt(1.0 - zeta * zeta)

@@ -63,7 +63,7 @@ def cap_bound(part) -> float:
 class FrictionCap:
     """The ``pre_solve`` hook of one run: sets each arbiter's friction to the convergent value.
 
-    ``mu_of(arbiter)`` gives the pair's Coulomb μ (may be ``inf``); ``inv``
+    ``mu_of(shapes)`` gives the pair's Coulomb μ (may be ``inf``) from the arbiter's two shapes; ``inv``
     maps ``id(body)`` to ``(1/m, 1/I)`` of each dynamic body (absent: kinematic).
     """
 
@@ -75,12 +75,13 @@ class FrictionCap:
         self.n_capped = 0
 
     def __call__(self, arbiter, space_, data):
-        mu = self.mu_of(arbiter)
+        shapes = arbiter.shapes  # one call for the pair's μ and its bodies (each arbiter property is a C round trip)
+        mu = self.mu_of(shapes)
         cps = arbiter.contact_point_set
         n = cps.normal
         nx, ny = n.x, n.y
         inv = self.inv
-        bodies = arbiter.bodies
+        bodies = (shapes[0].body, shapes[1].body)
         cap = math.inf
         for c in cps.points:
             knn = knt = 0.0
@@ -118,8 +119,8 @@ def install_friction_cap(world) -> FrictionCap | None:
     inv = {id(b): (1.0 / b.mass, 1.0 / b.moment) for b in world.bodies}
     mu_arm, mu_wall, mu_pp = world.mu_arm, world.mu_wall, world.mu_pp
 
-    def mu_of(arbiter):
-        ta, tb = (s.collision_type for s in arbiter.shapes)
+    def mu_of(shapes):
+        ta, tb = shapes[0].collision_type, shapes[1].collision_type
         if ta == PART and tb == PART:
             return mu_pp
         return mu_wall if FIXTURE in (ta, tb) else mu_arm
