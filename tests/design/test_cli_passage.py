@@ -34,12 +34,12 @@ def test_passage_json_matches_the_library():
 
 
 @pytest.mark.parametrize("args, field", [
-    (["design", "passage", "--part", PART, "--omega", "4.5", "--workers", "0"], "workers"),
+    (["design", "passage", "--part", PART, "--omega", "4.5", "--workers", "-2"], "workers"),
     (["design", "passage", "--part", PART, "--omega", "4.5", "--purity", "2"], "purity"),
     (["design", "passage", "--part", PART, "--omega", "4.5", "--step", "-1"], "step"),
     (["design", "passage", "--part", PART, "--omega", "4.5", "--side", "5"], "side"),
     (["design", "feed-search", "--n", "0"], "n"),
-    (["design", "feed-search", "--workers", "0"], "workers"),
+    (["design", "feed-search", "--workers", "-1"], "workers"),
 ])
 def test_bad_input_is_one_line_exit_2(args, field):
     res = runner.invoke(app, args)
@@ -53,3 +53,29 @@ def test_cavity_config_must_be_a_closed_cavity_run(tmp_path):
     cfg.write_text(f'part = "{PART}"\nside = 0\nomega = 4.56\nh = -0.02\nfixture = "wall"\n')
     res = runner.invoke(app, ["design", "cavity", "--config", str(cfg), "--no-verify"])
     assert res.exit_code == 2 and "config" in res.output
+
+
+@pytest.mark.parametrize("extra, field", [
+    (["--zeta", "1"], "zeta"), (["--zeta", "-1"], "zeta"), (["--zeta", "1.5"], "zeta"),
+    (["--seed", "-3"], "seed"), (["--step", "1"], "step"), (["--sigma", "0.4"], "sigma"),
+    (["--recoil", "3"], "recoil"), (["--workers", "-1"], "workers"),
+])
+def test_more_bad_passage_input(extra, field):
+    res = runner.invoke(app, ["design", "passage", "--part", PART, "--omega", "4.5"] + extra)
+    assert res.exit_code == 2, res.output
+    lines = [ln for ln in res.output.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith(f"error: {field}"), lines
+
+
+@pytest.mark.slow
+def test_short_table_still_scans_end_stops():
+    res = runner.invoke(app, ["design", "passage", "--part", PART, "--omega", "4.5", "--x-max", "0.3", "--step", "0.02",
+                              "--n", "50", "--throws", "5", "--workers", "1", "--json"])
+    assert res.exit_code in (0, 1), res.output
+    doc = json.loads(res.stdout)
+    assert doc["rows"] and all(r["X_m"] < 0.3 for r in doc["rows"])
+
+
+def test_feed_search_negative_seed():
+    res = runner.invoke(app, ["design", "feed-search", "--seed", "-1"])
+    assert res.exit_code == 2 and "seed" in res.output

@@ -45,3 +45,27 @@ def test_one_trial_runs_and_reports(tmp_path):
     assert 1 <= t.values["throws"] <= 43
     lo, hi = cfg.x_range
     assert lo - 1e-9 <= t.values["drop_x"] <= hi + 1e-9
+
+
+@pytest.mark.parametrize("change, field", [
+    ({"x_range": (0.25, 0.0)}, "config.x_range"),
+    ({"x_range": (-0.1, -0.05)}, "config.x_range"),
+    ({"x_range": (0.5, 0.6)}, "config.x_range"),
+])
+def test_bad_drop_range_is_refused_before_any_trial(change, field):
+    from throwmap.errors import InvalidStateError
+
+    cfg = read_config(FEED, CONFIG).model_copy(update=change)
+    with pytest.raises(InvalidStateError) as err:
+        FEED.setup(cfg)
+    assert err.value.field == field
+
+
+def test_side_must_be_an_integer(tmp_path):
+    from throwmap.errors import ConfigError
+
+    bad = tmp_path / "feed.toml"
+    bad.write_text(CONFIG.read_text().replace("side = 0", "side = 0.0").replace(
+        'part = "recoil_feeder.toml"', f'part = "{ROOT / "examples" / "recoil_feeder.toml"}"'))
+    with pytest.raises(ConfigError, match="side"):
+        read_config(FEED, bad)

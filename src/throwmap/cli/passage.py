@@ -21,8 +21,8 @@ __all__ = ["passage_cmd", "feed_search_cmd", "register"]
 
 
 def passage_cmd(
-    part: PartOpt = "examples/recoil_feeder.toml",
-    omega: OmegaOpt = 4.559824565181344,
+    part: PartOpt,
+    omega: OmegaOpt,
     side: SideOpt = 0,
     h: HOpt = None,
     g: GOpt = None,
@@ -37,7 +37,7 @@ def passage_cmd(
     seed: Annotated[int, typer.Option("--seed", help="Seed of the chains.")] = 0,
     purity: Annotated[float, typer.Option("--purity", help="Least share first on the target side in the window.")]
     = 0.99,
-    workers: Annotated[int, typer.Option("--workers", help="Engine processes for the table (≥ 1).")] = 2,
+    workers: Annotated[int, typer.Option("--workers", help="Engine processes for the table (0: all cores).")] = 0,
     as_json: JsonOpt = False,
 ) -> None:
     """Find where an end stop feeds only the target side under the recoil arm (first passage)."""
@@ -45,8 +45,7 @@ def passage_cmd(
     from ..errors import InvalidStateError
 
     with guard():
-        if workers < 1:
-            raise InvalidStateError("workers", f"must be ≥ 1, got {workers}")
+        workers = _workers(workers)
         if not 0.0 <= purity <= 1.0:
             raise InvalidStateError("purity", f"must be in [0, 1], got {purity}")
         if throws < 1:
@@ -82,7 +81,7 @@ def feed_search_cmd(
     = 10,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the candidates.")] = 0,
     purity: Annotated[float, typer.Option("--purity", help="Least share first on the fed side in a window.")] = 0.99,
-    workers: Annotated[int, typer.Option("--workers", help="Engine processes (≥ 1).")] = 2,
+    workers: Annotated[int, typer.Option("--workers", help="Engine processes (0: all cores).")] = 0,
     as_json: JsonOpt = False,
 ) -> None:
     """Search feeders for the recoil arm: the draft's plate + lead, ω, h (first-passage screen)."""
@@ -94,8 +93,7 @@ def feed_search_cmd(
 
     hits = []
     with guard():
-        if workers < 1:
-            raise InvalidStateError("workers", f"must be ≥ 1, got {workers}")
+        workers = _workers(workers)
         if not 0.0 <= purity <= 1.0:
             raise InvalidStateError("purity", f"must be in [0, 1], got {purity}")
         out = []
@@ -119,6 +117,18 @@ def feed_search_cmd(
                            f"{wins or 'no window'}")
     if not hits:
         raise typer.Exit(1)
+
+
+def _workers(workers: int) -> int:
+    """``--workers``: 0 means all cores; more than the cores are not started."""
+    import os
+
+    from ..errors import InvalidStateError
+
+    if workers < 0:
+        raise InvalidStateError("workers", f"must be ≥ 0 (0: all cores), got {workers}")
+    cores = os.cpu_count() or 1
+    return cores if workers == 0 else min(workers, cores)
 
 
 def register(group: typer.Typer) -> None:

@@ -65,8 +65,10 @@ def search_feeders(plate: Part, *, n: int = 10, seed: int = 0, masses=(0.03, 0.0
                    step: float = 0.005, workers: int | None = None, progress=None):
     """Yield ``n`` :class:`FeedCandidate` (see the module docstring; ``step`` the table's grid, m);
     ``progress(i, n)`` after each."""
-    if not (isinstance(n, int) and 1 <= n <= 10_000):
+    if isinstance(n, bool) or not (isinstance(n, int) and 1 <= n <= 10_000):
         raise InvalidStateError("n", f"must be an integer in [1, 10000], got {n!r}")
+    if isinstance(seed, bool) or not (isinstance(seed, int) and seed >= 0):
+        raise InvalidStateError("seed", f"must be an integer ≥ 0, got {seed!r}")
     for name, (lo, hi) in (("omega_range", omega_range), ("h_range", h_range)):
         if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
             raise InvalidStateError(name, f"must be (low, high) with low ≤ high, got {(lo, hi)!r}")

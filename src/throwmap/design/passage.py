@@ -73,11 +73,20 @@ def recoil_table(part: Part, arm: Arm, omega: float, *, sigma: float = 0.03, ste
     from ..engine.api import engine_batch
     from ..engine.realisation import RecoilThrow
 
-    for name, v in (("omega", omega), ("sigma", sigma), ("step", step), ("x_max", x_max)):
-        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+    for name, v in (("omega", omega), ("sigma", sigma), ("step", step), ("x_max", x_max), ("recoil", recoil),
+                    ("zeta", zeta)):
+        if isinstance(v, bool) or not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise InvalidStateError(name, f"must be a finite number > 0, got {v!r}")
+    if sigma >= 1.0 / 3.0:
+        raise InvalidStateError("sigma", f"must be < 1/3 (the table throws at ω(1 − 3σ) > 0), got {sigma!r}")
+    if zeta >= 1.0:
+        raise InvalidStateError("zeta", f"must be < 1 (the recoil loop is underdamped), got {zeta!r}")
+    if recoil > math.pi / 4:
+        raise InvalidStateError("recoil", f"must be ≤ π/4 rad (45°), got {recoil!r}")
     if x_max / step > 5000:
         raise InvalidStateError("step", f"{x_max / step:.0f} grid points per side: use a step ≥ x_max/5000")
+    if x_max / step < 10:
+        raise InvalidStateError("step", f"must be ≤ x_max/10 = {x_max / 10:g} m (at least 10 grid points), got {step!r}")
     plain = Arm(h=arm.h, g=arm.g, length=None, mu=arm.mu, back=arm.back)
     xs = np.arange(0.0, x_max, step)
     sides = tuple(part.stable_sides)
@@ -124,10 +133,10 @@ class Passage:
     def window(self, purity: float = 0.99) -> list:
         """The X (m) where ``good ≥ purity``, ``wrong == 0`` and the target side holds."""
         ok = (self.good >= purity) & (self.wrong == 0) & self.holds
-        return [float(x) for x in self.X[ok]]
+        return [round(float(x), 9) for x in self.X[ok]]
 
     def rows(self) -> list[dict]:
-        return [{"X_m": float(x), "good": float(g), "wrong": float(w), "holds": bool(h)}
+        return [{"X_m": round(float(x), 9), "good": float(g), "wrong": float(w), "holds": bool(h)}
                 for x, g, w, h in zip(self.X, self.good, self.wrong, self.holds)]
 
 
@@ -152,9 +161,18 @@ def first_passage(part: Part, table: RecoilTable, target: int, *, n: int = 3000,
     from ..throws.outcome import Status
 
     target = part.check_side(target, field="target")
-    if not (isinstance(n, int) and 1 <= n <= 1_000_000):
+    if isinstance(n, bool) or not (isinstance(n, int) and 1 <= n <= 1_000_000):
         raise InvalidStateError("n", f"must be an integer in [1, 1000000], got {n!r}")
-    X = np.arange(0.30, float(table.x[-1]), 0.01) if X is None else np.asarray(X, dtype=float)
+    if isinstance(throws, bool) or not (isinstance(throws, int) and throws >= 1):
+        raise InvalidStateError("throws", f"must be an integer ≥ 1, got {throws!r}")
+    if isinstance(seed, bool) or not (isinstance(seed, (int, np.integer)) and seed >= 0):
+        raise InvalidStateError("seed", f"must be an integer ≥ 0, got {seed!r}")
+    if X is None:  # end stops from 30 cm (5 cm on a short table) to the table's end, every cm
+        x_end = float(table.x[-1])
+        X = np.arange(0.30 if x_end > 0.35 else 0.05, x_end, 0.01)
+    X = np.asarray(X, dtype=float)
+    if X.size == 0 or not np.all(np.isfinite(X)):
+        raise InvalidStateError("X", f"needs at least one finite end-stop position inside the table (x ≤ {table.x[-1]:g} m)")
     rng = np.random.default_rng(seed)
     uL, uR = np.asarray(part.uL, dtype=float), np.asarray(part.uR, dtype=float)
     sides = np.asarray(part.stable_sides)

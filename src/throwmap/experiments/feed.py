@@ -131,7 +131,7 @@ class FeedConfig(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
     part: str = Field("feeder", description="'feeder' (the feeder design) or a built-in part name / part file")
-    side: int | None = Field(None, ge=0, description="target side (None: the feeder design's)")
+    side: int | None = Field(None, ge=0, strict=True, description="target side (None: the feeder design's)")
     omega: Finite | None = Field(None, gt=0, description="nominal release rate, rad/s (None: the feeder design's)")
     h: Finite | None = Field(None, description="arm surface height, m (None: the feeder design's)")
     mu: float | None = Field(1.0, ge=0, description="nominal arm–part friction (None: ∞, no slip)")
@@ -272,6 +272,18 @@ def _settings(cfg: FeedConfig):
         raise InvalidStateError(f"config.{err.field}", err.reason) from None
 
 
+def _check_x_range(cfg: FeedConfig, arm) -> None:
+    """``x_range`` (the drop's CM abscissa, m) must be increasing and overlap the arm [−back, length]."""
+    if cfg.x_range is None:
+        return
+    lo, hi = cfg.x_range
+    if not lo < hi:
+        raise InvalidStateError("config.x_range", f"must be (low, high) with low < high, got {list(cfg.x_range)}")
+    if hi <= -arm.back or lo >= arm.length:
+        raise InvalidStateError("config.x_range", f"must overlap the arm [{-arm.back:g}, {arm.length:g}] m, got "
+                                                  f"{list(cfg.x_range)}")
+
+
 class Feed:
     """Drop, then throw until captured in the cavity on the target side and held (see the module docstring)."""
 
@@ -284,9 +296,12 @@ class Feed:
         """``(part, arm with its length, fixtures, omega, side, design or None)`` of a config."""
         part, arm, omega, side, _ = _base(cfg)
         if cfg.variant == "open":
-            return part, dataclasses.replace(arm, length=open_length(cfg)), (), omega, side, None
-        d = build_design(cfg) if cfg.fixture == "cavity" else build_wall(cfg)
-        return part, d.arm, d.fixtures, omega, side, d
+            out = part, dataclasses.replace(arm, length=open_length(cfg)), (), omega, side, None
+        else:
+            d = build_design(cfg) if cfg.fixture == "cavity" else build_wall(cfg)
+            out = part, d.arm, d.fixtures, omega, side, d
+        _check_x_range(cfg, out[1])
+        return out
 
     def trial(self, cfg: FeedConfig, index: int, rng) -> Trial:
         from ..engine import simulate
