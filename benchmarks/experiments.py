@@ -14,6 +14,7 @@ Prints the machine and a table; ``--json PATH`` also writes the figures; ``--qui
 runs tiny sizes (the smoke test). Usage::
 
     python benchmarks/experiments.py [--experiments settle,feed] [--n 40] [--json experiments.json]
+    python benchmarks/experiments.py --experiments feed --config examples/feed_recoil.toml --workers 2
 """
 
 from __future__ import annotations
@@ -48,11 +49,16 @@ def engine_throw_s(repeat: int) -> float:
     return statistics.median(times)
 
 
-def bench_experiment(name: str, n: int, workers: tuple[int, ...], ref_s: float) -> dict:
+def bench_experiment(name: str, n: int, workers: tuple[int, ...], ref_s: float, config: Path | None = None) -> dict:
     exp = get_experiment(name)
-    cfg = exp.config_type()
+    if config is None:
+        cfg = exp.config_type()
+    else:
+        from throwmap.experiments.base import read_config
+
+        cfg = read_config(exp, config)
     exp.trial(cfg, 0, trial_generator(0, 0))  # warm-up (imports, caches)
-    out = {"experiment": name, "n": n, "runs": []}
+    out = {"experiment": name, "config": None if config is None else str(config), "n": n, "runs": []}
     for w in workers:
         t, c0 = time.perf_counter(), os.times()
         r = run_experiment(name, cfg, n=n, seed=0, workers=w, force=True)
@@ -74,12 +80,16 @@ def main(argv=None) -> dict:
     ap.add_argument("--repeat", type=int, default=20, help="engine throws timed for the reference")
     ap.add_argument("--json", type=Path, default=None, help="also write the figures here")
     ap.add_argument("--quick", action="store_true", help="tiny sizes (smoke test)")
+    ap.add_argument("--config", type=Path, default=None,
+                    help="a config file for the (single) experiment, e.g. examples/feed_recoil.toml (default: built-in)")
     a = ap.parse_args(argv)
     if a.quick:
         a.n, a.repeat = 4, 2
     if a.n < 1 or a.repeat < 1:
         ap.error("--n and --repeat must be ≥ 1")
     names = tuple(s.strip() for s in a.experiments.split(",")) if a.experiments else experiment_names()
+    if a.config is not None and len(names) != 1:
+        ap.error("--config needs exactly one experiment (--experiments NAME)")
     workers = tuple(int(w) for w in a.workers.split(","))
     ref = engine_throw_s(a.repeat)
     machine = {"cpu_count": os.cpu_count(), "python": sys.version.split()[0], "throwmap": tm.__version__}
@@ -89,7 +99,7 @@ def main(argv=None) -> dict:
           f"{'CPU in throws':>14}  target ≤ {TARGET_S / 60:.0f} min on 2 workers")
     results = []
     for name in names:
-        res = bench_experiment(name, a.n, workers, ref)
+        res = bench_experiment(name, a.n, workers, ref, a.config)
         results.append(res)
         for run in res["runs"]:
             proj = run["projected_1000_s"]
