@@ -110,3 +110,11 @@ def test_bad_inputs_name_the_field():
         design_cavity(fd.part, arm, fd.omega, 0, realisation="catapult")
     with pytest.raises(InvalidStateError, match="end_gap"):
         design_cavity(fd.part, arm, fd.omega, 0, end_gap=0.5)
+
+
+def test_check_text_says_one_throw_and_given_length():
+    from throwmap.design.cavity import Check
+
+    assert "1 throw (" in str(Check("engine_capture", True, 1.0, "x", unit="throws"))
+    assert "2 throws (" in str(Check("engine_capture", True, 2.0, "x", unit="throws"))
+    assert "0 throws (" in str(Check("engine_capture", True, 0.0, "x", unit="throws"))

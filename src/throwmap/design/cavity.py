@@ -76,7 +76,8 @@ class Check:
     unit: str = "m"
 
     def __str__(self) -> str:
-        v = f"{100 * self.value:.2f} cm" if self.unit == "m" else f"{self.value:.4g} {self.unit}".strip()
+        unit = self.unit[:-1] if self.unit == "throws" and self.value == 1 else self.unit  # 1 throw, 0/2 throws
+        v = f"{100 * self.value:.2f} cm" if self.unit == "m" else f"{self.value:.4g} {unit}".strip()
         return f"{'PASS' if self.passed else 'FAIL'} {self.name}: {v} ({self.requirement})"
 
     def to_dict(self) -> dict:
@@ -347,7 +348,12 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
                "floor_m": floor, "ramp_m": ramp, "depth_m": depth, "end_gap_m": end_gap, "end_angle_rad": end_angle,
                "lip_x_m": L - cavity.span, "x_hold_m": x_c, "y_hold_m": y_c, "rise_bound_m": rise, "wall_height_m": H,
                "drift_speed_m_s": -y_c * omega, "sweep_m": sweep}
-    where = ((f"L in the middle of the widest window where only side {side} stays at the end wall: there the throw is a jog "
+    if length is not None and runs:
+        placed = (f"L = {100 * L:.2f} cm as given, {'inside' if L_lo <= L <= L_hi else 'OUTSIDE'} the widest window "
+                  f"[{100 * L_lo:.2f}, {100 * L_hi:.2f}] cm")
+    else:
+        placed = "L in the middle of the widest window" if place == 0.5 else f"L at {place:g} of the widest window"
+    where = ((f"{placed} where only side {side} stays at the end wall: there the throw is a jog "
               f"for every ω in [{w_lo:.3g}, {w_hi:.3g}] rad/s (−{z_release:g}σ … +{z_hold:g}σ) and a flip for every other side "
               f"(the throw map on the cavity's floor, {realisation}, 5 mm grid, one step of margin)")
              if runs else
