@@ -69,3 +69,13 @@ def test_side_must_be_an_integer(tmp_path):
         'part = "recoil_feeder.toml"', f'part = "{ROOT / "examples" / "recoil_feeder.toml"}"'))
     with pytest.raises(ConfigError, match="side"):
         read_config(FEED, bad)
+
+
+def test_missing_part_file_names_config_part(tmp_path):
+    from throwmap.errors import ThrowmapError
+
+    cfg = tmp_path / "feed.toml"
+    cfg.write_text('part = "nowhere.toml"\nside = 0\nomega = 4.5\nh = -0.02\n')
+    with pytest.raises(ThrowmapError) as err:
+        FEED.setup(read_config(FEED, cfg))
+    assert err.value.field == "config.part" and "next to the config file" in err.value.reason

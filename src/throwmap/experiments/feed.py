@@ -49,7 +49,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, ThrowmapError
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, drop_part
 from .noise import NoiseConfig
@@ -170,7 +170,14 @@ def _base(cfg: FeedConfig):
     else:
         from ..io.config import resolve_part
 
-        part = resolve_part(cfg.part).part
+        try:
+            part = resolve_part(cfg.part).part
+        except ThrowmapError as err:  # name the config key; a file error says where a relative path was looked for
+            where = (" (a relative path is looked for in the working directory, then next to the config file)"
+                     if err.field == "file" else "")
+            if err.field in ("file", "part"):
+                raise type(err)("config.part", err.reason + where) from None
+            raise type(err)(err.field, f"{err.reason} (in config.part = {cfg.part!r})") from None
         for name in ("h", "omega", "side"):
             if getattr(cfg, name) is None:
                 raise InvalidStateError(f"config.{name}", f"must be given for part {cfg.part!r} (only 'feeder' has defaults)")
