@@ -132,6 +132,10 @@ def install_friction_cap(world) -> FrictionCap | None:
         fast = _single_part_hook(world, mu_arm)
         if fast is not None:
             return fast
+    elif world.n == 1 and not (mu_arm <= bound and mu_wall <= bound):
+        fast = _single_part_fixture_hook(world, mu_arm, mu_wall, FIXTURE)
+        if fast is not None:
+            return fast
     hook = FrictionCap(inv, mu_of)
     if world.n == 1 and mu_arm <= bound and mu_wall <= bound:
         return None
@@ -182,3 +186,54 @@ def _single_part_hook(world, mu: float):
     except (ImportError, AttributeError):  # pragma: no cover - another pymunk
         return None
     return _SinglePartCap(lib, body, world.rho2[0], mu)
+
+
+class _SinglePartFixtureCap:
+    """:class:`FrictionCap` for one part on an arm with fixtures, on Chipmunk's raw calls (the same formula:
+    the part's contact point, μ of the arm or of the fixture the other shape belongs to; ~3× cheaper)."""
+
+    __slots__ = ("lib", "body", "rho2", "mu", "mu_fix", "fix", "sa", "sb", "n_capped")
+
+    def __init__(self, lib, ffi, body, rho2: float, mu: float, mu_fix: float, fix: int):
+        self.lib, self.body, self.rho2, self.mu, self.mu_fix, self.fix = lib, body, rho2, mu, mu_fix, fix
+        self.sa, self.sb = ffi.new("cpShape *[1]"), ffi.new("cpShape *[1]")
+        self.n_capped = 0
+
+    def __call__(self, arbiter, space_, data):
+        lib = self.lib
+        arb = arbiter._arbiter
+        lib.cpArbiterGetShapes(arb, self.sa, self.sb)
+        a, b = self.sa[0], self.sb[0]
+        fix = self.fix
+        mu = self.mu_fix if (lib.cpShapeGetCollisionType(a) == fix or lib.cpShapeGetCollisionType(b) == fix) else self.mu
+        on_a = lib.cpShapeGetBody(a) == self.body
+        point = lib.cpArbiterGetPointA if on_a else lib.cpArbiterGetPointB
+        n = lib.cpArbiterGetNormal(arb)
+        nx, ny = n.x, n.y
+        q = lib.cpBodyGetPosition(self.body)
+        rho2 = self.rho2
+        cap = math.inf
+        for i in range(lib.cpArbiterGetCount(arb)):
+            p = point(arb, i)
+            rx, ry = p.x - q.x, p.y - q.y
+            rn = rx * ny - ry * nx
+            rt = rx * nx + ry * ny
+            if rn * rt != 0.0:  # per unit mass: K_nn = 1 + rn²/ρ², K_nt = rn rt/ρ²
+                cap = min(cap, CAP * (rho2 + rn * rn) / abs(rn * rt))
+        if cap < mu:
+            self.n_capped += 1
+            lib.cpArbiterSetFriction(arb, cap)
+        else:
+            lib.cpArbiterSetFriction(arb, mu if math.isfinite(mu) else 1.0e30)
+
+
+def _single_part_fixture_hook(world, mu_arm: float, mu_fix: float, fix: int):
+    """The raw-call hook for one part on an arm with fixtures, or None where pymunk's cffi binding is missing."""
+    try:
+        from pymunk._chipmunk import ffi, lib
+
+        lib.cpArbiterGetShapes, lib.cpShapeGetCollisionType, lib.cpShapeGetBody  # noqa: B018
+        body = world.bodies[0]._body
+    except (ImportError, AttributeError):  # pragma: no cover - another pymunk
+        return None
+    return _SinglePartFixtureCap(lib, ffi, body, world.rho2[0], mu_arm, mu_fix, fix)
