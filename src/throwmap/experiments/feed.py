@@ -296,7 +296,8 @@ class Feed:
 
     name = "feed"
     summary = ("drop the designed part, throw it (3 % ω jitter, recoil) until it lies in the cavity on the target "
-               "side, then hold it for 50 more throws (variant 'open': fed off the end, orientation purity)")
+               "side, then hold it for 50 more throws (variant 'open': fed off the end, orientation purity); "
+               "the ≥ 99 % recoil feeder: CONFIG examples/feed_recoil.toml")
     config_type = FeedConfig
 
     def setup(self, cfg: FeedConfig):
