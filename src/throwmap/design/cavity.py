@@ -49,6 +49,7 @@ from ..errors import InvalidStateError, shown
 from ..system.arm import Arm
 from ..system.fixtures import Cavity, Wall
 from ..system.part import Part
+from .checks import Check
 
 __all__ = [
     "CAPTURE_TILT",
@@ -63,27 +64,6 @@ __all__ = [
 
 CAPTURE_TILT = 0.05
 """rad: a part in the cavity within this angle of the target side's resting orientation lies on it."""
-
-
-@dataclass(frozen=True, slots=True)
-class Check:
-    """One named pass/fail of a design with the figure it was decided on (SI, ``unit``)."""
-
-    name: str
-    passed: bool
-    value: float
-    requirement: str
-    unit: str = "m"
-
-    def __str__(self) -> str:
-        unit = self.unit[:-1] if self.unit == "throws" and self.value == 1 else self.unit  # 1 throw, 0/2 throws
-        v = f"{100 * self.value:.2f} cm" if self.unit == "m" else f"{self.value:.4g} {unit}".strip()
-        return f"{'PASS' if self.passed else 'FAIL'} {self.name}: {v} ({self.requirement})"
-
-    def to_dict(self) -> dict:
-        v = self.value
-        return {"name": self.name, "passed": bool(self.passed), "value": v if math.isfinite(v) else None,
-                "unit": self.unit, "requirement": self.requirement}
 
 
 def _realisation(kind: str, omega: float, recoil: float, zeta: float):
