@@ -152,25 +152,30 @@ class _SinglePartCap:
         self.n_capped = 0
 
     def __call__(self, arbiter, space_, data):
-        lib = self.lib
-        arb = arbiter._arbiter
-        n = lib.cpArbiterGetNormal(arb)
-        nx, ny = n.x, n.y
-        q = lib.cpBodyGetPosition(self.body)
-        rho2 = self.rho2
-        cap = math.inf
-        for i in range(lib.cpArbiterGetCount(arb)):
-            p = lib.cpArbiterGetPointA(arb, i)
-            rx, ry = p.x - q.x, p.y - q.y
-            rn = rx * ny - ry * nx
-            rt = rx * nx + ry * ny
-            if rn * rt != 0.0:  # per unit mass: K_nn = 1 + rn²/ρ², K_nt = rn rt/ρ²
-                cap = min(cap, CAP * (rho2 + rn * rn) / abs(rn * rt))
-        if cap < self.mu:
-            self.n_capped += 1
-            lib.cpArbiterSetFriction(arb, cap)
-        else:
-            lib.cpArbiterSetFriction(arb, self.mu if math.isfinite(self.mu) else 1.0e30)
+        _set_capped(self, arbiter._arbiter, self.lib.cpArbiterGetPointA, self.mu)
+
+
+def _set_capped(hook, arb, point, mu: float) -> None:
+    """Set raw arbiter ``arb``'s friction to min(μ, the cap over the part's contact points ``point(arb, i)``)
+    (one part: ``hook.body``, ``hook.rho2``); count a capped solve in ``hook.n_capped``."""
+    lib = hook.lib
+    n = lib.cpArbiterGetNormal(arb)
+    nx, ny = n.x, n.y
+    q = lib.cpBodyGetPosition(hook.body)
+    rho2 = hook.rho2
+    cap = math.inf
+    for i in range(lib.cpArbiterGetCount(arb)):
+        p = point(arb, i)
+        rx, ry = p.x - q.x, p.y - q.y
+        rn = rx * ny - ry * nx
+        rt = rx * nx + ry * ny
+        if rn * rt != 0.0:  # per unit mass: K_nn = 1 + rn²/ρ², K_nt = rn rt/ρ²
+            cap = min(cap, CAP * (rho2 + rn * rn) / abs(rn * rt))
+    if cap < mu:
+        hook.n_capped += 1
+        lib.cpArbiterSetFriction(arb, cap)
+    else:
+        lib.cpArbiterSetFriction(arb, mu if math.isfinite(mu) else 1.0e30)
 
 
 def _single_part_hook(world, mu: float):
@@ -206,25 +211,8 @@ class _SinglePartFixtureCap:
         a, b = self.sa[0], self.sb[0]
         fix = self.fix
         mu = self.mu_fix if (lib.cpShapeGetCollisionType(a) == fix or lib.cpShapeGetCollisionType(b) == fix) else self.mu
-        on_a = lib.cpShapeGetBody(a) == self.body
-        point = lib.cpArbiterGetPointA if on_a else lib.cpArbiterGetPointB
-        n = lib.cpArbiterGetNormal(arb)
-        nx, ny = n.x, n.y
-        q = lib.cpBodyGetPosition(self.body)
-        rho2 = self.rho2
-        cap = math.inf
-        for i in range(lib.cpArbiterGetCount(arb)):
-            p = point(arb, i)
-            rx, ry = p.x - q.x, p.y - q.y
-            rn = rx * ny - ry * nx
-            rt = rx * nx + ry * ny
-            if rn * rt != 0.0:  # per unit mass: K_nn = 1 + rn²/ρ², K_nt = rn rt/ρ²
-                cap = min(cap, CAP * (rho2 + rn * rn) / abs(rn * rt))
-        if cap < mu:
-            self.n_capped += 1
-            lib.cpArbiterSetFriction(arb, cap)
-        else:
-            lib.cpArbiterSetFriction(arb, mu if math.isfinite(mu) else 1.0e30)
+        point = lib.cpArbiterGetPointA if lib.cpShapeGetBody(a) == self.body else lib.cpArbiterGetPointB
+        _set_capped(self, arb, point, mu)
 
 
 def _single_part_fixture_hook(world, mu_arm: float, mu_fix: float, fix: int):
