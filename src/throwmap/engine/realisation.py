@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["ImpulseThrow", "FiniteThrow", "RecoilThrow", "TiltTo", "check_realisation"]
+__all__ = ["ImpulseThrow", "FiniteThrow", "RecoilThrow", "TiltTo", "angle_function", "check_realisation"]
 
 
 def _pos(value, field: str, *, allow_zero=False) -> float:
@@ -218,6 +218,41 @@ class TiltTo:
 
     def rate(self, t: float) -> float:
         return math.copysign(self.rate_, self.delta) if 0.0 <= t < self.duration else 0.0
+
+
+def _recoil_angle(r: RecoilThrow):
+    """θ(t) of ``r`` as a closure over its constants: the same floating-point operations as
+    :meth:`RecoilThrow.angle` in the same order (bit-identical), without its per-call property look-ups."""
+    cos, exp, pi = math.cos, math.exp, math.pi
+    z, wn, wd = r.zeta, r.omega_n, r.omega_d
+    sq = math.sqrt(1.0 - z * z)
+    setpoint = r.setpoint
+    a0 = -r.recoil - setpoint
+    k_e, z_sq = -z * wn, z / sq
+    t_rec, half_rec = r.t_recoil, -0.5 * r.recoil
+    t_ret = r.t_peak + r.hold
+    th0_half = r._pd(t_ret - t_rec)[0] * 0.5
+    t_end, t_return = t_ret + r.t_return, r.t_return
+
+    def angle(t: float) -> float:
+        if t <= 0.0:
+            return 0.0
+        if t < t_rec:
+            return half_rec * (1.0 - cos(pi * t / t_rec))
+        if t < t_ret:
+            tau = t - t_rec
+            return setpoint + a0 * exp(k_e * tau) * (cos(wd * tau) + z_sq * math.sin(wd * tau))
+        if t < t_end:
+            return th0_half * (1.0 + cos(pi * (t - t_ret) / t_return))
+        return 0.0
+
+    return angle
+
+
+def angle_function(r):
+    """θ(t) (rad) of realisation ``r`` as a plain callable, equal bit for bit to ``r.angle`` (the run loop
+    calls it once per step while the arm moves; :class:`RecoilThrow`'s is a closure over its constants)."""
+    return _recoil_angle(r) if isinstance(r, RecoilThrow) else r.angle
 
 
 def check_realisation(r):

@@ -9,7 +9,7 @@ from ...errors import InvalidStateError, shown
 from ...kernels import codes as C
 from ...throws.outcome import Status
 from ..reach import lengths, unbounded_message
-from ..realisation import ImpulseThrow, check_realisation
+from ..realisation import ImpulseThrow, angle_function, check_realisation
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
@@ -132,6 +132,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     alpha = scene.alpha
     end_alpha = alpha + (realisation.delta if hasattr(realisation, "delta") else 0.0)
     arm_stop = realisation.duration
+    angle = angle_function(realisation)
     omega_arm_bound = abs(getattr(realisation, "omega", 0.0)) + abs(getattr(realisation, "peak_rate", 0.0)) \
         + abs(getattr(realisation, "rate_", 0.0))
     n_parts = w.n
@@ -186,7 +187,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 if tau > 4 * dt:
                     t += tau
                     contacts.now = t
-                    leap(w, tau, alpha + realisation.angle(t))
+                    leap(w, tau, alpha + angle(t))
                     n_leaps += 1
                     # a part falling past an edge of the arm has left it: say so now, not at t_max
                     aa = cp.angle(w.arm_h)
@@ -205,7 +206,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                   and contacts.all_touching())
         h_step = coarse_dt if coarse else dt
         n_inner = max(1, int(math.ceil((min(next_check, t_max) - t) / h_step - 1e-9)))
-        t = fixed_steps(w, contacts, t, n_inner, h_step, realisation, alpha, arm_stop, end_alpha)
+        t = fixed_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
         n_steps += n_inner
         if coarse:
             n_coarse += n_inner

@@ -53,13 +53,14 @@ def leap(w: World, tau: float, arm_angle: float):
     w.space.reindex_shapes_for_body(w.arm)
 
 
-def fixed_steps(w: World, contacts, t: float, n: int, step: float, realisation, alpha: float, arm_stop: float,
+def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha: float, arm_stop: float,
                 end_alpha: float) -> float:
     """Take ``n`` pymunk steps of ``step`` (s) from time ``t`` (s); return the new time.
 
-    While t < ``arm_stop`` the arm follows α + θ(t) (``alpha``, rad); after it, it
-    is parked at ``end_alpha`` once. First impacts get their post-impact record
-    after the step they happened in.
+    While t < ``arm_stop`` the arm follows α + θ(t) (``alpha``, rad; ``angle`` is θ, e.g.
+    :func:`throwmap.engine.realisation.angle_function`); after it, it is parked at ``end_alpha`` once.
+    θ(t + step) of one step is reused as θ(t) of the next (the same float: t advances by ``t += step``).
+    First impacts get their post-impact record after the step they happened in.
     """
     cp = w.cp
     space_step, space_h, arm_h = cp.step, w.space_h, w.arm_h
@@ -72,16 +73,20 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, realisation, 
             if contacts.need_post:
                 contacts.record_post(step)
         return t
+    set_angle, set_spin = cp.set_angle, cp.set_spin
+    a_next = None  # α + θ(t) for the current t, carried over from the previous step
     for _ in range(n):
         if arm_moving:
-            a_now = alpha + realisation.angle(t)
-            cp.set_angle(arm_h, a_now)
-            w.arm_w = (alpha + realisation.angle(t + step) - a_now) / step
-            cp.set_spin(arm_h, w.arm_w)
-            arm_moving = t + step < arm_stop
+            a_now = alpha + angle(t) if a_next is None else a_next
+            t_next = t + step
+            a_next = alpha + angle(t_next)
+            set_angle(arm_h, a_now)
+            w.arm_w = (a_next - a_now) / step
+            set_spin(arm_h, w.arm_w)
+            arm_moving = t_next < arm_stop
         elif w.arm_w != 0.0:
-            cp.set_angle(arm_h, end_alpha)
-            cp.set_spin(arm_h, 0.0)
+            set_angle(arm_h, end_alpha)
+            set_spin(arm_h, 0.0)
             w.arm_w = 0.0
         contacts.now = t + step
         space_step(space_h, step)
