@@ -195,24 +195,63 @@ def _single_part_hook(world, mu: float):
 
 class _SinglePartFixtureCap:
     """:class:`FrictionCap` for one part on an arm with fixtures, on Chipmunk's raw calls (the same formula:
-    the part's contact point, μ of the arm or of the fixture the other shape belongs to; ~3× cheaper)."""
+    the part's contact point, μ of the arm or of the fixture the other shape belongs to; ~3× cheaper).
 
-    __slots__ = ("lib", "body", "rho2", "mu", "mu_fix", "fix", "sa", "sb", "n_capped")
+    Fast path (``by_u``): the pair's μ is read back from the arbiter, whose friction Chipmunk resets every step
+    to the product of its shapes' (arm or fixture shape: :func:`~throwmap.engine.settings.engine_mu` of the
+    pair's μ; part shape: 1.0, so the product is that value exactly), and the contact points and normal come
+    from one ``cpArbiterGetContactPointSet`` call: four C calls instead of nine, the same numbers (its
+    ``pointA`` is the point of the body ``cpArbiterGetBodies`` names first). ``by_u`` is None (the shape
+    look-up instead) where two different μ map to the same engine value (∞ and :data:`NO_SLIP_MU`)."""
+
+    __slots__ = ("lib", "body", "rho2", "mu", "mu_fix", "fix", "sa", "sb", "ba", "bb", "by_u", "n_capped")
 
     def __init__(self, lib, ffi, body, rho2: float, mu: float, mu_fix: float, fix: int):
+        from ..settings import engine_mu
+
         self.lib, self.body, self.rho2, self.mu, self.mu_fix, self.fix = lib, body, rho2, mu, mu_fix, fix
         self.sa, self.sb = ffi.new("cpShape *[1]"), ffi.new("cpShape *[1]")
+        self.ba, self.bb = ffi.new("cpBody *[1]"), ffi.new("cpBody *[1]")
+        u_arm, u_fix = engine_mu(mu), engine_mu(mu_fix)
+        self.by_u = None if (u_arm == u_fix and mu != mu_fix) else {u_arm: mu, u_fix: mu_fix}
         self.n_capped = 0
 
     def __call__(self, arbiter, space_, data):
         lib = self.lib
         arb = arbiter._arbiter
-        lib.cpArbiterGetShapes(arb, self.sa, self.sb)
-        a, b = self.sa[0], self.sb[0]
-        fix = self.fix
-        mu = self.mu_fix if (lib.cpShapeGetCollisionType(a) == fix or lib.cpShapeGetCollisionType(b) == fix) else self.mu
-        point = lib.cpArbiterGetPointA if lib.cpShapeGetBody(a) == self.body else lib.cpArbiterGetPointB
-        _set_capped(self, arb, point, mu)
+        mu = None if self.by_u is None else self.by_u.get(lib.cpArbiterGetFriction(arb))
+        if mu is None:  # the shapes say which μ (and which body is the part)
+            lib.cpArbiterGetShapes(arb, self.sa, self.sb)
+            a, b = self.sa[0], self.sb[0]
+            fix = self.fix
+            mu = self.mu_fix if (lib.cpShapeGetCollisionType(a) == fix or lib.cpShapeGetCollisionType(b) == fix) \
+                else self.mu
+            point = lib.cpArbiterGetPointA if lib.cpShapeGetBody(a) == self.body else lib.cpArbiterGetPointB
+            _set_capped(self, arb, point, mu)
+            return
+        lib.cpArbiterGetBodies(arb, self.ba, self.bb)
+        part_a = self.ba[0] == self.body
+        cps = lib.cpArbiterGetContactPointSet(arb)
+        n = cps.normal
+        nx, ny = n.x, n.y
+        q = lib.cpBodyGetPosition(self.body)
+        qx, qy = q.x, q.y
+        rho2 = self.rho2
+        cap = math.inf
+        pts = cps.points
+        for i in range(cps.count):
+            c = pts[i]
+            p = c.pointA if part_a else c.pointB
+            rx, ry = p.x - qx, p.y - qy
+            rn = rx * ny - ry * nx
+            rt = rx * nx + ry * ny
+            if rn * rt != 0.0:  # per unit mass: K_nn = 1 + rn²/ρ², K_nt = rn rt/ρ²
+                cap = min(cap, CAP * (rho2 + rn * rn) / abs(rn * rt))
+        if cap < mu:
+            self.n_capped += 1
+            lib.cpArbiterSetFriction(arb, cap)
+        else:
+            lib.cpArbiterSetFriction(arb, mu if math.isfinite(mu) else 1.0e30)
 
 
 def _single_part_fixture_hook(world, mu_arm: float, mu_fix: float, fix: int):
@@ -221,6 +260,7 @@ def _single_part_fixture_hook(world, mu_arm: float, mu_fix: float, fix: int):
         from pymunk._chipmunk import ffi, lib
 
         lib.cpArbiterGetShapes, lib.cpShapeGetCollisionType, lib.cpShapeGetBody  # noqa: B018
+        lib.cpArbiterGetBodies, lib.cpArbiterGetFriction, lib.cpArbiterGetContactPointSet  # noqa: B018
         body = world.bodies[0]._body
     except (ImportError, AttributeError):  # pragma: no cover - another pymunk
         return None
