@@ -24,7 +24,10 @@ from ...throws.outcome import Status
 from ..rest import EDGE_EPS
 from .world import World
 
-__all__ = ["inspect", "clearance", "escape", "energy", "all_slow"]
+__all__ = ["inspect", "clearance", "escape", "energy", "all_slow", "BOX_TOL"]
+
+BOX_TOL = 1e-7
+"""m added to every bounding-box test that skips a shape query (rounding of the arm-frame transform is ~1e-16 m)."""
 
 
 def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0):
@@ -53,11 +56,13 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     L, h, back, thick, margin = w.L, w.h, w.back, w.thickness, w.margin
     slack = 0.0 if w.plain_arm else EDGE_EPS  # fixtures at the ends: see throwmap.engine.rest.edge_status
     c, s = math.cos(a), math.sin(a)
+    arm_frame = []  # (xa, ya) of each vertex, for the shape queries below
     for wx, wy in w.wlists[i]:
         X = px + c * wx - s * wy
         Y = py + s * wx + c * wy
         xa = ca * X + sa * Y
         ya = -sa * X + ca * Y
+        arm_frame.append((xa, ya))
         d = h - ya
         if d > EDGE_EPS and (xa < -back - slack or xa > L + slack):
             over = -1 if xa < -back - slack else 1
@@ -71,47 +76,77 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
                         near = True
     if not w.plain_arm:
         distance, NULL, to_world = cp.distance, cp.NULL, cp.to_world
-        others = w.others_h[i]
-        for q in [to_world(b, v) for v in w.wlists[i]]:
+        others, boxes = w.others_h[i], w.boxes[i]
+        # a shape whose arm-frame box (inflated by reach) misses the vertex is farther than reach: it can
+        # neither hold the vertex (depth) nor be within margin + speed × horizon of it (near); not queried
+        reach = (margin + (math.hypot(vx, vy) + abs(om) * w.R[i]) * horizon if horizon > 0.0 else 0.0) + BOX_TOL
+        for v, (xa, ya) in zip(w.wlists[i], arm_frame):
+            q = None
             closest = math.inf
-            for sh in others:
+            for sh, box in zip(others, boxes):
+                if box is not None and (xa < box[0] - reach or xa > box[1] + reach or ya < box[2] - reach
+                                        or ya > box[3] + reach):
+                    continue
+                if q is None:
+                    q = to_world(b, v)
                 d = distance(sh, q, NULL)
                 if d < -deepest:
                     deepest = -d
                 closest = min(closest, d)
-            if horizon > 0.0 and EDGE_EPS < closest:
+            if q is not None and horizon > 0.0 and EDGE_EPS < closest:
                 speed = math.hypot(vx - om * (q.y - py), vy + om * (q.x - px))
                 if closest < margin + speed * horizon:
                     near = True
     return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle, over, near
 
 
-def clearance(w: World, i: int) -> float:
-    """Lower bound of the distance (m) from part i to every other shape."""
+def clearance(w: World, i: int, enough: float = -math.inf) -> float:
+    """Lower bound of the distance (m) from part i to every other shape: the least distance over part i's
+    vertices to the other shapes, the arm's corners to part i and the other parts' vertices to part i.
+
+    ``enough`` (m): a caller that only needs to know whether the bound exceeds ``enough`` may get, where it
+    does not, the distance of one pair found within ``enough`` (at most ``enough``, not the least): the pair
+    that gave the last bound (``w.clear_hint[i]``) is tried first, and where it is still within ``enough``
+    the rest is not searched. Where the bound exceeds ``enough`` it is returned exactly as without it.
+    """
     cp = w.cp
     distance, NULL, to_world = cp.distance, cp.NULL, cp.to_world
     b = w.bodies_h[i]
+    shp = w.shapes_h[i]
+    hint = w.clear_hint[i]
+    if hint is not None:
+        kind, j, k = hint
+        if kind == 0:  # part i's vertex k to shape j
+            d = distance(w.others_h[i][j], to_world(b, w.wlists[i][k]), NULL)
+        elif kind == 1:  # arm corner k to part i
+            aa = cp.angle(w.arm_h)
+            cx, cy = w.corners[k]
+            d = distance(shp, (math.cos(aa) * cx - math.sin(aa) * cy, math.sin(aa) * cx + math.cos(aa) * cy), NULL)
+        else:  # part j's vertex k to part i
+            d = distance(shp, to_world(w.bodies_h[j], w.wlists[j][k]), NULL)
+        if d <= enough:
+            return d
     best = math.inf
     others = w.others_h[i]
-    for v in [to_world(b, v) for v in w.wlists[i]]:
-        for s in others:
+    for k, v in enumerate([to_world(b, v) for v in w.wlists[i]]):
+        for j, s in enumerate(others):
             d = distance(s, v, NULL)
             if d < best:
-                best = d
+                best, hint = d, (0, j, k)
     aa = cp.angle(w.arm_h)
     ca, sa = math.cos(aa), math.sin(aa)
-    shp = w.shapes_h[i]
-    for cx, cy in w.corners:
+    for k, (cx, cy) in enumerate(w.corners):
         d = distance(shp, (ca * cx - sa * cy, sa * cx + ca * cy), NULL)
         if d < best:
-            best = d
+            best, hint = d, (1, 0, k)
     for j in range(w.n):
         if j != i:
             bj = w.bodies_h[j]
-            for v in [to_world(bj, v) for v in w.wlists[j]]:
+            for k, v in enumerate([to_world(bj, v) for v in w.wlists[j]]):
                 d = distance(shp, v, NULL)
                 if d < best:
-                    best = d
+                    best, hint = d, (2, j, k)
+    w.clear_hint[i] = hint
     return best
 
 

@@ -176,8 +176,9 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
         if exact_flight and t >= next_flight_check and contacts.all_free():
             next_flight_check = t + CHECK_EVERY
             n_clearance += n_parts
-            gap = min(clearance(w, i) if tracks[i].fell is None else math.inf for i in range(n_parts)) \
-                if n_parts > 1 else clearance(w, 0) if tracks[0].fell is None else math.inf
+            # (clearance may stop at a pair within margin: only gap > margin and, then, its exact value matter)
+            gap = min(clearance(w, i, margin) if tracks[i].fell is None else math.inf for i in range(n_parts)) \
+                if n_parts > 1 else clearance(w, 0, margin) if tracks[0].fell is None else math.inf
             if gap > margin:
                 vmax = vertex_speed_bound(w, tracks)
                 vmax += 2.0 * omega_arm_bound * w.reach if arm_moving else 0.0

@@ -100,14 +100,17 @@ class World:
     arm frame and ``reach`` their largest distance from the joint,
     ``rho2[i]`` part i's squared radius of gyration (m²), ``R[i]`` part
     i's largest vertex distance from its CM, ``others_h[i]`` the handles of every
-    shape part i can touch. ``plain_arm``: one part and no fixtures (the
+    shape part i can touch and ``boxes[i]`` their bounding boxes ``(x0, x1, y0, y1)``
+    in the arm frame (m; None for another part's shape, which moves), ``clear_hint[i]``
+    the pair that gave part i's last clearance (:func:`.checks.clearance`). ``plain_arm``: one part and no fixtures (the
     penetration check then reads depth below the flat surface directly).
     ``arm_w`` is the arm's angular velocity as last set, rad/s.
     """
 
     __slots__ = ("pm", "cp", "space", "space_h", "arm", "arm_h", "arm_w", "bodies", "bodies_h", "shapes", "shapes_h",
                  "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h",
-                 "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall", "back", "thickness", "margin", "rho2")
+                 "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall", "back", "thickness", "margin", "rho2", "boxes",
+                 "clear_hint")
 
     @property
     def n(self) -> int:
@@ -198,6 +201,10 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     w.shapes_h = [cp.shape(s) for s in shapes]
     static_h = [cp.shape(s) for s in static_shapes]
     w.others_h = [static_h + [w.shapes_h[j] for j in range(len(shapes)) if j != i] for i in range(len(shapes))]
+    static_boxes = [(min(x for x, _ in s.get_vertices()), max(x for x, _ in s.get_vertices()),
+                     min(y for _, y in s.get_vertices()), max(y for _, y in s.get_vertices())) for s in static_shapes]
+    w.boxes = [static_boxes + [None] * (len(shapes) - 1) for _ in shapes]
+    w.clear_hint = [None] * len(shapes)
     w.corners = corners
     w.reach = float(np.max(np.hypot(*np.array(corners).T))) if corners else L
     w.rho2 = [p.radius_of_gyration**2 for p in parts]
