@@ -17,7 +17,7 @@ import numpy as np
 
 from ...kernels import codes as C
 from ...throws.outcome import Status
-from .friction import install_friction_cap
+from .friction import attach_raw, install_friction_cap
 from .world import World
 
 __all__ = ["HOP_MIN", "PartTrack", "Contacts", "nearest_side"]
@@ -93,6 +93,8 @@ class Contacts:
                                    + world.g * (y_arm - world.h))
         self.friction_cap = cap = install_friction_cap(world)
         world.space.on_collision(begin=self._begin, separate=self._separate, pre_solve=cap)
+        if cap is not None:
+            attach_raw(world.space, cap)
 
     def _parts(self, arbiter):
         if self._one is not None:

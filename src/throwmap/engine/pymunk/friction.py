@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["CAP", "FrictionCap", "cap_bound", "install_friction_cap"]
+__all__ = ["CAP", "FrictionCap", "attach_raw", "cap_bound", "install_friction_cap"]
 
 CAP = 0.7
 """Largest μ |K_nt| / K_nn allowed: the solver's error shrinks by at least this factor per iteration."""
@@ -145,14 +145,19 @@ def install_friction_cap(world) -> FrictionCap | None:
 class _SinglePartCap:
     """:class:`FrictionCap` for one part on a bare arm on Chipmunk's raw calls (same values, ~5× cheaper)."""
 
-    __slots__ = ("lib", "body", "rho2", "mu", "n_capped")
+    __slots__ = ("lib", "body", "rho2", "mu", "n_capped", "callback")
 
     def __init__(self, lib, body, rho2: float, mu: float):
         self.lib, self.body, self.rho2, self.mu = lib, body, rho2, mu
         self.n_capped = 0
+        self.callback = None
 
     def __call__(self, arbiter, space_, data):
-        _set_capped(self, arbiter._arbiter, self.lib.cpArbiterGetPointA, self.mu)
+        self.raw(arbiter._arbiter, None, None)
+
+    def raw(self, arb, space_, data):
+        """The hook on the raw ``cpArbiter *`` (:func:`attach_raw`)."""
+        _set_capped(self, arb, self.lib.cpArbiterGetPointA, self.mu)
 
 
 def _set_capped(hook, arb, point, mu: float) -> None:
@@ -204,7 +209,7 @@ class _SinglePartFixtureCap:
     ``pointA`` is the point of the body ``cpArbiterGetBodies`` names first). ``by_u`` is None (the shape
     look-up instead) where two different μ map to the same engine value (∞ and :data:`NO_SLIP_MU`)."""
 
-    __slots__ = ("lib", "body", "rho2", "mu", "mu_fix", "fix", "sa", "sb", "ba", "bb", "by_u", "n_capped")
+    __slots__ = ("lib", "body", "rho2", "mu", "mu_fix", "fix", "sa", "sb", "ba", "bb", "by_u", "n_capped", "callback")
 
     def __init__(self, lib, ffi, body, rho2: float, mu: float, mu_fix: float, fix: int):
         from ..settings import engine_mu
@@ -215,10 +220,14 @@ class _SinglePartFixtureCap:
         u_arm, u_fix = engine_mu(mu), engine_mu(mu_fix)
         self.by_u = None if (u_arm == u_fix and mu != mu_fix) else {u_arm: mu, u_fix: mu_fix}
         self.n_capped = 0
+        self.callback = None
 
     def __call__(self, arbiter, space_, data):
+        self.raw(arbiter._arbiter, None, None)
+
+    def raw(self, arb, space_, data):
+        """The hook on the raw ``cpArbiter *`` (:func:`attach_raw`)."""
         lib = self.lib
-        arb = arbiter._arbiter
         mu = None if self.by_u is None else self.by_u.get(lib.cpArbiterGetFriction(arb))
         if mu is None:  # the shapes say which μ (and which body is the part)
             lib.cpArbiterGetShapes(arb, self.sa, self.sb)
@@ -265,3 +274,26 @@ def _single_part_fixture_hook(world, mu_arm: float, mu_fix: float, fix: int):
     except (ImportError, AttributeError):  # pragma: no cover - another pymunk
         return None
     return _SinglePartFixtureCap(lib, ffi, body, world.rho2[0], mu_arm, mu_fix, fix)
+
+
+def attach_raw(space, hook) -> bool:
+    """Point ``space``'s wildcard handler (set by ``space.on_collision(pre_solve=hook)``) straight at
+    ``hook.raw``, a cffi callback on the raw ``cpArbiter *``: the same hook without pymunk's per-call
+    wrapper (a handle look-up, an :class:`pymunk.Arbiter` and a dict look-up per contact per step).
+    The callback is kept on ``hook.callback`` (it lives as long as the space's handler holds ``hook``).
+    Returns False, changing nothing, where ``hook`` has no raw entry or cffi cannot make the callback."""
+    raw = getattr(hook, "raw", None)
+    if raw is None:
+        return False
+    try:
+        from pymunk._chipmunk import ffi
+
+        handler = space._handlers[(None, None)]
+        if handler.pre_solve is not hook:
+            return False
+        callback = ffi.callback("cpCollisionPreSolveFunc", raw)
+        handler._handler.preSolveFunc = callback
+    except Exception:  # pragma: no cover - another pymunk, or no executable memory for callbacks
+        return False
+    hook.callback = callback
+    return True
