@@ -103,13 +103,21 @@ def test_fixture_hook_fast_path_is_bit_identical(monkeypatch):
     part = tm.triangle_30_60_90(0.17)
     arm = tm.Arm(h=-0.01, mu=1.5, length=0.3)
     runs = {}
+    calls = {"slow": 0}
+    slow = F._SinglePartFixtureCap._slow
+
+    def counted(self, *a):
+        calls["slow"] += 1
+        return slow(self, *a)
+
+    monkeypatch.setattr(F._SinglePartFixtureCap, "_slow", counted)
     for fast in (True, False):
         if not fast:
             init = F._SinglePartFixtureCap.__init__
 
             def no_fast(self, *a, **kw):
                 init(self, *a, **kw)
-                self.by_u = None
+                self.by_u, self.raw = None, self._slow
 
             monkeypatch.setattr(F._SinglePartFixtureCap, "__init__", no_fast)
         out = []
@@ -120,3 +128,4 @@ def test_fixture_hook_fast_path_is_bit_identical(monkeypatch):
         runs[fast] = out
     assert runs[True] == runs[False]
     assert any(o[4] > 0 for o in runs[True])  # the cap was needed
+    assert calls["slow"] > 0

@@ -209,7 +209,8 @@ class _SinglePartFixtureCap:
     ``pointA`` is the point of the body ``cpArbiterGetBodies`` names first). ``by_u`` is None (the shape
     look-up instead) where two different μ map to the same engine value (∞ and :data:`NO_SLIP_MU`)."""
 
-    __slots__ = ("lib", "body", "rho2", "mu", "mu_fix", "fix", "sa", "sb", "ba", "bb", "by_u", "n_capped", "callback")
+    __slots__ = ("lib", "body", "rho2", "mu", "mu_fix", "fix", "sa", "sb", "ba", "bb", "by_u", "n_capped", "callback",
+                 "raw")
 
     def __init__(self, lib, ffi, body, rho2: float, mu: float, mu_fix: float, fix: int):
         from ..settings import engine_mu
@@ -221,46 +222,62 @@ class _SinglePartFixtureCap:
         self.by_u = None if (u_arm == u_fix and mu != mu_fix) else {u_arm: mu, u_fix: mu_fix}
         self.n_capped = 0
         self.callback = None
+        self.raw = self._slow if self.by_u is None else self._fast()
 
     def __call__(self, arbiter, space_, data):
         self.raw(arbiter._arbiter, None, None)
 
-    def raw(self, arb, space_, data):
-        """The hook on the raw ``cpArbiter *`` (:func:`attach_raw`)."""
+    def _slow(self, arb, space_=None, data=None):
+        """The hook on the raw ``cpArbiter *``, μ and the part's body from the arbiter's shapes."""
         lib = self.lib
-        mu = None if self.by_u is None else self.by_u.get(lib.cpArbiterGetFriction(arb))
-        if mu is None:  # the shapes say which μ (and which body is the part)
-            lib.cpArbiterGetShapes(arb, self.sa, self.sb)
-            a, b = self.sa[0], self.sb[0]
-            fix = self.fix
-            mu = self.mu_fix if (lib.cpShapeGetCollisionType(a) == fix or lib.cpShapeGetCollisionType(b) == fix) \
-                else self.mu
-            point = lib.cpArbiterGetPointA if lib.cpShapeGetBody(a) == self.body else lib.cpArbiterGetPointB
-            _set_capped(self, arb, point, mu)
-            return
-        lib.cpArbiterGetBodies(arb, self.ba, self.bb)
-        part_a = self.ba[0] == self.body
-        cps = lib.cpArbiterGetContactPointSet(arb)
-        n = cps.normal
-        nx, ny = n.x, n.y
-        q = lib.cpBodyGetPosition(self.body)
-        qx, qy = q.x, q.y
-        rho2 = self.rho2
-        cap = math.inf
-        pts = cps.points
-        for i in range(cps.count):
-            c = pts[i]
-            p = c.pointA if part_a else c.pointB
-            rx, ry = p.x - qx, p.y - qy
-            rn = rx * ny - ry * nx
-            rt = rx * nx + ry * ny
-            if rn * rt != 0.0:  # per unit mass: K_nn = 1 + rn²/ρ², K_nt = rn rt/ρ²
-                cap = min(cap, CAP * (rho2 + rn * rn) / abs(rn * rt))
-        if cap < mu:
-            self.n_capped += 1
-            lib.cpArbiterSetFriction(arb, cap)
-        else:
-            lib.cpArbiterSetFriction(arb, mu if math.isfinite(mu) else 1.0e30)
+        lib.cpArbiterGetShapes(arb, self.sa, self.sb)
+        a, b = self.sa[0], self.sb[0]
+        fix = self.fix
+        mu = self.mu_fix if (lib.cpShapeGetCollisionType(a) == fix or lib.cpShapeGetCollisionType(b) == fix) \
+            else self.mu
+        point = lib.cpArbiterGetPointA if lib.cpShapeGetBody(a) == self.body else lib.cpArbiterGetPointB
+        _set_capped(self, arb, point, mu)
+
+    def _fast(self):
+        """The hook on the raw ``cpArbiter *`` (``self.raw``, :func:`attach_raw`) as a closure over its
+        constants: μ read back from the arbiter (``by_u``), the points from its contact point set; the same
+        arithmetic as :func:`_set_capped`, so the same friction bit for bit."""
+        lib, hook, slow = self.lib, self, self._slow
+        get_u, by_u = lib.cpArbiterGetFriction, self.by_u.get
+        get_bodies, ba, bb, body = lib.cpArbiterGetBodies, self.ba, self.bb, self.body
+        get_points, get_position, set_u = lib.cpArbiterGetContactPointSet, lib.cpBodyGetPosition, lib.cpArbiterSetFriction
+        rho2, inf, isfinite = self.rho2, math.inf, math.isfinite
+
+        def raw(arb, space_=None, data=None):
+            mu = by_u(get_u(arb))
+            if mu is None:  # pragma: no cover - an arbiter whose friction another hook changed
+                return slow(arb)
+            get_bodies(arb, ba, bb)
+            part_a = ba[0] == body
+            cps = get_points(arb)
+            n = cps.normal
+            nx, ny = n.x, n.y
+            q = get_position(body)
+            qx, qy = q.x, q.y
+            cap = inf
+            pts = cps.points
+            for i in range(cps.count):
+                c = pts[i]
+                p = c.pointA if part_a else c.pointB
+                rx, ry = p.x - qx, p.y - qy
+                rn = rx * ny - ry * nx
+                rt = rx * nx + ry * ny
+                if rn * rt != 0.0:  # per unit mass: K_nn = 1 + rn²/ρ², K_nt = rn rt/ρ² (min(cap, v) as an if)
+                    v = CAP * (rho2 + rn * rn) / abs(rn * rt)
+                    if v < cap:
+                        cap = v
+            if cap < mu:
+                hook.n_capped += 1
+                set_u(arb, cap)
+            else:
+                set_u(arb, mu if isfinite(mu) else 1.0e30)
+
+        return raw
 
 
 def _single_part_fixture_hook(world, mu_arm: float, mu_fix: float, fix: int):

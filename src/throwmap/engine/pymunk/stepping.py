@@ -65,32 +65,35 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
     cp = w.cp
     space_step, space_h, arm_h = cp.step, w.space_h, w.arm_h
     arm_moving = t < arm_stop
-    if not arm_moving and w.arm_w == 0.0:  # the arm is parked: only the space moves
+    wa = w.arm_w  # the arm's rate as last set (kept here, stored back once)
+    if not arm_moving and wa == 0.0:  # the arm is parked: only the space moves
         for _ in range(n):
-            contacts.now = t + step
+            t_next = t + step
+            contacts.now = t_next
             space_step(space_h, step)
-            t += step
+            t = t_next
             if contacts.need_post:
                 contacts.record_post(step)
         return t
     set_angle, set_spin = cp.set_angle, cp.set_spin
     a_next = None  # α + θ(t) for the current t, carried over from the previous step
     for _ in range(n):
+        t_next = t + step
         if arm_moving:
             a_now = alpha + angle(t) if a_next is None else a_next
-            t_next = t + step
             a_next = alpha + angle(t_next)
             set_angle(arm_h, a_now)
-            w.arm_w = (a_next - a_now) / step
-            set_spin(arm_h, w.arm_w)
+            wa = (a_next - a_now) / step
+            set_spin(arm_h, wa)
             arm_moving = t_next < arm_stop
-        elif w.arm_w != 0.0:
+        elif wa != 0.0:
             set_angle(arm_h, end_alpha)
             set_spin(arm_h, 0.0)
-            w.arm_w = 0.0
-        contacts.now = t + step
+            wa = 0.0
+        contacts.now = t_next
         space_step(space_h, step)
-        t += step
+        t = t_next
         if contacts.need_post:
             contacts.record_post(step)
+    w.arm_w = wa
     return t
