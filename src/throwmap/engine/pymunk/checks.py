@@ -54,19 +54,17 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     over = 0
     near = False
     L, h, back, thick, margin = w.L, w.h, w.back, w.thickness, w.margin
-    slack = 0.0 if w.plain_arm else EDGE_EPS  # fixtures at the ends: see throwmap.engine.rest.edge_status
     c, s = math.cos(a), math.sin(a)
-    arm_frame = []  # (xa, ya) of each vertex, for the shape queries below
-    for wx, wy in w.wlists[i]:
-        X = px + c * wx - s * wy
-        Y = py + s * wx + c * wy
-        xa = ca * X + sa * Y
-        ya = -sa * X + ca * Y
-        arm_frame.append((xa, ya))
-        d = h - ya
-        if d > EDGE_EPS and (xa < -back - slack or xa > L + slack):
-            over = -1 if xa < -back - slack else 1
-        if w.plain_arm:  # fast path: depth below the flat surface line, in the arm frame
+    if w.plain_arm:
+        for wx, wy in w.wlists[i]:
+            X = px + c * wx - s * wy
+            Y = py + s * wx + c * wy
+            xa = ca * X + sa * Y
+            ya = -sa * X + ca * Y
+            d = h - ya
+            if d > EDGE_EPS and (xa < -back or xa > L):
+                over = -1 if xa < -back else 1
+            # fast path: depth below the flat surface line, in the arm frame
             if -back <= xa <= L and d <= thick:
                 if d > deepest:
                     deepest = d
@@ -74,29 +72,39 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
                     vn = -sa * (vx - om * (Y - py)) + ca * (vy + om * (X - px))
                     if -d < margin + max(0.0, -vn) * horizon:
                         near = True
-    if not w.plain_arm:
-        distance, NULL, to_world = cp.distance, cp.NULL, cp.to_world
-        others, boxes = w.others_h[i], w.boxes[i]
-        # a shape whose arm-frame box (inflated by reach) misses the vertex is farther than reach: it can
-        # neither hold the vertex (depth) nor be within margin + speed × horizon of it (near); not queried
-        reach = (margin + (math.hypot(vx, vy) + abs(om) * w.R[i]) * horizon if horizon > 0.0 else 0.0) + BOX_TOL
-        for v, (xa, ya) in zip(w.wlists[i], arm_frame):
-            q = None
-            closest = math.inf
-            for sh, box in zip(others, boxes):
-                if box is not None and (xa < box[0] - reach or xa > box[1] + reach or ya < box[2] - reach
-                                        or ya > box[3] + reach):
-                    continue
-                if q is None:
-                    q = to_world(b, v)
-                d = distance(sh, q, NULL)
-                if d < -deepest:
-                    deepest = -d
-                closest = min(closest, d)
-            if q is not None and horizon > 0.0 and EDGE_EPS < closest:
-                speed = math.hypot(vx - om * (q.y - py), vy + om * (q.x - px))
-                if closest < margin + speed * horizon:
-                    near = True
+        return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle, over, near
+    lo, hi = -back - EDGE_EPS, L + EDGE_EPS  # fixtures at the ends: see throwmap.engine.rest.edge_status
+    distance, NULL, to_world = cp.distance, cp.NULL, cp.to_world
+    others = w.others_h[i]
+    # a shape whose arm-frame box (inflated by reach) misses the vertex is farther than reach: it can
+    # neither hold the vertex (depth) nor be within margin + speed × horizon of it (near); not queried
+    reach = (margin + (math.hypot(vx, vy) + abs(om) * w.R[i]) * horizon if horizon > 0.0 else 0.0) + BOX_TOL
+    boxes = [None if bx is None else (bx[0] - reach, bx[1] + reach, bx[2] - reach, bx[3] + reach)
+             for bx in w.boxes[i]]
+    for v in w.wlists[i]:
+        wx, wy = v
+        X = px + c * wx - s * wy
+        Y = py + s * wx + c * wy
+        xa = ca * X + sa * Y
+        ya = -sa * X + ca * Y
+        if h - ya > EDGE_EPS and (xa < lo or xa > hi):
+            over = -1 if xa < lo else 1
+        q = None
+        closest = math.inf
+        for sh, bx in zip(others, boxes):
+            if bx is not None and (xa < bx[0] or xa > bx[1] or ya < bx[2] or ya > bx[3]):
+                continue
+            if q is None:
+                q = to_world(b, v)
+            d = distance(sh, q, NULL)
+            if d < -deepest:
+                deepest = -d
+            if d < closest:
+                closest = d
+        if q is not None and horizon > 0.0 and EDGE_EPS < closest:
+            speed = math.hypot(vx - om * (q.y - py), vy + om * (q.x - px))
+            if closest < margin + speed * horizon:
+                near = True
     return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle, over, near
 
 

@@ -154,9 +154,11 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     w.margin = settings.flight_margin
     mu_arm = engine_mu(scene.mu("arm"))
     mu_wall = engine_mu(scene.mu("wall"))
-    static_shapes, corners = [], []
+    static_shapes, corners, static_boxes = [], [], []
     for piece, ctype, mu in [(p, ARM, mu_arm) for p in arm_pieces] + [(p, FIXTURE, mu_wall) for p in fixture_pieces]:
         piece = [tuple(v) for v in piece.tolist()]
+        xs, ys = [x for x, _ in piece], [y for _, y in piece]
+        static_boxes.append((min(xs), max(xs), min(ys), max(ys)))
         s = pm.Poly(arm_body, piece)
         s.friction = mu
         s.elasticity = 0.0
@@ -201,8 +203,6 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     w.shapes_h = [cp.shape(s) for s in shapes]
     static_h = [cp.shape(s) for s in static_shapes]
     w.others_h = [static_h + [w.shapes_h[j] for j in range(len(shapes)) if j != i] for i in range(len(shapes))]
-    static_boxes = [(min(x for x, _ in s.get_vertices()), max(x for x, _ in s.get_vertices()),
-                     min(y for _, y in s.get_vertices()), max(y for _, y in s.get_vertices())) for s in static_shapes]
     w.boxes = [static_boxes + [None] * (len(shapes) - 1) for _ in shapes]
     w.clear_hint = [None] * len(shapes)
     w.corners = corners
