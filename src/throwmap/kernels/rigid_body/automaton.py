@@ -41,8 +41,14 @@ from .stick_exact import pivot_stick_exact
 from .tilt import pivot_stick_tilted, settle
 from .trajectory import _put, _put_final, clear
 from .wall import (ACT_FLIGHT, ACT_INCONSISTENT, ACT_REFUSE, ACT_REST, EV_WALL, WHY_CORNER, WHY_SLIDE_WALL,
-                   WHY_WALL_TOP, corner_inside, fill_wall_vertices, fly_walled, nearest_side, pivot_wall_hit,
-                   refresh_frame, refuse, wall_contact_angle, wall_hit_in_flight)
+                   WHY_WALL_SLIDE, WHY_WALL_TOP, corner_inside, fill_wall_vertices, fly_walled, nearest_side,
+                   pivot_wall_hit, refresh_frame, refuse, wall_contact_angle, wall_hit_in_flight)
+from .wall_contact import WHY_LADDER, WHY_TWO_CONTACT
+from .wall_follow import WC_ARM, WC_CAP, WC_FLIGHT, WC_INCONSISTENT, wall_contact, wall_pressed_after
+from .wall_lean import LN_BEHIND, LN_CAP, LN_FLIGHT, LN_INCONSISTENT, LN_PIVOT, LN_REST, LN_WALL, lean
+
+MODE_LEAN = 6
+"""Mode of :func:`run_throw`: the part touches the arm (vertex ``ln_a``) and the wall's face (``ln_p``): :func:`lean`."""
 
 
 @njit(cache=True, inline='always')
@@ -107,13 +113,83 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
     wexcl_j = -1  # a vertex that just left the wall, and until when (absolute time, s) it provably stays off it
     wexcl_until = 0.0
     lref = math.sqrt(rho2) + ell.max()
+    wj = -1  # WALL_CONTACT: a vertex pressed on the wall's face (wall_follow.py), −1 none
+    pressed = -1  # the vertex that was on the face when the arm was touched
+    ln_a = -1  # MODE_LEAN: the vertex on the arm, the one on the face, and whether their impact is still to come
+    ln_p = -1
+    ln_impact = False
     while True:
         n_events += 1
         if n_events > max_events:
             return x, last_side, C.NO_REST
+        if mode == MODE_LEAN:
+            # ---------------------------------------------------------- on the arm and the wall (wall_follow.py)
+            (res, why, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p,
+             v_a) = lean(ln_a, ln_p, ln_impact, t, x, y, vx, vy, phi, om, w, rho2, mu, wall_mu, gx, gn, h, wall_h,
+                         length, back, lref, max_iter, max_events, traj, ts)
+            if res == LN_REST:
+                rec[C.E_FINAL] = gn * (y - h) - gx * x
+                rec[C.T_REST] = t
+                _put_final(traj, ts, t, x, y, phi)
+                return x, nearest_side(phi, beta), C.OK
+            if res == LN_PIVOT:
+                cpp = math.cos(phi)
+                spp = math.sin(phi)
+                rx = cpp * w[ka, 0] - spp * w[ka, 1]
+                ry = spp * w[ka, 0] + cpp * w[ka, 1]
+                jp = ka
+                px = x + rx
+                theta = math.atan2(-ry, -rx)
+                thdot = om
+                phi_off = phi - theta
+                va = v_a
+                mode = MODE_SELECT
+                continue
+            if res == LN_WALL or res == LN_FLIGHT:
+                wj = kp if res == LN_WALL else -1
+                excl_j = ka
+                excl_t = win_a if ka >= 0 else 0.0
+                wexcl_j = kp if res == LN_FLIGHT else -1
+                wexcl_until = t + win_p
+                cexcl_e = -1
+                off[:] = 0.0
+                refresh_frame(phi, y, h, w, ell, ru, rv, c0)
+                mode = MODE_FLIGHT
+                continue
+            if res == LN_BEHIND:
+                return x, last_side, C.BEHIND_JOINT
+            if res == LN_INCONSISTENT:
+                return x, last_side, C.INCONSISTENT
+            if res == LN_CAP:
+                rec[C.CAP_HIT] = 1.0
+                return x, last_side, C.UNRESOLVED
+            return x, last_side, refuse(rec, why)
         if mode == MODE_FLIGHT:
             # ---------------------------------------------------------- FLIGHT until guard touch
-            if walled:
+            pressed = -1
+            if wj >= 0:
+                # ------------------------------------------------------ WALL_CONTACT (wall_follow.py)
+                t_seg = t
+                (res, jc, t, x, y, vx, vy, phi, om, rx, ry, wex,
+                 why) = wall_contact(wj, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, wall_mu, h, wall_h, length, excl_j,
+                                     t + excl_t, max_iter, max_events, wv, traj, ts, rec)
+                excl_t = max(excl_t - (t - t_seg), 0.0)
+                if res == WC_FLIGHT:
+                    wexcl_j = wj
+                    wexcl_until = t + wex
+                    wj = -1
+                    refresh_frame(phi, y, h, w, ell, ru, rv, c0)
+                    continue
+                if res == WC_CAP:
+                    rec[C.CAP_HIT] = 1.0
+                    return x, last_side, C.UNRESOLVED
+                if res == WC_INCONSISTENT:
+                    return x, last_side, C.INCONSISTENT
+                if res != WC_ARM:
+                    return x, last_side, refuse(rec, why)
+                pressed = wj
+                wj = -1
+            elif walled:
                 t_seg = t
                 (where, jc, t, x, y, vx, vy, phi, rx, ry, nx,
                  ny) = fly_walled(t, x, y, vx, vy, phi, om, c0, ru, rv, gx, gn, ell, excl_j, excl_t, wexcl_j,
@@ -129,7 +205,9 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                                                                               rho2, wall_mu, law, gx, gn,
                                                                               math.hypot(rx, ry))
                     rec[C.N_IMPACTS] += 1.0
-                    if why != 0:
+                    if why == WHY_WALL_SLIDE and where == 1:
+                        wj = jc  # the vertex stays pressed on the face: WALL_CONTACT
+                    elif why != 0:
                         return x, last_side, refuse(rec, why)
                     if kind == IMP_INCONSISTENT:
                         return x, last_side, C.INCONSISTENT
@@ -138,7 +216,9 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                     if kind != IMP_STICK:
                         rec[C.N_SLIPS] += 1.0
                     vx, vy, om = vxp, vyp, wp
-                    if where == 1:
+                    if wj >= 0:
+                        pass
+                    elif where == 1:
                         wexcl_j = jc
                         wexcl_until = t + wex
                     else:
@@ -178,6 +258,18 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
             if first:
                 first = False
                 record_first_impact(rec, vxp, vyp, wp, pt, pn, jt0, jn0, k_post)
+            if pressed >= 0:
+                cpp = math.cos(phi)
+                spp = math.sin(phi)
+                rpx = cpp * w[pressed, 0] - spp * w[pressed, 1]
+                rpy = spp * w[pressed, 0] + cpp * w[pressed, 1]
+                if wall_pressed_after(vxp, vyp, wp, rpx, rpy) < -1e-12 * max(1.0, abs(vx) + abs(vy) + abs(om) * lref):
+                    # the arm's impulse alone would drive P into the wall: a two-contact impact (wall_follow.py)
+                    ln_a = jc
+                    ln_p = pressed
+                    ln_impact = True
+                    mode = MODE_LEAN
+                    continue
             vx, vy, om = vxp, vyp, wp
             if kind == IMP_SEPARATE:
                 # the vertex leaves at once: flight again, this vertex excluded for a while
@@ -204,13 +296,18 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
         theta = min(max(theta, ta), tb)
         ev = EV_NONE
         ta_w = ta  # the pivot angle's lower bound: side j−1 lands, or a vertex meets the wall (guard wall_reach)
+        wcx = wcy = wnx = wny = 0.0
         if walled:
-            th_w, _c, _j, _x, _y, _nx, _ny = wall_contact_angle(px, length, wall_h, theta, theta + phi_off, w, jp)
+            th_w, _c, _j, wcx, wcy, wnx, wny = wall_contact_angle(px, length, wall_h, theta, theta + phi_off, w, jp)
             if th_w > ta:
                 ta_w = min(th_w, tb)
                 if theta < ta_w:
                     theta = ta_w
-        if walled and ta_w > ta and theta <= ta_w and thdot < 0.0:
+        if walled and ta_w > ta and theta <= ta_w and (thdot < 0.0 if va == 0.0 else
+                                                       (va - thdot * wcy) * wnx + thdot * wcx * wny
+                                                       < -1e-9 * (abs(va) + abs(thdot) * lj)):
+            # (a sliding pivot's contact on the wall approaches it only if its velocity points into the wall;
+            # one that slides along it at rounding level, as a ladder whose wall force fell to 0, leaves)
             ev = EV_WALL  # a vertex is on the wall and the part turns into it
         elif mode == MODE_SELECT:
             mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, False, alpha)
@@ -280,6 +377,26 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
             act, xw, yw, vxw, vyw, omw, wex, why = pivot_wall_hit(px, h, lj, theta, thdot, va, w_cx, w_cy, w_nx, w_ny,
                                                                   w_corner, rho2, mu, wall_mu, law, gx, -gn, lref)
             rec[C.N_IMPACTS] += 1.0
+            if act == ACT_REFUSE and why == WHY_WALL_SLIDE and not w_corner:
+                # the pivot lifts off while the vertex stays pressed on the face: WALL_CONTACT (wall_follow.py)
+                x, y, vx, vy, om = xw, yw, vxw, vyw, omw
+                wj = w_j
+                excl_j = -1
+                excl_t = 0.0
+                off[:] = 0.0
+                wexcl_j = -1
+                cexcl_e = -1
+                sig = 0.0
+                mode = MODE_FLIGHT
+                continue
+            if act == ACT_REFUSE and (why == WHY_TWO_CONTACT or why == WHY_LADDER) and not w_corner:
+                # the pivot and the vertex on the face: a two-contact impact, or leaning and sliding at both
+                x, y, vx, vy, om = xw, yw, vxw, vyw, omw
+                ln_a = jp
+                ln_p = w_j
+                ln_impact = why == WHY_TWO_CONTACT
+                mode = MODE_LEAN
+                continue
             if act == ACT_REFUSE:
                 return px + lj * math.cos(theta), last_side, refuse(rec, why)
             if act == ACT_INCONSISTENT:

@@ -19,12 +19,13 @@ WHY_TWO_CONTACT = 3
 WHY_LADDER = 4
 WHY_CORNER = 5
 WHY_SLIDE_WALL = 6
+WHY_WALL_EDGE = 7
 WHY_MESSAGES = {
     WHY_WALL_TOP: ("the part reached the wall above its top while sliding flat or on a sliding pivot (only "
                    "flights and sticking pivots watch the wall's top corner): not modelled by rigid_body"),
-    WHY_WALL_SLIDE: ("after an impact with the wall a vertex stays pressed on its face, or an edge on its top "
-                     "corner: the part would slide along the wall or over its corner, which rigid_body does not "
-                     "model (use model 'engine')"),
+    WHY_WALL_SLIDE: ("after an impact with the wall an edge stays pressed on its top corner (the part would slide "
+                     "over the corner), or a vertex on its face leaves it tangentially: not modelled by rigid_body "
+                     "(use model 'engine')"),
     WHY_TWO_CONTACT: ("an impact at the arm and the wall at once needs slip at a contact: this two-contact "
                       "impact is not modelled by rigid_body"),
     WHY_LADDER: ("the part leans on the arm and the wall and slides at both (a ladder-like slide): this "
@@ -33,6 +34,8 @@ WHY_MESSAGES = {
                  "two-contact motion is not modelled by rigid_body"),
     WHY_SLIDE_WALL: ("a pivot sliding along the arm brought the part to the wall: this contact is not located "
                      "by rigid_body's sliding phase"),
+    WHY_WALL_EDGE: ("while a vertex slides on the wall's face, a second vertex reaches the wall's plane (an edge "
+                    "flush on the face or across its top corner): not modelled by rigid_body"),
 }
 """Why a walled throw was refused (status UNRESOLVED), by reason code."""
 

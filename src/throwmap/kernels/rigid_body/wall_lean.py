@@ -1,0 +1,297 @@
+"""Mode LEAN of model "rigid_body": a part touching the arm and the wall's face at once.
+
+:func:`lean` takes the part from the moment a vertex A on the arm and a vertex P on the face
+touch together (a landing while P slides on the face, a swinging pivot that meets the face) to the
+first state the automaton continues from. In order: the plastic impact at every touching vertex
+(:func:`~.wall_ladder.multi_contact_impact`, velocity-level); then, with the contacts it leaves
+closed (:func:`_dispatch`): one arm vertex and one face vertex moving — LADDER
+(:func:`~.wall_ladder.ladder_phase`); only one arm vertex — a pivot (the automaton's PIVOT modes);
+only one face vertex — WALL_CONTACT (:mod:`.wall_follow`); none — FLIGHT; the part stopped — at rest
+if its contacts hold gravity inside their cones (:func:`~.wall_statics.contacts_can_supply`), else
+it starts from rest as a ladder (the sense with σ ω̇ > 0 and both normal forces > 0) or swings back
+about A (gravity turns it away from the wall). A third vertex meeting the arm or the face during
+LADDER is another impact of the same kind. What is refused (UNRESOLVED with a reason code): a
+motion with two closed contacts on one surface (an edge flat on the arm or on the face sliding:
+WHY_TWO_CONTACT), a stopped part that none of the motions above can start (WHY_LADDER), P at the
+wall's top (WHY_WALL_TOP), a vertex at the wall's foot (WHY_CORNER).
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .flight import departure_window
+from .modes import EV_INCONSISTENT
+from .wall_contact import (WHY_CORNER, WHY_LADDER, WHY_NONE, WHY_TWO_CONTACT, WHY_WALL_SLIDE, WHY_WALL_TOP,
+                           wall_departure)
+from .wall_ladder import (C_OPEN, EV_A_OFF, EV_BEHIND, EV_FOOT, EV_LAND, EV_P_OFF, EV_P_TOP, EV_PLANE, EV_STOP,
+                          ladder_phase, ladder_pose, ladder_rhs, multi_contact_impact)
+from .wall_statics import contacts_can_supply
+
+LN_REST = 0
+LN_PIVOT = 1
+LN_WALL = 2
+LN_REFUSE = 3
+LN_INCONSISTENT = 4
+LN_CAP = 5
+LN_BEHIND = 6
+LN_FLIGHT = 7
+"""Outcomes of :func:`lean`."""
+
+_GO = -1  # internal: go on as a ladder
+
+
+@njit(cache=True)
+def _offsets(phi, w, j):
+    c = math.cos(phi)
+    s = math.sin(phi)
+    return c * w[j, 0] - s * w[j, 1], s * w[j, 0] + c * w[j, 1]
+
+
+@njit(cache=True)
+def _collect(x, y, phi, w, h, L, top, tol, mu, mu_w, ja, jp, pts, nrm, mus, idx, kind):
+    """Contacts of the part at (x, y, φ): every vertex within ``tol`` (m) of the arm (kind 0, cone μ) or of the
+    face below its top (kind 1, cone μ_w), and always ``ja`` on the arm and ``jp`` on the face (≥ 0); the
+    wall's top corner within ``tol`` of an edge (kind 2, the edge's inward normal, cone μ_w, ``idx`` the
+    edge's first vertex). Returns m."""
+    m = 0
+    n = w.shape[0]
+    for k in range(n):
+        rkx, rky = _offsets(phi, w, k)
+        for kd in range(2):
+            if kd == 0:
+                near = k == ja or y + rky - h <= tol
+            else:
+                near = k == jp or (L - (x + rkx) <= tol and y + rky <= h + top)
+            if near:
+                pts[m, 0] = rkx
+                pts[m, 1] = rky
+                nrm[m, 0] = 0.0 if kd == 0 else -1.0
+                nrm[m, 1] = 1.0 if kd == 0 else 0.0
+                mus[m] = mu if kd == 0 else mu_w
+                idx[m] = k
+                kind[m] = kd
+                m += 1
+    qx = L - x  # the top corner from the CM
+    qy = h + top - y
+    for k in range(n):
+        ax, ay = _offsets(phi, w, k)
+        bx, by = _offsets(phi, w, (k + 1) % n)
+        ex = bx - ax
+        ey = by - ay
+        le = math.hypot(ex, ey)
+        s = ((qx - ax) * ex + (qy - ay) * ey) / (le * le)
+        if s <= 0.0 or s >= 1.0:
+            continue
+        nx = ey / le  # the edge's outward normal (n·a > 0: the CM is inside), as _edge_frame
+        ny = -ex / le
+        if nx * ax + ny * ay < 0.0:
+            nx = -nx
+            ny = -ny
+        if abs(nx * (qx - ax) + ny * (qy - ay)) <= tol:
+            pts[m, 0] = qx
+            pts[m, 1] = qy
+            nrm[m, 0] = -nx  # the contact's normal into the part
+            nrm[m, 1] = -ny
+            mus[m] = mu_w
+            idx[m] = k
+            kind[m] = 2
+            m += 1
+    return m
+
+
+@njit(cache=True)
+def _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m, pts, nrm, mus, idx, kind, st):
+    """What follows an impact that left the contacts in states ``st``: ``(code, ka, kp, win_a, win_p, v_a)`` with
+    code an LN_* outcome or _GO (a ladder on arm vertex ka and face vertex kp, or ka/kp = −1 with ω = 0:
+    stopped, to be started by :func:`_from_rest`); ``win_a``/``win_p`` (s) exclusion windows of the arm / face
+    vertex that just opened (FLIGHT, WALL), ``v_a`` the slip velocity of a pivot (PIVOT)."""
+    scale = abs(vx) + abs(vy) + abs(om) * lref + 1e-300
+    moving = scale > 1e-12 * math.sqrt((abs(gx) + gn) * lref)
+    na = 0
+    nw = 0
+    ka = -1
+    kp = -1
+    nc = 0
+    for i in range(m):
+        if st[i] != C_OPEN:
+            if kind[i] == 0:
+                na += 1
+                ka = idx[i]
+            elif kind[i] == 1:
+                nw += 1
+                kp = idx[i]
+            else:
+                nc += 1
+    if not moving:
+        if contacts_can_supply(pts, nrm, mus, m, -gx, gn, 0.0, lref):
+            return LN_REST, -1, -1, 0.0, 0.0, 0.0
+        # stopped and not held: a ladder on one arm and one face contact may start
+        ka = -1
+        kp = -1
+        for i in range(m):
+            if kind[i] == 0 and ka < 0:
+                ka = idx[i]
+            if kind[i] == 1 and kp < 0:
+                kp = idx[i]
+        if ka >= 0 and kp >= 0 and ka != kp:
+            return _GO, ka, kp, 0.0, 0.0, 0.0
+        return LN_REFUSE, WHY_LADDER, -1, 0.0, 0.0, 0.0
+    if nc > 0:
+        return LN_REFUSE, WHY_WALL_SLIDE, -1, 0.0, 0.0, 0.0  # an edge sliding over the wall's top corner
+    if na > 1 or nw > 1:
+        return LN_REFUSE, WHY_TWO_CONTACT, -1, 0.0, 0.0, 0.0
+    if na == 1 and nw == 1 and ka == kp:
+        return LN_REFUSE, WHY_CORNER, -1, 0.0, 0.0, 0.0  # one vertex at the wall's foot
+    # windows of the contacts that opened (the slowest of each kind)
+    win_a = math.inf
+    win_p = math.inf
+    oa = -1
+    op = -1
+    for i in range(m):
+        if st[i] == C_OPEN:
+            rx = pts[i, 0]
+            ry = pts[i, 1]
+            lj = math.hypot(rx, ry)
+            if kind[i] == 0:
+                un = vy + om * rx
+                wv = departure_window(max(un, 0.0), rx, ry, om, gn, lj) if un <= 1e-12 * scale else 1.0
+                if wv < win_a:
+                    win_a = wv
+                    oa = idx[i]
+            elif kind[i] == 1:
+                un = -(vx - om * ry)
+                wv = wall_departure(max(un, 0.0), rx, ry, om, gx, -gn, lj) if un <= 1e-12 * scale else 1.0
+                if wv < win_p:
+                    win_p = wv
+                    op = idx[i]
+    if (oa >= 0 and win_a <= 0.0) or (op >= 0 and win_p <= 0.0):
+        return LN_REFUSE, WHY_TWO_CONTACT, -1, 0.0, 0.0, 0.0  # a contact that can neither stay closed nor open
+    if na == 1 and nw == 1:
+        return _GO, ka, kp, 0.0, 0.0, 0.0
+    if na == 1:
+        rax, ray = _offsets(phi, w, ka)
+        return LN_PIVOT, ka, op, 0.0, win_p, vx - om * ray
+    if nw == 1:
+        return LN_WALL, oa, kp, win_a, 0.0, 0.0
+    return LN_FLIGHT, oa, op, win_a, win_p, 0.0
+
+
+@njit(cache=True)
+def lean(ja, jp, impact, t, x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, h, top, L, back, lref, max_steps,
+         max_events, traj, ts):
+    """Mode LEAN (module docstring) from the flight state (CM (x, y), (v_x, v_y), φ, ω; SI) with vertex ``ja`` on the
+    arm and ``jp`` on the face: the impact first if ``impact`` (else the part moves as a ladder with σ = sgn ω,
+    or is stopped if ω = 0).
+
+    Returns ``(outcome, why, t, x, y, v_x, v_y, φ, ω, ka, kp, win_a, win_p, v_a)``: LN_REST (pose), LN_PIVOT on arm
+    vertex ``ka`` with slip velocity ``v_a`` (m/s), LN_WALL on face vertex ``kp`` (arm vertex ``ka`` excluded for
+    ``win_a`` s), LN_FLIGHT (arm vertex ``ka`` excluded ``win_a`` s, face vertex ``kp`` ``win_p`` s), LN_REFUSE with
+    ``why``, LN_INCONSISTENT, LN_CAP, LN_BEHIND (A slid behind the joint).
+    """
+    n = w.shape[0]
+    pts = np.empty((2 * n, 2))
+    nrm = np.empty((2 * n, 2))
+    mus = np.empty(2 * n)
+    idx = np.empty(2 * n, dtype=np.int64)
+    kind = np.empty(2 * n, dtype=np.int64)
+    st = np.empty(2 * n, dtype=np.int64)
+    tol = 1e-9 * lref
+    stopped = False
+    pending = impact
+    if not impact:
+        stopped = om == 0.0
+    for _ in range(max_events):
+        if pending:
+            m = _collect(x, y, phi, w, h, L, top, tol, mu, mu_w, ja, jp, pts, nrm, mus, idx, kind)
+            ok, vx, vy, om = multi_contact_impact(vx, vy, om, pts, nrm, mus, m, rho2, st)
+            if not ok:
+                return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+            code, ka, kp, win_a, win_p, v_a = _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m,
+                                                        pts, nrm, mus, idx, kind, st)
+            if code != _GO:
+                if code == LN_REFUSE:
+                    return code, ka, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+                if code == LN_REST:
+                    return code, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0
+                return code, WHY_NONE, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p, v_a
+            ja = ka
+            jp = kp
+            pending = False
+            stopped = om == 0.0 or not (abs(vx) + abs(vy) + abs(om) * lref
+                                        > 1e-12 * math.sqrt((abs(gx) + gn) * lref))
+        if stopped:
+            act, sig = _from_rest(phi, w, ja, jp, rho2, mu, mu_w, gx, gn, lref)
+            x, y = ladder_pose(phi, w, ja, jp, h, L)
+            if act == 0:
+                return LN_REST, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0
+            if act == 2:
+                return LN_PIVOT, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, ja, -1, 0.0, 0.0, 0.0
+            if act == 3:
+                return LN_REFUSE, WHY_LADDER, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0
+            om = 0.0
+            stopped = False
+        else:
+            sig = 1.0 if om > 0.0 else -1.0
+        ev, k, phi, om, t = ladder_phase(phi, om, sig, t, w, ja, jp, rho2, mu, mu_w, gx, gn, h, L, top, back,
+                                         max_steps, traj, ts)
+        x, y = ladder_pose(phi, w, ja, jp, h, L)
+        rax, ray = _offsets(phi, w, ja)
+        rpx, rpy = _offsets(phi, w, jp)
+        vx = rpy * om
+        vy = -rax * om
+        if ev == EV_STOP:
+            stopped = True
+            continue
+        if ev == EV_P_OFF:
+            return LN_PIVOT, WHY_NONE, t, x, y, vx, vy, phi, om, ja, jp, 0.0, 0.0, vx - om * ray
+        if ev == EV_A_OFF:
+            win = departure_window(0.0, rax, ray, om, gn, math.hypot(rax, ray))
+            if win <= 0.0:
+                return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+            return LN_WALL, WHY_NONE, t, x, y, vx, vy, phi, om, ja, jp, win, 0.0, 0.0
+        if ev == EV_LAND or ev == EV_PLANE:
+            pending = True  # a third vertex meets the arm or the face: another impact
+            continue
+        if ev == EV_P_TOP:
+            return LN_REFUSE, WHY_WALL_TOP, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+        if ev == EV_FOOT:
+            return LN_REFUSE, WHY_CORNER, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+        if ev == EV_BEHIND:
+            return LN_BEHIND, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+        if ev == EV_INCONSISTENT:
+            return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+        return LN_CAP, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+    return LN_CAP, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def _from_rest(phi, w, ja, jp, rho2, mu, mu_w, gx, gn, lref):
+    """What a part leaning at rest on A (arm) and P (face) does: ``(0, _)`` rests, ``(1, σ)`` slides as a ladder
+    with sense σ, ``(2, _)`` swings back about A (P leaves the wall), ``(3, _)`` none of these (refused)."""
+    rax, ray = _offsets(phi, w, ja)
+    rpx, rpy = _offsets(phi, w, jp)
+    pts = np.empty((2, 2))
+    nrm = np.empty((2, 2))
+    mus = np.empty(2)
+    pts[0, 0] = rax
+    pts[0, 1] = ray
+    nrm[0, 0] = 0.0
+    nrm[0, 1] = 1.0
+    mus[0] = mu
+    pts[1, 0] = rpx
+    pts[1, 1] = rpy
+    nrm[1, 0] = -1.0
+    nrm[1, 1] = 0.0
+    mus[1] = mu_w
+    if contacts_can_supply(pts, nrm, mus, 2, -gx, gn, 0.0, lref):
+        return 0, 0.0
+    for sig in (1.0, -1.0):
+        wd, na, npw, D = ladder_rhs(phi, 0.0, w[ja], w[jp], rho2, mu, mu_w, sig, gx, gn)
+        if D > 0.0 and na > 0.0 and npw > 0.0 and sig * wd > 0.0:
+            return 1, sig
+    lj = math.hypot(rax, ray)
+    if (rax * gn + ray * gx) / lj > 0.0:  # (CM − A) × g / ℓ = (−r_A) × (g_x, −g_n) / ℓ: θ̈ about A
+        return 2, 0.0
+    return 3, 0.0

@@ -1,0 +1,284 @@
+"""Mode WALL_CONTACT of model "rigid_body": one vertex pressed on the wall's face, the part otherwise free.
+
+After a plastic impact with the wall (:func:`~.wall.wall_hit_in_flight`, or a swinging pivot that
+lifts off the arm while a vertex meets the wall, :func:`~.wall.pivot_wall_hit`), a vertex P can stay
+pressed on the face x = L: the motion that gravity and the part's rotation impose would carry it
+into the wall (W'' < 0 in :func:`~.wall_contact.wall_departure`). The part then moves with P on
+the face — sliding along it (the wall's Coulomb μ_w, 0 included) or sticking to it — until P lets
+go (N = 0), another vertex reaches the arm (a landing with P still on the wall), P reaches the
+arm or the wall's top, or another vertex reaches the wall's plane (an edge flush on the face).
+
+Coordinates (arm frame, m, rad): P = (L, y_P) and θ the angle of P → CM, so that
+CM = P + ℓ (cos θ, sin θ) (ℓ the vertex's distance from the CM) and φ = θ + φ_off. Unit mass,
+inertia ρ² about the CM, gravity (g_x, −g_n) (:mod:`~.wall`). The contact force on the part is
+(−N, F): N ≥ 0 along the face's normal −x̂, F along +ŷ. Newton–Euler with the constraint
+ẍ_P = 0 (c = cos θ, s = sin θ):
+
+    ẍ = −ℓ s θ̈ − ℓ c θ̇² = g_x − N,   ÿ = ÿ_P + ℓ c θ̈ − ℓ s θ̇² = −g_n + F,
+    ρ² θ̈ = −ℓ (c F + s N).
+
+Sliding (ẏ_P ≠ 0, F = −μ_w σ N, σ = sgn ẏ_P; μ_w = 0: F = 0)::
+
+    N D = g_x + ℓ c θ̇²,   D = 1 + ℓ² s (s − μ_w σ c)/ρ²,   ρ² θ̈ = ℓ N (μ_w σ c − s),
+    ÿ_P = −g_n − μ_w σ N − ℓ c θ̈ + ℓ s θ̇²
+
+(D ≤ 0: Painlevé's paradox, no consistent force: INCONSISTENT). Sticking (ẏ_P = 0, a pivot on the
+face): (ρ² + ℓ²) θ̈ = −ℓ (c g_n + s g_x), N = g_x + ℓ s θ̈ + ℓ c θ̇², F = g_n + ℓ c θ̈ − ℓ s θ̇²,
+valid while |F| ≤ μ_w N. The same equations as the arm's PIVOT_SLIDE / PIVOT_STICK
+(:func:`~.slide.slide_rhs`) in a frame turned by −90°; they are written out here because
+gravity's component normal to the wall (g_x) may be of either sign or zero.
+
+Integration: classical RK4 in (y_P, θ, ẏ_P, θ̇), step Δt = DTH/(|θ̇| + Ω), Ω² = (|g_x| + g_n)/ℓ;
+guards checked at step ends and located inside the step by bracketing (false position kept
+inside the bracket, bisection otherwise), as :func:`~.slide._locate_guard`.
+"""
+
+import math
+
+from numba import njit
+
+from .. import codes as C
+from .modes import DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, N_BISECT
+from .trajectory import _put
+
+EV_ARM = 11
+"""Guard ``arm``: a vertex (returned) reaches the arm's line y = h while P is on the face."""
+EV_TOP = 12
+"""Guard ``top``: P slides up to the wall's top corner."""
+EV_EDGE = 13
+"""Guard ``edge``: another vertex reaches the wall's plane x = L (an edge flush on it, or on its top corner)."""
+
+W_SLIDE = 0
+W_STICK = 1
+"""Sub-modes of WALL_CONTACT (μ_w = 0 always slides)."""
+
+
+@njit(cache=True)
+def wall_rhs(th, thd, lj, rho2, gx, gn, musig, stick):
+    """WALL_CONTACT dynamics (module docstring). ``musig`` = μ_w σ while sliding; ``stick``: P fixed on the face.
+
+    Returns ``(θ̈, ÿ_P, N, F, D)`` (per unit mass, m/s² and rad/s²; D = 1 while sticking). At D = 0
+    exactly ``(nan, nan, nan, nan, 0)``.
+    """
+    c = math.cos(th)
+    s = math.sin(th)
+    if stick:
+        thdd = -lj * (c * gn + s * gx) / (rho2 + lj * lj)
+        N = gx + lj * s * thdd + lj * c * thd * thd
+        F = gn + lj * c * thdd - lj * s * thd * thd
+        return thdd, 0.0, N, F, 1.0
+    D = 1.0 + lj * lj * s * (s - musig * c) / rho2
+    if D == 0.0:
+        return math.nan, math.nan, math.nan, math.nan, 0.0
+    N = (gx + lj * c * thd * thd) / D
+    thdd = lj * N * (musig * c - s) / rho2
+    F = -musig * N
+    ypdd = -gn + F - lj * c * thdd + lj * s * thd * thd
+    return thdd, ypdd, N, F, D
+
+
+@njit(cache=True)
+def _rk4(yp, th, vp, thd, dt, lj, rho2, gx, gn, musig, stick):
+    a1, b1, _n, _f, _d = wall_rhs(th, thd, lj, rho2, gx, gn, musig, stick)
+    th2 = th + 0.5 * dt * thd
+    w2 = thd + 0.5 * dt * a1
+    a2, b2, _n, _f, _d = wall_rhs(th2, w2, lj, rho2, gx, gn, musig, stick)
+    th3 = th + 0.5 * dt * w2
+    w3 = thd + 0.5 * dt * a2
+    a3, b3, _n, _f, _d = wall_rhs(th3, w3, lj, rho2, gx, gn, musig, stick)
+    th4 = th + dt * w3
+    w4 = thd + dt * a3
+    a4, b4, _n, _f, _d = wall_rhs(th4, w4, lj, rho2, gx, gn, musig, stick)
+    v2 = vp + 0.5 * dt * b1
+    v3 = vp + 0.5 * dt * b2
+    v4 = vp + dt * b3
+    yp1 = yp + dt * (vp + 2.0 * v2 + 2.0 * v3 + v4) / 6.0
+    th1 = th + dt * (thd + 2.0 * w2 + 2.0 * w3 + w4) / 6.0
+    vp1 = vp + dt * (b1 + 2.0 * b2 + 2.0 * b3 + b4) / 6.0
+    w1 = thd + dt * (a1 + 2.0 * a2 + 2.0 * a3 + a4) / 6.0
+    return yp1, th1, vp1, w1
+
+
+@njit(cache=True)
+def _guard_value(which, k, yp, th, vp, thd, lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga):
+    """One guard's value (> 0: not fired): see :func:`_guards`."""
+    if which == EV_STICK:
+        return sig * vp
+    if which == EV_SLIP or which == EV_LIFT_OFF:
+        _a, _b, N, F, _D = wall_rhs(th, thd, lj, rho2, gx, gn, musig, stick)
+        if which == EV_LIFT_OFF:
+            return N / ga
+        return (mu_w * N - abs(F)) / ga
+    if which == EV_TOP:
+        return h + top - yp
+    if which == EV_ARM:
+        return yp - h if wv[k, 0] == 0.0 else yp + wv[k, 0] * math.sin(th + wv[k, 1]) - h
+    if which == EV_EDGE:
+        return -wv[k, 0] * math.cos(th + wv[k, 1])
+    return math.nan
+
+
+@njit(cache=True)
+def _guards(yp, th, vp, thd, lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip):
+    """Least guard value and which guard (and vertex) it is; ``(-1, EV_INCONSISTENT, -1)`` if D ≤ 0.
+
+    Guards: ``stick`` σ ẏ_P (sliding with μ_w > 0), ``slip`` (μ_w N − |F|)/|g| (sticking, finite μ_w),
+    ``lift_off`` N/|g|, ``top`` h + H − y_P, ``arm`` y_k − h (every vertex but ``arm_skip``; P's own
+    row in ``wv`` has ℓ = 0), ``edge`` L − x_k (every other vertex).
+    """
+    _a, _b, N, F, D = wall_rhs(th, thd, lj, rho2, gx, gn, musig, stick)
+    if D <= 0.0:
+        return -1.0, EV_INCONSISTENT, -1
+    gmin = N / ga
+    which = EV_LIFT_OFF
+    kk = -1
+    if stick:
+        if math.isfinite(mu_w):
+            v = (mu_w * N - abs(F)) / ga
+            if v < gmin:
+                gmin = v
+                which = EV_SLIP
+    elif mu_w > 0.0 and sig * vp < gmin:
+        gmin = sig * vp
+        which = EV_STICK
+    if h + top - yp < gmin:
+        gmin = h + top - yp
+        which = EV_TOP
+    for k in range(wv.shape[0]):
+        if k != arm_skip:
+            v = yp - h if wv[k, 0] == 0.0 else yp + wv[k, 0] * math.sin(th + wv[k, 1]) - h
+            if v < gmin:
+                gmin = v
+                which = EV_ARM
+                kk = k
+        if wv[k, 0] > 0.0:
+            v = -wv[k, 0] * math.cos(th + wv[k, 1])
+            if v < gmin:
+                gmin = v
+                which = EV_EDGE
+                kk = k
+    return gmin, which, kk
+
+
+@njit(cache=True)
+def _locate(yp, th, vp, thd, dt, which, k, t, lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip):
+    """Smallest step τ ∈ (0, dt] at which the least guard is ≤ 0 (bracket [lo, hi], G(lo) > 0 ≥ G(hi)).
+
+    False position on the guard that fired at hi, kept half the tolerance inside the bracket while the
+    previous step halved it, bisection otherwise; stops at a bracket below 1e-16 (t + τ). Returns
+    ``(τ, which, k)`` at the bracket's upper end.
+    """
+    lo = 0.0
+    hi = dt
+    s_lo = (yp, th, vp, thd)
+    s_hi = _rk4(yp, th, vp, thd, dt, lj, rho2, gx, gn, musig, stick)
+    falsi = True
+    for _ in range(4 * N_BISECT):
+        width = hi - lo
+        tol = 1e-16 * (t + hi)
+        if width <= tol:
+            break
+        mid = lo + 0.5 * width
+        if falsi:
+            c_lo = _guard_value(which, k, s_lo[0], s_lo[1], s_lo[2], s_lo[3], lj, rho2, gx, gn, mu_w, musig, stick,
+                                sig, h, top, wv, ga)
+            c_hi = _guard_value(which, k, s_hi[0], s_hi[1], s_hi[2], s_hi[3], lj, rho2, gx, gn, mu_w, musig, stick,
+                                sig, h, top, wv, ga)
+            if c_lo > 0.0 and c_hi <= 0.0:
+                mid = lo + width * c_lo / (c_lo - c_hi)
+                mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
+        sm = _rk4(yp, th, vp, thd, mid, lj, rho2, gx, gn, musig, stick)
+        gm, wh, km = _guards(sm[0], sm[1], sm[2], sm[3], lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga,
+                             arm_skip)
+        if gm <= 0.0:
+            hi = mid
+            which = wh
+            k = km
+            s_hi = sm
+        else:
+            lo = mid
+            s_lo = sm
+        falsi = hi - lo <= 0.5 * width
+    return hi, which, k
+
+
+@njit(cache=True)
+def wall_phase(yp, th, vp, thd, stick, sig, t, lj, rho2, gx, gn, mu_w, h, top, wv, arm_skip, arm_skip_until, L,
+               phi_off, max_steps, traj, ts, rec):
+    """Integrate one sub-mode of WALL_CONTACT (``stick``, or sliding with sense ``sig``) until a guard fires.
+
+    ``wv`` (n, 2) rows (ℓ_k, δ_k): vertex k at P + ℓ_k (cos(θ + δ_k), sin(θ + δ_k)) (ℓ = 0: P itself,
+    :func:`~.wall_guards.fill_wall_vertices`); ``arm_skip`` a vertex the arm guard ignores until
+    ``arm_skip_until`` (s, absolute: a vertex that just left the arm, provably above it meanwhile).
+    Updates N_MIN (the wall's N/|g| is not the arm's: only MU_MAX), samples ``traj``.
+    Returns ``(event, k, y_P, θ, ẏ_P, θ̇, t)`` with k the vertex of ``arm``/``edge`` (else −1).
+    """
+    musig = 0.0 if stick else mu_w * sig
+    ga = abs(gx) + gn
+    om0 = math.sqrt(ga / lj)
+    sample = traj.shape[0] > 0
+    if mu_w > rec[C.MU_MAX] and math.isfinite(mu_w):
+        rec[C.MU_MAX] = mu_w
+    for _ in range(max_steps):
+        skip = arm_skip if t < arm_skip_until else -1
+        dt = DTH / (abs(thd) + om0)
+        s1 = _rk4(yp, th, vp, thd, dt, lj, rho2, gx, gn, musig, stick)
+        gm, which, k = _guards(s1[0], s1[1], s1[2], s1[3], lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga,
+                               skip)
+        if which == EV_INCONSISTENT:
+            return EV_INCONSISTENT, -1, yp, th, vp, thd, t
+        step = dt
+        if gm <= 0.0:
+            step, which, k = _locate(yp, th, vp, thd, dt, which, k, t, lj, rho2, gx, gn, mu_w, musig, stick, sig, h,
+                                     top, wv, ga, skip)
+            s1 = _rk4(yp, th, vp, thd, step, lj, rho2, gx, gn, musig, stick)
+        if sample:
+            while ts[1] <= t + step:
+                q = _rk4(yp, th, vp, thd, ts[1] - t, lj, rho2, gx, gn, musig, stick)
+                _put(traj, ts, ts[1], L + lj * math.cos(q[1]), q[0] + lj * math.sin(q[1]), q[1] + phi_off)
+                ts[1] += ts[2]
+        yp, th, vp, thd = s1
+        t += step
+        if gm <= 0.0:
+            if which == EV_STICK:
+                vp = 0.0
+            if sample:
+                _put(traj, ts, t, L + lj * math.cos(th), yp + lj * math.sin(th), th + phi_off)
+            return which, k, yp, th, vp, thd, t
+    return EV_STEP_CAP, -1, yp, th, vp, thd, t
+
+
+@njit(cache=True)
+def wall_select(th, thd, vp, lj, rho2, gx, gn, mu_w, from_slip):
+    """Which sub-mode continues from P on the face at (θ, θ̇, ẏ_P) (the one-contact Coulomb choice, as
+    :func:`~.slide.select_contact_mode`): returns ``(mode, σ)`` with mode W_STICK, W_SLIDE, −1 (the
+    contact is not pressed: N ≤ 0 — the caller lets it go) or −2 (no consistent motion).
+    μ_w = 0 always slides; μ_w = ∞ sticks (ẏ_P is 0 after its impact)."""
+    if mu_w == 0.0:
+        _a, _b, N, _f, D = wall_rhs(th, thd, lj, rho2, gx, gn, 0.0, False)
+        if D <= 0.0:
+            return -2, 0.0
+        return (W_SLIDE, 0.0) if N > 0.0 else (-1, 0.0)
+    scale = max(1.0, abs(thd) * lj)
+    if abs(vp) > 1e-12 * scale:
+        sig = 1.0 if vp > 0.0 else -1.0
+        if math.isinf(mu_w):
+            return -2, 0.0
+        _a, _b, N, _f, D = wall_rhs(th, thd, lj, rho2, gx, gn, mu_w * sig, False)
+        if D <= 0.0:
+            return -2, 0.0
+        return (W_SLIDE, sig) if N > 0.0 else (-1, 0.0)
+    _a, _b, N, F, _d = wall_rhs(th, thd, lj, rho2, gx, gn, 0.0, True)
+    if N <= 0.0:
+        return -1, 0.0
+    if not from_slip and abs(F) <= mu_w * N:
+        return W_STICK, 0.0
+    sig = -1.0 if F > 0.0 else 1.0
+    for _ in range(2):
+        _a, ypdd, N2, _f, D = wall_rhs(th, thd, lj, rho2, gx, gn, mu_w * sig, False)
+        if D > 0.0 and N2 > 0.0 and (sig * ypdd > 0.0 or from_slip):
+            return W_SLIDE, sig
+        if from_slip:
+            break
+        sig = -sig
+    return -2, 0.0

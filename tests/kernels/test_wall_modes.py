@@ -1,0 +1,267 @@
+"""rigid_body's wall contact modes (issue 11): a vertex sliding on the face, the two-contact impact, the ladder.
+
+Independent checks: energy balance (a frictionless wall and arm conserve it, friction only removes it),
+a second integration of the same motion in other coordinates (scipy's solve_ivp on the free body
+with the contact force from the gap's second derivative), the impact's conditions checked on its
+result (normal velocities, cones, energy), the frictionless impact against a quadratic program, and
+the engine on throws that go through the new modes.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import solve_ivp
+from scipy.optimize import minimize
+
+import throwmap as tm
+from throwmap.kernels.rigid_body.modes import EV_LIFT_OFF
+from throwmap.kernels.rigid_body.wall_guards import fill_wall_vertices
+from throwmap.kernels.rigid_body.wall_ladder import (C_OPEN, ladder_phase, ladder_pose, ladder_rhs,
+                                                     multi_contact_impact)
+from throwmap.kernels.rigid_body.wall_slide import W_SLIDE, W_STICK, wall_phase, wall_rhs, wall_select
+from throwmap.kernels.rigid_body.wall_statics import contacts_can_supply
+from throwmap.system.catalogue import rectangle, regular_polygon
+
+G = 9.81
+NO_TRAJ = np.zeros((0, 4))
+
+
+def _rec():
+    return np.zeros(64)
+
+
+def _square_on_face(theta, thd, vp, alpha, top=0.5):
+    """A 6 cm square with vertex 0 on the face x = L = 0.3 (P at y_P = 0.05), CM at P + ℓ(cos θ, sin θ)."""
+    part = rectangle(0.06, 0.06)
+    w = np.asarray(part.w, dtype=float)
+    rho2 = part.radius_of_gyration ** 2
+    lj = math.hypot(*w[0])
+    # φ such that vertex 0 sits at P: R(φ) w_0 = −ℓ (cos θ, sin θ)
+    phi = theta + math.pi - math.atan2(w[0, 1], w[0, 0])
+    wv = np.zeros((4, 2))
+    fill_wall_vertices(theta, phi, w, 0, wv)
+    gx, gn = -G * math.sin(alpha), G * math.cos(alpha)
+    return dict(w=w, rho2=rho2, lj=lj, phi_off=phi - theta, wv=wv, gx=gx, gn=gn, th=theta, thd=thd, vp=vp,
+                yp=0.05, L=0.3, h=-0.2, top=top)
+
+
+def _energy(s, yp, th, vp, thd):
+    c, sn = math.cos(th), math.sin(th)
+    x, y = s["L"] + s["lj"] * c, yp + s["lj"] * sn
+    vx, vy = -s["lj"] * sn * thd, vp + s["lj"] * c * thd
+    return 0.5 * (vx * vx + vy * vy + s["rho2"] * thd * thd) - s["gx"] * x + s["gn"] * y
+
+
+def _run(s, mu_w, stick=False, sig=0.0):
+    return wall_phase(s["yp"], s["th"], s["vp"], s["thd"], stick, sig, 0.0, s["lj"], s["rho2"], s["gx"], s["gn"],
+                      mu_w, s["h"], s["top"], s["wv"], -1, 0.0, s["L"], s["phi_off"], 100000, NO_TRAJ, np.zeros(3),
+                      _rec())
+
+
+# ------------------------------------------------------------------------------------------ WALL_CONTACT
+@pytest.mark.parametrize("theta,thd,vp,alpha", [(math.pi - 0.3, -2.0, -0.5, -0.2), (math.pi + 0.4, 1.0, 0.3, -0.25),
+                                                (math.pi - 0.1, 3.0, 0.0, -0.1)])
+def test_frictionless_face_conserves_energy_and_falls_freely(theta, thd, vp, alpha):
+    s = _square_on_face(theta, thd, vp, alpha)
+    mode, _sig = wall_select(s["th"], s["thd"], s["vp"], s["lj"], s["rho2"], s["gx"], s["gn"], 0.0, False)
+    assert mode == W_SLIDE
+    ev, k, yp, th, vp1, thd1, t = _run(s, 0.0)
+    assert t > 0.01  # a motion, not an event at the start
+    e0 = _energy(s, s["yp"], s["th"], s["vp"], s["thd"])
+    assert _energy(s, yp, th, vp1, thd1) == pytest.approx(e0, abs=1e-9 * (abs(e0) + 1.0))
+    # no vertical force on a frictionless face: the CM falls freely
+    vy0 = s["vp"] + s["lj"] * math.cos(s["th"]) * s["thd"]
+    vy1 = vp1 + s["lj"] * math.cos(th) * thd1
+    assert vy1 == pytest.approx(vy0 - s["gn"] * t, abs=1e-9)
+
+
+def _free_body_reference(s, mu_w, sig, t_end):
+    """The same motion as a free body (x, y, φ, v_x, v_y, ω) with the contact force from W'' = 0 (W = L − x_P)."""
+    w0 = s["w"][0]
+    rho2 = s["rho2"]
+
+    def rhs(_t, q):
+        x, y, phi, vx, vy, om = q
+        rx = math.cos(phi) * w0[0] - math.sin(phi) * w0[1]
+        ry = math.sin(phi) * w0[0] + math.cos(phi) * w0[1]
+        # force (−N, −μσN) at r: ẍ = g_x − N, ω̇ = (r_y N − μσ r_x N)/ρ²; W'' = −ẍ + r_x ω² + r_y ω̇ = 0
+        a_n = (1.0 + (ry * ry - mu_w * sig * rx * ry) / rho2)
+        N = (s["gx"] - rx * om * om) / a_n
+        F = -mu_w * sig * N
+        return [vx, vy, om, s["gx"] - N, -s["gn"] + F, (ry * N + rx * F) / rho2]
+
+    c, sn = math.cos(s["th"]), math.sin(s["th"])
+    q0 = [s["L"] + s["lj"] * c, s["yp"] + s["lj"] * sn, s["th"] + s["phi_off"], -s["lj"] * sn * s["thd"],
+          s["vp"] + s["lj"] * c * s["thd"], s["thd"]]
+    return solve_ivp(rhs, (0.0, t_end), q0, rtol=1e-11, atol=1e-13).y[:, -1]
+
+
+@pytest.mark.parametrize("mu_w,vp", [(0.0, -0.5), (0.4, -0.6), (0.4, 0.8)])
+def test_face_slide_matches_a_free_body_integration(mu_w, vp):
+    s = _square_on_face(math.pi - 0.25, -1.5, vp, -0.2)
+    sig = 0.0 if mu_w == 0.0 else math.copysign(1.0, vp)
+    ev, k, yp, th, vp1, thd1, t = _run(s, mu_w, sig=sig)
+    assert t > 0.005
+    ref = _free_body_reference(s, mu_w, sig, t)
+    c, sn = math.cos(th), math.sin(th)
+    assert s["L"] + s["lj"] * c == pytest.approx(ref[0], abs=1e-8)
+    assert yp + s["lj"] * sn == pytest.approx(ref[1], abs=1e-8)
+    assert th + s["phi_off"] == pytest.approx(ref[2], abs=1e-7)
+    assert thd1 == pytest.approx(ref[5], abs=1e-6)
+    if mu_w > 0.0:  # sliding friction only removes energy
+        assert _energy(s, yp, th, vp1, thd1) < _energy(s, s["yp"], s["th"], s["vp"], s["thd"])
+
+
+def test_stuck_on_a_rough_face_the_vertex_stays_put_and_energy_is_kept():
+    s = _square_on_face(math.pi - 0.2, -1.0, 0.0, -0.25)
+    mode, _sig = wall_select(s["th"], s["thd"], 0.0, s["lj"], s["rho2"], s["gx"], s["gn"], math.inf, False)
+    assert mode == W_STICK
+    ev, k, yp, th, vp1, thd1, t = _run(s, math.inf, stick=True)
+    assert t > 0.0 and yp == s["yp"] and vp1 == 0.0
+    e0 = _energy(s, s["yp"], s["th"], 0.0, s["thd"])
+    assert _energy(s, yp, th, 0.0, thd1) == pytest.approx(e0, abs=1e-9 * (abs(e0) + 1.0))
+
+
+def test_a_vertex_thrown_off_the_face_lifts():
+    # gravity pulls away from the wall (α > 0) and no spin: not pressed at all
+    s = _square_on_face(math.pi - 0.2, 0.0, 0.0, 0.2)
+    mode, _ = wall_select(s["th"], s["thd"], s["vp"], s["lj"], s["rho2"], s["gx"], s["gn"], 0.0, False)
+    assert mode == -1
+    # pressed at first, the spin's centripetal pull takes over: N reaches 0
+    s = _square_on_face(math.pi + 0.3, 6.0, 0.0, -0.05)
+    _N = wall_rhs(s["th"], s["thd"], s["lj"], s["rho2"], s["gx"], s["gn"], 0.0, False)[2]
+    ev = _run(s, 0.0)[0]
+    assert ev == EV_LIFT_OFF or _N <= 0.0
+
+
+# ------------------------------------------------------------------------------------------ impacts
+def _contacts(rng):
+    """An arm contact and a face contact of a random part (CM → contact offsets, m)."""
+    return (np.array([[rng.uniform(-0.04, 0.02), rng.uniform(-0.04, -0.005)],
+                      [rng.uniform(0.005, 0.04), rng.uniform(-0.03, 0.03)]]),
+            np.array([[0.0, 1.0], [-1.0, 0.0]]))
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.sampled_from([0.0, 0.3, 1.0, math.inf]), st.sampled_from([0.0, 0.5, math.inf]))
+def test_two_contact_impact_meets_every_condition(seed, mu, mu_w):
+    rng = np.random.default_rng(seed)
+    pts, nrm = _contacts(rng)
+    mus = np.array([mu, mu_w])
+    rho2 = rng.uniform(2e-4, 1e-3)
+    vx, vy, om = rng.uniform(-1, 1), rng.uniform(-1, 0.2), rng.uniform(-20, 20)
+    stt = np.zeros(2, dtype=np.int64)
+    ok, vxp, vyp, wp = multi_contact_impact(vx, vy, om, pts, nrm, mus, 2, rho2, stt)
+    if not ok:  # only infinite friction can make a frictional impact inconsistent (a pulling normal impulse)
+        assert math.isinf(mu) or math.isinf(mu_w)
+        return
+    scale = abs(vx) + abs(vy) + abs(om) * 0.1
+    for i in range(2):
+        rx, ry = pts[i]
+        un = nrm[i, 0] * (vxp - wp * ry) + nrm[i, 1] * (vyp + wp * rx)
+        assert un >= -1e-8 * scale
+    assert 0.5 * (vxp**2 + vyp**2 + rho2 * wp**2) <= 0.5 * (vx**2 + vy**2 + rho2 * om**2) * (1 + 1e-9) + 1e-15
+    # the impulse is a sum of impulses inside the cones (independent: the exact cone test)
+    assert contacts_can_supply(pts, nrm, mus, 2, vxp - vx, vyp - vy, rho2 * (wp - om), 0.1) or \
+        abs(vxp - vx) + abs(vyp - vy) + abs(wp - om) * 0.1 <= 1e-9 * scale
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_frictionless_two_contact_impact_is_the_least_energy_projection(seed):
+    rng = np.random.default_rng(seed)
+    pts, nrm = _contacts(rng)
+    rho2 = rng.uniform(2e-4, 1e-3)
+    v = np.array([rng.uniform(-1, 1), rng.uniform(-1, 0.2), rng.uniform(-20, 20)])
+    stt = np.zeros(2, dtype=np.int64)
+    ok, vxp, vyp, wp = multi_contact_impact(*v, pts, nrm, np.zeros(2), 2, rho2, stt)
+    assert ok
+    # frictionless plastic impact: the least kinetic energy velocity with every normal velocity ≥ 0
+    M = np.diag([1.0, 1.0, rho2])
+    J = np.array([[n[0], n[1], r[0] * n[1] - r[1] * n[0]] for r, n in zip(pts, nrm)])
+    res = minimize(lambda u: 0.5 * (u - v) @ M @ (u - v), v, jac=lambda u: M @ (u - v),
+                   constraints=[{"type": "ineq", "fun": lambda u: J @ u, "jac": lambda u: J}], method="SLSQP",
+                   options={"ftol": 1e-14, "maxiter": 500})
+    assert np.allclose([vxp, vyp, wp], res.x, atol=1e-6 * (1 + np.abs(v).max()))
+
+
+# ------------------------------------------------------------------------------------------ LADDER
+def _ladder_start():
+    part = rectangle(0.10, 0.02)
+    w = np.asarray(part.w, dtype=float)
+    return part, w, part.radius_of_gyration ** 2
+
+
+@pytest.mark.parametrize("mu,mu_w", [(0.0, 0.0), (0.3, 0.0), (0.3, 0.3)])
+def test_a_ladder_falls_conserving_energy_only_without_friction(mu, mu_w):
+    part, w, rho2 = _ladder_start()
+    # the bar's long axis at 40° (it slides at μ = 0.3: tan 40° < 1/(2μ)): A its lowest vertex on the arm,
+    # P its rightmost on the face
+    phi = math.radians(40.0)
+    ry = np.sin(phi) * w[:, 0] + np.cos(phi) * w[:, 1]
+    rx = np.cos(phi) * w[:, 0] - np.sin(phi) * w[:, 1]
+    ja, jp, L, h = int(np.argmin(ry)), int(np.argmax(rx)), 0.2, 0.0
+    assert ja != jp
+    gx, gn = 0.0, G
+    rax = math.cos(phi) * w[ja, 0] - math.sin(phi) * w[ja, 1]
+    rpy = math.sin(phi) * w[jp, 0] + math.cos(phi) * w[jp, 1]
+    wd, na, npw, D = ladder_rhs(phi, 0.0, w[ja], w[jp], rho2, mu, mu_w, -1.0, gx, gn)
+    assert D > 0 and na > 0 and npw > 0 and wd < 0  # it starts to fall (P slides down, A away from the wall)
+
+    def energy(ph, om):
+        x, y = ladder_pose(ph, w, ja, jp, h, L)
+        ra = math.cos(ph) * w[ja, 0] - math.sin(ph) * w[ja, 1]
+        rp = math.sin(ph) * w[jp, 0] + math.cos(ph) * w[jp, 1]
+        return 0.5 * ((rp * om) ** 2 + (ra * om) ** 2 + rho2 * om * om) + gn * y - gx * x
+
+    ev, k, ph1, om1, t = ladder_phase(phi, 0.0, -1.0, 0.0, w, ja, jp, rho2, mu, mu_w, gx, gn, h, L, 1.0, 1.0,
+                                      100000, NO_TRAJ, np.zeros(3))
+    assert t > 0.0 and om1 < 0.0
+    e0, e1 = energy(phi, 0.0), energy(ph1, om1)
+    if mu == 0.0 and mu_w == 0.0:
+        assert e1 == pytest.approx(e0, abs=1e-9 * (abs(e0) + 1.0))  # RK4 at DTH per step
+    else:
+        assert e1 < e0
+
+
+# ------------------------------------------------------------------------------------------ whole throws
+CASES = [  # throws of `throwmap validate-fixtures` (seed 0) that go through the new modes; the engine's answers
+    ("rectangle+lead", 0.25711748484354724, 0, 5.908167703922793, -0.08323508322250456, 2.127503043208594, -0.005,
+     0.29297229897960875, 0.0),
+    ("pentagon", 0.25510662518841554, 2, 6.131239563617951, -0.1843462541428077, 2.804603629432211, -0.005,
+     0.3236004434048211, 0.0),
+    ("square", 0.2554037864980324, 3, 4.170120034233814, -0.10197374104022494, 1.0447287825484441, -0.01,
+     0.30924359188652734, 0.0),
+    ("triangle+lead", 0.30253116533566654, 2, 3.1012186793165215, -0.233856252413293, 0.9529752883548481, -0.005,
+     0.34947706414083574, 0.9529752883548481),
+]
+
+
+def _parts():
+    from throwmap.studies.validation import default_parts
+
+    return default_parts()
+
+
+@pytest.mark.parametrize("case", CASES, ids=[c[0] + f"-{i}" for i, c in enumerate(CASES)])
+def test_throws_through_the_wall_modes_resolve(case):
+    name, x, side, om, alpha, mu, h, length, wall_mu = case
+    o = tm.throw(_parts()[name], tm.Arm(h=h, mu=mu, length=length), x, side, om, "rigid_body",
+                 fixtures=(tm.Wall(0.05, mu=wall_mu),), alpha=alpha)
+    assert o.status.label == "ok"
+    assert o.x <= length
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", CASES, ids=[c[0] + f"-{i}" for i, c in enumerate(CASES)])
+def test_throws_through_the_wall_modes_match_the_engine(case):
+    name, x, side, om, alpha, mu, h, length, wall_mu = case
+    args = (_parts()[name], tm.Arm(h=h, mu=mu, length=length), x, side, om)
+    kw = dict(fixtures=(tm.Wall(0.05, mu=wall_mu),), alpha=alpha)
+    o = tm.throw(*args, "rigid_body", **kw)
+    e = tm.throw(*args, "engine", **kw)
+    assert (o.status.label, o.side) == (e.status.label, e.side)
+    assert abs(o.x - e.x) <= 0.5e-3
