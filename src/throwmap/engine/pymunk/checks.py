@@ -24,13 +24,22 @@ from ...throws.outcome import Status
 from ..rest import EDGE_EPS
 from .world import World
 
-__all__ = ["inspect", "clearance", "escape", "energy", "all_slow", "BOX_TOL"]
+__all__ = ["inspect", "clearance", "escape", "energy", "all_slow", "body_state", "BOX_TOL"]
 
 BOX_TOL = 1e-7
 """m added to every bounding-box test that skips a shape query (rounding of the arm-frame transform is ~1e-16 m)."""
 
 
-def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0):
+def body_state(w: World, i: int) -> tuple:
+    """Part i's ``(x, y, angle, vx, vy, spin)`` in the world frame (m, rad, m/s, rad/s), read once for the
+    checks of one instant (:func:`inspect`, :func:`energy`, :func:`all_slow` take it instead of reading again)."""
+    cp = w.cp
+    b = w.bodies_h[i]
+    p, v = cp.position(b), cp.velocity(b)
+    return p.x, p.y, cp.angle(b), v.x, v.y, cp.spin(b)
+
+
+def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0, state=None):
     """Part i against the arm at ``arm_angle`` (rad; ``ca``, ``sa`` its cos and sin).
 
     Returns ``(depth, x, y, phi, over, near)``: the deepest penetration (m) of
@@ -41,15 +50,12 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     arm's back edge x = −back, +1 if beyond its end x = L, else 0 (the part is
     over an edge: it has left the arm); ``near``: a vertex not in contact could
     touch within ``horizon`` (s), i.e. its gap is below ``flight_margin`` plus its
-    approach speed times ``horizon`` (a landing is coming: no coarse steps).
+    approach speed times ``horizon`` (a landing is coming: no coarse steps). ``state``: part i's
+    :func:`body_state` if already read.
     """
     cp = w.cp
     b = w.bodies_h[i]
-    a = cp.angle(b)
-    p = cp.position(b)
-    px, py = p.x, p.y
-    v = cp.velocity(b)
-    vx, vy, om = v.x, v.y, cp.spin(b)
+    px, py, a, vx, vy, om = body_state(w, i) if state is None else state
     deepest = 0.0
     over = 0
     near = False
@@ -175,22 +181,20 @@ def escape(w: World, i: int, xa: float, ya: float, arm_thickness: float, over: i
     return None
 
 
-def energy(w: World, i: int) -> float:
-    """Part i's mechanical energy per unit mass in the world frame, J/kg: ½(v² + ρ²φ̇²) + g y."""
-    cp = w.cp
-    b = w.bodies_h[i]
-    v = cp.velocity(b)
-    om = cp.spin(b)
-    return 0.5 * (v.x * v.x + v.y * v.y + w.rho2[i] * om * om) + w.g * cp.position(b).y
+def energy(w: World, i: int, state=None) -> float:
+    """Part i's mechanical energy per unit mass in the world frame, J/kg: ½(v² + ρ²φ̇²) + g y
+    (``state``: its :func:`body_state` if already read)."""
+    _, y, _, vx, vy, om = body_state(w, i) if state is None else state
+    return 0.5 * (vx * vx + vy * vy + w.rho2[i] * om * om) + w.g * y
 
 
-def all_slow(w: World, tracks, speed: float, spin: float) -> bool:
-    """Every part still on the arm is slower than ``speed`` (m/s) and spins slower than ``spin`` (rad/s)."""
-    cp = w.cp
-    for b, tr in zip(w.bodies_h, tracks):
+def all_slow(w: World, tracks, speed: float, spin: float, states=None) -> bool:
+    """Every part still on the arm is slower than ``speed`` (m/s) and spins slower than ``spin`` (rad/s)
+    (``states``: each part's :func:`body_state` if already read, None where not)."""
+    for i, tr in enumerate(tracks):
         if tr.fell is not None:
             continue
-        v = cp.velocity(b)
-        if not (math.hypot(v.x, v.y) < speed and abs(cp.spin(b)) < spin):
+        st = states[i] if states is not None and states[i] is not None else body_state(w, i)
+        if not (math.hypot(st[3], st[4]) < speed and abs(st[5]) < spin):
             return False
     return True

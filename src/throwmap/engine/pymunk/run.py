@@ -13,7 +13,7 @@ from ..realisation import ImpulseThrow, angle_function, check_realisation
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
-from .checks import all_slow, clearance, energy, escape, inspect
+from .checks import all_slow, body_state, clearance, energy, escape, inspect
 from .contacts import Contacts, nearest_side
 from .result import EngineRun, Recorder, finish
 from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
@@ -151,6 +151,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     status = Status.OK
     message = ""
     pen_max = 0.0
+    pen_part = [float(tr.rec[C.PENETRATION_MAX]) for tr in tracks]  # each part's deepest, written back at the end
     done = False
     while not done:
         if record and t >= next_sample - 1e-12:
@@ -220,11 +221,13 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             aa = cp.angle(w.arm_h)
             ca, sa = math.cos(aa), math.sin(aa)
             landing_near = False
+            states = [None] * n_parts  # each part's state, read once for all the checks of this instant
             for i in range(n_parts):
                 tr = tracks[i]
                 if tr.fell is not None:
                     continue
-                pen, xa, ya, phi, over, near = inspect(w, i, aa, ca, sa, horizon)
+                states[i] = st = body_state(w, i)
+                pen, xa, ya, phi, over, near = inspect(w, i, aa, ca, sa, horizon, st)
                 if near:  # a landing is coming: fine steps until impact_window after it (pymunk's warm
                     landing_near = True  # start would scale the landing impulse by coarse_dt / dt)
                     contacts.last_begin = t
@@ -233,11 +236,11 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     contacts.fell(i, t, gone)
                     continue
                 if t >= arm_stop:
-                    e = energy(w, i)
+                    e = energy(w, i, st)
                     e_low[i] = min(e_low[i], e)
                     e_gain = max(e_gain, e - e_low[i])
-                if pen > tr.rec[C.PENETRATION_MAX]:
-                    tr.rec[C.PENETRATION_MAX] = pen
+                if pen > pen_part[i]:
+                    pen_part[i] = pen
                 if pen > pen_max:
                     pen_max = pen
                 if pen > pen_tol:
@@ -261,13 +264,16 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 break
             # settling
             if t >= arm_stop:
-                if all_slow(w, tracks, settle_speed, settle_spin):
+                if all_slow(w, tracks, settle_speed, settle_spin, states):
                     if still_since is None:
                         still_since = t
                     elif t - still_since >= settle_hold and run_for is None:
                         done = True
                 else:
                     still_since = None
+    for tr, pen in zip(tracks, pen_part):
+        if pen > tr.rec[C.PENETRATION_MAX]:
+            tr.rec[C.PENETRATION_MAX] = pen
     if status == Status.OK and still_since is not None:
         events.append((still_since, "rest"))
     if record:
