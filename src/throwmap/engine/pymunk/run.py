@@ -227,7 +227,11 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 if tr.fell is not None:
                     continue
                 states[i] = st = body_state(w, i)
-                pen, xa, ya, phi, over, near = inspect(w, i, aa, ca, sa, horizon, st)
+                # one part touching nothing: its `near` is not looked for (horizon 0), since it cannot matter:
+                # coarse steps need it touching, and the contact that begins first sets last_begin later
+                # than this check would (with more parts, one leaving the arm here could still matter)
+                pen, xa, ya, phi, over, near = inspect(w, i, aa, ca, sa,
+                                                      0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, st)
                 if near:  # a landing is coming: fine steps until impact_window after it (pymunk's warm
                     landing_near = True  # start would scale the landing impulse by coarse_dt / dt)
                     contacts.last_begin = t
