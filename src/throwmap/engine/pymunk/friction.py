@@ -243,15 +243,18 @@ class _SinglePartFixtureCap:
         constants: μ read back from the arbiter (``by_u``), the points from its contact point set; the same
         arithmetic as :func:`_set_capped`, so the same friction bit for bit."""
         lib, hook, slow = self.lib, self, self._slow
-        get_u, by_u = lib.cpArbiterGetFriction, self.by_u.get
+        get_u = lib.cpArbiterGetFriction
+        # engine value -> (μ, the friction set where the cap does not bind: μ, or 1e30 for ∞)
+        by_u = {u: (mu, mu if math.isfinite(mu) else 1.0e30) for u, mu in self.by_u.items()}.get
         get_bodies, ba, bb, body = lib.cpArbiterGetBodies, self.ba, self.bb, self.body
         get_points, get_position, set_u = lib.cpArbiterGetContactPointSet, lib.cpBodyGetPosition, lib.cpArbiterSetFriction
-        rho2, inf, isfinite = self.rho2, math.inf, math.isfinite
+        rho2, inf = self.rho2, math.inf
 
         def raw(arb, space_=None, data=None):
-            mu = by_u(get_u(arb))
-            if mu is None:  # pragma: no cover - an arbiter whose friction another hook changed
+            found = by_u(get_u(arb))
+            if found is None:  # pragma: no cover - an arbiter whose friction another hook changed
                 return slow(arb)
+            mu, uncapped = found
             get_bodies(arb, ba, bb)
             part_a = ba[0] == body
             cps = get_points(arb)
@@ -275,7 +278,7 @@ class _SinglePartFixtureCap:
                 hook.n_capped += 1
                 set_u(arb, cap)
             else:
-                set_u(arb, mu if isfinite(mu) else 1.0e30)
+                set_u(arb, uncapped)
 
         return raw
 
