@@ -22,12 +22,9 @@ import math
 
 from ...throws.outcome import Status
 from ..rest import EDGE_EPS
-from .world import World
+from .world import BOX_TOL, World
 
 __all__ = ["inspect", "clearance", "escape", "energy", "all_slow", "body_state", "BOX_TOL"]
-
-BOX_TOL = 1e-7
-"""m added to every bounding-box test that skips a shape query (rounding of the arm-frame transform is ~1e-16 m)."""
 
 
 def body_state(w: World, i: int) -> tuple:
@@ -84,9 +81,12 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     others = w.others_h[i]
     # a shape whose arm-frame box (inflated by reach) misses the vertex is farther than reach: it can
     # neither hold the vertex (depth) nor be within margin + speed × horizon of it (near); not queried
-    reach = (margin + (math.hypot(vx, vy) + abs(om) * w.R[i]) * horizon if horizon > 0.0 else 0.0) + BOX_TOL
-    boxes = [None if bx is None else (bx[0] - reach, bx[1] + reach, bx[2] - reach, bx[3] + reach)
-             for bx in w.boxes[i]]
+    if horizon > 0.0:
+        reach = margin + (math.hypot(vx, vy) + abs(om) * w.R[i]) * horizon + BOX_TOL
+        boxes = [None if bx is None else (bx[0] - reach, bx[1] + reach, bx[2] - reach, bx[3] + reach)
+                 for bx in w.boxes[i]]
+    else:
+        boxes = w.boxes_tol[i]  # inflated by 0.0 + BOX_TOL
     for v in w.wlists[i]:
         wx, wy = v
         X = px + c * wx - s * wy

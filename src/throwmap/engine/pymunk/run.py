@@ -174,7 +174,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             break
         arm_moving = t < arm_stop
         # -------------------------------------------- exact free flight when every part is clear
-        if exact_flight and t >= next_flight_check and contacts.all_free():
+        if exact_flight and t >= next_flight_check and contacts.n_touching == 0:  # all free
             next_flight_check = t + CHECK_EVERY
             n_clearance += n_parts
             # (clearance may stop at a pair within margin: only gap > margin and, then, its exact value matter)
@@ -205,7 +205,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     continue
         # -------------------------------------------- fixed steps up to the next check
         coarse = (use_coarse and not arm_moving and not landing_near and t - contacts.last_begin >= impact_window
-                  and contacts.all_touching())
+                  and contacts.n_touching - contacts.n_fell_touching == n_parts - contacts.n_fell)  # all touching
         h_step = coarse_dt if coarse else dt
         n_inner = max(1, int(math.ceil((min(next_check, t_max) - t) / h_step - 1e-9)))
         t = fixed_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
@@ -241,8 +241,10 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     continue
                 if t >= arm_stop:
                     e = energy(w, i, st)
-                    e_low[i] = min(e_low[i], e)
-                    e_gain = max(e_gain, e - e_low[i])
+                    if e < e_low[i]:  # min and max as ifs
+                        e_low[i] = e
+                    if e - e_low[i] > e_gain:
+                        e_gain = e - e_low[i]
                 if pen > pen_part[i]:
                     pen_part[i] = pen
                 if pen > pen_max:

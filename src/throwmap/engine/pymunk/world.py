@@ -29,6 +29,9 @@ __all__ = ["ARM", "FIXTURE", "PART", "Chipmunk", "World", "build_world", "load_p
 
 ARM, FIXTURE, PART = 1, 2, 3
 """pymunk collision types of arm pieces, fixture pieces and parts."""
+BOX_TOL = 1e-7
+"""m added to every bounding-box test that skips a shape query (:func:`.checks.inspect`; rounding of the
+arm-frame transform is ~1e-16 m)."""
 
 
 def load_pymunk():
@@ -101,7 +104,8 @@ class World:
     ``rho2[i]`` part i's squared radius of gyration (m²), ``R[i]`` part
     i's largest vertex distance from its CM, ``others_h[i]`` the handles of every
     shape part i can touch and ``boxes[i]`` their bounding boxes ``(x0, x1, y0, y1)``
-    in the arm frame (m; None for another part's shape, which moves), ``clear_hint[i]``
+    in the arm frame (m; None for another part's shape, which moves; ``boxes_tol`` the same
+    inflated by :data:`.checks.BOX_TOL`), ``clear_hint[i]``
     the pair that gave part i's last clearance (:func:`.checks.clearance`). ``plain_arm``: one part and no fixtures (the
     penetration check then reads depth below the flat surface directly).
     ``arm_w`` is the arm's angular velocity as last set, rad/s.
@@ -110,7 +114,7 @@ class World:
     __slots__ = ("pm", "cp", "space", "space_h", "arm", "arm_h", "arm_w", "bodies", "bodies_h", "shapes", "shapes_h",
                  "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h",
                  "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall", "back", "thickness", "margin", "rho2", "boxes",
-                 "clear_hint")
+                 "boxes_tol", "clear_hint")
 
     @property
     def n(self) -> int:
@@ -204,6 +208,9 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     static_h = [cp.shape(s) for s in static_shapes]
     w.others_h = [static_h + [w.shapes_h[j] for j in range(len(shapes)) if j != i] for i in range(len(shapes))]
     w.boxes = [static_boxes + [None] * (len(shapes) - 1) for _ in shapes]
+    reach = 0.0 + BOX_TOL  # as checks.inspect inflates them for horizon 0
+    w.boxes_tol = [[None if bx is None else (bx[0] - reach, bx[1] + reach, bx[2] - reach, bx[3] + reach)
+                    for bx in boxes] for boxes in w.boxes]
     w.clear_hint = [None] * len(shapes)
     w.corners = corners
     w.reach = float(np.max(np.hypot(*np.array(corners).T))) if corners else L
