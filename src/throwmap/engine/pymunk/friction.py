@@ -251,7 +251,8 @@ class _SinglePartFixtureCap:
         rho2, inf = self.rho2, math.inf
 
         def raw(arb, space_=None, data=None):
-            found = by_u(get_u(arb))
+            u = get_u(arb)
+            found = by_u(u)
             if found is None:  # pragma: no cover - an arbiter whose friction another hook changed
                 return slow(arb)
             mu, uncapped = found
@@ -277,7 +278,7 @@ class _SinglePartFixtureCap:
             if cap < mu:
                 hook.n_capped += 1
                 set_u(arb, cap)
-            else:
+            elif uncapped != u:  # (finite μ: the arbiter already holds it)
                 set_u(arb, uncapped)
 
         return raw
