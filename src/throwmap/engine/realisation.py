@@ -223,7 +223,7 @@ class TiltTo:
 def _recoil_angle(r: RecoilThrow):
     """θ(t) of ``r`` as a closure over its constants: the same floating-point operations as
     :meth:`RecoilThrow.angle` in the same order (bit-identical), without its per-call property look-ups."""
-    cos, exp, pi = math.cos, math.exp, math.pi
+    cos, sin, exp, pi = math.cos, math.sin, math.exp, math.pi
     z, wn, wd = r.zeta, r.omega_n, r.omega_d
     sq = math.sqrt(1.0 - z * z)
     setpoint = r.setpoint
@@ -241,7 +241,7 @@ def _recoil_angle(r: RecoilThrow):
             return half_rec * (1.0 - cos(pi * t / t_rec))
         if t < t_ret:
             tau = t - t_rec
-            return setpoint + a0 * exp(k_e * tau) * (cos(wd * tau) + z_sq * math.sin(wd * tau))
+            return setpoint + a0 * exp(k_e * tau) * (cos(wd * tau) + z_sq * sin(wd * tau))
         if t < t_end:
             return th0_half * (1.0 + cos(pi * (t - t_ret) / t_return))
         return 0.0
