@@ -265,3 +265,119 @@ def test_throws_through_the_wall_modes_match_the_engine(case):
     e = tm.throw(*args, "engine", **kw)
     assert (o.status.label, o.side) == (e.status.label, e.side)
     assert abs(o.x - e.x) <= 0.5e-3
+
+
+# ------------------------------------------------------------------------------------------ CORNER
+def _pentagon_on_corner(vx, vy, om, gx=0.5):
+    """A 5 cm pentagon whose edge 0 touches the corner (0.3, 0.05) at its middle, normal velocity 0."""
+    from throwmap.kernels.rigid_body.wall_corner import edge_body
+
+    part = regular_polygon(5, 0.05)
+    w = np.asarray(part.w, dtype=float)
+    nx, ny, tx, ty, le = edge_body(w, 0)
+    phi = math.atan2(-0.5, 1.0) - math.atan2(ny, nx)  # the edge's outward normal along (1, −0.5)
+    c, s = math.cos(phi), math.sin(phi)
+    rot = np.array([[c, -s], [s, c]])
+    a, b = rot @ w[0], rot @ w[1]
+    Q = np.array([0.3, 0.05])
+    X = Q - 0.5 * (a + b)
+    n = rot @ np.array([nx, ny])
+    r = Q - X
+    V = np.array([vx, vy])
+    V = V + (om * (-n[1] * r[0] + n[0] * r[1]) - n @ V) * n  # g' = 0
+    return part, w, np.array([X[0], X[1], phi, V[0], V[1], om]), (nx, ny, tx, ty), gx
+
+
+@pytest.mark.parametrize("mu_w", [0.0, 0.4])
+def test_corner_slide_matches_a_free_body_integration(mu_w):
+    from throwmap.kernels.rigid_body.wall_corner import corner_phase, corner_select
+
+    part, w, s0, (nx, ny, tx, ty), gx = _pentagon_on_corner(0.3, -0.2, -2.0)
+    rho2 = part.radius_of_gyration ** 2
+    L, h, top = 0.3, 0.0, 0.05
+    mode, sig = corner_select(s0, 0, w, rho2, gx, G, mu_w, L, h, top, False)
+    assert mode == 0
+    ev, k, s1, t = corner_phase(s0, 0, False, sig, 0.0, w, rho2, gx, G, mu_w, h, L, top, -1, 0.0, 100000, NO_TRAJ,
+                                np.zeros(3))
+    assert t > 0.01
+    Q = np.array([L, h + top])
+
+    def rhs(_t, q):  # the free body with the corner's force from g'' = 0 (linear in λ: two evaluations)
+        x, y, ph, vx, vy, om = q
+        c, s = math.cos(ph), math.sin(ph)
+        n = np.array([c * nx - s * ny, s * nx + c * ny])
+        tt = np.array([c * tx - s * ty, s * tx + c * ty])
+        r = Q - np.array([x, y])
+        V = np.array([vx, vy])
+        sg = np.sign(tt @ (V + om * np.array([-r[1], r[0]]))) if mu_w > 0 else 0.0
+
+        def gdd(lam):
+            F = -lam * n - mu_w * sg * lam * tt
+            A = np.array([gx, -G]) + F
+            wd = (r[0] * F[1] - r[1] * F[0]) / rho2
+            jn = np.array([-n[1], n[0]])
+            return wd * (jn @ r) - om ** 2 * (n @ r) - 2 * om * (jn @ V) - n @ A, A, wd
+
+        g0, g1 = gdd(0.0)[0], gdd(1.0)[0]
+        _, A, wd = gdd(-g0 / (g1 - g0))
+        return [vx, vy, om, A[0], A[1], wd]
+
+    ref = solve_ivp(rhs, (0.0, t), s0, rtol=1e-11, atol=1e-13).y[:, -1]
+    assert np.allclose(s1[:3], ref[:3], atol=1e-8)
+    assert np.allclose(s1[3:], ref[3:], atol=1e-6)
+
+    def energy(q):
+        return 0.5 * (q[3] ** 2 + q[4] ** 2 + rho2 * q[5] ** 2) - gx * q[0] + G * q[1]
+
+    if mu_w == 0.0:
+        assert energy(s1) == pytest.approx(energy(s0), abs=1e-8)
+    else:
+        assert energy(s1) < energy(s0)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_corner_departure_window_is_a_true_lower_bound(seed):
+    """Inside the window the corner stays outside the edge's line, on the exact free flight (rotation included)."""
+    from throwmap.kernels.rigid_body.wall_contact import corner_departure
+
+    rng = np.random.default_rng(seed)
+    q = rng.uniform(-0.05, 0.05, 2)  # Q − CM at t = 0
+    ang = rng.uniform(0, 2 * math.pi)
+    n0 = np.array([math.cos(ang), math.sin(ang)])
+    V = rng.uniform(-1, 1, 2)
+    om = rng.uniform(-15, 15)
+    V = V + (om * (-n0[1] * q[0] + n0[0] * q[1]) - n0 @ V) * n0  # gap rate 0
+    gx, gn = rng.uniform(-2, 2), G
+    win = corner_departure(q[0], q[1], V[0], V[1], om, gx, gn, n0[0], n0[1], 1.0)
+    d = n0 @ q  # the edge's support: gap 0 at t = 0
+    for s in np.linspace(0.0, win, 50)[1:]:
+        X = V * s + 0.5 * np.array([gx, -gn]) * s * s  # CM displacement
+        n = np.array([math.cos(ang + om * s), math.sin(ang + om * s)])
+        assert n @ (q - X) - d >= -1e-12
+
+
+def test_a_start_inside_the_wall_is_refused():
+    from throwmap.studies.validation import default_parts
+
+    pent = default_parts()["pentagon"]
+    arm = tm.Arm(h=-0.01, mu=0.89, length=0.289)
+    wall = (tm.Wall(0.05),)
+    o = tm.throw(pent, arm, 0.2515, 3, 4.86, "rigid_body", fixtures=wall)
+    assert o.status.label == "invalid_start" and "into the wall" in o.message
+    b = tm.throw_batch(pent, arm, [0.2, 0.2515], 3, 4.86, fixtures=wall, on_invalid="status")
+    assert [tm.Status(int(v)).label for v in b.status] == ["ok", "invalid_start"]
+    with pytest.raises(tm.ThrowmapError, match=r"x\[1\].*into the wall"):
+        tm.throw_batch(pent, arm, [0.2, 0.2515], 3, 4.86, fixtures=wall)
+    # a square flush with the wall is a valid start (its outline touches the face, does not enter it)
+    from throwmap.throws.throw import start_interval
+
+    sq = rectangle(0.06, 0.06)
+    arm = tm.Arm(h=-0.01, mu=1.0, length=0.3)
+    flush = start_interval(sq, arm, 0)[1]
+    o = tm.throw(sq, arm, flush, 0, 3.0, fixtures=(tm.Wall(0.05, mu=0.0),))
+    assert o.status.label == "ok" and o.side == 0 and abs(o.x - flush) < 1e-5
+    # a wall lower than the part's overhang: the part may reach beyond the face above the wall's top
+    from throwmap.throws.throw import wall_reach
+
+    assert wall_reach(pent, 3, 0.001) < wall_reach(pent, 3, 0.05)

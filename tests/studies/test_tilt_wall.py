@@ -9,12 +9,12 @@ import math
 import numpy as np
 import pytest
 
-from throwmap import Arm, triangle_30_60_90
+from throwmap import Arm, Wall, triangle_30_60_90
 from throwmap.errors import InvalidStateError
 from throwmap.kernels import codes as C
 from throwmap.studies import tilt_wall as tw
 from throwmap.studies.validation import default_parts
-from throwmap.throws.throw import start_interval, tilted_rest_reason
+from throwmap.throws.throw import start_interval, tilted_rest_reason, wall_reach, wall_start_reason
 
 PARTS = default_parts()
 
@@ -30,8 +30,12 @@ def test_draws_stay_in_their_ranges(condition):
         assert lo < cases.x[i] <= hi  # a start throw() accepts
         arm = Arm(h=cases.h[i], mu=cases.mu[i], length=cases.length[i])
         assert tilted_rest_reason(part, arm, int(cases.side[i]), float(cases.alpha[i])) == ""  # at rest at α
-        if spec["wall"] is not None:  # the outer quarter of the starts, where jogs reach the wall
+        if spec["wall"] is not None:  # the outer quarter of the starts clear of the wall, where jogs reach it
+            hi = min(hi, cases.length[i] - wall_reach(part, int(cases.side[i]), tw.WALL_HEIGHT))
+            assert cases.x[i] <= hi + 1e-12
             assert cases.x[i] >= hi - tw.WALL_X_SHARE * (hi - lo) - 1e-12
+            fx = (Wall(tw.WALL_HEIGHT),)
+            assert wall_start_reason(part, arm, int(cases.side[i]), float(cases.x[i]), fx) == ""
     assert np.all(np.abs(cases.alpha) <= math.radians(15) + 1e-12)
     assert np.all((cases.mu >= 0.3) | np.isinf(cases.mu)) and np.all(cases.mu[np.isfinite(cases.mu)] <= 3.0)
     assert np.all((cases.omega >= 3.0) & (cases.omega <= 7.0))

@@ -39,7 +39,7 @@ from ..system.arm import Arm
 from ..system.fixtures import Wall
 from ..system.part import Part
 from ..throws.outcome import Status
-from ..throws.throw import start_interval, throw, throw_batch, tilted_rest_reason
+from ..throws.throw import start_interval, throw, throw_batch, tilted_rest_reason, wall_reach
 from ..analysis.wall import wall_fixed_point
 from .validation import default_parts
 
@@ -146,7 +146,8 @@ def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Ge
             continue
         k = int(rng.choice(at_rest))
         lo, hi = start_interval(part, arm, k)
-        if spec["wall"] is not None:
+        if spec["wall"] is not None:  # starts clear of the wall (wall_reach), their outer quarter
+            hi = min(hi, length - wall_reach(part, k, WALL_HEIGHT))
             lo = hi - WALL_X_SHARE * (hi - lo)
         x = float(rng.uniform(lo, hi))
         x = min(max(x, math.nextafter(lo, math.inf)), hi)

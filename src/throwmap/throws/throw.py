@@ -147,6 +147,43 @@ def check_start(part: Part, arm: Arm, x: float, side: int, omega: float) -> tupl
     return x, k, omega
 
 
+def wall_reach(part: Part, side: int, height: float) -> float:
+    """How far (m) the part resting flat on ``side`` reaches beyond its CM along the arm up to ``height`` above it.
+
+    The largest x-offset from the CM of the part's outline clipped to y ≤ h + ``height`` (a vertex, or an edge
+    crossing that height): a :class:`~throwmap.system.fixtures.Wall` of that height at the arm's end x = L
+    overlaps the resting part iff x + reach > L (an outline that rises above the wall's top may overhang it).
+    """
+    pts = part.vertices_at_rest(0.0, side, 0.0)
+    best = -math.inf
+    n = len(pts)
+    for j in range(n):
+        (ax, ay), (bx, by) = pts[j], pts[(j + 1) % n]
+        if ay <= height:
+            best = max(best, ax)
+        if (ay - height) * (by - height) < 0.0:
+            best = max(best, ax + (height - ay) * (bx - ax) / (by - ay))
+    return best
+
+
+def wall_start_reason(part: Part, arm: Arm, side: int, x: float, fixtures) -> str:
+    """Why the part resting at ``(x, side)`` cannot start there because it overlaps a wall; ``""`` if it does not.
+
+    A start whose outline reaches into a :class:`~throwmap.system.fixtures.Wall` (beyond x = length below its top,
+    :func:`wall_reach`, by more than 1e-9 m) is inadmissible: no model can throw a part that is inside a solid.
+    """
+    from ..system.fixtures import Wall
+
+    for f in fixtures:
+        if isinstance(f, Wall) and arm.length is not None:
+            reach = wall_reach(part, side, f.height)
+            if x + reach > arm.length + 1e-9:
+                return (f"the part at x = {x:.6g} m on side {side} reaches {x + reach - arm.length:.3g} m into the "
+                        f"wall at length = {arm.length:.6g} m (below its top, {f.height:.3g} m): the start must have "
+                        f"x ≤ {arm.length - reach:.6g} m")
+    return ""
+
+
 def tilted_rest_reason(part: Part, arm: Arm, side: int, alpha: float, friction: bool = True) -> str:
     """Why a part flat on ``side`` is NOT at rest on an arm resting at ``alpha`` (rad, CCW +); ``""`` if it is.
 
@@ -211,6 +248,9 @@ def throw(
     """
     m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     x0, k, om = check_start(part, arm, x, side, omega)
+    reason = wall_start_reason(part, arm, k, x0, system.fixtures)
+    if reason:
+        return _in_system(_invalid_outcome(part, x0, k, om, m.name, reason), system)
     if system.alpha != 0.0:
         reason = tilted_rest_reason(part, arm, k, system.alpha, m.features.friction)
         if reason:
@@ -292,6 +332,12 @@ def throw_batch(
     uR = np.where(in_range, part.uR[np.clip(sf, 0, n - 1)], np.nan)
     L = arm.length_or_inf
     valid = stable & np.isfinite(xf) & np.isfinite(of) & (of >= 0) & (xf + uL > -arm.back) & (xf + uR <= L)
+    from ..system.fixtures import Wall
+
+    for f in system.fixtures:  # starts that overlap a wall (wall_start_reason)
+        if isinstance(f, Wall) and arm.length is not None:
+            for k in part.stable_sides:
+                valid &= ~((sf == int(k)) & (xf + wall_reach(part, int(k), f.height) > arm.length + 1e-9))
     tilt_reason = {}
     if system.alpha != 0.0:
         for k in part.stable_sides:
@@ -302,6 +348,10 @@ def throw_batch(
     if on_invalid == "raise" and not np.all(valid):
         i = int(np.flatnonzero(~valid)[0])
         idx = np.unravel_index(i, shape) if shape else ()
+        if in_range[i] and stable[i] and np.isfinite(xf[i]):
+            r = wall_start_reason(part, arm, int(sf[i]), float(xf[i]), system.fixtures)
+            if r:
+                raise InvalidStateError(f"x[{', '.join(map(str, idx))}]", r)
         if in_range[i] and int(sf[i]) in tilt_reason and stable[i]:
             try:
                 check_start(part, arm, xf[i], int(sf[i]), of[i])

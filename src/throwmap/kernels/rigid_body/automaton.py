@@ -40,12 +40,11 @@ from .stick import pivot_stick
 from .stick_exact import pivot_stick_exact
 from .tilt import pivot_stick_tilted, settle
 from .trajectory import _put, _put_final, clear
-from .wall import (ACT_FLIGHT, ACT_INCONSISTENT, ACT_REFUSE, ACT_REST, EV_WALL, WHY_CORNER, WHY_SLIDE_WALL,
-                   WHY_WALL_SLIDE, WHY_WALL_TOP, corner_inside, fill_wall_vertices, fly_walled, nearest_side,
-                   pivot_wall_hit, refresh_frame, refuse, wall_contact_angle, wall_hit_in_flight)
-from .wall_contact import WHY_LADDER, WHY_TWO_CONTACT
-from .wall_follow import WC_ARM, WC_CAP, WC_FLIGHT, WC_INCONSISTENT, wall_contact, wall_pressed_after
-from .wall_lean import LN_BEHIND, LN_CAP, LN_FLIGHT, LN_INCONSISTENT, LN_PIVOT, LN_REST, LN_WALL, lean
+from .wall import (EV_WALL, WHY_CORNER, WHY_SLIDE_WALL, WHY_WALL_SLIDE, WHY_WALL_TOP, corner_inside, fill_wall_vertices,
+                   fly_walled, nearest_side, refresh_frame, refuse, wall_contact_angle, wall_hit_in_flight)
+from .wall_follow import WC_ARM, WC_CAP, WC_FACE, WC_FLIGHT, WC_INCONSISTENT, follow
+from .wall_lean import (LN_BEHIND, LN_CAP, LN_CORNER, LN_FLIGHT, LN_INCONSISTENT, LN_PIVOT, LN_REST, LN_WALL, lean,
+                        offsets)
 
 MODE_LEAN = 6
 """Mode of :func:`run_throw`: the part touches the arm (vertex ``ln_a``) and the wall's face (``ln_p``): :func:`lean`."""
@@ -114,7 +113,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
     wexcl_until = 0.0
     lref = math.sqrt(rho2) + ell.max()
     wj = -1  # WALL_CONTACT: a vertex pressed on the wall's face (wall_follow.py), −1 none
-    pressed = -1  # the vertex that was on the face when the arm was touched
+    ce = -1  # CORNER: an edge pressed on the wall's top corner (wall_corner.py), −1 none
     ln_a = -1  # MODE_LEAN: the vertex on the arm, the one on the face, and whether their impact is still to come
     ln_p = -1
     ln_impact = False
@@ -124,8 +123,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
             return x, last_side, C.NO_REST
         if mode == MODE_LEAN:
             # ---------------------------------------------------------- on the arm and the wall (wall_follow.py)
-            (res, why, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p,
-             v_a) = lean(ln_a, ln_p, ln_impact, t, x, y, vx, vy, phi, om, w, rho2, mu, wall_mu, gx, gn, h, wall_h,
+            (res, why, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p, v_a, kc,
+             win_c) = lean(ln_a, ln_p, ln_impact, t, x, y, vx, vy, phi, om, w, rho2, mu, wall_mu, gx, gn, h, wall_h,
                          length, back, lref, max_iter, max_events, traj, ts)
             if res == LN_REST:
                 rec[C.E_FINAL] = gn * (y - h) - gx * x
@@ -133,10 +132,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                 _put_final(traj, ts, t, x, y, phi)
                 return x, nearest_side(phi, beta), C.OK
             if res == LN_PIVOT:
-                cpp = math.cos(phi)
-                spp = math.sin(phi)
-                rx = cpp * w[ka, 0] - spp * w[ka, 1]
-                ry = spp * w[ka, 0] + cpp * w[ka, 1]
+                rx, ry = offsets(phi, w, ka)
                 jp = ka
                 px = x + rx
                 theta = math.atan2(-ry, -rx)
@@ -145,50 +141,49 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                 va = v_a
                 mode = MODE_SELECT
                 continue
-            if res == LN_WALL or res == LN_FLIGHT:
+            if res == LN_WALL or res == LN_FLIGHT or res == LN_CORNER:
                 wj = kp if res == LN_WALL else -1
+                ce = kp if res == LN_CORNER else -1
                 excl_j = ka
                 excl_t = win_a if ka >= 0 else 0.0
                 wexcl_j = kp if res == LN_FLIGHT else -1
                 wexcl_until = t + win_p
-                cexcl_e = -1
+                cexcl_e = kc
+                cexcl_until = t + win_c
                 off[:] = 0.0
                 refresh_frame(phi, y, h, w, ell, ru, rv, c0)
                 mode = MODE_FLIGHT
                 continue
-            if res == LN_BEHIND:
-                return x, last_side, C.BEHIND_JOINT
-            if res == LN_INCONSISTENT:
-                return x, last_side, C.INCONSISTENT
             if res == LN_CAP:
                 rec[C.CAP_HIT] = 1.0
-                return x, last_side, C.UNRESOLVED
-            return x, last_side, refuse(rec, why)
+            return x, last_side, (C.BEHIND_JOINT if res == LN_BEHIND else C.INCONSISTENT if res == LN_INCONSISTENT
+                                  else C.UNRESOLVED if res == LN_CAP else refuse(rec, why))
         if mode == MODE_FLIGHT:
             # ---------------------------------------------------------- FLIGHT until guard touch
-            pressed = -1
-            if wj >= 0:
-                # ------------------------------------------------------ WALL_CONTACT (wall_follow.py)
+            if wj >= 0 or ce >= 0:
+                # ------------------------------------------------------ WALL_CONTACT / CORNER (wall_follow.py)
                 t_seg = t
                 (res, jc, t, x, y, vx, vy, phi, om, rx, ry, wex,
-                 why) = wall_contact(wj, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, wall_mu, h, wall_h, length, excl_j,
-                                     t + excl_t, max_iter, max_events, wv, traj, ts, rec)
+                 why) = follow(wj, ce, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, wall_mu, h, wall_h, length, excl_j,
+                               t + excl_t, max_iter, max_events, wv, traj, ts, rec)
                 excl_t = max(excl_t - (t - t_seg), 0.0)
                 if res == WC_FLIGHT:
-                    wexcl_j = wj
-                    wexcl_until = t + wex
-                    wj = -1
+                    wexcl_j, wexcl_until = (wj, t + wex) if wj >= 0 else (wexcl_j, wexcl_until)
+                    cexcl_e, cexcl_until = (ce, t + wex) if ce >= 0 else (cexcl_e, cexcl_until)
+                    wj = ce = -1
                     refresh_frame(phi, y, h, w, ell, ru, rv, c0)
                     continue
-                if res == WC_CAP:
-                    rec[C.CAP_HIT] = 1.0
-                    return x, last_side, C.UNRESOLVED
-                if res == WC_INCONSISTENT:
-                    return x, last_side, C.INCONSISTENT
-                if res != WC_ARM:
-                    return x, last_side, refuse(rec, why)
-                pressed = wj
-                wj = -1
+                if res == WC_CAP or res == WC_INCONSISTENT:
+                    rec[C.CAP_HIT] = 1.0 if res == WC_CAP else rec[C.CAP_HIT]
+                    return x, last_side, C.UNRESOLVED if res == WC_CAP else C.INCONSISTENT
+                if res == WC_FACE or res == WC_ARM:  # a second contact while on the wall: LEAN (both at once)
+                    ln_a = jc if res == WC_ARM else -1
+                    ln_p = jc if res == WC_FACE else wj
+                    ln_impact = True
+                    mode = MODE_LEAN
+                    wj = ce = -1
+                    continue
+                return x, last_side, refuse(rec, why)
             elif walled:
                 t_seg = t
                 (where, jc, t, x, y, vx, vy, phi, rx, ry, nx,
@@ -205,8 +200,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                                                                               rho2, wall_mu, law, gx, gn,
                                                                               math.hypot(rx, ry))
                     rec[C.N_IMPACTS] += 1.0
-                    if why == WHY_WALL_SLIDE and where == 1:
-                        wj = jc  # the vertex stays pressed on the face: WALL_CONTACT
+                    if why == WHY_WALL_SLIDE:  # it stays pressed on the face (WALL_CONTACT) or the corner (CORNER)
+                        wj, ce = (jc, -1) if where == 1 else (-1, jc)
                     elif why != 0:
                         return x, last_side, refuse(rec, why)
                     if kind == IMP_INCONSISTENT:
@@ -216,7 +211,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                     if kind != IMP_STICK:
                         rec[C.N_SLIPS] += 1.0
                     vx, vy, om = vxp, vyp, wp
-                    if wj >= 0:
+                    if wj >= 0 or ce >= 0:
                         pass
                     elif where == 1:
                         wexcl_j = jc
@@ -258,18 +253,6 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
             if first:
                 first = False
                 record_first_impact(rec, vxp, vyp, wp, pt, pn, jt0, jn0, k_post)
-            if pressed >= 0:
-                cpp = math.cos(phi)
-                spp = math.sin(phi)
-                rpx = cpp * w[pressed, 0] - spp * w[pressed, 1]
-                rpy = spp * w[pressed, 0] + cpp * w[pressed, 1]
-                if wall_pressed_after(vxp, vyp, wp, rpx, rpy) < -1e-12 * max(1.0, abs(vx) + abs(vy) + abs(om) * lref):
-                    # the arm's impulse alone would drive P into the wall: a two-contact impact (wall_follow.py)
-                    ln_a = jc
-                    ln_p = pressed
-                    ln_impact = True
-                    mode = MODE_LEAN
-                    continue
             vx, vy, om = vxp, vyp, wp
             if kind == IMP_SEPARATE:
                 # the vertex leaves at once: flight again, this vertex excluded for a while
@@ -369,64 +352,24 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
         if ev == EV_WALL or (ev == EV_LAND_A and ta_w > ta and mode == MODE_STICK):
             # -------------------------------------------------------------- guard wall_reach: reset (wall.py)
             # the contact where the bound was reached (evaluated just before it, so that it is found)
-            th_c, w_corner, w_j, w_cx, w_cy, w_nx, w_ny = wall_contact_angle(px, length, wall_h, theta + 1e-9,
-                                                                             phi + 1e-9, w, jp)
+            th_c, w_corner, w_j, _cx, _cy, _nx, _ny = wall_contact_angle(px, length, wall_h, theta + 1e-9,
+                                                                         phi + 1e-9, w, jp)
             if not abs(th_c - theta) <= 1e-7:
                 # the vertex that reached the wall's plane is above its top (watched by a sliding pivot)
                 return px + lj * math.cos(theta), last_side, refuse(rec, WHY_WALL_TOP)
-            act, xw, yw, vxw, vyw, omw, wex, why = pivot_wall_hit(px, h, lj, theta, thdot, va, w_cx, w_cy, w_nx, w_ny,
-                                                                  w_corner, rho2, mu, wall_mu, law, gx, -gn, lref)
+            # the pivot and the wall (face or corner) at once: the two-contact impact of LEAN (wall_lean.py)
             rec[C.N_IMPACTS] += 1.0
-            if act == ACT_REFUSE and why == WHY_WALL_SLIDE and not w_corner:
-                # the pivot lifts off while the vertex stays pressed on the face: WALL_CONTACT (wall_follow.py)
-                x, y, vx, vy, om = xw, yw, vxw, vyw, omw
-                wj = w_j
-                excl_j = -1
-                excl_t = 0.0
-                off[:] = 0.0
-                wexcl_j = -1
-                cexcl_e = -1
-                sig = 0.0
-                mode = MODE_FLIGHT
-                continue
-            if act == ACT_REFUSE and (why == WHY_TWO_CONTACT or why == WHY_LADDER) and not w_corner:
-                # the pivot and the vertex on the face: a two-contact impact, or leaning and sliding at both
-                x, y, vx, vy, om = xw, yw, vxw, vyw, omw
-                ln_a = jp
-                ln_p = w_j
-                ln_impact = why == WHY_TWO_CONTACT
-                mode = MODE_LEAN
-                continue
-            if act == ACT_REFUSE:
-                return px + lj * math.cos(theta), last_side, refuse(rec, why)
-            if act == ACT_INCONSISTENT:
-                return xw, last_side, C.INCONSISTENT
-            if act == ACT_FLIGHT:
-                x, y, vx, vy, om = xw, yw, vxw, vyw, omw
-                refresh_frame(phi, y, h, w, ell, ru, rv, c0)
-                excl_j = -1  # the pivot leaves the line with a positive normal velocity
-                excl_t = 0.0
-                off[:] = 0.0
-                wexcl_j = -1
-                cexcl_e = -1
-                if w_corner:
-                    cexcl_e = w_j
-                    cexcl_until = t + wex
-                else:
-                    wexcl_j = w_j
-                    wexcl_until = t + wex
-                sig = 0.0
-                mode = MODE_FLIGHT
-                continue
-            if act == ACT_REST:
-                # at rest leaning on the arm and the wall: read as the nearest side, as the engines do
-                rec[C.E_FINAL] = gn * (yw - h) - gx * xw
-                rec[C.T_REST] = t
-                _put_final(traj, ts, t, xw, yw, phi)
-                return xw, nearest_side(phi, beta), C.OK
-            thdot = 0.0  # ACT_SWING: stopped against the wall, gravity turns it back about the pivot
-            va = 0.0
-            mode = MODE_SELECT
+            x = px + lj * math.cos(theta)
+            y = h + lj * math.sin(theta)
+            vx = va - thdot * lj * math.sin(theta)
+            vy = thdot * lj * math.cos(theta)
+            om = thdot
+            ln_a = jp
+            ln_p = -1 if w_corner else w_j
+            ln_impact = True
+            off[:] = 0.0
+            sig = 0.0
+            mode = MODE_LEAN
             continue
         if ev == EV_LIFT_OFF:
             # ---------------------------------------------------------- reset lift

@@ -65,7 +65,8 @@ from .modes import IMP_INCONSISTENT
 from .trajectory import _put
 from .wall_contact import (ACT_FLIGHT, ACT_INCONSISTENT, ACT_REFUSE, ACT_REST, ACT_SWING, CONE_TOL, EV_WALL, WHY_COL,
                            WHY_CORNER, WHY_LADDER, WHY_MESSAGES, WHY_NONE, WHY_SLIDE_WALL, WHY_TWO_CONTACT,
-                           WHY_WALL_SLIDE, WHY_WALL_TOP, contact_impact, corner_departure, refuse, wall_departure,
+                           WHY_WALL_SLIDE, WHY_WALL_TOP, contact_impact, corner_departure, refuse, separating_window,
+                           wall_departure,
                            wall_impact)
 from .wall_guards import (_edge_frame, corner_inside, corner_touch_time, fill_wall_vertices, wall_contact_angle,
                           wall_theta, wall_touch_time)
@@ -191,7 +192,8 @@ def wall_hit_in_flight(vx, vy, om, rx, ry, nx, ny, corner, rho2, mu_w, law, gx, 
     else:
         un = -(vxp - wp * ry)  # the wall gap's rate: 0 after a plastic impact (> 0 if it was leaving)
         vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
-        excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, -g, lj) if un <= 1e-12 * vscale else 1.0
+        excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, -g, lj) if un <= 1e-12 * vscale else \
+            separating_window(un, abs(gx) + wp * wp * lj)
     if excl <= 0.0:
         return vxp, vyp, wp, pt, pn, kind, 0.0, WHY_WALL_SLIDE
     return vxp, vyp, wp, pt, pn, kind, excl, WHY_NONE
@@ -243,7 +245,8 @@ def pivot_wall_hit(px, h, lj, theta, thdot, va, cqx, cqy, nx, ny, corner, rho2, 
         vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
         un = -(vxp - wp * ry)
         lc = math.hypot(rx, ry)
-        excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, gy, lc) if un <= 1e-12 * vscale else 1.0
+        excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, gy, lc) if un <= 1e-12 * vscale else \
+            separating_window(un, abs(gx) + wp * wp * lc)
         if excl <= 0.0:
             return ACT_REFUSE, x, y, vxp, vyp, wp, 0.0, WHY_WALL_SLIDE
         return ACT_FLIGHT, x, y, vxp, vyp, wp, excl, WHY_NONE

@@ -20,6 +20,7 @@ WHY_LADDER = 4
 WHY_CORNER = 5
 WHY_SLIDE_WALL = 6
 WHY_WALL_EDGE = 7
+WHY_CORNER_VERTEX = 8
 WHY_MESSAGES = {
     WHY_WALL_TOP: ("the part reached the wall above its top while sliding flat or on a sliding pivot (only "
                    "flights and sticking pivots watch the wall's top corner): not modelled by rigid_body"),
@@ -36,6 +37,8 @@ WHY_MESSAGES = {
                      "by rigid_body's sliding phase"),
     WHY_WALL_EDGE: ("while a vertex slides on the wall's face, a second vertex reaches the wall's plane (an edge "
                     "flush on the face or across its top corner): not modelled by rigid_body"),
+    WHY_CORNER_VERTEX: ("an edge sliding on the wall's top corner brought a vertex onto the corner, or a vertex "
+                        "onto the wall's top beyond its face: not modelled by rigid_body"),
 }
 """Why a walled throw was refused (status UNRESOLVED), by reason code."""
 
@@ -105,6 +108,15 @@ def _step_lb(gj, dg, M):
 
 
 @njit(cache=True)
+def separating_window(un, acc):
+    """Time (s) for which a contact that leaves at normal rate ``un`` > 0 (m/s) stays open when its gap's second
+    derivative is bounded by ``acc`` (m/s²): 0.9 × 2 un/acc (at most 1 s), from gap(s) ≥ un s − ½ acc s²."""
+    if acc <= 0.0:
+        return 1.0
+    return min(1.8 * un / acc, 1.0)
+
+
+@njit(cache=True)
 def wall_departure(un, rx, ry, om, gx, gy, lj):
     """Time (s) for which a vertex that just left the wall (gap 0, outward rate ``un`` ≥ 0) stays off it.
 
@@ -148,16 +160,34 @@ def corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max):
 def corner_departure(qx, qy, vx, vy, om, gx, gn, nx, ny, t_max):
     """Time (s) for which an edge that just stopped on the wall's top corner (normal velocity 0) stays off it.
 
-    With Q − CM = (q_x, q_y) (m) and the edge's outward normal (n_x, n_y) now: f(s) ≥ ½ f2 s² − M3 s³/6 with
-    f2 = −ω² n·(Q − X) − 2ω (Jn)·V − n·g (J: +90°, M3 of :func:`corner_bounds`); returns 0.9 · 3 f2/M3
-    (``t_max`` if M3 = 0), or 0 if f2 ≤ 0 (the edge is pressed on the corner: it would slide over it).
+    With Q − CM = (q_x, q_y) (m), CM velocity V, gravity g = (g_x, −g_n) and the edge's outward normal n
+    (J: turn by +90°), the gap's Taylor bound f(s) ≥ ½ f2 s² + f3 s³/6 − M4 s⁴/24 holds for s ≤ ``t_max`` with
+    f2 = −ω² n·(Q − X) − 2ω (Jn)·V − n·g, f3 = −ω³ (Jn)·(Q − X) + 3ω² n·V − 3ω (Jn)·g and
+    M4 = ω⁴ D + 4|ω|³ v + 6ω² |g| (D, v: bounds on |Q − X| and |V| over ``t_max``). Returns 0.9 × the positive
+    root of ½ f2 + f3 s/6 − M4 s²/24 (at most ``t_max``), or 0 if f2 < 0 (the edge is pressed on the corner) or
+    f2 = 0 with f3 ≤ 0 (a tangency that does not open). f3 matters where the edge just let go of the corner
+    (CORNER's lift-off, λ = 0: f2 = 0).
     """
     jx = -ny
     jy = nx
+    ga = math.hypot(gx, gn)
     f2 = -om * om * (nx * qx + ny * qy) - 2.0 * om * (jx * vx + jy * vy) - (nx * gx - ny * gn)
-    if f2 <= 0.0:
+    if f2 < 0.0 and f2 > -1e-9 * ga:
+        f2 = 0.0
+    if f2 < 0.0:
         return 0.0
-    _m2, M3 = corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max)
-    if M3 <= 0.0:
+    f3 = -om * om * om * (jx * qx + jy * qy) + 3.0 * om * om * (nx * vx + ny * vy) - 3.0 * om * (jx * gx - jy * gn)
+    if f2 == 0.0 and f3 <= 0.0:
+        return 0.0
+    v0 = math.hypot(vx, vy)
+    D = math.hypot(qx, qy) + v0 * t_max + 0.5 * ga * t_max * t_max
+    vm = v0 + ga * t_max
+    aw = abs(om)
+    M4 = om * om * om * om * D + 4.0 * aw * aw * aw * vm + 6.0 * om * om * ga
+    if M4 <= 0.0:
         return t_max
-    return min(0.9 * 3.0 * f2 / M3, t_max)
+    a = M4 / 24.0
+    b = f3 / 6.0
+    c = 0.5 * f2
+    root = (b + math.sqrt(b * b + 4.0 * a * c)) / (2.0 * a)
+    return min(0.9 * root, t_max) if root > 0.0 else 0.0

@@ -10,10 +10,13 @@ the two-contact impact of :mod:`.wall_lean`).
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .modes import EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK
-from .wall_contact import WHY_CORNER, WHY_NONE, WHY_WALL_EDGE, WHY_WALL_SLIDE, WHY_WALL_TOP, wall_departure
+from .wall_contact import (WHY_CORNER, WHY_CORNER_VERTEX, WHY_NONE, WHY_WALL_EDGE, WHY_WALL_SLIDE, WHY_WALL_TOP,
+                           corner_departure, wall_departure)
+from .wall_corner import EV_CARM, EV_FACE, corner_phase, corner_select, edge_body
 from .wall_guards import fill_wall_vertices
 from .wall_slide import EV_ARM, EV_EDGE, EV_TOP, W_STICK, wall_phase, wall_select
 
@@ -22,7 +25,8 @@ WC_ARM = 1
 WC_REFUSE = 2
 WC_INCONSISTENT = 3
 WC_CAP = 4
-"""Outcomes of :func:`wall_contact`."""
+WC_FACE = 5
+"""Outcomes of :func:`wall_contact` and :func:`corner_contact` (WC_FACE: a vertex reached the face, corner only)."""
 
 
 @njit(cache=True)
@@ -113,3 +117,78 @@ def wall_pressed_after(vx, vy, om, rpx, rpy):
     """The wall gap's rate −(v_x − ω r_y) (m/s) of the vertex at (r_x, r_y) from the CM on the face x = L
     (> 0: it moves off the wall)."""
     return -(vx - om * rpy)
+
+
+@njit(cache=True)
+def corner_contact(e, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until,
+                   max_steps, max_events, traj, ts):
+    """Mode CORNER (:mod:`.wall_corner`) from the flight state with edge ``e`` pressed on the wall's top corner after a
+    plastic impact, until: ``lift_off`` (WC_FLIGHT, with the edge's departure window
+    :func:`~.wall_contact.corner_departure`); a vertex k reaches the arm (WC_ARM) or the face below the top (WC_FACE);
+    a vertex reaches the corner or the wall's top beyond the face (WHY_CORNER_VERTEX); Painlevé or no consistent
+    sub-mode (WC_INCONSISTENT); the step or event caps (WC_CAP). Returns as :func:`wall_contact`.
+    """
+    s = np.array([x, y, phi, vx, vy, om])
+    from_slip = False
+    for _ in range(max_events):
+        mode, sig = corner_select(s, e, w, rho2, gx, gn, mu_w, L, h, top, from_slip)
+        if mode == -2:
+            return _cout(WC_INCONSISTENT, -1, t, s, w, 0.0, WHY_NONE)
+        if mode == -1:
+            return _corner_lift(e, t, s, w, gx, gn, h, top, L)
+        ev, k, s, t = corner_phase(s, e, mode == 1, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip,
+                                   arm_skip_until, max_steps, traj, ts)
+        if ev == EV_STICK:
+            from_slip = False
+            continue
+        if ev == EV_SLIP:
+            from_slip = True
+            continue
+        if ev == EV_LIFT_OFF:
+            return _corner_lift(e, t, s, w, gx, gn, h, top, L)
+        if ev == EV_CARM:
+            return _cout(WC_ARM, k, t, s, w, 0.0, WHY_NONE)
+        if ev == EV_FACE:
+            return _cout(WC_FACE, k, t, s, w, 0.0, WHY_NONE)
+        if ev == EV_INCONSISTENT:
+            return _cout(WC_INCONSISTENT, -1, t, s, w, 0.0, WHY_NONE)
+        if ev == EV_STEP_CAP:
+            return _cout(WC_CAP, -1, t, s, w, 0.0, WHY_NONE)
+        return _cout(WC_REFUSE, -1, t, s, w, 0.0, WHY_CORNER_VERTEX)  # EV_END, EV_TOPS
+    return _cout(WC_CAP, -1, t, s, w, 0.0, WHY_NONE)
+
+
+@njit(cache=True)
+def _cout(res, k, t, s, w, win, why):
+    rx = 0.0
+    ry = 0.0
+    if k >= 0:
+        c = math.cos(s[2])
+        sn = math.sin(s[2])
+        rx = c * w[k, 0] - sn * w[k, 1]
+        ry = sn * w[k, 0] + c * w[k, 1]
+    return (res, k, t, s[0], s[1], s[3], s[4], s[2], s[5], rx, ry, win, why)
+
+
+@njit(cache=True)
+def _corner_lift(e, t, s, w, gx, gn, h, top, L):
+    """The edge lets go of the corner (λ = 0): FLIGHT with its departure window, or refused at a tangency."""
+    nx, ny, _tx, _ty, _le = edge_body(w, e)
+    c = math.cos(s[2])
+    sn = math.sin(s[2])
+    win = corner_departure(L - s[0], h + top - s[1], s[3], s[4], s[5], gx, gn, c * nx - sn * ny, sn * nx + c * ny,
+                           1.0)
+    if win <= 0.0:
+        return _cout(WC_REFUSE, -1, t, s, w, 0.0, WHY_WALL_SLIDE)
+    return _cout(WC_FLIGHT, -1, t, s, w, win, WHY_NONE)
+
+
+@njit(cache=True)
+def follow(wj, ce, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until, max_steps,
+           max_events, wv, traj, ts, rec):
+    """:func:`wall_contact` for face vertex ``wj`` ≥ 0, else :func:`corner_contact` for corner edge ``ce``."""
+    if wj >= 0:
+        return wall_contact(wj, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until,
+                            max_steps, max_events, wv, traj, ts, rec)
+    return corner_contact(ce, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until,
+                          max_steps, max_events, traj, ts)

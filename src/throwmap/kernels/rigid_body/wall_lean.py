@@ -6,13 +6,14 @@ first state the automaton continues from. In order: the plastic impact at every 
 (:func:`~.wall_ladder.multi_contact_impact`, velocity-level); then, with the contacts it leaves
 closed (:func:`_dispatch`): one arm vertex and one face vertex moving — LADDER
 (:func:`~.wall_ladder.ladder_phase`); only one arm vertex — a pivot (the automaton's PIVOT modes);
-only one face vertex — WALL_CONTACT (:mod:`.wall_follow`); none — FLIGHT; the part stopped — at rest
+only one face vertex — WALL_CONTACT (:mod:`.wall_follow`); only an edge on the wall's top corner —
+CORNER (:mod:`.wall_corner`); none — FLIGHT; the part stopped — at rest
 if its contacts hold gravity inside their cones (:func:`~.wall_statics.contacts_can_supply`), else
 it starts from rest as a ladder (the sense with σ ω̇ > 0 and both normal forces > 0) or swings back
 about A (gravity turns it away from the wall). A third vertex meeting the arm or the face during
 LADDER is another impact of the same kind. What is refused (UNRESOLVED with a reason code): a
 motion with two closed contacts on one surface (an edge flat on the arm or on the face sliding:
-WHY_TWO_CONTACT), a stopped part that none of the motions above can start (WHY_LADDER), P at the
+WHY_TWO_CONTACT), the corner and another contact moving together (WHY_WALL_SLIDE), a stopped part that none of the motions above can start (WHY_LADDER), P at the
 wall's top (WHY_WALL_TOP), a vertex at the wall's foot (WHY_CORNER).
 """
 
@@ -24,7 +25,7 @@ from numba import njit
 from .flight import departure_window
 from .modes import EV_INCONSISTENT
 from .wall_contact import (WHY_CORNER, WHY_LADDER, WHY_NONE, WHY_TWO_CONTACT, WHY_WALL_SLIDE, WHY_WALL_TOP,
-                           wall_departure)
+                           corner_bounds, corner_departure, separating_window, wall_departure)
 from .wall_ladder import (C_OPEN, EV_A_OFF, EV_BEHIND, EV_FOOT, EV_LAND, EV_P_OFF, EV_P_TOP, EV_PLANE, EV_STOP,
                           ladder_phase, ladder_pose, ladder_rhs, multi_contact_impact)
 from .wall_statics import contacts_can_supply
@@ -37,13 +38,18 @@ LN_INCONSISTENT = 4
 LN_CAP = 5
 LN_BEHIND = 6
 LN_FLIGHT = 7
+LN_CORNER = 8
 """Outcomes of :func:`lean`."""
 
 _GO = -1  # internal: go on as a ladder
+V_STOP = 1e-9
+"""A part whose speeds (|v_x| + |v_y| + |ω| ℓ) after an impact are below V_STOP √(|g| ℓ) is stopped (the limit of a
+Zeno sequence of ever smaller impacts against the arm and the wall: it moves less than ~1e-9 ℓ before it stops)."""
 
 
 @njit(cache=True)
-def _offsets(phi, w, j):
+def offsets(phi, w, j):
+    """CM → vertex j (m) at orientation φ."""
     c = math.cos(phi)
     s = math.sin(phi)
     return c * w[j, 0] - s * w[j, 1], s * w[j, 0] + c * w[j, 1]
@@ -58,7 +64,7 @@ def _collect(x, y, phi, w, h, L, top, tol, mu, mu_w, ja, jp, pts, nrm, mus, idx,
     m = 0
     n = w.shape[0]
     for k in range(n):
-        rkx, rky = _offsets(phi, w, k)
+        rkx, rky = offsets(phi, w, k)
         for kd in range(2):
             if kd == 0:
                 near = k == ja or y + rky - h <= tol
@@ -76,8 +82,8 @@ def _collect(x, y, phi, w, h, L, top, tol, mu, mu_w, ja, jp, pts, nrm, mus, idx,
     qx = L - x  # the top corner from the CM
     qy = h + top - y
     for k in range(n):
-        ax, ay = _offsets(phi, w, k)
-        bx, by = _offsets(phi, w, (k + 1) % n)
+        ax, ay = offsets(phi, w, k)
+        bx, by = offsets(phi, w, (k + 1) % n)
         ex = bx - ax
         ey = by - ay
         le = math.hypot(ex, ey)
@@ -103,17 +109,19 @@ def _collect(x, y, phi, w, h, L, top, tol, mu, mu_w, ja, jp, pts, nrm, mus, idx,
 
 @njit(cache=True)
 def _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m, pts, nrm, mus, idx, kind, st):
-    """What follows an impact that left the contacts in states ``st``: ``(code, ka, kp, win_a, win_p, v_a)`` with
+    """What follows an impact that left the contacts in states ``st``: ``(code, ka, kp, win_a, win_p, v_a, kc, win_c)`` with
     code an LN_* outcome or _GO (a ladder on arm vertex ka and face vertex kp, or ka/kp = −1 with ω = 0:
     stopped, to be started by :func:`_from_rest`); ``win_a``/``win_p`` (s) exclusion windows of the arm / face
-    vertex that just opened (FLIGHT, WALL), ``v_a`` the slip velocity of a pivot (PIVOT)."""
+    vertex that just opened (FLIGHT, WALL), ``v_a`` the slip velocity of a pivot (PIVOT), ``kc``/``win_c`` the edge that
+    just left the wall's top corner and its window."""
     scale = abs(vx) + abs(vy) + abs(om) * lref + 1e-300
-    moving = scale > 1e-12 * math.sqrt((abs(gx) + gn) * lref)
+    moving = scale > V_STOP * math.sqrt((abs(gx) + gn) * lref)
     na = 0
     nw = 0
     ka = -1
     kp = -1
     nc = 0
+    kc = -1
     for i in range(m):
         if st[i] != C_OPEN:
             if kind[i] == 0:
@@ -124,9 +132,10 @@ def _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m, pts, nr
                 kp = idx[i]
             else:
                 nc += 1
+                kc = idx[i]
     if not moving:
         if contacts_can_supply(pts, nrm, mus, m, -gx, gn, 0.0, lref):
-            return LN_REST, -1, -1, 0.0, 0.0, 0.0
+            return LN_REST, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
         # stopped and not held: a ladder on one arm and one face contact may start
         ka = -1
         kp = -1
@@ -136,19 +145,21 @@ def _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m, pts, nr
             if kind[i] == 1 and kp < 0:
                 kp = idx[i]
         if ka >= 0 and kp >= 0 and ka != kp:
-            return _GO, ka, kp, 0.0, 0.0, 0.0
-        return LN_REFUSE, WHY_LADDER, -1, 0.0, 0.0, 0.0
-    if nc > 0:
-        return LN_REFUSE, WHY_WALL_SLIDE, -1, 0.0, 0.0, 0.0  # an edge sliding over the wall's top corner
+            return _GO, ka, kp, 0.0, 0.0, 0.0, -1, 0.0
+        return LN_REFUSE, WHY_LADDER, -1, 0.0, 0.0, 0.0, -1, 0.0
+    if nc > 0 and (nc > 1 or na > 0 or nw > 0):
+        return LN_REFUSE, WHY_WALL_SLIDE, -1, 0.0, 0.0, 0.0, -1, 0.0  # the corner and another contact, moving
     if na > 1 or nw > 1:
-        return LN_REFUSE, WHY_TWO_CONTACT, -1, 0.0, 0.0, 0.0
+        return LN_REFUSE, WHY_TWO_CONTACT, -1, 0.0, 0.0, 0.0, -1, 0.0
     if na == 1 and nw == 1 and ka == kp:
-        return LN_REFUSE, WHY_CORNER, -1, 0.0, 0.0, 0.0  # one vertex at the wall's foot
+        return LN_REFUSE, WHY_CORNER, -1, 0.0, 0.0, 0.0, -1, 0.0  # one vertex at the wall's foot
     # windows of the contacts that opened (the slowest of each kind)
     win_a = math.inf
     win_p = math.inf
+    win_c = math.inf
     oa = -1
     op = -1
+    oc = -1
     for i in range(m):
         if st[i] == C_OPEN:
             rx = pts[i, 0]
@@ -156,26 +167,43 @@ def _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m, pts, nr
             lj = math.hypot(rx, ry)
             if kind[i] == 0:
                 un = vy + om * rx
-                wv = departure_window(max(un, 0.0), rx, ry, om, gn, lj) if un <= 1e-12 * scale else 1.0
+                wv = departure_window(max(un, 0.0), rx, ry, om, gn, lj) if un <= 1e-12 * scale else \
+                    separating_window(un, gn + abs(gx) + om * om * lj)
                 if wv < win_a:
                     win_a = wv
                     oa = idx[i]
             elif kind[i] == 1:
                 un = -(vx - om * ry)
-                wv = wall_departure(max(un, 0.0), rx, ry, om, gx, -gn, lj) if un <= 1e-12 * scale else 1.0
+                wv = wall_departure(max(un, 0.0), rx, ry, om, gx, -gn, lj) if un <= 1e-12 * scale else \
+                    separating_window(un, abs(gx) + gn + om * om * lj)
                 if wv < win_p:
                     win_p = wv
                     op = idx[i]
-    if (oa >= 0 and win_a <= 0.0) or (op >= 0 and win_p <= 0.0):
-        return LN_REFUSE, WHY_TWO_CONTACT, -1, 0.0, 0.0, 0.0  # a contact that can neither stay closed nor open
+            else:  # the corner let go of edge idx[i] (outward normal −nrm[i])
+                qx = pts[i, 0]
+                qy = pts[i, 1]
+                un = -(nrm[i, 0] * (vx - om * qy) + nrm[i, 1] * (vy + om * qx))  # the gap's rate, > 0: opening
+                if un <= 1e-12 * scale:
+                    wv = corner_departure(qx, qy, vx, vy, om, gx, gn, -nrm[i, 0], -nrm[i, 1], 1.0)
+                else:
+                    m2, _m3 = corner_bounds(qx, qy, vx, vy, om, gx, gn, 1.0)
+                    wv = separating_window(un, m2)
+                if wv < win_c:
+                    win_c = wv
+                    oc = idx[i]
+    if (oa >= 0 and win_a <= 0.0) or (op >= 0 and win_p <= 0.0) or (oc >= 0 and win_c <= 0.0):
+        # a contact that can neither stay closed nor open
+        return LN_REFUSE, WHY_TWO_CONTACT, -1, 0.0, 0.0, 0.0, oc, win_c
     if na == 1 and nw == 1:
-        return _GO, ka, kp, 0.0, 0.0, 0.0
+        return _GO, ka, kp, 0.0, 0.0, 0.0, oc, win_c
     if na == 1:
-        rax, ray = _offsets(phi, w, ka)
-        return LN_PIVOT, ka, op, 0.0, win_p, vx - om * ray
+        rax, ray = offsets(phi, w, ka)
+        return LN_PIVOT, ka, op, 0.0, win_p, vx - om * ray, oc, win_c
     if nw == 1:
-        return LN_WALL, oa, kp, win_a, 0.0, 0.0
-    return LN_FLIGHT, oa, op, win_a, win_p, 0.0
+        return LN_WALL, oa, kp, win_a, 0.0, 0.0, oc, win_c
+    if nc == 1:
+        return LN_CORNER, oa, kc, win_a, 0.0, 0.0, oc, win_c  # ``kp``: the edge on the corner
+    return LN_FLIGHT, oa, op, win_a, win_p, 0.0, oc, win_c
 
 
 @njit(cache=True)
@@ -185,10 +213,11 @@ def lean(ja, jp, impact, t, x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, h,
     arm and ``jp`` on the face: the impact first if ``impact`` (else the part moves as a ladder with σ = sgn ω,
     or is stopped if ω = 0).
 
-    Returns ``(outcome, why, t, x, y, v_x, v_y, φ, ω, ka, kp, win_a, win_p, v_a)``: LN_REST (pose), LN_PIVOT on arm
+    Returns ``(outcome, why, t, x, y, v_x, v_y, φ, ω, ka, kp, win_a, win_p, v_a, kc, win_c)``: LN_REST (pose), LN_PIVOT on arm
     vertex ``ka`` with slip velocity ``v_a`` (m/s), LN_WALL on face vertex ``kp`` (arm vertex ``ka`` excluded for
-    ``win_a`` s), LN_FLIGHT (arm vertex ``ka`` excluded ``win_a`` s, face vertex ``kp`` ``win_p`` s), LN_REFUSE with
-    ``why``, LN_INCONSISTENT, LN_CAP, LN_BEHIND (A slid behind the joint).
+    ``win_a`` s), LN_CORNER with edge ``kp`` on the wall's top corner (:mod:`.wall_corner`; ``ka`` as LN_WALL), LN_FLIGHT (arm vertex ``ka`` excluded ``win_a`` s, face vertex ``kp`` ``win_p`` s), LN_REFUSE with
+    ``why``, LN_INCONSISTENT, LN_CAP, LN_BEHIND (A slid behind the joint); ``kc`` an edge that just left the wall's top
+    corner, excluded from its guard for ``win_c`` s (−1: none).
     """
     n = w.shape[0]
     pts = np.empty((2 * n, 2))
@@ -199,37 +228,37 @@ def lean(ja, jp, impact, t, x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, h,
     st = np.empty(2 * n, dtype=np.int64)
     tol = 1e-9 * lref
     stopped = False
-    pending = impact
-    if not impact:
+    pending = impact or ja < 0 or jp < 0  # (a stopped part on the corner and the arm: its contacts are collected)
+    if not pending:
         stopped = om == 0.0
     for _ in range(max_events):
         if pending:
             m = _collect(x, y, phi, w, h, L, top, tol, mu, mu_w, ja, jp, pts, nrm, mus, idx, kind)
             ok, vx, vy, om = multi_contact_impact(vx, vy, om, pts, nrm, mus, m, rho2, st)
             if not ok:
-                return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
-            code, ka, kp, win_a, win_p, v_a = _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m,
-                                                        pts, nrm, mus, idx, kind, st)
+                return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
+            code, ka, kp, win_a, win_p, v_a, kc, win_c = _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn,
+                                                                   lref, m, pts, nrm, mus, idx, kind, st)
             if code != _GO:
                 if code == LN_REFUSE:
-                    return code, ka, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+                    return code, ka, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
                 if code == LN_REST:
-                    return code, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0
-                return code, WHY_NONE, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p, v_a
+                    return code, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
+                return code, WHY_NONE, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p, v_a, kc, win_c
             ja = ka
             jp = kp
             pending = False
             stopped = om == 0.0 or not (abs(vx) + abs(vy) + abs(om) * lref
-                                        > 1e-12 * math.sqrt((abs(gx) + gn) * lref))
+                                        > V_STOP * math.sqrt((abs(gx) + gn) * lref))
         if stopped:
             act, sig = _from_rest(phi, w, ja, jp, rho2, mu, mu_w, gx, gn, lref)
             x, y = ladder_pose(phi, w, ja, jp, h, L)
             if act == 0:
-                return LN_REST, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0
+                return LN_REST, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
             if act == 2:
-                return LN_PIVOT, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, ja, -1, 0.0, 0.0, 0.0
+                return LN_PIVOT, WHY_NONE, t, x, y, 0.0, 0.0, phi, 0.0, ja, -1, 0.0, 0.0, 0.0, -1, 0.0
             if act == 3:
-                return LN_REFUSE, WHY_LADDER, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0
+                return LN_REFUSE, WHY_LADDER, t, x, y, 0.0, 0.0, phi, 0.0, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
             om = 0.0
             stopped = False
         else:
@@ -237,41 +266,41 @@ def lean(ja, jp, impact, t, x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, h,
         ev, k, phi, om, t = ladder_phase(phi, om, sig, t, w, ja, jp, rho2, mu, mu_w, gx, gn, h, L, top, back,
                                          max_steps, traj, ts)
         x, y = ladder_pose(phi, w, ja, jp, h, L)
-        rax, ray = _offsets(phi, w, ja)
-        rpx, rpy = _offsets(phi, w, jp)
+        rax, ray = offsets(phi, w, ja)
+        rpx, rpy = offsets(phi, w, jp)
         vx = rpy * om
         vy = -rax * om
         if ev == EV_STOP:
             stopped = True
             continue
         if ev == EV_P_OFF:
-            return LN_PIVOT, WHY_NONE, t, x, y, vx, vy, phi, om, ja, jp, 0.0, 0.0, vx - om * ray
+            return LN_PIVOT, WHY_NONE, t, x, y, vx, vy, phi, om, ja, jp, 0.0, 0.0, vx - om * ray, -1, 0.0
         if ev == EV_A_OFF:
             win = departure_window(0.0, rax, ray, om, gn, math.hypot(rax, ray))
             if win <= 0.0:
-                return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
-            return LN_WALL, WHY_NONE, t, x, y, vx, vy, phi, om, ja, jp, win, 0.0, 0.0
+                return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
+            return LN_WALL, WHY_NONE, t, x, y, vx, vy, phi, om, ja, jp, win, 0.0, 0.0, -1, 0.0
         if ev == EV_LAND or ev == EV_PLANE:
             pending = True  # a third vertex meets the arm or the face: another impact
             continue
         if ev == EV_P_TOP:
-            return LN_REFUSE, WHY_WALL_TOP, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+            return LN_REFUSE, WHY_WALL_TOP, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
         if ev == EV_FOOT:
-            return LN_REFUSE, WHY_CORNER, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+            return LN_REFUSE, WHY_CORNER, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
         if ev == EV_BEHIND:
-            return LN_BEHIND, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+            return LN_BEHIND, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
         if ev == EV_INCONSISTENT:
-            return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
-        return LN_CAP, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
-    return LN_CAP, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0
+            return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
+        return LN_CAP, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
+    return LN_CAP, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
 
 
 @njit(cache=True)
 def _from_rest(phi, w, ja, jp, rho2, mu, mu_w, gx, gn, lref):
     """What a part leaning at rest on A (arm) and P (face) does: ``(0, _)`` rests, ``(1, σ)`` slides as a ladder
     with sense σ, ``(2, _)`` swings back about A (P leaves the wall), ``(3, _)`` none of these (refused)."""
-    rax, ray = _offsets(phi, w, ja)
-    rpx, rpy = _offsets(phi, w, jp)
+    rax, ray = offsets(phi, w, ja)
+    rpx, rpy = offsets(phi, w, jp)
     pts = np.empty((2, 2))
     nrm = np.empty((2, 2))
     mus = np.empty(2)
