@@ -16,6 +16,7 @@ is missing (another pymunk), the public API with the same results.
 
 from __future__ import annotations
 
+import functools
 import math
 from operator import attrgetter
 
@@ -121,6 +122,52 @@ class World:
         return len(self.bodies)
 
 
+def _geometry_cache(compute):
+    """``compute`` memoised on its (hashable) arguments; unhashable ones are computed every time."""
+    @functools.lru_cache(maxsize=64)
+    def cached(signs, *args):  # (the signs keep -0.0 and 0.0 apart: they hash and compare equal)
+        return compute(*args)
+
+    def get(*args):
+        try:
+            return cached(tuple(math.copysign(1.0, a) for a in args if isinstance(a, float)), *args)
+        except TypeError:  # an unhashable argument
+            return compute(*args)
+
+    return get
+
+
+@_geometry_cache
+def _static_geometry(h: float, L: float, thickness: float, fixtures: tuple, back: float):
+    """The arm's solid pieces as built for pymunk, and what the checks read off them (SI, arm frame):
+    ``(pieces, thickness, boxes, corners, reach)``, ``pieces`` as ``(vertices, is_fixture)``, ``thickness``
+    the solid's depth below the surface, ``boxes`` each piece's ``(x0, x1, y0, y1)``, ``corners`` every
+    piece's vertices, ``reach`` their largest distance from the joint (computed once per geometry)."""
+    arm_pieces, fixture_pieces = arm_solids(h, L, thickness, fixtures)
+    if back > 0.0:  # the surface continues behind the joint to x = -back (Arm.back): widen the first piece
+        first = np.array(arm_pieces[0], dtype=float)
+        first[first[:, 0] <= 0.0, 0] = -back
+        arm_pieces = [first] + list(arm_pieces[1:])
+    depth = float(h - min(float(np.min(np.asarray(p)[:, 1])) for p in arm_pieces))
+    pieces, boxes, corners = [], [], []
+    for piece, fixture in [(p, False) for p in arm_pieces] + [(p, True) for p in fixture_pieces]:
+        piece = tuple(tuple(v) for v in piece.tolist())
+        xs, ys = [x for x, _ in piece], [y for _, y in piece]
+        boxes.append((min(xs), max(xs), min(ys), max(ys)))
+        pieces.append((piece, fixture))
+        corners.extend(piece)
+    reach = float(np.max(np.hypot(*np.array(corners).T))) if corners else math.nan
+    return tuple(pieces), depth, tuple(boxes), tuple(corners), reach
+
+
+@_geometry_cache
+def _part_geometry(part):
+    """``(R, vertices, betas)`` of a part: its largest vertex distance from the CM (m), its vertices about
+    the CM as tuples (m) and its resting angles (rad), computed once per part."""
+    R = float(np.max(np.hypot(part.w[:, 0], part.w[:, 1])))
+    return R, tuple(tuple(v) for v in part.w.tolist()), tuple(part.beta.tolist())
+
+
 def build_world(scene, realisation, settings, *, raw: bool = True, length: float | None = None) -> World:
     """Build the space of ``scene`` at t = 0: arm at α + θ(0), parts at their poses with their start velocities.
 
@@ -147,28 +194,21 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     arm_body.position = (0.0, 0.0)
     a0 = scene.alpha + realisation.angle(0.0)
     arm_body.angle = a0
-    arm_pieces, fixture_pieces = arm_solids(arm.h, L, settings.arm_thickness, scene.fixtures)
     back = arm.back
-    if back > 0.0:  # the surface continues behind the joint to x = -back (Arm.back): widen the first piece
-        first = np.array(arm_pieces[0], dtype=float)
-        first[first[:, 0] <= 0.0, 0] = -back
-        arm_pieces = [first] + list(arm_pieces[1:])
+    pieces, thickness, static_boxes, corners, arm_reach = _static_geometry(arm.h, L, settings.arm_thickness,
+                                                                          tuple(scene.fixtures), back)
     w.back = back
-    w.thickness = float(arm.h - min(float(np.min(np.asarray(p)[:, 1])) for p in arm_pieces))
+    w.thickness = thickness
     w.margin = settings.flight_margin
     mu_arm = engine_mu(scene.mu("arm"))
     mu_wall = engine_mu(scene.mu("wall"))
-    static_shapes, corners, static_boxes = [], [], []
-    for piece, ctype, mu in [(p, ARM, mu_arm) for p in arm_pieces] + [(p, FIXTURE, mu_wall) for p in fixture_pieces]:
-        piece = [tuple(v) for v in piece.tolist()]
-        xs, ys = [x for x, _ in piece], [y for _, y in piece]
-        static_boxes.append((min(xs), max(xs), min(ys), max(ys)))
-        s = pm.Poly(arm_body, piece)
-        s.friction = mu
+    static_shapes = []
+    for piece, fixture in pieces:
+        s = pm.Poly(arm_body, list(piece))
+        s.friction = mu_wall if fixture else mu_arm
         s.elasticity = 0.0
-        s.collision_type = ctype
+        s.collision_type = FIXTURE if fixture else ARM
         static_shapes.append(s)
-        corners.extend(piece)
     space.add(arm_body, *static_shapes)
 
     bodies, shapes, parts = [], [], []
@@ -190,7 +230,7 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
             vx, vy = c0 * vx - s0 * vy, s0 * vx + c0 * vy
         body.velocity = (vx, vy)
         body.angular_velocity = om
-        shp = pm.Poly(body, [tuple(v) for v in part.w.tolist()])
+        shp = pm.Poly(body, list(_part_geometry(part)[1]))
         shp.friction = 1.0
         shp.elasticity = 0.0
         shp.collision_type = PART
@@ -207,17 +247,18 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     w.shapes_h = [cp.shape(s) for s in shapes]
     static_h = [cp.shape(s) for s in static_shapes]
     w.others_h = [static_h + [w.shapes_h[j] for j in range(len(shapes)) if j != i] for i in range(len(shapes))]
-    w.boxes = [static_boxes + [None] * (len(shapes) - 1) for _ in shapes]
-    reach = 0.0 + BOX_TOL  # as checks.inspect inflates them for horizon 0
-    w.boxes_tol = [[None if bx is None else (bx[0] - reach, bx[1] + reach, bx[2] - reach, bx[3] + reach)
+    w.boxes = [list(static_boxes) + [None] * (len(shapes) - 1) for _ in shapes]
+    tol = 0.0 + BOX_TOL  # as checks.inspect inflates them for horizon 0
+    w.boxes_tol = [[None if bx is None else (bx[0] - tol, bx[1] + tol, bx[2] - tol, bx[3] + tol)
                     for bx in boxes] for boxes in w.boxes]
     w.clear_hint = [None] * len(shapes)
     w.corners = corners
-    w.reach = float(np.max(np.hypot(*np.array(corners).T))) if corners else L
+    w.reach = arm_reach if corners else L
     w.rho2 = [p.radius_of_gyration**2 for p in parts]
-    w.R = [float(np.max(np.hypot(p.w[:, 0], p.w[:, 1]))) for p in parts]
-    w.wlists = [[tuple(v) for v in p.w.tolist()] for p in parts]
-    w.betas = [tuple(p.beta.tolist()) for p in parts]
+    geometry = [_part_geometry(p) for p in parts]
+    w.R = [g[0] for g in geometry]
+    w.wlists = [g[1] for g in geometry]
+    w.betas = [g[2] for g in geometry]
     w.plain_arm = not scene.fixtures and len(parts) == 1
     w.index = {id(b): i for i, b in enumerate(bodies)}
     w.mu_pp = scene.mu("part")
