@@ -75,14 +75,18 @@ Guards ``wall_touch`` (FLIGHT: a vertex reaches the face x = length below the to
 ``corner_touch`` (FLIGHT: the top corner enters the part through an edge), ``wall_reach``
 (PIVOT_*: a closed-form lower bound on θ, face or corner; PIVOT_SLIDE: a guard of the RK4
 phase) and ``slide_hit`` (FLAT_SLIDE, closed form). Resets: ``wall_impact`` (the impact law
-above along the contact's normal, μ_w), the pivot's wall reset (impulse at the wall alone if
-the pivot then lifts; else both stop if the impulse lies in the two cones; then rest leaning,
-swing back, or refuse), and the flat slide's impact (stop dead, turn about the corner vertex,
-or refuse); rests against the wall by exact cone statics. What it cannot follow ends as
-UNRESOLVED (reason codes ``WHY_*`` of :mod:`.wall`): an edge pressed onto the top corner,
-a vertex pressed on the face in flight, two-contact impacts with slip, ladder slides, a pivot
-driven into the wall's foot. A rest leaning on arm and wall reports the nearest side and the
-CM's x, as the engines do.
+above along the contact's normal, μ_w), the flat slide's impact (stop dead, turn about the corner
+vertex, or refuse), and every contact with the arm and the wall at once (a pivot that meets the
+wall, a landing while on the wall, a third vertex): one velocity-level plastic impact at all
+touching contacts (:mod:`.wall_lean`, the law of the engines). Modes on the wall:
+WALL_CONTACT (a vertex pressed on the face, sliding or sticking: :mod:`.wall_slide`), CORNER (an
+edge pressed on the top corner: :mod:`.wall_corner`), LADDER (a vertex on the arm and one on the
+face sliding at both: :mod:`.wall_ladder`); rests against the wall by exact cone statics, and
+the Zeno limit of ever smaller impacts (speeds below ``V_STOP`` √(gℓ)) is a stop. What it cannot
+follow ends as UNRESOLVED (reason codes ``WHY_*`` of :mod:`.wall_contact`): an edge on the corner
+moving with another contact, an edge flat on the arm or the face sliding while the part touches
+the other surface, a vertex onto the corner or the wall's foot, a flat slide into the wall above
+its top. A rest leaning on arm and wall reports the nearest side and the CM's x, as the engines do.
 
 Numerics and accuracy (plainly)
 -------------------------------

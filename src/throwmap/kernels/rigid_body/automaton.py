@@ -34,7 +34,7 @@ from .impact import coulomb_impact, record_first_contact, record_first_impact, r
 from .landing import land_side, rest
 from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE, EV_OFF_END, EV_SLIP,
                     EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST,
-                    MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID)
+                    MODE_LEAN, MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID)
 from .slide import pivot_slide, pivot_slide_walled, select_contact_mode
 from .stick import pivot_stick
 from .stick_exact import pivot_stick_exact
@@ -46,8 +46,6 @@ from .wall_follow import WC_ARM, WC_CAP, WC_FACE, WC_FLIGHT, WC_INCONSISTENT, fo
 from .wall_lean import (LN_BEHIND, LN_CAP, LN_CORNER, LN_FLIGHT, LN_INCONSISTENT, LN_PIVOT, LN_REST, LN_WALL, lean,
                         offsets)
 
-MODE_LEAN = 6
-"""Mode of :func:`run_throw`: the part touches the arm (vertex ``ln_a``) and the wall's face (``ln_p``): :func:`lean`."""
 
 
 @njit(cache=True, inline='always')
@@ -394,6 +392,11 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                                 rec, alpha, wall_h, wall_mu)
         if mode == MODE_REST:
             return x, last_side, status
+        if mode == MODE_LEAN:  # a flat slide met the wall's top corner with an edge
+            ln_a = jp
+            ln_p = -1
+            ln_impact = True
+            continue
         if mode == MODE_FLIGHT:
             excl_j = j_ex
             excl_t = t_ex

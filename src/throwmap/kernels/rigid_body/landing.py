@@ -23,7 +23,7 @@ from .. import codes as C
 from ..roll import theta_a, theta_b
 from .flight import departure_window, flight_frame, leave_arm
 from .impact import coulomb_impact, record_impact
-from .modes import (HALF_PI, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST, MODE_SELECT,
+from .modes import (HALF_PI, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_LEAN, MODE_REST, MODE_SELECT,
                     MODE_STICK, N_ARC, TWO_PI)
 from .stick import _n_min_range, _n_stick
 from .tilt import rocking_rest_tilted, settle, tip_vertex, topple_barrier
@@ -202,6 +202,8 @@ def settle_at_wall(x_cm, v, t, k, phi, last_side, h, g, alpha, length, back, rho
         return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, k, length, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
     st, x, t, wc, why = settle_walled(x_cm, v, t, k, mu, gx, gn, h, length, wall_h, wall_mu, back, rho2, w, beta, d,
                                       uL, uR, phi, traj, ts, rec)
+    if st == -2:  # an edge met the wall's top corner (wc: the speed then): the multi-contact impact of wall_lean
+        return MODE_LEAN, C.OK, x, h + dk, wc, 0.0, 0.0, phi, t, k, length, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
     if st == -1:
         th = theta_b(k, d, uR)
         return (MODE_SELECT, C.OK, x, h + dk, 0.0, 0.0, wc, phi, t, k, length, th, wc, 0.0, phi - th, -1, 0.0,

@@ -42,3 +42,4 @@ IMP_SLIDE = 1
 IMP_SEPARATE = 2
 IMP_INCONSISTENT = -1
 MODE_REST = 4  # terminal: the throw's status is decided
+MODE_LEAN = 6  # on the arm and the wall at once: the multi-contact impact and what follows (wall_lean.py)

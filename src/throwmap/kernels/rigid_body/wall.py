@@ -45,14 +45,16 @@ Statics
 
 Modules: :mod:`.wall_contact` (reason codes, the impact along any normal, departure windows),
 :mod:`.wall_guards` (``wall_touch``, ``corner_touch``, ``wall_reach``), :mod:`.wall_statics`
-(cone tests, the flat slide into the wall); this module holds FLIGHT with a wall and the
-pivot's wall reset, and re-exports the rest.
+(cone tests, the flat slide into the wall), :mod:`.wall_slide` / :mod:`.wall_corner` /
+:mod:`.wall_ladder` (the modes WALL_CONTACT, CORNER, LADDER), :mod:`.wall_follow` and
+:mod:`.wall_lean` (their entries and exits, the multi-contact impact); this module holds FLIGHT
+with a wall and the impact of a flight on it, and re-exports the rest. :func:`pivot_wall_hit`
+(the single-contact resets of a pivot that meets the wall, applied in sequence) is kept for
+comparison; the automaton now resolves that moment with one impact at both contacts
+(:func:`~.wall_lean.lean`).
 
-What is refused (status UNRESOLVED, reason code ``WHY_*`` below) is every state
-the automaton cannot follow exactly: an edge on the wall's top corner, a vertex
-pressed against the wall during flight (it would slide along the wall), a
-two-contact impact with slip, a two-contact slide (a ladder sliding at both
-ends), and a pivot at the wall's foot driven into the wall.
+What is still refused (status UNRESOLVED, reason code ``WHY_*``) is listed in
+:data:`~.wall_contact.WHY_MESSAGES`.
 """
 
 import math

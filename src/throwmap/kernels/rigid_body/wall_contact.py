@@ -22,23 +22,25 @@ WHY_SLIDE_WALL = 6
 WHY_WALL_EDGE = 7
 WHY_CORNER_VERTEX = 8
 WHY_MESSAGES = {
-    WHY_WALL_TOP: ("the part reached the wall above its top while sliding flat or on a sliding pivot (only "
-                   "flights and sticking pivots watch the wall's top corner): not modelled by rigid_body"),
-    WHY_WALL_SLIDE: ("after an impact with the wall an edge stays pressed on its top corner (the part would slide "
-                     "over the corner), or a vertex on its face leaves it tangentially: not modelled by rigid_body "
-                     "(use model 'engine')"),
-    WHY_TWO_CONTACT: ("an impact at the arm and the wall at once needs slip at a contact: this two-contact "
-                      "impact is not modelled by rigid_body"),
-    WHY_LADDER: ("the part leans on the arm and the wall and slides at both (a ladder-like slide): this "
-                 "two-contact motion is not modelled by rigid_body"),
-    WHY_CORNER: ("the pivot at the wall's foot is driven into the wall while the part swings: this "
-                 "two-contact motion is not modelled by rigid_body"),
+    WHY_WALL_TOP: ("a vertex reached the wall's plane above its top while the part slid on the arm (a sliding "
+                   "pivot) or along the wall: not modelled by rigid_body"),
+    WHY_WALL_SLIDE: ("an edge on the wall's top corner moves together with another contact, or a contact with the "
+                     "wall lets go of it tangentially (no departure window): not modelled by rigid_body (use model "
+                     "'engine')"),
+    WHY_TWO_CONTACT: ("two contacts on the arm, or two on the wall, move at once (an edge sliding flat while the part "
+                      "touches the other surface), or a contact can neither stay closed nor open: not modelled by "
+                      "rigid_body"),
+    WHY_LADDER: ("the part stopped against the arm and the wall is not held there and none of the motions "
+                 "rigid_body models (a ladder slide, a swing back about its arm contact) can start"),
+    WHY_CORNER: ("a vertex at the wall's foot (on the arm and the face at once) moves, or the pivot there is "
+                 "driven into the wall: not modelled by rigid_body"),
     WHY_SLIDE_WALL: ("a pivot sliding along the arm brought the part to the wall: this contact is not located "
                      "by rigid_body's sliding phase"),
     WHY_WALL_EDGE: ("while a vertex slides on the wall's face, a second vertex reaches the wall's plane (an edge "
                     "flush on the face or across its top corner): not modelled by rigid_body"),
-    WHY_CORNER_VERTEX: ("an edge sliding on the wall's top corner brought a vertex onto the corner, or a vertex "
-                        "onto the wall's top beyond its face: not modelled by rigid_body"),
+    WHY_CORNER_VERTEX: ("an edge on the wall's top corner brought a vertex onto the corner or onto the wall's top "
+                        "beyond its face, or the part tips over the wall (its top and thickness are not modelled): "
+                        "not modelled by rigid_body"),
 }
 """Why a walled throw was refused (status UNRESOLVED), by reason code."""
 

@@ -172,7 +172,11 @@ def _cout(res, k, t, s, w, win, why):
 
 @njit(cache=True)
 def _corner_lift(e, t, s, w, gx, gn, h, top, L):
-    """The edge lets go of the corner (λ = 0): FLIGHT with its departure window, or refused at a tangency."""
+    """The edge lets go of the corner (λ = 0): FLIGHT with its departure window, or refused at a tangency, or
+    refused (WHY_CORNER_VERTEX) when the CM is past the face: the part tips over the wall, whose top (its
+    thickness) rigid_body does not model."""
+    if s[0] >= L:
+        return _cout(WC_REFUSE, -1, t, s, w, 0.0, WHY_CORNER_VERTEX)
     nx, ny, _tx, _ty, _le = edge_body(w, e)
     c = math.cos(s[2])
     sn = math.sin(s[2])

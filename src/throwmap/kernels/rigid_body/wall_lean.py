@@ -23,7 +23,7 @@ import numpy as np
 from numba import njit
 
 from .flight import departure_window
-from .modes import EV_INCONSISTENT
+from .modes import EV_INCONSISTENT, MU_SKID
 from .wall_contact import (WHY_CORNER, WHY_LADDER, WHY_NONE, WHY_TWO_CONTACT, WHY_WALL_SLIDE, WHY_WALL_TOP,
                            corner_bounds, corner_departure, separating_window, wall_departure)
 from .wall_ladder import (C_OPEN, EV_A_OFF, EV_BEHIND, EV_FOOT, EV_LAND, EV_P_OFF, EV_P_TOP, EV_PLANE, EV_STOP,
@@ -234,7 +234,12 @@ def lean(ja, jp, impact, t, x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, h,
     for _ in range(max_events):
         if pending:
             m = _collect(x, y, phi, w, h, L, top, tol, mu, mu_w, ja, jp, pts, nrm, mus, idx, kind)
-            ok, vx, vy, om = multi_contact_impact(vx, vy, om, pts, nrm, mus, m, rho2, st)
+            ok, vx1, vy1, om1 = multi_contact_impact(vx, vy, om, pts, nrm, mus, m, rho2, st)
+            if not ok:  # infinite friction at two contacts can leave no consistent impulse: its μ → ∞ limit
+                for i in range(m):
+                    mus[i] = min(mus[i], MU_SKID)
+                ok, vx1, vy1, om1 = multi_contact_impact(vx, vy, om, pts, nrm, mus, m, rho2, st)
+            vx, vy, om = vx1, vy1, om1
             if not ok:
                 return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
             code, ka, kp, win_a, win_p, v_a, kc, win_c = _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn,

@@ -14,7 +14,7 @@ from numba import njit
 from .. import codes as C
 from .impact import record_impact
 from .trajectory import _put, _put_final
-from .wall_contact import CONE_TOL, WHY_LADDER, WHY_NONE, WHY_TWO_CONTACT, WHY_WALL_TOP
+from .wall_contact import CONE_TOL, WHY_LADDER, WHY_NONE, WHY_TWO_CONTACT
 
 
 @njit(cache=True)
@@ -55,6 +55,21 @@ def wall_reach_at_rest(u, vh, top):
         if u[j] >= umax - tie and vh[j] < vh[jb]:
             jb = j
     return umax, jb, vh[jb] >= top
+
+
+@njit(cache=True)
+def reach_below(u, vh, top):
+    """The outline's largest x offset from the CM (m) at heights ≤ ``top`` above the arm: a vertex that low, or an
+    edge crossing that height (vertex offsets ``u``, heights ``vh``, in order around the part)."""
+    n = u.shape[0]
+    best = -math.inf
+    for j in range(n):
+        j2 = (j + 1) % n
+        if vh[j] <= top:
+            best = max(best, u[j])
+        if (vh[j] - top) * (vh[j2] - top) < 0.0:
+            best = max(best, u[j] + (top - vh[j]) * (u[j2] - u[j]) / (vh[j2] - vh[j]))
+    return best
 
 
 @njit(cache=True)
@@ -319,20 +334,24 @@ def settle_walled(x, v, t, k, mu, gx, gn, h, L, top, mu_w, back, rho2, w, beta, 
     contacts' cones (the arm at both support vertices, the wall at the leading vertices: a
     flush side stops dead); a part whose only wall contact is its right support vertex turns
     about that corner instead (:func:`corner_pivot_rate`); anything else is refused
-    (:data:`WHY_TWO_CONTACT`), as is a leading vertex above the wall's top
-    (:data:`WHY_WALL_TOP`). At rest against the wall it stays if arm and wall hold gravity
+    (:data:`WHY_TWO_CONTACT`); a leading vertex above the wall's top hands over to :mod:`.wall_lean`
+    where its edge meets the top corner. At rest against the wall it stays if arm and wall hold gravity
     (:func:`rest_flat_at_wall`): x = L − u_w (rounded down where needed so that x + u_R ≤ L, the start
     rule of :func:`throwmap.throws.throw.start_interval`); pulled away it slides back; pushed
     into the wall and not held it is refused (:data:`WHY_LADDER`).
 
     Returns ``(status, x, t, ω_corner, why)``: status OK or BEHIND_JOINT (at rest or leaving
     behind the joint, x the CM), −1: the part turns about its corner vertex k at (L, h) with
-    spin ω_corner (rad/s), UNRESOLVED with ``why``.
+    spin ω_corner (rad/s), −2: an edge meets the wall's top corner (a leading vertex above the top:
+    the outline's reach below the top, :func:`reach_below`, touches it), the CM at x moving at
+    ω_corner (m/s) — :mod:`.wall_lean`'s impact decides — UNRESOLVED with ``why``.
     """
     n = w.shape[0]
     u, vv = flat_offsets(k, w, beta)
     dk = d[k]
     u_w, _j_w, above = wall_reach_at_rest(u, vv + dk, top)
+    if above:  # the leading vertex passes over the wall: an edge meets its top corner when the outline's reach
+        u_w = reach_below(u, vv + dk, top)  # below the top does
     jl = (k + 1) % n
     jr = k
     fr = mu * gn
@@ -346,6 +365,8 @@ def settle_walled(x, v, t, k, mu, gx, gn, h, L, top, mu_w, back, rho2, w, beta, 
         if v == 0.0:
             if x >= x_wall - 1e-12 * (abs(L) + lref):  # against the wall
                 x = x_wall
+                if above:  # at rest on an edge against the top corner: the contacts of wall_lean decide
+                    return -2, x, t, 0.0, WHY_NONE
                 if rest_flat_at_wall(u, vv, jl, jr, u_w, top - dk, mu, mu_w, gx, -gn, lref):
                     return _rest_walled(x, k, t, gx, gn, dk, y, phi, beta, uL, back, traj, ts, rec)
                 if gx >= 0.0:
@@ -368,13 +389,13 @@ def settle_walled(x, v, t, k, mu, gx, gn, h, L, top, mu_w, back, rho2, w, beta, 
                 t += th
                 v = 0.0
                 continue
-            if above:
-                return C.UNRESOLVED, x, t, 0.0, WHY_WALL_TOP
             if sample:
                 _rows(x, v, a, t, t + th, y, phi, traj, ts)
             rec[C.SLIP_DISTANCE] += x_wall - x
             t += th
             x = x_wall
+            if above:  # an edge meets the wall's top corner at speed vh: the multi-contact impact of wall_lean
+                return -2, x, t, vh, WHY_NONE
             pts = np.empty((4, 2))
             nrm = np.empty((4, 2))
             mus = np.empty(4)
