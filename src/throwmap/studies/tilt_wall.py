@@ -14,9 +14,8 @@ plain arm, and compares them throw by throw. Four conditions, ``n`` throws each:
 
 The paper model assumes a pivot that never slips (Sec. III), so it is compared at μ = ∞ only. Every throw
 draws a part from the validation set (:func:`~throwmap.studies.validation.default_parts`), a side, x uniform
-over the starts :func:`throwmap.throw` accepts (with a wall: over their outer quarter, where jogs reach the
-wall), ω ∈ [3, 7] rad/s, h ∈ {−1, −0.5} cm (the paper's regime 0 > h > −min d), the arm length in
-[0.25, 0.40] m. Per row: throws compared, same outcome % (same side at rest, or the same escape) and
+over the starts :func:`throwmap.throw` accepts (with a wall: the outer quarter of those clear of it), ω ∈ [3, 7]
+rad/s, h ∈ {−1, −0.5} cm (the paper's regime 0 > h > −min d), the arm length in [0.25, 0.40] m. Per row: throws compared, same outcome % (same side at rest, or the same escape) and
 |Δx| ≤ 0.5 mm %, each with its Wilson 95 % interval, median and 95th percentile |Δx|, and the throws each
 side refused (``unresolved``, ``timeout``, …) with their reasons, and the worst misses as reproducers.
 :func:`~throwmap.analysis.wall.wall_fixed_point` finds, with :func:`throwmap.limit_set`, the fixed point a

@@ -13,8 +13,9 @@ it starts from rest as a ladder (the sense with σ ω̇ > 0 and both normal forc
 about A (gravity turns it away from the wall). A third vertex meeting the arm or the face during
 LADDER is another impact of the same kind. What is refused (UNRESOLVED with a reason code): a
 motion with two closed contacts on one surface (an edge flat on the arm or on the face sliding:
-WHY_TWO_CONTACT), the corner and another contact moving together (WHY_WALL_SLIDE), a stopped part that none of the motions above can start (WHY_LADDER), P at the
-wall's top (WHY_WALL_TOP), a vertex at the wall's foot (WHY_CORNER).
+WHY_TWO_CONTACT), the corner and another contact moving together (WHY_WALL_SLIDE), a stopped
+part that none of the motions above can start (WHY_LADDER), P at the wall's top (WHY_WALL_TOP),
+a vertex at the wall's foot (WHY_CORNER).
 """
 
 import math
@@ -213,11 +214,12 @@ def lean(ja, jp, impact, t, x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, h,
     arm and ``jp`` on the face: the impact first if ``impact`` (else the part moves as a ladder with σ = sgn ω,
     or is stopped if ω = 0).
 
-    Returns ``(outcome, why, t, x, y, v_x, v_y, φ, ω, ka, kp, win_a, win_p, v_a, kc, win_c)``: LN_REST (pose), LN_PIVOT on arm
-    vertex ``ka`` with slip velocity ``v_a`` (m/s), LN_WALL on face vertex ``kp`` (arm vertex ``ka`` excluded for
-    ``win_a`` s), LN_CORNER with edge ``kp`` on the wall's top corner (:mod:`.wall_corner`; ``ka`` as LN_WALL), LN_FLIGHT (arm vertex ``ka`` excluded ``win_a`` s, face vertex ``kp`` ``win_p`` s), LN_REFUSE with
-    ``why``, LN_INCONSISTENT, LN_CAP, LN_BEHIND (A slid behind the joint); ``kc`` an edge that just left the wall's top
-    corner, excluded from its guard for ``win_c`` s (−1: none).
+    Returns ``(outcome, why, t, x, y, v_x, v_y, φ, ω, ka, kp, win_a, win_p, v_a, kc, win_c)``: LN_REST (pose),
+    LN_PIVOT on arm vertex ``ka`` with slip velocity ``v_a`` (m/s), LN_WALL on face vertex ``kp`` (arm vertex
+    ``ka`` excluded for ``win_a`` s), LN_CORNER with edge ``kp`` on the wall's top corner (:mod:`.wall_corner`;
+    ``ka`` as LN_WALL), LN_FLIGHT (arm vertex ``ka`` excluded ``win_a`` s, face vertex ``kp`` ``win_p`` s),
+    LN_REFUSE with ``why``, LN_INCONSISTENT, LN_CAP, LN_BEHIND (A slid behind the joint); ``kc`` an edge that
+    just left the wall's top corner, excluded from its guard for ``win_c`` s (−1: none).
     """
     n = w.shape[0]
     pts = np.empty((2 * n, 2))
