@@ -381,3 +381,29 @@ def test_a_start_inside_the_wall_is_refused():
     from throwmap.throws.throw import wall_reach
 
     assert wall_reach(pent, 3, 0.001) < wall_reach(pent, 3, 0.05)
+
+
+def test_an_orbit_ends_cleanly_where_a_rest_is_not_a_start():
+    """A part at rest leaning on the wall reports its CM's x, which may lie past the last flat start: the orbit
+    ends there with status invalid_start and says why (it used to raise on the next throw)."""
+    part = tm.triangle_30_60_90()
+    arm = tm.Arm(h=-0.0116, mu=2.75, length=0.404)
+    w = (tm.Wall(0.0405, mu=math.inf),)
+    al = math.radians(-13.22)
+    first = tm.throw(part, arm, 0.2986, 1, 3.32, fixtures=w, alpha=al)
+    orbit = tm.iterate(part, arm, (0.2986, 1), 3.32, n=5, fixtures=w, alpha=al)
+    assert first.status.label == "ok"
+    if first.x + float(part.uR[first.side]) > arm.length:  # the rest leans past the last start
+        assert orbit.status.label == "invalid_start" and len(orbit.outcomes) == 2
+        assert "not a start of the map" in orbit.outcomes[-1].message
+
+
+@pytest.mark.parametrize("x", [0.2699, 0.2695, 0.269, 0.268, 0.266])
+def test_the_square_near_a_rough_wall_resolves(x):
+    """Near a wall as rough as the arm (μ = 1) the square jams or rests; no Zeno loop (no_rest) and no false
+    inconsistency where the face contact simply lets go."""
+    part = tm.rectangle(0.06, 0.06)
+    arm = tm.Arm(h=-0.01, mu=1.0, length=0.30)
+    o = tm.throw(part, arm, x, 0, 3.0, "rigid_body", fixtures=(tm.Wall(0.05),))
+    assert o.status.label == "ok"
+    assert 0.25 < o.x <= 0.27 + 1e-12

@@ -14,7 +14,7 @@ from ..system.arm import Arm
 from ..errors import InvalidStateError, shown
 from .outcome import Status, ThrowOutcome
 from ..system.part import Part
-from .throw import DEFAULT_MODEL, throw
+from .throw import DEFAULT_MODEL, _invalid_outcome, throw
 
 __all__ = ["Orbit", "iterate", "BYTES_PER_THROW", "TIMED_THROWS", "ThrowGuard", "planned_throws", "throw_rates"]
 
@@ -182,6 +182,18 @@ class ThrowGuard:
             guard_work(*self.args, throws_per_config=1.0, timer=lambda: per, hint=self.hint, unit="throws")
 
 
+def _restart_reason(part: Part, arm: Arm, x: float, side: int, omega: float) -> str:
+    """Why the rest ``(x, side)`` of the last throw is not a start of the next one (``""`` if it is): a part at
+    rest leaning on a wall reports its CM's x and the nearest side, which may lie past the last flat start."""
+    from .throw import check_start
+
+    try:
+        check_start(part, arm, x, side, omega)
+    except InvalidStateError as err:
+        return f"the last throw's rest is not a start of the map ({err.reason}): the part leans, e.g. on a wall"
+    return ""
+
+
 def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: str = DEFAULT_MODEL, *, progress=None,
             max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False,
             **throw_kwargs) -> Orbit:
@@ -225,7 +237,13 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     ss = [part.check_side(s0)]
     outs = []
     status = Status.OK
-    for w in om:
+    for i, w in enumerate(om):
+        if i > 0:  # a rest the next throw cannot start from (leaning on a wall past the last start): the orbit ends
+            reason = _restart_reason(part, arm, xs[-1], ss[-1], float(w))
+            if reason:
+                outs.append(_invalid_outcome(part, xs[-1], ss[-1], float(w), model, reason))
+                status = Status.INVALID_START
+                break
         o: ThrowOutcome = throw(part, arm, xs[-1], ss[-1], float(w), model=model, **throw_kwargs)
         outs.append(o)
         gd.tick()

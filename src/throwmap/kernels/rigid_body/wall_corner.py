@@ -28,6 +28,7 @@ from numba import njit
 
 from .modes import DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, N_BISECT
 from .trajectory import _put
+from .wall_contact import corner_departure
 
 EV_END = 30
 """Guard ``end``: the corner reached an end of the edge (a vertex on the corner)."""
@@ -288,9 +289,14 @@ def corner_select(s, e, w, rho2, gx, gn, mu_w, L, h, top, from_slip):
     if not from_slip and abs(f) <= mu_w * lam:
         return 1, 0.0
     sig = -1.0 if f > 0.0 else 1.0
-    if math.isinf(mu_w):
-        return -2, 0.0
-    _a, _b, _w, lam2, _f, D, _s = corner_rhs(s, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, False)
-    if D > 0.0 and lam2 > 0.0:
-        return 0, sig
+    if not math.isinf(mu_w):
+        _a, _b, _w, lam2, _f, D, _s = corner_rhs(s, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, False)
+        if D > 0.0 and lam2 > 0.0:
+            return 0, sig
+    # neither sticking nor sliding keeps it pressed: it lets go if the free motion opens the gap
+    c = math.cos(s[2])
+    sn = math.sin(s[2])
+    if corner_departure(qx - s[0], qy - s[1], s[3], s[4], s[5], gx, gn, c * nx - sn * ny, sn * nx + c * ny,
+                        1.0) > 0.0:
+        return -1, 0.0
     return -2, 0.0

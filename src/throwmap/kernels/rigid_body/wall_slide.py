@@ -40,6 +40,7 @@ from numba import njit
 from .. import codes as C
 from .modes import DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, N_BISECT
 from .trajectory import _put
+from .wall_contact import wall_departure
 
 EV_ARM = 11
 """Guard ``arm``: a vertex (returned) reaches the arm's line y = h while P is on the face."""
@@ -253,7 +254,9 @@ def wall_select(th, thd, vp, lj, rho2, gx, gn, mu_w, from_slip):
     """Which sub-mode continues from P on the face at (θ, θ̇, ẏ_P) (the one-contact Coulomb choice, as
     :func:`~.slide.select_contact_mode`): returns ``(mode, σ)`` with mode W_STICK, W_SLIDE, −1 (the
     contact is not pressed: N ≤ 0 — the caller lets it go) or −2 (no consistent motion).
-    μ_w = 0 always slides; μ_w = ∞ sticks (ẏ_P is 0 after its impact)."""
+    μ_w = 0 always slides; μ_w = ∞ sticks (ẏ_P is 0 after its impact). Where neither sticking (|F| > μ_w N) nor
+    sliding (N ≤ 0 in the sense friction allows) keeps the vertex pressed, it lets go (−1) if the free motion
+    leaves the face (:func:`~.wall_contact.wall_departure` > 0), as the arm's contact-mode selection does."""
     if mu_w == 0.0:
         _a, _b, N, _f, D = wall_rhs(th, thd, lj, rho2, gx, gn, 0.0, False)
         if D <= 0.0:
@@ -281,4 +284,9 @@ def wall_select(th, thd, vp, lj, rho2, gx, gn, mu_w, from_slip):
         if from_slip:
             break
         sig = -sig
+    # neither sticking nor sliding keeps it pressed: it lets go if the free motion leaves the face
+    c = math.cos(th)
+    s = math.sin(th)
+    if wall_departure(0.0, -lj * c, -lj * s, thd, gx, -gn, lj) > 0.0:
+        return -1, 0.0
     return -2, 0.0
