@@ -407,3 +407,13 @@ def test_the_square_near_a_rough_wall_resolves(x):
     o = tm.throw(part, arm, x, 0, 3.0, "rigid_body", fixtures=(tm.Wall(0.05),))
     assert o.status.label == "ok"
     assert 0.25 < o.x <= 0.27 + 1e-12
+
+
+def test_a_start_past_the_arm_is_refused_for_that_reason_with_or_without_a_wall():
+    sq = rectangle(0.06, 0.06)
+    arm = tm.Arm(h=-0.01, mu=1.0, length=0.30)
+    wall = (tm.Wall(0.05),)
+    with pytest.raises(tm.ThrowmapError, match="beyond the arm's end"):
+        tm.throw(sq, arm, 0.29, 0, 3.0, fixtures=wall)
+    with pytest.raises(tm.ThrowmapError, match=r"x\[0\].*beyond the arm's end"):
+        tm.throw_batch(sq, arm, [0.29], 0, 3.0, fixtures=wall)

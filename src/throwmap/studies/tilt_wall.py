@@ -207,11 +207,11 @@ def _refusals(status) -> dict:
 
 
 def _reasons(res: dict) -> dict:
-    """``{reason: count}`` over refused throws (messages, numbers as ``#``, 90 characters), most frequent first."""
-    from collections import Counter
-
+    """``{reason: count}`` over refused throws (numbers as ``#``: like reasons group; cut at a word), most first."""
     import re
-    why = [re.sub(r"[-+]?\d[\d.e+-]*", "#", str(w))[:90] for w in res.get("why", ()) if w]  # numbers → #
+    from collections import Counter
+    why = [re.sub(r"[-+]?\d[\d.e+-]*", "#", str(w)).split(": not modelled")[0] for w in res.get("why", ()) if w]
+    why = [w if len(w) <= 110 else w[:w.rfind(" ", 0, 110)] + " …" for w in why]
     return dict(Counter(why).most_common())
 
 

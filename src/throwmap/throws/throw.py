@@ -348,7 +348,8 @@ def throw_batch(
     if on_invalid == "raise" and not np.all(valid):
         i = int(np.flatnonzero(~valid)[0])
         idx = np.unravel_index(i, shape) if shape else ()
-        if in_range[i] and stable[i] and np.isfinite(xf[i]):
+        if in_range[i] and stable[i] and np.isfinite(xf[i]) and np.isfinite(of[i]) and of[i] >= 0 \
+                and xf[i] + uL[i] > -arm.back and xf[i] + uR[i] <= L:  # an admissible start but for the wall
             r = wall_start_reason(part, arm, int(sf[i]), float(xf[i]), system.fixtures)
             if r:
                 raise InvalidStateError(f"x[{', '.join(map(str, idx))}]", r)
