@@ -270,6 +270,7 @@ def validate_fixtures_cmd(
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "tilt_wall.json", to_json(doc) + "\n", "out")
         lines = [report.table(), "", *(f"- {g}" for g in report.goal_lines()), "",
+                 *(f"- {c}" for c in report.cap_lines()), "",
                  *(f"- {w}" for w in report.refusal_lines()), "", *report.fixed_point_lines()]
         md = (f"# throwmap validate-fixtures ({n} throws per condition, seed {seed})\n\n" + "\n".join(lines) + "\n")
         write_text(out / "tilt_wall.md", md, "out")

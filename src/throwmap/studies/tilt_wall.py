@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -40,6 +40,8 @@ from ..system.part import Part
 from ..throws.outcome import Status
 from ..throws.throw import start_interval, throw, throw_batch, tilted_rest_reason, wall_reach
 from ..analysis.wall import wall_fixed_point
+from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
+from .tilt_wall_report import MU_BANDS, TiltWallReport, _band
 from .validation import default_parts
 
 __all__ = ["CONDITIONS", "REFUSED", "TiltWallCases", "TiltWallReport", "compare_rows", "make_cases",
@@ -215,16 +217,6 @@ def _reasons(res: dict) -> dict:
     return dict(Counter(why).most_common())
 
 
-MU_BANDS = ((0.3, 0.6), (0.6, 1.0), (1.0, 3.0), (math.inf, math.inf))
-"""Arm-friction bands of the per-μ breakdown ([lo, hi); the last is μ = ∞). Below μ ≈ 0.6 rigid_body's
-Routh impacts and pymunk's velocity-level impacts differ by mm; at μ = ∞ pymunk caps its friction
-(README, Validation): there the reference itself is uncertain by mm."""
-
-
-def _band(lo: float, hi: float) -> str:
-    return "∞" if math.isinf(lo) else f"{lo:g}–{hi:g}"
-
-
 def _agree(a: dict, b: dict) -> np.ndarray:
     """Throw by throw: the same escape, or at rest on the same side within :data:`WITHIN`."""
     same_st = a["status"] == b["status"]
@@ -232,12 +224,14 @@ def _agree(a: dict, b: dict) -> np.ndarray:
 
 
 def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: dict, free: dict | None = None,
-                 level: tuple | None = None) -> dict:
+                 level: tuple | None = None, sensitive=None) -> dict:
     """One row: ``res`` (a model) against ``ref`` (the engine) on ``cases``; see the module docstring.
 
     ``free`` (the engine without the wall, same throws) gives ``wall_changed_pct``: the share of
     throws whose engine outcome the wall changed (beyond 0.5 mm, or side, or status). ``level``
-    (``(res, ref)`` of the same throws at α = 0) gives the row's ``baseline``."""
+    (``(res, ref)`` of the same throws at α = 0) gives the row's ``baseline``. ``sensitive`` (booleans,
+    :func:`~throwmap.studies.engine_cap.cap_sensitive`) marks throws whose engine answer depends on its friction cap:
+    the row then also gives its agreement without them (``cap``)."""
     n = cases.n
     if res.get("message"):
         return {"row": label, "n": n, "n_compared": 0, "available": False, "message": res["message"]}
@@ -286,112 +280,21 @@ def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: 
         "at_wall_pct": (100.0 * float(np.mean((ref["status"] == C.OK) & (np.abs(ref["x"] + uR - cases.length) < 1e-3)))
                         if not np.all(np.isnan(cases.wall_mu)) else 0.0),
         "wall_changed_pct": 100.0 * float(np.mean(~_agree(free, ref))) if free is not None else None,
-        "by_mu": by_mu, "baseline": base,
+        "by_mu": by_mu, "baseline": base, "cap": _cap_split(cmp, same, within, sensitive),
         "worst": worst,
     }
 
 
-@dataclass(frozen=True, slots=True)
-class TiltWallReport:
-    """Result of :func:`validate_tilt_wall`: ``rows`` (one dict per model and condition), ``goals``
-    (per row: met or not), ``fixed_point`` (:func:`wall_fixed_point`'s dict, or None), ``settings``
-    (seed, n, every range drawn from), and the cases and raw results per condition."""
-
-    rows: tuple
-    goals: dict
-    fixed_point: dict | None
-    settings: dict
-    cases: dict = field(default_factory=dict)
-    results: dict = field(default_factory=dict)
-
-    def table(self) -> str:
-        """The rows as a Markdown table (distances in mm, shares in % with their Wilson 95 % interval), then
-        the share within 0.5 mm by arm friction μ, each with the same draws on the level arm (α = 0)."""
-        lines = ["| condition: model vs reference | throws (compared) | same outcome % [95 % CI] | |Δx| ≤ 0.5 mm % "
-                 "[95 % CI] | |Δx| median (mm) | |Δx| p95 (mm) | α = 0: ≤ 0.5 mm % | wall changed % / at wall % "
-                 "| refused: model / reference |", "|" + "---|" * 9]
-        for r in self.rows:
-            if not r["available"]:
-                lines.append(f"| {r['row']} | {r['n']} (0) | — | — | — | — | — | — | not run: {r['message']} |")
-                continue
-            ref = ", ".join(f"{k} {v}" for k, v in r["model_refused"].items()) or "0"
-            eng = ", ".join(f"{k} {v}" for k, v in r["engine_refused"].items()) or "0"
-            lean = f"; leaning {r['engine_leaning']}" if r["engine_leaning"] else ""
-            base = r.get("baseline")
-            lines.append(f"| {r['row']} | {r['n']} ({r['n_compared']}) | {_pct(r['same_pct'], r['same_ci95'])} | "
-                         f"{_pct(r['within_pct'], r['within_ci95'])} | {_f(r['dx_median_mm'])} | "
-                         f"{_f(r['dx_p95_mm'])} | {_f(base['within_pct'], '.1f') if base else '—'} | {_wall(r)} | "
-                         f"{ref} / {eng}{lean} |")
-        bands = [_band(*b) for b in MU_BANDS]
-        lines += ["", "| |Δx| ≤ 0.5 mm % by arm μ (throws), tilted [α = 0] | " + " | ".join(f"μ {b}" for b in bands)
-                  + " |", "|" + "---|" * (len(bands) + 1)]
-        for r in (r for r in self.rows if r["available"]):
-            base = (r.get("baseline") or {}).get("by_mu", {})
-            cells = ["—" if b not in r["by_mu"] else f"{r['by_mu'][b]['within_pct']:.1f} ({r['by_mu'][b]['n']})"
-                     + (f" [{base[b]['within_pct']:.1f}]" if b in base else "") for b in bands]
-            lines.append(f"| {r['row']} | " + " | ".join(cells) + " |")
-        return "\n".join(lines)
-
-    def goal_lines(self) -> list[str]:
-        return [f"{name}: {g['value']:.2f} % (goal ≥ {g['goal']:g} %) — {'met' if g['met'] else 'NOT met'} by the estimate; "
-                f"95 % interval [{g['ci95'][0]:.1f}, {g['ci95'][1]:.1f}] % over {g['n']} throws" for name, g in self.goals.items()]
-
-    def refusal_lines(self) -> list[str]:
-        """Why throws were refused, per row and side (the model's own message)."""
-        out = []
-        for r in self.rows:
-            for side, key in (("model", "model_refused_why"), ("reference", "engine_refused_why")):
-                for why, count in (r.get(key) or {}).items():
-                    out.append(f"{r['row']}: {side} refused {count}: {why}")
-        return out
-
-    def fixed_point_lines(self) -> list[str]:
-        fp = self.fixed_point
-        if not fp:
-            return []
-        if not fp.get("found"):
-            return [f"wall fixed point ({fp['model']}, {fp['part']}, side {fp['side']}): NOT found — {fp['message']}"]
-        fd = ", ".join(f"h = {h:g} m: {v:+.3g}" for h, v in zip(fp["fd_steps_m"], fp["fd_left"]))
-        ref = fp.get("reference") or {}
-        imgs = "; ".join(f"T(x_w {1e3 * g['start_offset_m']:+g} mm) − x_w = {1e6 * g['dx_from_x_wall_m']:+.3g} µm "
-                         f"(side {g['side']}, {Status(g['status']).label})" for g in ref.get("images", ()))
-        return [f"wall fixed point ({fp['model']}, {fp['part']}, ω = {fp['omega_rad_s']:g} rad/s, L = "
-                f"{fp['length_m']:g} m, μ = {_mu(fp['mu'])}, α = {fp['alpha_deg']:g}°, wall μ {_mu(fp['wall_mu'])}): "
-                f"x* = {fp['x_star_m']:.6f} m on side {fp['side']} ({1e6 * fp['gap_m']:.3g} µm below x_w = length − u_R = "
-                f"{fp['x_wall_m']:.6f} m), multiplier "
-                f"{fp['multiplier']:+.3g}, residual {fp['residual_m']:.3g} m, reached from {100 * fp['fraction']:.1f} % "
-                f"of {fp['n_starts']} starts ({fp['range']}; {fp['n_at_wall']} fixed point(s) at the wall in all)",
-                f"  left difference quotients (T(x*) − T(x* − h))/h: {fd}; the map without the wall at x*: slope "
-                f"{_f(fp['free_slope'], '+.3g')}"] + ([f"  {ref['model']}: {imgs}"] if imgs else [])
-
-    def to_dict(self) -> dict:
-        from ..io.files import json_ready
-
-        return json_ready({"rows": list(self.rows), "goals": self.goals, "fixed_point": self.fixed_point,
-                           "settings": self.settings, "table_markdown": self.table()})
-
-    @classmethod
-    def from_dict(cls, d: dict) -> "TiltWallReport":
-        """The summary back from :meth:`to_dict` (cases and raw results are not written)."""
-        return cls(tuple(d["rows"]), dict(d["goals"]), d.get("fixed_point"), dict(d["settings"]))
-
-
-def _f(v, spec=".3f"):
-    return "—" if v is None or not math.isfinite(v) else format(v, spec)
-
-
-def _pct(v, ci) -> str:
-    return "—" if v is None or not math.isfinite(v) else f"{v:.1f} [{ci[0]:.1f}, {ci[1]:.1f}]"
-
-
-def _wall(r: dict) -> str:
-    if r.get("wall_changed_pct") is None:
-        return "no wall"
-    return f"{r['wall_changed_pct']:.1f} / {r['at_wall_pct']:.1f}"
-
-
-def _mu(v) -> str:
-    return "∞" if v is None or math.isinf(v) else f"{v:g}"
+def _cap_split(cmp, same, within, sensitive) -> dict | None:
+    """Agreement without the throws whose engine answer moves with its friction cap (None: not measured)."""
+    if sensitive is None:
+        return None
+    keep = cmp & ~sensitive
+    k = int(keep.sum())
+    return {"n_sensitive": int((cmp & sensitive).sum()), "n_kept": k,
+            "same_pct": 100.0 * float(same[keep].mean()) if k else float("nan"), "same_ci95": _wilson(same[keep].sum(), k),
+            "within_pct": 100.0 * float(within[keep].mean()) if k else float("nan"),
+            "within_ci95": _wilson(within[keep].sum(), k)}
 
 
 def _timer(parts: dict) -> float:
@@ -433,7 +336,7 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
             raise InvalidStateError("conditions", f"unknown condition {c!r} (choose from {', '.join(CONDITIONS)})")
     n = check_count("n", n, minimum=1)
     max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
-    n_engine = n * sum(1 + bool(CONDITIONS[c]["wall"]) + bool(baseline) for c in conditions)
+    n_engine = n * sum(2 + bool(CONDITIONS[c]["wall"]) + bool(baseline) for c in conditions)  # (+ the relaxed cap)
     guard_work("validate-fixtures", "n", n_engine, 400.0, max_memory, max_seconds, force, throws_per_config=1.0,
                timer=lambda: _timer(parts), hint="fewer throws per condition (--n)", unit="engine throws")
     rb = dict(rigid_body_options or {})
@@ -454,6 +357,8 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
     for c in conditions:
         cases = make_cases(parts, c, n, np.random.default_rng(seqs[list(CONDITIONS).index(c)]), alpha_range)
         ref = _throw_all(cases, parts, "engine", {}, tick)
+        with friction_cap(CAP_ALT):  # the same throws with the engine's friction cap relaxed: where it matters
+            sens = cap_sensitive(ref, _throw_all(cases, parts, "engine", {}, tick))
         free = _throw_all(cases, parts, "engine", {}, tick, walls=False) if CONDITIONS[c]["wall"] else None
         ref0 = _throw_all(cases, parts, "engine", {}, tick, level=True) if baseline else None
         names = CONDITIONS[c]["models"] if models is None else tuple(models)
@@ -465,7 +370,7 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
                       **({"engine, α = 0": ref0} if ref0 else {}), **{f"{m}, α = 0": r for m, r in res0.items()}}
         for m, r in res.items():
             rows.append(compare_rows(f"{c}: {m} vs engine", cases, parts, r, ref, free,
-                                     (res0[m], ref0) if baseline else None))
+                                     (res0[m], ref0) if baseline else None, sens))
         if "paper" in res and "rigid_body" in res:  # two exact models: no engine between them
             rows.append(compare_rows(f"{c}: paper vs rigid_body", cases, parts, res["paper"], res["rigid_body"], None,
                                      (res0["paper"], res0["rigid_body"]) if baseline else None))
