@@ -147,7 +147,7 @@ def _contacts(rng):
 
 @settings(max_examples=300, deadline=None)
 @given(st.integers(0, 2**32 - 1), st.sampled_from([0.0, 0.3, 1.0, math.inf]), st.sampled_from([0.0, 0.5, math.inf]))
-def test_two_contact_impact_meets_every_condition(seed, mu, mu_w):
+def test_the_two_contact_impact_meets_every_condition(seed, mu, mu_w):
     rng = np.random.default_rng(seed)
     pts, nrm = _contacts(rng)
     mus = np.array([mu, mu_w])
@@ -171,7 +171,7 @@ def test_two_contact_impact_meets_every_condition(seed, mu, mu_w):
 
 @settings(max_examples=100, deadline=None)
 @given(st.integers(0, 2**32 - 1))
-def test_frictionless_two_contact_impact_is_the_least_energy_projection(seed):
+def test_the_frictionless_two_contact_impact_is_the_least_energy_projection(seed):
     rng = np.random.default_rng(seed)
     pts, nrm = _contacts(rng)
     rho2 = rng.uniform(2e-4, 1e-3)

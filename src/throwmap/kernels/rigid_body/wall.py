@@ -48,10 +48,8 @@ Modules: :mod:`.wall_contact` (reason codes, the impact along any normal, depart
 (cone tests, the flat slide into the wall), :mod:`.wall_slide` / :mod:`.wall_corner` /
 :mod:`.wall_ladder` (the modes WALL_CONTACT, CORNER, LADDER), :mod:`.wall_follow` and
 :mod:`.wall_lean` (their entries and exits, the multi-contact impact); this module holds FLIGHT
-with a wall and the impact of a flight on it, and re-exports the rest. :func:`pivot_wall_hit`
-(the single-contact resets of a pivot that meets the wall, applied in sequence) is kept for
-comparison; the automaton now resolves that moment with one impact at both contacts
-(:func:`~.wall_lean.lean`).
+with a wall and the impact of a flight on it, and re-exports the rest. A pivot that meets the
+wall is resolved with one impact at both contacts (:func:`~.wall_lean.lean`).
 
 What is still refused (status UNRESOLVED, reason code ``WHY_*``) is listed in
 :data:`~.wall_contact.WHY_MESSAGES`.
@@ -59,13 +57,12 @@ What is still refused (status UNRESOLVED, reason code ``WHY_*``) is listed in
 
 import math
 
-import numpy as np
 from numba import njit
 
 from ..flight import SNAP, first_contact
 from .modes import IMP_INCONSISTENT
 from .trajectory import _put
-from .wall_contact import (ACT_FLIGHT, ACT_INCONSISTENT, ACT_REFUSE, ACT_REST, ACT_SWING, CONE_TOL, EV_WALL, WHY_COL,
+from .wall_contact import (CONE_TOL, EV_WALL, WHY_COL,
                            WHY_CORNER, WHY_LADDER, WHY_MESSAGES, WHY_NONE, WHY_SLIDE_WALL, WHY_TWO_CONTACT,
                            WHY_WALL_SLIDE, WHY_WALL_TOP, contact_impact, corner_departure, refuse, separating_window,
                            wall_departure,
@@ -75,11 +72,11 @@ from .wall_guards import (_edge_frame, corner_inside, corner_touch_time, fill_wa
 from .wall_statics import (cone_contains, contacts_can_supply, corner_pivot_rate, flat_contacts, rest_flat_at_wall,
                            settle_walled, slide_hit, wall_reach_at_rest)
 
-__all__ = ["ACT_FLIGHT", "ACT_INCONSISTENT", "ACT_REFUSE", "ACT_REST", "ACT_SWING", "CONE_TOL", "EV_WALL", "WHY_COL",
+__all__ = ["CONE_TOL", "EV_WALL", "WHY_COL",
            "WHY_CORNER", "WHY_LADDER", "WHY_MESSAGES", "WHY_NONE", "WHY_SLIDE_WALL", "WHY_TWO_CONTACT",
            "WHY_WALL_SLIDE", "WHY_WALL_TOP", "cone_contains", "contact_impact", "contacts_can_supply",
            "corner_departure", "corner_inside", "corner_pivot_rate", "corner_touch_time", "fill_wall_vertices",
-           "flat_contacts", "fly_walled", "nearest_side", "pivot_wall_hit", "refresh_frame", "refuse",
+           "flat_contacts", "fly_walled", "nearest_side", "refresh_frame", "refuse",
            "rest_flat_at_wall", "settle_walled", "slide_hit", "wall_contact_angle", "wall_departure",
            "wall_hit_in_flight", "wall_impact", "wall_reach_at_rest", "wall_theta", "wall_touch_time"]
 
@@ -199,82 +196,6 @@ def wall_hit_in_flight(vx, vy, om, rx, ry, nx, ny, corner, rho2, mu_w, law, gx, 
     if excl <= 0.0:
         return vxp, vyp, wp, pt, pn, kind, 0.0, WHY_WALL_SLIDE
     return vxp, vyp, wp, pt, pn, kind, excl, WHY_NONE
-
-
-@njit(cache=True)
-def pivot_wall_hit(px, h, lj, theta, thdot, va, cqx, cqy, nx, ny, corner, rho2, mu, mu_w, law, gx, gy, lref):
-    """Reset at guard ``wall_reach``: pivoting on A = (p_x, h), the part meets the wall at A + (c_x, c_y)
-    (:func:`wall_contact_angle`) with the contact's normal (n_x, n_y) into the part (−x̂ on the face, an
-    edge's inward normal on the top corner, ``corner``).
-
-    In order, as the arm's ``land_side``: (1) the impulse at the wall contact alone (A free,
-    :func:`contact_impact`); accepted if A then moves up (lifts): FLIGHT, the wall
-    contact kept from the flight's wall guards for ``excl_t`` s. (2) Else both contacts stop
-    their normal motion; A on the arm and the wall contact leave the part one degree of freedom that
-    moves the contact along its normal, so the part stops — if the impulse that removes its momentum
-    lies in the sum of the two friction cones (:func:`contacts_can_supply`); else the impact needs
-    slip at both: refused (:data:`WHY_TWO_CONTACT`). (3) Stopped, it rests leaning on arm and wall if
-    gravity is held inside both cones (``rest_against_wall``); else it swings back about A from rest
-    if gravity turns it away from the wall (θ̈ > 0), else it would slide at both (refused,
-    :data:`WHY_LADDER`).
-
-    Returns ``(action, x, y, v_x, v_y, ω, excl_t, why)``: ``ACT_FLIGHT`` with the flight state
-    (the wall contact to be excluded from ``wall_touch``/``corner_touch`` for excl_t s), ``ACT_REST`` (x, y the CM),
-    ``ACT_SWING`` (pivot state unchanged, at rest), ``ACT_REFUSE`` with ``why``, ``ACT_INCONSISTENT``.
-    """
-    c = math.cos(theta)
-    s = math.sin(theta)
-    x = px + lj * c
-    y = h + lj * s
-    vx = va - thdot * lj * s
-    vy = thdot * lj * c
-    om = thdot
-    rx = cqx - lj * c  # CM → contact
-    ry = cqy - lj * s
-    # (1) the impulse at the wall contact alone
-    vxp, vyp, wp, pt, pn, kind, _j0, _j1 = contact_impact(vx, vy, om, rx, ry, nx, ny, rho2, mu_w, law)
-    if kind == IMP_INCONSISTENT:
-        return ACT_INCONSISTENT, x, y, vx, vy, om, 0.0, WHY_NONE
-    ax = -lj * c  # CM → A
-    ay = -lj * s
-    un_a = vyp + wp * ax
-    if un_a > 0.0:
-        if corner:
-            excl = corner_departure(rx, ry, vxp, vyp, wp, gx, -gy, -nx, -ny, 1.0)
-            if excl <= 0.0:
-                return ACT_REFUSE, x, y, vxp, vyp, wp, 0.0, WHY_WALL_SLIDE
-            return ACT_FLIGHT, x, y, vxp, vyp, wp, excl, WHY_NONE
-        vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
-        un = -(vxp - wp * ry)
-        lc = math.hypot(rx, ry)
-        excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, gy, lc) if un <= 1e-12 * vscale else \
-            separating_window(un, abs(gx) + wp * wp * lc)
-        if excl <= 0.0:
-            return ACT_REFUSE, x, y, vxp, vyp, wp, 0.0, WHY_WALL_SLIDE
-        return ACT_FLIGHT, x, y, vxp, vyp, wp, excl, WHY_NONE
-    # (2) both stop
-    pts = np.empty((2, 2))
-    nrm = np.empty((2, 2))
-    mus = np.empty(2)
-    pts[0, 0] = ax
-    pts[0, 1] = ay
-    nrm[0, 0] = 0.0
-    nrm[0, 1] = 1.0
-    mus[0] = mu
-    pts[1, 0] = rx
-    pts[1, 1] = ry
-    nrm[1, 0] = nx
-    nrm[1, 1] = ny
-    mus[1] = mu_w
-    if not contacts_can_supply(pts, nrm, mus, 2, -vx, -vy, -rho2 * om, lref):
-        return ACT_REFUSE, x, y, vx, vy, om, 0.0, WHY_TWO_CONTACT
-    # (3) at rest leaning on arm and wall, or swinging back, or a ladder
-    if contacts_can_supply(pts, nrm, mus, 2, -gx, -gy, 0.0, lref):
-        return ACT_REST, x, y, 0.0, 0.0, 0.0, 0.0, WHY_NONE
-    torque = c * gy - s * gx  # (CM − A) × g / ℓ: θ̈ has its sign
-    if torque > 0.0:
-        return ACT_SWING, x, y, 0.0, 0.0, 0.0, 0.0, WHY_NONE
-    return ACT_REFUSE, x, y, 0.0, 0.0, 0.0, 0.0, WHY_LADDER
 
 
 @njit(cache=True)

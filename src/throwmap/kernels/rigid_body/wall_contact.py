@@ -53,12 +53,6 @@ CONE_TOL = 1e-11
 """Relative tolerance of :func:`cone_contains` (residual and negative coefficients, relative to |b|)."""
 
 
-ACT_FLIGHT = 0
-ACT_REST = 1
-ACT_SWING = 2
-ACT_REFUSE = 3
-ACT_INCONSISTENT = 4
-"""Outcomes of the pivot's wall reset (:func:`~.wall.pivot_wall_hit`)."""
 
 
 @njit(cache=True)

@@ -113,13 +113,6 @@ def _out(res, k, t, L, yp, th, vp, thd, lj, phi_off, w, win, why):
 
 
 @njit(cache=True)
-def wall_pressed_after(vx, vy, om, rpx, rpy):
-    """The wall gap's rate −(v_x − ω r_y) (m/s) of the vertex at (r_x, r_y) from the CM on the face x = L
-    (> 0: it moves off the wall)."""
-    return -(vx - om * rpy)
-
-
-@njit(cache=True)
 def corner_contact(e, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until,
                    max_steps, max_events, traj, ts):
     """Mode CORNER (:mod:`.wall_corner`) from the flight state with edge ``e`` pressed on the wall's top corner after a

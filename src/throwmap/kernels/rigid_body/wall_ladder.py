@@ -1,6 +1,6 @@
 """Two contacts at once in model "rigid_body": a vertex A on the arm and a vertex P on the wall's face.
 
-The part leans on the arm and the wall like a ladder. Its impact there (:func:`two_contact_impact`)
+The part leans on the arm and the wall like a ladder. Its impact there (:func:`multi_contact_impact`)
 and its motion while both contacts slide (mode LADDER, :func:`ladder_phase`) are modelled here;
 :mod:`.wall_follow` strings them into the automaton.
 
@@ -8,7 +8,7 @@ Impact (velocity-level, Moreau): one impulse per contact with Coulomb's law on t
 velocities — at each contact either open (no impulse, normal velocity ≥ 0), sticking (normal and
 tangential velocity 0, impulse inside the cone) or sliding (normal velocity 0, impulse on the cone's
 edge against the slip). The 2-contact linear complementarity problem is solved exactly by trying
-every combination (:func:`two_contact_impact`); this is the law of time-stepping engines
+every combination (:func:`multi_contact_impact`); this is the law of time-stepping engines
 (pymunk, Siconos' Moreau–Jean). For one contact the automaton keeps Routh's law
 (:mod:`~.impact`); where both meet, a two-contact process in impulse space has no unique form.
 
@@ -38,7 +38,7 @@ from .trajectory import _put
 C_OPEN = 0
 C_STICK = 1
 C_SLIDE = 2
-"""Contact states after :func:`two_contact_impact`."""
+"""Contact states after :func:`multi_contact_impact`."""
 
 EV_A_OFF = EV_LIFT_OFF
 """LADDER guard: N_A = 0 (A lifts off the arm)."""
@@ -109,27 +109,6 @@ def multi_contact_impact(vx, vy, om, pts, nrm, mus, m, rho2, st):
                         st[i] = C_OPEN if code[i] == 0 else (C_STICK if code[i] == 1 else C_SLIDE)
                     return True, vxp, vyp, wp
     return False, vx, vy, om
-
-
-@njit(cache=True)
-def two_contact_impact(vx, vy, om, r1x, r1y, n1x, n1y, mu1, r2x, r2y, n2x, n2y, mu2, rho2):
-    """:func:`multi_contact_impact` at two contacts; returns ``(ok, vx⁺, vy⁺, ω⁺, s1, s2)``."""
-    pts = np.empty((2, 2))
-    nrm = np.empty((2, 2))
-    mus = np.empty(2)
-    pts[0, 0] = r1x
-    pts[0, 1] = r1y
-    pts[1, 0] = r2x
-    pts[1, 1] = r2y
-    nrm[0, 0] = n1x
-    nrm[0, 1] = n1y
-    nrm[1, 0] = n2x
-    nrm[1, 1] = n2y
-    mus[0] = mu1
-    mus[1] = mu2
-    st = np.zeros(2, dtype=np.int64)
-    ok, vxp, vyp, wp = multi_contact_impact(vx, vy, om, pts, nrm, mus, 2, rho2, st)
-    return ok, vxp, vyp, wp, st[0], st[1]
 
 
 @njit(cache=True)

@@ -1,7 +1,7 @@
 """Mode WALL_CONTACT of model "rigid_body": one vertex pressed on the wall's face, the part otherwise free.
 
 After a plastic impact with the wall (:func:`~.wall.wall_hit_in_flight`, or a swinging pivot that
-lifts off the arm while a vertex meets the wall, :func:`~.wall.pivot_wall_hit`), a vertex P can stay
+a pivot that meets the wall, :func:`~.wall_lean.lean`), a vertex P can stay
 pressed on the face x = L: the motion that gravity and the part's rotation impose would carry it
 into the wall (W'' < 0 in :func:`~.wall_contact.wall_departure`). The part then moves with P on
 the face — sliding along it (the wall's Coulomb μ_w, 0 included) or sticking to it — until P lets
