@@ -417,3 +417,25 @@ def test_a_start_past_the_arm_is_refused_for_that_reason_with_or_without_a_wall(
         tm.throw(sq, arm, 0.29, 0, 3.0, fixtures=wall)
     with pytest.raises(tm.ThrowmapError, match=r"x\[0\].*beyond the arm's end"):
         tm.throw_batch(sq, arm, [0.29], 0, 3.0, fixtures=wall)
+
+
+def test_a_sliding_pivot_watches_the_face_below_the_top_and_the_top_corner():
+    """slide.py's wall guard: a vertex above the wall's top passes over it; the top corner is found on an edge."""
+    from throwmap.kernels.rigid_body.slide import _wall_gap
+
+    sq = rectangle(0.06, 0.06)
+    w = np.asarray(sq.w, dtype=float)
+    jp = int(np.argmin(w[:, 1] + 1e-9 * w[:, 0]))  # a bottom vertex as the pivot A
+    wv = np.zeros((4, 3))
+    fill_wall_vertices(math.pi / 4, 0.0, w, jp, wv)  # unrotated square, A → CM at 45°
+    L = 0.2
+    wv[:, 2] = math.inf  # no top: the plain face guard, L − x_j
+    xs = [wv[j, 0] * math.cos(math.pi / 4 + wv[j, 1]) for j in range(4)]
+    assert _wall_gap(0.1, math.pi / 4, L, wv) == pytest.approx(L - 0.1 - max(xs))
+    wv[:, 2] = 0.03  # a wall half the square's height: its right side reaches the face below the top
+    assert _wall_gap(0.1, math.pi / 4, L, wv) == pytest.approx(L - 0.1 - max(xs))
+    wv[:, 2] = 0.01  # the right side's lower end is below the top, the upper end above: the corner meets the side
+    g = _wall_gap(L - max(xs), math.pi / 4, L, wv)
+    assert g == pytest.approx(0.0, abs=1e-12)
+    # past the face above the top: only the corner's distance counts, and it is negative (inside the part)
+    assert _wall_gap(L - max(xs) + 0.005, math.pi / 4, L, wv) < 0.0

@@ -103,7 +103,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
     walled = wall_h > 0.0  # a Wall at x = length, wall_h (m) high, μ_w = wall_mu (wall.py)
     gx = -g * math.sin(alpha)  # gravity along the arm
     cw = np.empty(n)
-    wv = np.zeros((n, 2))
+    wv = np.zeros((n, 3))  # the sliding pivot's watched vertices (ℓ_j, δ_j) and the wall's height (slide.py)
+    wv[:, 2] = wall_h if wall_h > 0.0 else math.inf
     off = np.zeros(n)  # vertices that passed the wall's plane above its top in this flight
     cexcl_e = -1  # an edge that just left the wall's top corner, and until when it provably stays off it
     cexcl_until = 0.0

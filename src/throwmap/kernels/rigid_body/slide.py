@@ -75,14 +75,49 @@ def _rk4_slide(xa, th, va, w, dt, lj, rho2, g, musig, gt):
 
 @njit(cache=True)
 def _wall_gap(xa, th, wall, wv):
-    """Guard ``wall_reach`` while the pivot slides: least gap L − x_j (m) of the vertices to the wall x = ``wall``;
-    ``wv`` rows (ℓ_j, δ_j): vertex j at A + ℓ_j (cos(θ + δ_j), sin(θ + δ_j)) (ℓ_j = 0: not watched)."""
+    """Guard ``wall_reach`` while the pivot slides: the least gap (m) of the part to the wall x = ``wall``.
+
+    ``wv`` rows (ℓ_j, δ_j[, H]): vertex j at A + ℓ_j (cos(θ + δ_j), sin(θ + δ_j)) (ℓ_j = 0: the pivot, not watched on
+    the face), in order around the part; a third column holds the wall's height H above the arm (m). Without it:
+    L − x_j over the vertices. With it: L − x_j over the vertices below the top (one above it passes over the wall),
+    and the top corner Q = (L, h + H)'s signed distance outside the part (max over the edges of n_e·(Q − v_e), n_e
+    the outward unit normal): 0 where an edge meets the corner.
+    """
     gmin = math.inf
-    for j in range(wv.shape[0]):
+    top = wv[0, 2] if wv.shape[1] > 2 and wv.shape[0] > 0 else math.inf
+    n = wv.shape[0]
+    area2 = 0.0
+    for j in range(n):
         if wv[j, 0] > 0.0:
-            gj = wall - xa - wv[j, 0] * math.cos(th + wv[j, 1])
-            if gj < gmin:
-                gmin = gj
+            c = math.cos(th + wv[j, 1])
+            sn = math.sin(th + wv[j, 1])
+            if wv[j, 0] * sn < top:
+                gj = wall - xa - wv[j, 0] * c
+                if gj < gmin:
+                    gmin = gj
+        j2 = (j + 1) % n
+        ax = wv[j, 0] * math.cos(th + wv[j, 1])
+        ay = wv[j, 0] * math.sin(th + wv[j, 1])
+        bx = wv[j2, 0] * math.cos(th + wv[j2, 1])
+        by = wv[j2, 0] * math.sin(th + wv[j2, 1])
+        area2 += ax * by - bx * ay
+    if top < math.inf:
+        qx = wall - xa
+        qy = top
+        dmax = -math.inf
+        o = 1.0 if area2 > 0.0 else -1.0  # counter-clockwise: the outward normal is the edge turned by −90°
+        for j in range(n):
+            j2 = (j + 1) % n
+            ax = wv[j, 0] * math.cos(th + wv[j, 1])
+            ay = wv[j, 0] * math.sin(th + wv[j, 1])
+            ex = wv[j2, 0] * math.cos(th + wv[j2, 1]) - ax
+            ey = wv[j2, 0] * math.sin(th + wv[j2, 1]) - ay
+            le = math.hypot(ex, ey)
+            d = o * (ey * (qx - ax) - ex * (qy - ay)) / le
+            if d > dmax:
+                dmax = d
+        if dmax < gmin:
+            gmin = dmax
     return gmin
 
 
