@@ -21,6 +21,7 @@ from .flight import departure_window
 from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_OFF_END,
                     EV_STEP_CAP, EV_STICK, MODE_FLIGHT, MODE_SLIDE, MODE_STICK, N_BISECT)
 from .stick import stick_forces
+from .bracket import falsi_point
 from .trajectory import _put
 
 EV_WALL = 10
@@ -202,9 +203,7 @@ def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, 
                                 wall, wv)
             c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length, back, gt,
                                 wall, wv)
-            if c_lo > 0.0 and c_hi <= 0.0:
-                mid = lo + width * c_lo / (c_lo - c_hi)
-                mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
+            mid = falsi_point(lo, hi, tol, c_lo, c_hi)
         xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig, gt)
         gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv)
         if gmid <= 0.0:

@@ -27,6 +27,7 @@ import numpy as np
 from numba import njit
 
 from .modes import DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, N_BISECT
+from .bracket import falsi_point
 from .trajectory import _put
 from .wall_contact import corner_departure
 
@@ -229,9 +230,7 @@ def corner_phase(s, e, stick, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip
                                     skip)[0]
                     c_hi = _cguards(s_hi, w, e, le, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga,
                                     skip)[0]
-                    if c_lo > 0.0 and c_hi <= 0.0:
-                        mid = lo + width * c_lo / (c_lo - c_hi)
-                        mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
+                    mid = falsi_point(lo, hi, tol, c_lo, c_hi)
                 sm = _rk4(s, mid, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick)
                 gmid, wh, km = _cguards(sm, w, e, le, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga,
                                         skip)

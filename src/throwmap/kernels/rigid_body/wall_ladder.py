@@ -33,6 +33,7 @@ import numpy as np
 from numba import njit
 
 from .modes import DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_STEP_CAP, EV_STICK, N_BISECT
+from .bracket import falsi_point
 from .trajectory import _put
 
 C_OPEN = 0
@@ -380,9 +381,7 @@ def ladder_phase(phi, om, sig, t, w, ja, jp, rho2, mu, mu_w, gx, gn, h, L, top, 
                 if falsi:
                     c_lo = _lguard(which, k, ph_lo, w_lo, w, ja, jp, rho2, mu, mu_w, sig, gx, gn, h, L, top, back, ga)
                     c_hi = _lguard(which, k, ph_hi, w_hi, w, ja, jp, rho2, mu, mu_w, sig, gx, gn, h, L, top, back, ga)
-                    if c_lo > 0.0 and c_hi <= 0.0:
-                        mid = lo + width * c_lo / (c_lo - c_hi)
-                        mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
+                    mid = falsi_point(lo, hi, tol, c_lo, c_hi)
                 pm, wm = _rk4(phi, om, mid, wa, wpv, rho2, mu, mu_w, sig, gx, gn)
                 gmid, wh, km = _lguards(pm, wm, w, ja, jp, rho2, mu, mu_w, sig, gx, gn, h, L, top, back, ga)
                 if gmid <= 0.0:

@@ -39,6 +39,7 @@ from numba import njit
 
 from .. import codes as C
 from .modes import DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, N_BISECT
+from .bracket import falsi_point
 from .trajectory import _put
 from .wall_contact import wall_departure
 
@@ -185,9 +186,7 @@ def _locate(yp, th, vp, thd, dt, which, k, t, lj, rho2, gx, gn, mu_w, musig, sti
                                 sig, h, top, wv, ga)
             c_hi = _guard_value(which, k, s_hi[0], s_hi[1], s_hi[2], s_hi[3], lj, rho2, gx, gn, mu_w, musig, stick,
                                 sig, h, top, wv, ga)
-            if c_lo > 0.0 and c_hi <= 0.0:
-                mid = lo + width * c_lo / (c_lo - c_hi)
-                mid = min(max(mid, lo + 0.5 * tol), hi - 0.5 * tol)
+            mid = falsi_point(lo, hi, tol, c_lo, c_hi)
         sm = _rk4(yp, th, vp, thd, mid, lj, rho2, gx, gn, musig, stick)
         gm, wh, km = _guards(sm[0], sm[1], sm[2], sm[3], lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga,
                              arm_skip)
