@@ -74,6 +74,22 @@ def test_config_errors_name_the_field():
     assert cfg.hold_throws == 50 and cfg.noise.omega_rel == 0.03 and cfg.noise.realisation == "recoil"
 
 
+def test_builtin_example_is_the_recoil_feeder_of_examples():
+    # no CONFIG runs the >= 99 % recoil feeder: the packaged copy equals examples/feed_recoil.toml and its part
+    from pathlib import Path
+
+    from throwmap.experiments.base import read_config
+
+    root = Path(__file__).resolve().parents[2]
+    for name in ("feed_recoil.toml", "recoil_feeder.toml"):
+        assert (root / "src/throwmap/data" / name).read_bytes() == (root / "examples" / name).read_bytes(), name
+    exp = get_experiment("feed")
+    builtin, example = config_of(exp, None), read_config(exp, root / "examples/feed_recoil.toml")
+    assert builtin.model_dump(exclude={"part"}) == example.model_dump(exclude={"part"})
+    assert builtin.part.endswith("recoil_feeder.toml") and builtin.cavity.length == 0.38
+    assert builtin.noise.realisation == "recoil" and builtin.noise.omega_rel == 0.03
+
+
 def test_plain_end_wall_fixture_classifies_rest_poses():
     # fixture "wall": the feeder design's end-wall window, a wall above the energy bound; a part resting
     # flush against it is "target" only on the target side, one far from it is "outside"

@@ -145,14 +145,16 @@ def seed_of(rng: np.random.Generator) -> int:
 
 
 def config_of(experiment: Any, config=None, source=None):
-    """``config`` validated as ``experiment.config_type`` (None → the built-in example; a dict is
+    """``config`` validated as ``experiment.config_type`` (None → the built-in example: the
+    experiment's ``example()`` where it has one, else the config type's defaults; a dict is
     validated, its first problem raised as one :class:`~throwmap.errors.ConfigError` naming the
     dotted field, ``config.<key>…``, as part files are (:mod:`throwmap.io.config`))."""
     from pydantic import BaseModel, ValidationError
 
     ctype = experiment.config_type
     if config is None:
-        return ctype()
+        example = getattr(experiment, "example", None)
+        return example() if example is not None else ctype()
     if isinstance(config, ctype):
         return config
     if not isinstance(config, dict):

@@ -123,7 +123,8 @@ class EndWall:
 
 
 class FeedConfig(BaseModel):
-    """Config of ``feed`` (SI units). The defaults are the built-in example: the feeder design of
+    """Config of ``feed`` (SI units). The field defaults (the built-in example is :meth:`Feed.example` instead)
+    are the feeder design of
     :func:`throwmap.design.examples.feeder_design` (17 cm plexiglas triangle + 50 g lead, side 0),
     arm μ = 1 ± 10 %, 3 % ω jitter, the Flatland recoil (3°, ζ = 0.2), the designed cavity,
     drops of 2–10 cm anywhere over the arm, at most 60 throws to capture, then 50 more."""
@@ -297,8 +298,20 @@ class Feed:
     name = "feed"
     summary = ("drop the designed part, throw it (3 % ω jitter, recoil) until it lies in the cavity on the target "
                "side, then hold it for 50 more throws (variant 'open': fed off the end, orientation purity); "
-               "the ≥ 99 % recoil feeder: CONFIG examples/feed_recoil.toml")
+               "without CONFIG the ≥ 99 % recoil feeder (examples/feed_recoil.toml)")
     config_type = FeedConfig
+
+    def example(self) -> FeedConfig:
+        """The built-in example (no CONFIG): the recoil feeder, ``throwmap/data/feed_recoil.toml`` (the same
+        file as ``examples/feed_recoil.toml``; its part ``data/recoil_feeder.toml``). The config's field
+        defaults are the Sec. V feeder design instead (impulse-designed; README "The cavity and the feeding
+        experiment")."""
+        from importlib import resources
+
+        from .base import read_config
+
+        with resources.as_file(resources.files("throwmap").joinpath("data/feed_recoil.toml")) as path:
+            return read_config(self, path)
 
     def setup(self, cfg: FeedConfig):
         """``(part, arm with its length, fixtures, omega, side, design or None)`` of a config."""
