@@ -175,3 +175,13 @@ def test_funnel_controller_needs_a_graph():
     with pytest.raises(InvalidStateError) as err:
         FunnelController(GOAL, object(), 5.0)
     assert err.value.field == "controller.graph"
+
+
+def test_kick_rungs_replace_high_off_the_goal_side():
+    c = PaperController(GOAL, 5.0, 1.8, kick=((0.13, 6.0),))
+    assert c.sensors()["kick0"].x == 0.13
+    got = run(c, [obs(False, kick0=False), obs(False, kick0=True), obs(True, kick0=False)])
+    assert got == [("throw", "kick0", 6.0), ("throw", "high", 5.0), ("throw", "low", 1.8)]
+    with pytest.raises(InvalidStateError) as err:
+        PaperController(GOAL, 5.0, 1.8, kick=((0.13, -1.0),))
+    assert err.value.field == "controller.kick[0]"

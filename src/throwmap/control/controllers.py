@@ -10,7 +10,9 @@ calls ``decide(state, readings) -> Decision``: throw at ``omega`` (nominal, rad/
   ``goal`` (within ε of x_f), ``beyond`` (beyond x_f + ε: an overshoot) and optional ``approach<i>``
   (beyond x_i). High ω until the side sensor fires, then low ω until the goal sensor fires (stop);
   back to high after an overshoot or when the side is lost. Optional approach rungs
-  ``((x_1, ω_1), …)`` jog faster while the part is short of x_i (an extra one-bit sensor per rung).
+  ``((x_1, ω_1), …)`` jog faster while the part is short of x_i (an extra one-bit sensor per rung);
+  optional kick rungs ``((x_1, ω_1), …)`` replace the high ω off the goal side while the part is short
+  of x_i (``kick<i>`` sensors): near the joint the recoil arm's high throws creep a part inward.
 * :class:`InverseJogController` — model-based: reads a **position estimate** (x + σ N(0, 1), side)
   from a :class:`~throwmap.control.sensors.PositionSensor`; on side_f short of the goal it throws
   the inverse jog ``jog_rate(part, arm, x̂, side_f, x̂ + gain (x_f − x̂), model)`` (the rate whose
@@ -147,6 +149,7 @@ class PaperController:
     sigma: float = 0.0
     confirm: int = 1
     overshoot: bool = True
+    kick: tuple = ()
 
     kind = "paper"
 
@@ -155,18 +158,8 @@ class PaperController:
             raise InvalidStateError("controller.goal", f"must be a Goal, got {type(self.goal).__name__}")
         object.__setattr__(self, "omega_high", _omega(self.omega_high, "controller.omega_high"))
         object.__setattr__(self, "omega_low", _omega(self.omega_low, "controller.omega_low"))
-        rungs = []
-        for i, rung in enumerate(self.approach):
-            try:
-                x, w = rung
-            except (TypeError, ValueError):
-                raise InvalidStateError(f"controller.approach[{i}]", f"must be a pair (x m, ω rad/s), got {shown(rung)}") from None
-            if isinstance(x, bool) or not isinstance(x, (int, float, np.integer, np.floating)) or not math.isfinite(x):
-                raise InvalidStateError(f"controller.approach[{i}]", f"x must be finite (m), got {shown(x)}")
-            rungs.append((float(x), _omega(w, f"controller.approach[{i}]")))
-        if any(b[0] <= a[0] for a, b in zip(rungs, rungs[1:])):
-            raise InvalidStateError("controller.approach", "rungs must be in increasing x")
-        object.__setattr__(self, "approach", tuple(rungs))
+        object.__setattr__(self, "approach", _rungs(self.approach, "controller.approach"))
+        object.__setattr__(self, "kick", _rungs(self.kick, "controller.kick"))
         object.__setattr__(self, "confirm", _confirm(self.confirm))
         self.sensors()  # validates the rates, hysteresis and sigma (errors name sensor.<field>)
 
@@ -178,6 +171,8 @@ class PaperController:
             out["beyond"] = BeyondSensor(g.x + g.eps, **p)
         for i, (x, _) in enumerate(self.approach):
             out[f"approach{i}"] = BeyondSensor(x, **p)
+        for i, (x, _) in enumerate(self.kick):
+            out[f"kick{i}"] = BeyondSensor(x, **p)
         return out
 
     def initial(self) -> ControlState:
@@ -186,6 +181,9 @@ class PaperController:
     def want(self, obs: dict) -> tuple[str, float, str]:
         """``(mode, ω, reason)`` the readings ask for, whatever the current mode (the strategy is memoryless)."""
         if not obs["side"]:
+            for i, (x, w) in enumerate(self.kick):
+                if not obs[f"kick{i}"]:
+                    return f"kick{i}", w, f"side sensor off, short of {100 * x:.4g} cm"
             return "high", self.omega_high, "side sensor off"
         if obs.get("beyond", False):
             return "high", self.omega_high, "overshoot (beyond x_f + ε)"
@@ -205,7 +203,23 @@ class PaperController:
                 "omega_low": self.omega_low, "approach": [list(r) for r in self.approach],
                 "false_positive": self.false_positive, "false_negative": self.false_negative,
                 "hysteresis_m": self.hysteresis, "sigma_m": self.sigma, "confirm": self.confirm,
-                "overshoot": self.overshoot}
+                "overshoot": self.overshoot, "kick": [list(r) for r in self.kick]}
+
+
+def _rungs(value, field: str) -> tuple:
+    """Rungs ``((x m, ω rad/s), …)`` validated, in increasing x."""
+    rungs = []
+    for i, rung in enumerate(value):
+        try:
+            x, w = rung
+        except (TypeError, ValueError):
+            raise InvalidStateError(f"{field}[{i}]", f"must be a pair (x m, ω rad/s), got {shown(rung)}") from None
+        if isinstance(x, bool) or not isinstance(x, (int, float, np.integer, np.floating)) or not math.isfinite(x):
+            raise InvalidStateError(f"{field}[{i}]", f"x must be finite (m), got {shown(x)}")
+        rungs.append((float(x), _omega(w, f"{field}[{i}]")))
+    if any(b[0] <= a[0] for a, b in zip(rungs, rungs[1:])):
+        raise InvalidStateError(field, "rungs must be in increasing x")
+    return tuple(rungs)
 
 
 def _jog_rate(*args, **kw):

@@ -76,7 +76,8 @@ class PositionConfig(BaseModel):
     """Config of ``position`` (SI units). The defaults are the built-in example: the draft's 17 cm triangle
     on a 60 cm arm (h = −1 cm, μ = 1 ± 10 %), goal 48 cm on side 1 within 1 cm, ω_high = 5 rad/s,
     approach rungs (20 cm, 4.5 rad/s) and (43 cm, 3 rad/s), ω_low = 1.8 rad/s, 3 % ω jitter, the recoil
-    arm (3°, ζ = 0.5), drops over [0.18, 0.30] m; the engine."""
+    arm (3°, ζ = 0.5), kick rung (13 cm, 6 rad/s) off side 1 near the joint, drops over [0.18, 0.30] m;
+    the engine."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
@@ -91,6 +92,9 @@ class PositionConfig(BaseModel):
     omega_low: Finite = Field(1.8, gt=0, description="low release rate (jogs by less than ε near x_f), rad/s")
     approach: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.20, 4.5), (0.43, 3.0)],
                                                   description="rungs (x m, ω rad/s): on side, short of x, throw ω")
+    kick: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.13, 6.0)],
+                                              description="rungs (x m, ω rad/s): off the goal side, short of x, "
+                                                          "throw ω instead of omega_high")
     controller: Literal["paper", "inverse"] = Field("paper", description="'paper' (one-bit sensors) or 'inverse'")
     sensors: SensorConfig = Field(default_factory=SensorConfig)
     inverse: InverseConfig = Field(default_factory=InverseConfig)
@@ -131,7 +135,8 @@ def _setup(cfg: PositionConfig):
     s = cfg.sensors
     if cfg.controller == "paper":
         ctl = PaperController(goal, cfg.omega_high, cfg.omega_low, tuple(tuple(r) for r in cfg.approach),
-                              s.false_positive, s.false_negative, s.hysteresis, s.sigma, s.confirm, s.overshoot)
+                              s.false_positive, s.false_negative, s.hysteresis, s.sigma, s.confirm, s.overshoot,
+                              tuple(tuple(r) for r in cfg.kick))
     else:
         iv = cfg.inverse
         if iv.omega_min > iv.omega_max:
