@@ -74,8 +74,13 @@ class InverseJog:
     ``omega_flip`` is where the jog branch ends (rad/s; ``inf`` when no throw up to
     ``omega_max`` leaves it) and ``beyond`` what the throw there does (e.g. ``"lands on side 1"``,
     ``"escapes (off_end)"``); ``reach`` = (min, max) of the jogs' landings on the branch (m); ``monotone``
-    whether the sampled landings move one way as ω grows (Lemma 4.2); ``samples`` the (ω, x) pairs thrown on
-    the branch, sorted by ω; ``n_throws`` the throws made.
+    whether the landings at the grid rates ω_j on the branch move one way as ω grows (Lemma 4.2; the
+    grid, not the bisection's rates, so that a scattering map's micrometres do not count); ``samples`` the (ω, x) pairs thrown on
+    the branch, sorted by ω; ``n_throws`` the throws made; ``scatter`` (m) where the map was not
+    continuous at the target's scale (the engine): the rms scatter of its landings about a straight
+    line over the local scan that found ``omega`` (nan where bisection sufficed). A rate found on a
+    scattering map is exact for that deterministic simulator only: a neighbouring rate lands
+    ``scatter`` away.
     """
 
     omega: float
@@ -91,12 +96,14 @@ class InverseJog:
     model: str
     n_throws: int
     samples: tuple = field(repr=False, default=())
+    scatter: float = math.nan
 
     def summary(self) -> str:
         return (f"ω = {self.omega:.9g} rad/s jogs x0 = {self.x0:.6f} m (side {self.side}) to {self.x:.7f} m "
                 f"(target {self.x_target:.7f} m, residual {self.residual * 1e6:.3g} µm; model {self.model}; "
                 f"jogs reach [{self.reach[0]:.4f}, {self.reach[1]:.4f}] m below ω_flip = {self.omega_flip:.6g} rad/s, "
                 f"where the throw {self.beyond}; Lemma 4.2 monotone: {'yes' if self.monotone else 'NO'}; "
+                + (f"map scatter {self.scatter * 1e6:.3g} µm; " if math.isfinite(self.scatter) else "") +
                 f"{self.n_throws} throws)")
 
 
@@ -159,12 +166,14 @@ def inverse_jog(part, arm, x0: float, side: int, x_target: float, model: str = D
     side = part.check_side(side)
     thrower = _Thrower(part, arm, x0, side, model, realisation_factory(realisation), throw_options)
     branch = [(0.0, x0)]  # (ω, T) on the jog branch; T(0) = x0
+    grid_rates = {0.0}
     flip_lo, flip_hi, beyond = omega_max, math.inf, "jogs (no flip up to omega_max)"
     for j in range(1, n_grid + 1):
         w = omega_max * j / n_grid
         x, k, st = thrower(w)
         if st == "ok" and k == side:
             branch.append((w, x))
+            grid_rates.add(w)
             continue
         flip_lo, flip_hi, beyond = branch[-1][0], w, _fate(x, k, st, side)
         break
@@ -210,17 +219,62 @@ def inverse_jog(part, arm, x0: float, side: int, x_target: float, model: str = D
                 a = mid
             else:
                 b = mid
+    scatter = math.nan
+    if abs(x_best - x_target) > tol:  # the map jumps over the target at this scale: scan around the bracket
+        w_best, x_best, scatter = _polish(thrower, side, branch, w_best, x_best, x_target, POLISH_SPAN, N_POLISH)
+        if abs(x_best - x_target) > tol and scatter > POLISH_SPAN / 4:  # wider: a few times the scatter found
+            w_best, x_best, scatter = _polish(thrower, side, branch, w_best, x_best, x_target, 3 * scatter,
+                                              2 * N_POLISH)
     residual = abs(x_best - x_target)
     branch.sort()
-    steps = np.diff(np.array([p[1] for p in branch]))
+    steps = np.diff(np.array([p[1] for p in branch if p[0] in grid_rates]))  # the grid: the trend, not the scatter
     monotone = bool(np.all(steps > -1e-9) or np.all(steps < 1e-9))
     if residual > tol:
         raise InvalidStateError("tol", f"the jog map of model {model} is discontinuous at {x_target:.6g} m: the "
                                        f"closest rate, ω = {w_best:.9g} rad/s, lands {residual * 1e6:.3g} µm from it "
-                                       f"(tol {tol * 1e6:.3g} µm)")
+                                       f"(tol {tol * 1e6:.3g} µm; the map scatters by {scatter * 1e6:.3g} µm about a "
+                                       f"smooth fit there)")
     return InverseJog(omega=w_best, x=x_best, residual=residual, x0=x0, side=side, x_target=x_target,
                       omega_flip=flip_hi, beyond=beyond, reach=reach, monotone=monotone, model=model,
-                      n_throws=thrower.n, samples=tuple(branch))
+                      n_throws=thrower.n, samples=tuple(branch), scatter=scatter)
+
+
+N_POLISH = 64
+"""Rates scanned around the answer where bisection meets a jump (a time-stepping engine's map)."""
+POLISH_SPAN = 20e-6
+"""Half-width of that scan in landing x, m (a few times the engine's scatter)."""
+
+
+def _polish(thrower, side, branch, w_best, x_best, x_target, span, n):
+    """Where the map is not continuous at the target's scale (the engine: contact slop and settling make
+    T(ω) scatter by micrometres about a smooth curve), scan ``n`` rates spanning ±``span`` (m) of
+    landing around ``w_best`` and keep the closest landing. Returns
+    ``(ω, x, scatter)`` with ``scatter`` the rms residual (m) of a straight-line fit over the scan."""
+    pts = sorted(branch)
+    ws = np.array([p[0] for p in pts])
+    xs = np.array([p[1] for p in pts])
+    near = np.argsort(np.abs(ws - w_best))[:6]
+    if len(near) >= 2 and np.ptp(ws[near]) > 0:
+        slope = abs(np.polyfit(ws[near], xs[near], 1)[0])
+    else:
+        slope = 0.0
+    dw = span / slope if slope > 0 else 1e-4 * w_best
+    dw = min(max(dw, 1e-9 * w_best), 0.05 * w_best)
+    scan = []
+    for w in np.linspace(w_best - dw, w_best + dw, n):
+        x, k, st = thrower(float(w))
+        if st == "ok" and k == side:
+            scan.append((float(w), x))
+            branch.append((float(w), x))
+            if abs(x - x_target) < abs(x_best - x_target):
+                w_best, x_best = float(w), x
+    if len(scan) >= 3:
+        a = np.array(scan)
+        fit = np.polyval(np.polyfit(a[:, 0], a[:, 1], 1), a[:, 0])
+        scatter = float(np.sqrt(np.mean((a[:, 1] - fit) ** 2)))
+    else:
+        scatter = math.nan
+    return w_best, x_best, scatter
 
 
 def jog_rate(part, arm, x0: float, side: int, x_target: float, model: str = DEFAULT_MODEL, **kw) -> float:
