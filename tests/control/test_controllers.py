@@ -60,17 +60,20 @@ def test_approach_rungs_in_order():
 
 def test_confirm_asks_for_looks_before_a_switch():
     c = PaperController(GOAL, 4.0, 1.8, confirm=3)
-    # the first high needs no confirmation; the switch to low needs 3 readings in a row
+    # the first high needs no confirmation; the switch to low needs 3 readings in a row; a reading to stay
+    # in the middle of a test does not throw (the test goes on), 3 in a row end it
     got = run(c, [obs(False), obs(True), obs(True), obs(True), obs(True, goal=True), obs(True), obs(True, goal=True),
                   obs(True, goal=True), obs(True, goal=True)])
-    assert [g[0] for g in got] == ["throw", "look", "look", "throw", "look", "throw", "look", "look", "stop"]
+    assert [g[0] for g in got] == ["throw", "look", "look", "throw", "look", "look", "look", "look", "stop"]
     assert got[3][1] == "low"
+    got = run(c, [obs(True)] * 3 + [obs(True, goal=True)] + [obs(True)] * 3)
+    assert [g[0] for g in got] == ["look", "look", "throw", "look", "look", "look", "throw"] and got[-1][1] == "low"
 
 
 def test_a_single_false_reading_does_not_switch_with_confirm():
     c = PaperController(GOAL, 4.0, 1.8, confirm=2)
-    got = run(c, [obs(False), obs(True), obs(False)])  # side flickers on once
-    assert [g[0] for g in got] == ["throw", "look", "throw"] and got[2][1] == "high"
+    got = run(c, [obs(False), obs(True), obs(False), obs(False)])  # side flickers on once
+    assert [g[0] for g in got] == ["throw", "look", "look", "throw"] and got[3][1] == "high"
 
 
 @pytest.mark.parametrize("kw, field", [

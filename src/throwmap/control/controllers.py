@@ -23,8 +23,9 @@ calls ``decide(state, readings) -> Decision``: throw at ``omega`` (nominal, rad/
   mouth holds it, ``omega_fallback`` outside every mouth, stops when the estimate is in the goal.
 
 Every mode change other than the first to ``high`` must be seen on ``confirm`` consecutive
-observations (extra ones are ``look`` decisions, no throw), which guards against single
-false readings; ``confirm = 1`` is the draft's controller.
+observations, and once one is suggested the controller keeps looking (``look`` decisions, no
+throw) until ``confirm`` readings in a row ask for the change or for staying: a single false
+reading neither switches the mode nor makes a throw; ``confirm = 1`` is the draft's controller.
 """
 
 from __future__ import annotations
@@ -87,13 +88,14 @@ class Goal:
 @dataclass(frozen=True, slots=True)
 class ControlState:
     """A controller's state between decisions: ``mode`` (``"start"`` before the first), the mode
-    awaiting confirmation (``pending``, seen ``seen`` times in a row) and the throws left of a
-    composed funnel sequence (``queue``, rad/s)."""
+    awaiting confirmation (``pending``, asked for ``seen`` times in a row; ``stay``: readings in a row
+    that asked to stay in ``mode`` since) and the throws left of a composed funnel sequence (``queue``, rad/s)."""
 
     mode: str = "start"
     pending: str | None = None
     seen: int = 0
     queue: tuple = ()
+    stay: int = 0
 
 
 @dataclass(frozen=True, slots=True)
@@ -111,20 +113,32 @@ class Decision:
 
 
 def _transition(state: ControlState, want: str, confirm: int) -> tuple[bool, ControlState]:
-    """``(accepted, next state)`` for a wish to be in mode ``want``: accepted at once when it is the current
-    mode, the first mode ``high``, or ``confirm`` = 1; else after ``confirm`` consecutive wishes."""
-    if want == state.mode or confirm <= 1 or (state.mode == "start" and want == "high"):
+    """``(accepted, next state)`` for a wish to be in mode ``want``. With ``confirm`` = 1 every wish is
+    accepted (the draft's controller), and so is the first mode ``high``. Otherwise a wish to change mode
+    opens a sequential test, decided by looks: the change is accepted after ``confirm`` wishes for it in a
+    row, and dropped (the mode kept) after ``confirm`` wishes in a row to stay; a single contrary reading
+    neither switches nor ends the test."""
+    if confirm <= 1 or (state.mode == "start" and want == "high"):
         return True, ControlState(want, None, 0, state.queue if want == state.mode else ())
+    if want == state.mode:
+        if state.pending is None:
+            return True, ControlState(want, None, 0, state.queue)
+        stay = state.stay + 1
+        if stay >= confirm:
+            return True, ControlState(want, None, 0, state.queue)
+        return False, ControlState(state.mode, state.pending, 0, state.queue, stay)
     seen = state.seen + 1 if state.pending == want else 1
     if seen >= confirm:
         return True, ControlState(want, None, 0, ())
-    return False, ControlState(state.mode, want, seen, state.queue)
+    return False, ControlState(state.mode, want, seen, state.queue, 0)
 
 
 def _decide(state: ControlState, want: str, omega: float, confirm: int, reason: str, queue: tuple = ()) -> Decision:
     ok, nxt = _transition(state, want, confirm)
     if not ok:
-        return Decision("look", math.nan, nxt, state.mode, False, f"confirming {want} ({nxt.seen}/{confirm})")
+        what = f"confirming {want} ({nxt.seen}/{confirm})" if nxt.seen else \
+            f"confirming {nxt.pending} against staying in {state.mode} ({nxt.stay}/{confirm})"
+        return Decision("look", math.nan, nxt, state.mode, False, what)
     if queue:
         nxt = replace(nxt, queue=tuple(queue))
     switched = want != state.mode
