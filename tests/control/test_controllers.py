@@ -188,3 +188,22 @@ def test_kick_rungs_replace_high_off_the_goal_side():
     with pytest.raises(InvalidStateError) as err:
         PaperController(GOAL, 5.0, 1.8, kick=((0.13, -1.0),))
     assert err.value.field == "controller.kick[0]"
+
+
+def test_inverse_controller_stops_inside_a_margin(monkeypatch):
+    monkeypatch.setattr(C, "_jog_rate", lambda *a, **k: 1.0)
+    c = InverseJogController(GOAL, None, None, 5.0, 0.5, 3.0, margin=0.004)
+    assert c.decide(ControlState(), {"position": (0.457, 1)}).mode == "high"  # past the stop band: an overshoot
+    assert c.decide(ControlState(), {"position": (0.443, 1)}).mode == "jog"
+    assert c.decide(ControlState(), {"position": (0.455, 1)}).action == "stop"
+    with pytest.raises(InvalidStateError) as err:
+        InverseJogController(GOAL, None, None, 5.0, 0.5, 3.0, margin=0.01)
+    assert err.value.field == "controller.margin"
+
+
+def test_inverse_controller_kicks_near_the_joint(monkeypatch):
+    monkeypatch.setattr(C, "_jog_rate", lambda *a, **k: 1.0)
+    c = InverseJogController(GOAL, None, None, 5.0, 0.5, 3.0, kick=((0.13, 6.0),))
+    assert (c.decide(ControlState(), {"position": (0.12, 0)}).mode, c.decide(ControlState(), {"position": (0.12, 0)}).omega) == ("kick0", 6.0)
+    assert c.decide(ControlState(), {"position": (0.14, 0)}).mode == "high"
+    assert c.decide(ControlState(), {"position": (0.12, 1)}).mode == "jog"

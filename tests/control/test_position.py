@@ -142,3 +142,17 @@ def test_one_engine_trial():
     t = exp.trial(cfg, 0, trial_generator(1, 0))
     assert t.success or t.failure in KINDS or t.failure.startswith("refused:")
     assert math.isfinite(t.values["drop_x"]) and t.values["throws"] <= 80
+
+
+@pytest.mark.slow
+def test_the_experiments_benchmark_runs_position(tmp_path):
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "benchmarks" / "experiments.py"
+    spec = importlib.util.spec_from_file_location("experiments_bench_position", path)
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    data = bench.main(["--quick", "--experiments", "position", "--workers", "1"])
+    run = data["experiments"][0]["runs"][0]
+    assert data["experiments"][0]["experiment"] == "position" and run["cpu_s_per_trial"] > 0

@@ -247,7 +247,9 @@ def _jog_rate(*args, **kw):
 class InverseJogController:
     """Model-based jogs (see the module docstring). ``part``/``arm`` are the model's (the controller's
     belief, which may differ from the plant's arm μ); ``throw_options`` are passed to ``jog_rate``
-    as keywords (a tuple of (name, value) pairs, kept hashable)."""
+    as keywords (a tuple of (name, value) pairs, kept hashable); it stops when the estimate is within
+    ``eps − margin`` of x_f (m; a margin of about 2σ of the estimate keeps a blurred stop inside ε);
+    ``kick`` rungs as :class:`PaperController`'s, on the estimate."""
 
     goal: Goal
     part: object
@@ -260,6 +262,8 @@ class InverseJogController:
     model: str = "rigid_body"
     confirm: int = 1
     throw_options: tuple = ()
+    margin: float = 0.0
+    kick: tuple = ()
 
     kind = "inverse"
 
@@ -279,6 +283,11 @@ class InverseJogController:
         object.__setattr__(self, "gain", float(g))
         object.__setattr__(self, "confirm", _confirm(self.confirm))
         object.__setattr__(self, "throw_options", tuple(self.throw_options))
+        mg = self.margin
+        if isinstance(mg, bool) or not isinstance(mg, (int, float)) or not math.isfinite(mg) or not 0 <= mg < self.goal.eps:
+            raise InvalidStateError("controller.margin", f"must be in [0, eps = {self.goal.eps:g}) m, got {shown(mg)}")
+        object.__setattr__(self, "margin", float(mg))
+        object.__setattr__(self, "kick", _rungs(self.kick, "controller.kick"))
 
     def sensors(self) -> dict:
         return {"position": self.sensor}
@@ -305,11 +314,15 @@ class InverseJogController:
         x_est, side_est = obs["position"]
         g = self.goal
         if side_est != g.side:
+            for i, (x, w) in enumerate(self.kick):
+                if x_est <= x:
+                    return _decide(state, f"kick{i}", w, self.confirm, f"estimate on side {side_est}, short of "
+                                                                        f"{100 * x:.4g} cm")
             return _decide(state, "high", self.omega_high, self.confirm, f"estimate on side {side_est}")
-        if x_est > g.x + g.eps:
-            return _decide(state, "high", self.omega_high, self.confirm, "overshoot (estimate beyond x_f + ε)")
-        if abs(x_est - g.x) <= g.eps:
-            return _decide(state, "stop", math.nan, self.confirm, "estimate within ε")
+        if x_est > g.x + g.eps - self.margin:  # jogs cannot come back: past the stop band is an overshoot
+            return _decide(state, "high", self.omega_high, self.confirm, "overshoot (estimate beyond x_f + ε − margin)")
+        if abs(x_est - g.x) <= g.eps - self.margin:
+            return _decide(state, "stop", math.nan, self.confirm, "estimate within ε − margin")
         w, mode = self.rate(x_est)
         # the jog modes are one mode for confirmation: the rate changes from throw to throw
         d = _decide(replace(state, mode="jog") if state.mode.startswith("jog") else state, "jog", w, self.confirm,
@@ -319,7 +332,8 @@ class InverseJogController:
     def to_dict(self) -> dict:
         return {"kind": self.kind, "goal": self.goal.to_dict(), "omega_high": self.omega_high,
                 "omega_min": self.omega_min, "omega_max": self.omega_max, "sigma_m": self.sensor.sigma,
-                "side_error": self.sensor.side_error, "gain": self.gain, "model": self.model, "confirm": self.confirm}
+                "side_error": self.sensor.side_error, "gain": self.gain, "model": self.model, "confirm": self.confirm,
+                "margin_m": self.margin, "kick": [list(r) for r in self.kick]}
 
 
 @dataclass(frozen=True, slots=True)

@@ -70,6 +70,7 @@ class InverseConfig(BaseModel):
     model: str = Field("rigid_body", description="the model the inverse jog is computed on")
     sigma: Finite = Field(0.0005, ge=0, description="position estimate's σ, m")
     side_error: Rate = Field(0.0, description="P(the side is read wrong)")
+    margin: Finite | None = Field(None, ge=0, description="stop within eps − margin of x_f, m (None: 2·sigma)")
 
 
 class PositionConfig(BaseModel):
@@ -143,7 +144,9 @@ def _setup(cfg: PositionConfig):
             raise InvalidStateError("config.inverse.omega_min", f"must be ≤ omega_max = {iv.omega_max:g} rad/s")
         sensor = PositionSensor(iv.sigma, iv.side_error, part.n_sides if hasattr(part, "n_sides") else 3)
         ctl = InverseJogController(goal, part, Arm(h=arm.h, length=arm.length, mu=arm.mu), cfg.omega_high,
-                                   iv.omega_min, iv.omega_max, sensor, iv.gain, iv.model, s.confirm)
+                                   iv.omega_min, iv.omega_max, sensor, iv.gain, iv.model, s.confirm,
+                                   margin=min(2.0 * iv.sigma if iv.margin is None else iv.margin, 0.5 * cfg.eps),
+                                   kick=tuple(tuple(r) for r in cfg.kick))
     return part, arm, ctl
 
 
