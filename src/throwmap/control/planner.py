@@ -29,7 +29,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, ThrowmapError, shown
 from ..models import DEFAULT_MODEL
-from .inverse import ESCAPES, inverse_jog
+from .inverse import ESCAPES, inverse_jog, realisation_factory
 
 __all__ = ["Plan", "PlanStep", "Reachability", "plan_throws", "reachability"]
 
@@ -97,12 +97,15 @@ def _rest_check(part, arm, x_f: float, side_f: int) -> tuple[bool, str]:
 
 
 def reachability(part, arm, x_f: float, side_f: int, omegas, model: str = DEFAULT_MODEL, *, x_max=None,
-                 n_starts: int = 32, **throw_options) -> Reachability:
+                 n_starts: int = 32, realisation=None, **throw_options) -> Reachability:
     """Prop. 4.3's test for each rate in ``omegas`` (rad/s): does S(ω) visit side ``side_f`` below ``x_f`` (m)?
 
     Limit sets from :func:`throwmap.limit_set` (``n_starts`` per side, x ≤ ``x_max``: the arm
-    length, else 0.6 m); the answer holds for that range only."""
+    length, else 0.6 m); the answer holds for that range only. ``realisation``: as
+    :func:`~throwmap.control.inverse.inverse_jog` (``"recoil"``: each rate's limit set on the draft's arm)."""
     from ..analysis.limitset import limit_set
+
+    factory = realisation_factory(realisation)
 
     side_f = part.check_side(side_f, field="side_f")
     x_f = float(x_f)
@@ -111,7 +114,8 @@ def reachability(part, arm, x_f: float, side_f: int, omegas, model: str = DEFAUL
     xm = 0.6 if x_max is None and arm.length is None else (arm.length if x_max is None else float(x_max))
     for w in omegas:
         w = float(w)
-        ls = limit_set(part, arm, w, model, n_starts=n_starts, x_max=xm, **throw_options)
+        extra = {} if factory is None else {"realisation": factory(w)}
+        ls = limit_set(part, arm, w, model, n_starts=n_starts, x_max=xm, **extra, **throw_options)
         lows = [lo for a in ls.attractors for (k, lo, hi) in a.bands if k == side_f]
         if not ls.attractors:
             fates = ", ".join(f"{k} {100 * v:.0f} %" for k, v in ls.escapes.items()) or "none"
@@ -171,14 +175,15 @@ class Plan:
 
 def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, omegas=(4.0,),
                 model: str = DEFAULT_MODEL, max_throws: int = 500, tol: float = 1e-6, jog_omega_max: float = 10.0,
-                check_reachability: bool = True, x_max=None, **throw_options) -> Plan:
+                check_reachability: bool = True, x_max=None, realisation=None, **throw_options) -> Plan:
     """A throw sequence from (``x0``, ``side0``) to (``x_f``, ``side_f``) (m) on ``model``.
 
     ``omegas``: the high rates offered for going round the limit set (rad/s, tried in order);
     ``max_throws`` bounds each attempt; ``tol`` (m) the final |x − x_f|; ``jog_omega_max`` the
     jogs' largest rate. With ``check_reachability`` the rates are first screened by
     :func:`reachability` (limit sets on x ≤ ``x_max``) and an unreachable target returns a plan
-    with ``reachable=False`` and the reasons, without throwing.
+    with ``reachable=False`` and the reasons, without throwing. ``realisation`` (None/"impulse",
+    "recoil" or a callable ω → realisation, for models that take one) applies to every throw.
     """
     from ..throws.throw import throw
 
@@ -197,14 +202,14 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
     if not ok:
         return done([], False, why)
     if check_reachability:
-        r = reachability(part, arm, x_f, side_f, omegas, model, x_max=x_max, **throw_options)
+        r = reachability(part, arm, x_f, side_f, omegas, model, x_max=x_max, realisation=realisation, **throw_options)
         if not r.reachable:
             return done([], False, r.explanation())
         omegas = r.usable
     reasons = []
     for w_high in omegas:
         steps, why = _attempt(part, arm, float(x0), side0, float(x_f), side_f, w_high, model, max_throws, tol,
-                              jog_omega_max, throw, throw_options)
+                              jog_omega_max, throw, throw_options, realisation)
         if why is None:
             n_round = sum(s.phase == "round" for s in steps)
             how = (f"round the limit set at ω = {w_high:g} rad/s ({n_round} throws, Lemma 4.1), then jogs (Lemma 4.2)"
@@ -214,8 +219,14 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
     return done(steps, False, "; ".join(reasons))
 
 
-def _attempt(part, arm, x, k, x_f, side_f, w_high, model, max_throws, tol, jog_max, throw, opts):
+def _attempt(part, arm, x, k, x_f, side_f, w_high, model, max_throws, tol, jog_max, throw_fn, opts, realisation):
     """One plan with high rate ``w_high``: ``(steps, None)`` or ``(steps, reason)``."""
+    factory = realisation_factory(realisation)
+
+    def throw(part, arm, x, k, w, model, **o):
+        return throw_fn(part, arm, x, k, w, model, **o, **({} if factory is None else {"realisation": factory(w)}))
+
+    opts_inv = dict(opts, realisation=realisation)
     steps = []
     stuck = 0
     while len(steps) < max_throws:
@@ -223,12 +234,12 @@ def _attempt(part, arm, x, k, x_f, side_f, w_high, model, max_throws, tol, jog_m
             return steps, None
         if k == side_f and stuck < 2:
             try:
-                inv = inverse_jog(part, arm, x, k, x_f, model, omega_max=jog_max, tol=tol, **opts)
+                inv = inverse_jog(part, arm, x, k, x_f, model, omega_max=jog_max, tol=tol, **opts_inv)
                 w = inv.omega
             except InvalidStateError as err:
                 if err.field != "x_target":
                     return steps, f"the jog map is discontinuous at x_f ({err.reason})"
-                w = _partial_jog(part, arm, x, k, x_f, model, jog_max, tol, opts)
+                w = _partial_jog(part, arm, x, k, x_f, model, jog_max, tol, opts_inv)
             if w is not None:
                 out = throw(part, arm, x, k, w, model, **opts)
                 st = str(out.status)
