@@ -99,6 +99,8 @@ def plot_tradeoff(rows, ax=None, *, title: str | None = None):
     ax.plot(e, med, "o-", color="C0", label="median throws (successes)")
     ax.plot(e, p90, "s--", color="C0", alpha=0.6, label="90th percentile")
     ax.set_xscale("log")
+    ax.set_xticks(e, [f"{v:g}" for v in e])
+    ax.minorticks_off()
     ax.set_xlabel("goal radius ε (mm)")
     ax.set_ylabel("throws to the goal")
     ax2 = ax.twinx()
