@@ -92,3 +92,20 @@ def test_no_contact_and_bad_contacts_are_refused():
         Contact(0, None, (0, 0), (0, 1), -1.0)
     with pytest.raises(InvalidStateError, match="contact"):
         analyse_rest((Body(SQUARE, 0.2, 0.03),), (Contact(3, None, (0, 0), (0, 1), 1.0),))
+
+
+def test_partial_assembly_geometry_and_friction_needed():
+    # Fig. 14: assembled (γ = −30°) the pair fills the rectangle; partially assembled it rests at α = −10° with
+    # far less friction than the draft's measured μ > 1 — and needs more as the arm tilts further
+    from throwmap.statics.assembly import assembled_pair, partial_assembly, partial_region
+
+    a, b = assembled_pair(TRI, length=0.5)
+    pts = np.vstack([a.vertices(), b.vertices()])
+    assert pts[:, 0].min() == pytest.approx(0.5 - 0.17 * math.cos(math.radians(30)))
+    assert pts[:, 1].max() == pytest.approx(0.085) and pts[:, 0].max() == pytest.approx(0.5)
+    bodies, cs = partial_assembly(TRI, math.radians(-15), length=0.5, mu_arm=1.0)
+    assert sorted(c.label for c in cs) == ["arm", "arm", "arm", "part", "wall"]
+    reg = partial_region(TRI, np.radians([-25, -15, -5]), [1.0], alpha=math.radians(-10))
+    assert reg["rests"].all() and (reg["mu_needed"] < 0.1).all()
+    steeper = partial_region(TRI, np.radians([-25, -15, -5]), [1.0], alpha=math.radians(-30))["mu_needed"]
+    assert (steeper > reg["mu_needed"]).all()

@@ -77,7 +77,7 @@ def find_contacts(bodies, *, h: float, mu_arm: float, length=None, back: float =
             if wall is not None:
                 if p[0] > length + tol and p[1] < h + wall.height - tol:
                     raise InvalidStateError("bodies", f"part {i} overlaps the wall by {p[0] - length:.3g} m")
-                if abs(p[0] - length) <= tol and h + tol < p[1] <= h + wall.height + tol:
+                if abs(p[0] - length) <= tol and h - tol <= p[1] <= h + wall.height + tol:
                     out.append(Contact(i, None, (length, p[1]), (-1.0, 0.0), mw, "wall"))
         if wall is not None:
             corner = np.array([length, h + wall.height])
