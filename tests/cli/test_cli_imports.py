@@ -97,5 +97,5 @@ def test_each_module_imports_first_in_a_fresh_interpreter(stem):
             + "print(' '.join(sorted(typer.main.get_command(app).commands)))")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
-    assert done.stdout.split() == sorted(["throw", "iterate", "demo", "compare", "validate", "validate-fixtures",
+    assert done.stdout.split() == sorted(["throw", "iterate", "demo", "compare", "validate", "validate-fixtures", "validate-recoil",
                                           "animate", "limitset", "basins", "funnels", "design", "experiment", "control", "plan"])

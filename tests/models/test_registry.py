@@ -112,7 +112,8 @@ def test_features_are_declared():
     assert get_model("engine").features.fixtures and get_model("engine").features.tilt
     for name in ("paper", "small_angle", "small_angle2", "rigid_body"):
         f = get_model(name).features
-        assert f.fixtures == (name == "rigid_body") and not f.realisation  # rigid_body: a Wall (not a Cavity)
+        # rigid_body: a Wall (not a Cavity), and a moving arm (realisation=, kernels/rigid_body/moving)
+        assert f.fixtures == (name == "rigid_body") and f.realisation == (name == "rigid_body")
         assert f.tilt == (name in ("paper", "rigid_body"))
     assert get_model("rigid_body").features.friction and not get_model("paper").features.friction
     assert set(get_model("engine").features.supported()) >= {"fixtures", "tilt", "realisation", "trajectory"}

@@ -27,7 +27,8 @@ from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOptionOpt, M
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
-__all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "validate_fixtures_cmd", "ENGINES"]
+__all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "validate_fixtures_cmd", "validate_recoil_cmd",
+           "ENGINES"]
 
 ENGINES = ("pymunk", "mujoco")
 """Engines ``validate`` can use; pymunk is the reference and always runs."""
@@ -282,9 +283,49 @@ def validate_fixtures_cmd(
         typer.echo(f"wrote {out / 'tilt_wall.json'}, {out / 'tilt_wall.md'}")
 
 
+# ------------------------------------------------------------------ validate-recoil
+def validate_recoil_cmd(
+    n: Annotated[int, typer.Option("--n", parser=strict_int, metavar="INTEGER",
+                                   help="Random recoil throws (each thrown by rigid_body and the engine).")] = 200,
+    seed: Annotated[int, typer.Option("--seed", parser=strict_int, metavar="INTEGER",
+                                      help="Seed of the random throws.")] = 0,
+    impact_law: Annotated[str, typer.Option("--impact-law", help="rigid_body's impact law: velocity (the engine's) "
+                                                                "or routh.")] = "velocity",
+    engine_refine: Annotated[int, typer.Option("--engine-refine", parser=strict_int, metavar="INTEGER",
+                                               help="The reference engine's steps are its defaults divided by this "
+                                                    "(16: converged on impacts against the moving arm).")] = 16,
+    out: Annotated[Path, typer.Option("--out", help="Directory for recoil_validation.json and .md.")] = Path("out"),
+    as_json: JsonOpt = False,
+) -> None:
+    """rigid_body on the moving arm (RecoilThrow, 3° recoil, ζ ∈ {0.2, 0.5}) against the engine, and against the impulse."""
+    from ..studies.recoil_validation import recoil_table, validate_recoil
+
+    with guard():
+        if n < 1:
+            raise InvalidStateError("n", f"must be a positive integer, got {n}")
+        if impact_law not in ("routh", "velocity"):
+            raise InvalidStateError("impact_law", f"must be 'routh' or 'velocity', got {impact_law!r}")
+        if engine_refine < 1:
+            raise InvalidStateError("engine_refine", f"must be a positive integer, got {engine_refine}")
+        check_out_dir(out)
+        report = validate_recoil(n=n, seed=seed, impact_law=impact_law, engine_refine=engine_refine)
+        make_out_dir(out)
+        doc = {**report, "version": __version__}
+        write_text(out / "recoil_validation.json", to_json(doc) + "\n", "out")
+        md = (f"# throwmap validate-recoil ({n} throws, seed {seed}, impact law {impact_law}, engine steps / "
+              f"{engine_refine})\n\n" + recoil_table(report) + "\n")
+        write_text(out / "recoil_validation.md", md, "out")
+        if as_json:
+            typer.echo(to_json(doc))
+            return
+        typer.echo(recoil_table(report))
+        typer.echo(f"wrote {out / 'recoil_validation.json'}, {out / 'recoil_validation.md'}")
+
+
 def register(app: typer.Typer) -> None:
-    """Add the ``demo``, ``compare``, ``validate`` and ``validate-fixtures`` commands to ``app``."""
+    """Add the ``demo``, ``compare``, ``validate``, ``validate-fixtures`` and ``validate-recoil`` commands to ``app``."""
     app.command("demo")(demo_cmd)
     app.command("compare")(compare_cmd)
     app.command("validate")(validate_cmd)
     app.command("validate-fixtures")(validate_fixtures_cmd)
+    app.command("validate-recoil")(validate_recoil_cmd)

@@ -14,6 +14,8 @@ time, θ(t) (rad, CCW +), and its rate θ̇(t) (rad/s); t = 0 is the start of th
   leaves the arm when the arm decelerates faster than gravity can follow. After
   the ringing the arm eases back to α. :meth:`RecoilThrow.for_release_rate`
   picks the loop's natural frequency so that the arm's peak rate equals ω.
+* :class:`SampledThrow` — a measured or designed arm motion: samples θ(t_i), interpolated by a
+  cubic spline clamped at rest (θ̇ = 0) at both ends; the arm ends at its rest angle (θ = 0).
 * :class:`TiltTo` — no throw: the arm turns from its rest angle to a new one at a
   given rate (Sec. VI: lowering the arm to α < 0 before assembly).
 """
@@ -26,7 +28,7 @@ from dataclasses import dataclass
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["ImpulseThrow", "FiniteThrow", "RecoilThrow", "TiltTo", "angle_function", "check_realisation"]
+__all__ = ["ImpulseThrow", "FiniteThrow", "RecoilThrow", "SampledThrow", "TiltTo", "angle_function", "check_realisation"]
 
 
 def _pos(value, field: str, *, allow_zero=False) -> float:
@@ -187,6 +189,84 @@ class RecoilThrow:
         return 0.0, 0.0
 
 
+@dataclass(frozen=True)
+class SampledThrow:
+    """A sampled arm motion: angles ``theta`` (rad, about α) at times ``t`` (s, strictly increasing,
+    t[0] = 0, at least 4 samples), interpolated by a cubic spline with θ̇ = 0 at both ends (the arm
+    is at rest before and after); the last angle must be 0 (the arm ends at its rest angle α).
+    ``duration`` = t[-1]; the parts rest on the arm at θ(0) at the start."""
+
+    t: tuple
+    theta: tuple
+
+    impulsive = False
+
+    def __post_init__(self):
+        import numpy as np
+
+        try:
+            t = np.asarray(self.t, dtype=float).ravel()
+            th = np.asarray(self.theta, dtype=float).ravel()
+        except (TypeError, ValueError):
+            raise InvalidStateError("t", "t and theta must be sequences of numbers") from None
+        if t.size < 4 or th.size != t.size:
+            raise InvalidStateError("t", f"needs ≥ 4 samples and as many angles (got {t.size} times, {th.size} angles)")
+        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(th))):
+            raise InvalidStateError("t", "times and angles must be finite")
+        if t[0] != 0.0 or np.any(np.diff(t) <= 0.0):
+            raise InvalidStateError("t", "must start at 0 and increase strictly")
+        if abs(th[-1]) > 1e-12:
+            raise InvalidStateError("theta", f"the arm must end at its rest angle (θ = 0), got {th[-1]:.3g} rad")
+        if np.max(np.abs(th)) >= 0.5 * math.pi:
+            raise InvalidStateError("theta", "|θ| must stay below π/2")
+        th[-1] = 0.0
+        object.__setattr__(self, "t", tuple(float(v) for v in t))
+        object.__setattr__(self, "theta", tuple(float(v) for v in th))
+
+    @functools.cached_property
+    def spline(self):
+        """The clamped cubic spline θ(t) (scipy ``CubicSpline``)."""
+        from scipy.interpolate import CubicSpline
+
+        return CubicSpline(self.t, self.theta, bc_type="clamped")
+
+    @property
+    def duration(self) -> float:
+        return self.t[-1]
+
+    @property
+    def start_angle(self) -> float:
+        return self.theta[0]
+
+    @functools.cached_property
+    def peak_rate(self) -> float:
+        """Largest |θ̇| (rad/s), sampled 20 times per interval."""
+        import numpy as np
+
+        tt = np.linspace(0.0, self.t[-1], 20 * len(self.t) + 1)
+        return float(np.max(np.abs(self.spline(tt, 1))))
+
+    def angle(self, t: float) -> float:
+        if t <= 0.0:
+            return self.theta[0]
+        if t >= self.t[-1]:
+            return 0.0
+        return float(self.spline(t))
+
+    def rate(self, t: float) -> float:
+        if t <= 0.0 or t >= self.t[-1]:
+            return 0.0
+        return float(self.spline(t, 1))
+
+    @classmethod
+    def of(cls, r, n: int = 400) -> "SampledThrow":
+        """``n`` + 1 samples of realisation ``r``'s θ(t) over its duration (e.g. to test the spline)."""
+        import numpy as np
+
+        tt = np.linspace(0.0, r.duration, n + 1)
+        return cls(tuple(tt), tuple(r.angle(float(v)) for v in tt[:-1]) + (0.0,))
+
+
 @dataclass(frozen=True, slots=True)
 class TiltTo:
     """Turn the arm by ``delta`` (rad, from its current rest angle) at ``rate`` (rad/s > 0)."""
@@ -256,6 +336,6 @@ def angle_function(r):
 
 
 def check_realisation(r):
-    if not isinstance(r, (ImpulseThrow, FiniteThrow, RecoilThrow, TiltTo)):
+    if not isinstance(r, (ImpulseThrow, FiniteThrow, RecoilThrow, SampledThrow, TiltTo)):
         raise InvalidStateError("realisation", f"unknown throw realisation {shown(r)}")
     return r

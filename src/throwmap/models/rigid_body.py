@@ -54,14 +54,29 @@ class RigidBodyOptions:
     such as pymunk compute it). The two differ only on impacts whose slip stops and
     reverses, common at μ ≤ 0.6; with "velocity" rigid_body lands within about
     0.5 mm of the pymunk engine at μ = 0.3 where "routh" differs by up to ~1 cm.
+    ``realisation``: how the arm moves (as model "engine"): None, the paper's impulse at the throw's ω
+    (:class:`~throwmap.engine.ImpulseThrow` likewise, at its own ω); a
+    :class:`~throwmap.engine.FiniteThrow`, :class:`~throwmap.engine.RecoilThrow` or
+    :class:`~throwmap.engine.realisation.SampledThrow`: the part rides the moving arm in the arm frame
+    (:mod:`throwmap.kernels.rigid_body.moving`), the static automaton takes over once the arm stops;
+    or a callable ``omega -> realisation`` (one per throw, e.g. ``RecoilThrow.for_release_rate``).
     """
 
     tol: float = 1e-14
     max_iter: int = 100_000
     max_impacts: int = 10_000
     impact_law: str = "routh"
+    realisation: object = None
 
     def __post_init__(self):
+        r = self.realisation
+        if r is not None and not callable(r):
+            from ..engine.realisation import TiltTo, check_realisation  # no pymunk import
+
+            check_realisation(r)
+            if isinstance(r, TiltTo):
+                raise InvalidStateError("realisation", "TiltTo is no throw: rigid_body takes ImpulseThrow, FiniteThrow, "
+                                                       "RecoilThrow or SampledThrow")
         object.__setattr__(self, "tol", tolerance(self.tol, "tol"))
         object.__setattr__(self, "max_iter", int_at_least(self.max_iter, "max_iter", 1))
         object.__setattr__(self, "max_impacts", int_at_least(self.max_impacts, "max_impacts", 1))
@@ -110,7 +125,7 @@ class RigidBodyModel:
     summary = ("the exact rigid-body dynamics of one polygon on the arm line with plastic impacts and Coulomb "
                "friction Arm.mu: lift-off, sliding impacts and pivots, flat slides, Painlevé status")
     options_type = RigidBodyOptions
-    features = Features(trajectory=True, friction=True, tilt=True, fixtures=True)
+    features = Features(trajectory=True, friction=True, tilt=True, fixtures=True, realisation=True)
 
     def check_system(self, system) -> None:
         """Refuse what this model cannot take: a Cavity (model "engine" can), a Wall on an unbounded arm."""
@@ -122,11 +137,16 @@ class RigidBodyModel:
 
     def throw_one(self, part, system, x, side, omega, o: RigidBodyOptions):
         self.check_system(system)
+        r, omega = realisation_for(o, omega, system)
+        if r is not None:
+            return run_moving(part, system, x, side, r, o)
         return run_kernel(part, system.arm, x, side, omega, o, alpha=system.alpha, fixtures=system.fixtures)
 
     def throw_batch(self, part, system, x, side, omega, valid, o: RigidBodyOptions, progress=None):
         self.check_system(system)
         arm = system.arm
+        if o.realisation is not None:
+            return moving_batch(part, system, x, side, omega, valid, o, progress)
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
         pick(m)(x, side, omega, valid, arm.h, arm.g, system.alpha, arm.length_or_inf, arm.back,
@@ -145,8 +165,63 @@ class RigidBodyModel:
 
     def trajectory(self, part, system, x, side, omega, o: RigidBodyOptions, dt):
         self.check_system(system)
+        if o.realisation is not None:
+            raise InvalidStateError("realisation", "rigid_body records no trajectory of a moving arm yet: use model "
+                                                   "'engine' for its animation")
         return record_trajectory(part, system.arm, x, side, omega, dt, o, alpha=system.alpha,
                                  fixtures=system.fixtures)
+
+
+def realisation_for(o: RigidBodyOptions, omega: float, system):
+    """``(realisation, ω)`` of one throw: (None, ω) for the impulse (None, or an ImpulseThrow at its own ω),
+    else the finite realisation (a callable option is called with ω)."""
+    r = o.realisation
+    if r is None:
+        return None, omega
+    if callable(r):
+        from ..engine.realisation import check_realisation
+
+        r = check_realisation(r(float(omega)))
+    from ..engine.realisation import ImpulseThrow, TiltTo
+
+    if isinstance(r, ImpulseThrow):
+        return None, r.omega
+    if isinstance(r, TiltTo):
+        raise InvalidStateError("realisation", "TiltTo is no throw")
+    if system.fixtures:
+        raise InvalidStateError("realisation", "rigid_body takes a moving arm without fixtures: use model 'engine'")
+    return r, omega
+
+
+def run_moving(part, system, x, side, r, o: RigidBodyOptions):
+    """One throw by the moving arm of realisation ``r`` (:func:`throwmap.kernels.rigid_body.moving.throw_moving`)."""
+    from ..kernels.rigid_body.moving import throw_moving
+
+    return throw_moving(part, system.arm, float(x), int(side), r, alpha=system.alpha, law=o.law_code,
+                        stable=stable_at(part, system.alpha), tol=o.tol, max_iter=o.max_iter, max_events=o.max_impacts)
+
+
+def moving_batch(part, system, x, side, omega, valid, o: RigidBodyOptions, progress=None) -> BatchArrays:
+    """:meth:`RigidBodyModel.throw_batch` with a realisation: the throws one by one (the moving phase is
+    Python, ~0.1–0.5 s a throw); invalid starts get INVALID_START."""
+    from ..kernels.rows import mark_invalid
+
+    m = x.size
+    out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
+    for i in range(m):
+        if not valid[i]:
+            mark_invalid(i, x, side, out.x, out.side, out.status, out.records)
+        else:
+            r, om = realisation_for(o, float(omega[i]), system)
+            if r is None:
+                res = run_kernel(part, system.arm, float(x[i]), int(side[i]), om, o, alpha=system.alpha,
+                                 fixtures=system.fixtures)
+            else:
+                res = run_moving(part, system, x[i], side[i], r, o)
+            out.x[i], out.side[i], out.status[i], out.records[i] = res
+        if progress is not None:
+            progress(i + 1, m)
+    return out
 
 
 def record_trajectory(part, arm, x0, k, om, dt, o: RigidBodyOptions, max_samples: int = 200_000, alpha: float = 0.0,

@@ -50,8 +50,9 @@ from .wall_lean import (LN_BEHIND, LN_CAP, LN_CORNER, LN_FLIGHT, LN_INCONSISTENT
 
 @njit(cache=True, inline='always')
 def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-              tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
-    """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`."""
+              tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu, start):
+    """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`.
+    A non-empty ``start`` replaces the release by a handed-over state (:func:`throw_from_state`)."""
     n = w.shape[0]
     start_record(rec)
     ts = np.zeros(3)
@@ -116,6 +117,27 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
     ln_a = -1  # MODE_LEAN: the vertex on the arm, the one on the face, and whether their impact is still to come
     ln_p = -1
     ln_impact = False
+    if start.shape[0] > 0:
+        # a state handed over by the moving-arm phase (moving/handover.py): FLIGHT (0) or a pivot (1, SELECT)
+        t = start[1]
+        x = start[2]
+        y = start[3]
+        vx = start[4]
+        vy = start[5]
+        om = start[6]
+        phi = start[7]
+        last_side = int(start[8])
+        first = start[13] != 0.0
+        if start[0] == 0.0:
+            refresh_frame(phi, y, h, w, ell, ru, rv, c0)
+        else:
+            jp = int(start[9])
+            px = start[10]
+            theta = start[11]
+            thdot = om
+            va = start[12]
+            phi_off = phi - theta
+            mode = MODE_SELECT
     while True:
         n_events += 1
         if n_events > max_events:
@@ -428,7 +450,7 @@ def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, l
     (finite) with Coulomb ``wall_mu`` (:mod:`~.wall`); 0: no wall.
     """
     return run_throw(pivot_stick_exact, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                     stable, tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu)
+                     stable, tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu, np.empty(0))
 
 
 @njit(cache=True)
@@ -436,4 +458,18 @@ def throw_one_rigid_body_rk4(x0, side, omega, h, g, alpha, length, back, rho2, m
                              tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
     """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`pivot_stick`): the reference it is checked against."""
     return run_throw(pivot_stick, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                     tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu)
+                     tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu, np.empty(0))
+
+
+@njit(cache=True)
+def throw_from_state(start, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, tol, max_iter,
+                     max_events, rec, traj, traj_dt):
+    """The automaton of :func:`throw_one_rigid_body` from a handed-over arm-frame state instead of the release.
+
+    ``start`` = (kind, t, x, y, v_x, v_y, ω, φ, side, j, p_x, θ, v_A, first): kind 0 FLIGHT (CM at (x, y) m,
+    velocity (v_x, v_y) m/s, spin ω rad/s, orientation φ rad, every vertex above the line), kind 1 a pivot on
+    vertex j at p_x (θ the angle of pivot → CM, v_A its slip velocity; the contact mode is selected);
+    ``side`` the last side rested on; ``first`` 1: the first contact is still to come (its record is written).
+    Used by the moving-arm phase (:mod:`.moving`) once the arm has stopped; no wall."""
+    return run_throw(pivot_stick_exact, start[2], int(start[8]), 1.0, h, g, alpha, length, back, rho2, mu, law, w,
+                     beta, d, uL, uR, ell, stable, tol, max_iter, max_events, rec, traj, traj_dt, 0.0, 0.0, start)

@@ -41,8 +41,14 @@ WHY_MESSAGES = {
     WHY_CORNER_VERTEX: ("an edge on the wall's top corner brought a vertex onto the corner or onto the wall's top "
                         "beyond its face, or the part tips over the wall (its top and thickness are not modelled): "
                         "not modelled by rigid_body"),
+    # the moving-arm phase (moving/phase.py: WHY_EVENTS, WHY_STEPS, WHY_NO_MODE, WHY_LAND)
+    101: "more events than the cap while the arm moves (e.g. rocking on the moving arm): not resolved by rigid_body",
+    102: "more integration steps than the cap while the arm moves: not resolved by rigid_body",
+    103: ("no consistent contact mode (stick, slide, lift) after an event while the arm moves: not resolved by "
+          "rigid_body"),
+    104: "a vertex not adjacent to the pivot touched the moving arm (a degenerate polygon): not modelled by rigid_body",
 }
-"""Why a walled throw was refused (status UNRESOLVED), by reason code."""
+"""Why a throw was refused (status UNRESOLVED), by reason code: the wall's (1–8) and the moving arm's (101–104)."""
 
 EV_WALL = 10
 """Event code of guard ``wall_reach`` (after the codes of :mod:`.modes`): a vertex is on the wall and the part turns into it."""
