@@ -111,17 +111,24 @@ class ExperimentResult:
                 "workers": self.workers, "resumed": self.resumed}
 
     def value_summary(self) -> dict:
-        """For each numeric per-trial value: ``{"mean", "min", "max", "count"}`` over the trials that have it."""
+        """For each numeric per-trial value: ``{"mean", "median", "p90", "min", "max", "count", "missing"}`` over
+        the trials where it is finite (``missing``: trials where it is nan, e.g. throws to success of a failed
+        trial); ``p90`` the 90th percentile (linear interpolation)."""
+        import numpy as np
+
         out = {}
         keys = []
         for t in self.trials:
             keys.extend(k for k in t.values if k not in keys)
         for key in keys:
             vals = [t.values[key] for t in self.trials if key in t.values]
-            nums = [float(v) for v in vals if isinstance(v, (int, float)) and not isinstance(v, bool)
-                    and math.isfinite(float(v))]
-            if nums and len(nums) == sum(1 for v in vals if not isinstance(v, (str, bool))):
-                out[key] = {"mean": sum(nums) / len(nums), "min": min(nums), "max": max(nums), "count": len(nums)}
+            if not vals or any(isinstance(v, (str, bool)) or not isinstance(v, (int, float)) for v in vals):
+                continue
+            nums = np.array([float(v) for v in vals if math.isfinite(float(v))])
+            if nums.size:
+                out[key] = {"mean": float(nums.mean()), "median": float(np.median(nums)),
+                            "p90": float(np.percentile(nums, 90)), "min": float(nums.min()), "max": float(nums.max()),
+                            "count": int(nums.size), "missing": len(vals) - int(nums.size)}
         return out
 
     def rows(self) -> list[dict]:
