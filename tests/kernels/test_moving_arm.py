@@ -276,3 +276,29 @@ def test_rigid_body_against_the_engine_on_recoil_throws():
             e = throwmap.throw(PART, arm, x, SIDE, om, model="engine", realisation=r, settings=fine)
             assert a.side == e.side and a.status == e.status
             assert abs(a.x - e.x) <= 0.5e-3
+
+
+# a side that lands flat out of a lift-off (B touches while A, just lifted, is still on the line): the
+# land_side law, not an endless alternation of single-vertex impacts at one instant (was UNRESOLVED)
+FLAT_LANDING = (0, 0.44347, 6.768)
+
+
+def test_side_landing_right_after_a_lift_off_is_resolved():
+    side, x, om = FLAT_LANDING
+    o = throwmap.throw(PART, Arm(h=-0.01, mu=1.5), x, side, om, model="rigid_body",
+                       realisation=RecoilThrow.for_release_rate(om), impact_law="velocity")
+    assert o.status == C.OK
+
+
+@pytest.mark.slow
+def test_side_landing_right_after_a_lift_off_against_the_engine():
+    from throwmap.engine.settings import EngineSettings
+
+    base = EngineSettings()
+    fine = EngineSettings(dt=base.dt / 16, coarse_dt=base.coarse_dt / 16)
+    side, x, om = FLAT_LANDING
+    arm = Arm(h=-0.01, mu=1.5)
+    r = RecoilThrow.for_release_rate(om)
+    a = throwmap.throw(PART, arm, x, side, om, model="rigid_body", realisation=r, impact_law="velocity")
+    e = throwmap.throw(PART, arm, x, side, om, model="engine", realisation=r, settings=fine)
+    assert a.side == e.side and abs(a.x - e.x) <= 0.5e-3

@@ -277,17 +277,22 @@ def _impact_flat(c, p: Phase, side):
 
 
 def _land(c, p: Phase, j) -> bool:
-    """Reset ``touch`` of vertex ``j``: from FLIGHT the single-vertex impact, while pivoting on A the
-    land_side law. False: the throw ends (status set)."""
+    """Reset ``touch`` of vertex ``j``: from FLIGHT the single-vertex impact, while pivoting on A (or in
+    FLIGHT with a neighbour A of ``j`` still on the line) the land_side law. False: the throw ends."""
     body = c.body
     if not p.act:
-        if not _impact_vertex(c, p, j):
-            p.status = INCONSISTENT
-            return False
-        return True
-    a = p.act[0]
+        g, _rx, _ry = gaps(body, p.s, c.h)
+        near = [a for a in ((j + 1) % body.n, (j - 1) % body.n) if g[a] <= ON_GAP]
+        if not near:
+            if not _impact_vertex(c, p, j):
+                p.status = INCONSISTENT
+                return False
+            return True
+        a = near[0]  # a neighbour is (still) on the line: the side lands, as while pivoting on it
+    else:
+        a = p.act[0]
     k = body.side_of(a, j)
-    if len(p.act) != 1 or k < 0:
+    if len(p.act) > 1 or k < 0:
         p.status, p.why = UNRESOLVED, WHY_LAND
         return False
     keep = p.s.copy()
