@@ -9,8 +9,10 @@ The reference is the engine with its steps divided by 16 (:func:`validate_recoil
 velocity-level impact law of the engine by default. Compared (as :mod:`.tilt_wall`): throws that neither refused (UNRESOLVED, INCONSISTENT, the engine's
 TIMEOUT / PENETRATION / UNCONVERGED); a throw agrees on the side when both rest on the same side or
 both leave the arm the same way, and within when also |Δx| ≤ 0.5 mm. Wilson 95 % intervals.
-Also: how often the recoil's answer differs in side (or status) from the impulse's at the same ω, in
-rigid_body and in the engine.
+Rows also without the throws whose engine answer is bound to pymunk's friction cap (:mod:`.engine_cap`:
+the engine again with the cap relaxed 0.7 → 0.9 moves by > 0.25 mm), and split at μ finite / μ = ∞ (where
+the README reads the engine as ±2 mm). Also: how often the recoil's answer differs in side (or status)
+from the impulse's at the same ω, in rigid_body and in the engine.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from ..kernels import codes as C
 from ..system.arm import Arm
 from ..throws.outcome import Status
 from ..throws.throw import throw
+from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
 from .validation import default_parts
 
 __all__ = ["recoil_cases", "validate_recoil", "recoil_table", "MUS", "ZETAS", "WITHIN"]
@@ -90,11 +93,34 @@ def validate_recoil(n: int = 200, seed: int = 0, parts=None, impact_law: str = "
             secs[key] += time.perf_counter() - t0
         if progress is not None:
             progress(i + 1, n)
+    # where the engine's answer rests on its friction cap (studies/engine_cap.py): the recoil throws again with
+    # the cap relaxed from 0.7 to 0.9; those that move by > 0.25 mm (or change side/status) are cap-bound
+    res["engine_cap_alt"] = []
+    t0 = time.perf_counter()
+    with friction_cap(CAP_ALT):
+        for c in cases:
+            r = RecoilThrow.for_release_rate(c["omega"], c["recoil"], c["zeta"])
+            res["engine_cap_alt"].append(_one(parts[c["part"]], c, "engine", r, settings=fine))
+    secs["engine_cap_alt"] = time.perf_counter() - t0
+    arr = {key: {"x": np.array([v[0] for v in res[key]]), "side": np.array([v[1] for v in res[key]]),
+                 "status": np.array([v[2] for v in res[key]])} for key in ("engine", "engine_cap_alt")}
+    bound = cap_sensitive(arr["engine"], arr["engine_cap_alt"])
+    free = [i for i in range(n) if not bound[i]]
+    mus = np.array([c["mu"] for c in cases])
+    finite = [i for i in range(n) if math.isfinite(mus[i])]
     k = engine_refine
     return {"cases": cases, "results": res, "seconds": secs, "impact_law": impact_law, "engine_refine": k,
+            "cap_bound": [int(i) for i in np.flatnonzero(bound)],
             "summary": {f"rb vs engine/{k} (recoil)": _summary(res["rb"], res["engine"]),
                         "rb vs engine (recoil, default dt)": _summary(res["rb"], res["engine_default"]),
                         f"engine vs engine/{k} (recoil)": _summary(res["engine_default"], res["engine"]),
+                        f"rb vs engine/{k} (recoil), cap-bound left out": _summary([res["rb"][i] for i in free],
+                                                                                 [res["engine"][i] for i in free]),
+                        f"rb vs engine/{k} (recoil), μ finite": _summary([res["rb"][i] for i in finite],
+                                                                        [res["engine"][i] for i in finite]),
+                        f"rb vs engine/{k} (recoil), μ = ∞": _summary(
+                            [res["rb"][i] for i in range(n) if i not in set(finite)],
+                            [res["engine"][i] for i in range(n) if i not in set(finite)]),
                         f"rb vs engine/{k} (impulse)": _summary(res["rb_impulse"], res["engine_impulse"]),
                         "recoil vs impulse (rigid_body)": _summary(res["rb"], res["rb_impulse"]),
                         f"recoil vs impulse (engine/{k})": _summary(res["engine"], res["engine_impulse"])}}
