@@ -149,8 +149,9 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
     ``x0`` may instead be an engine :class:`~throwmap.engine.Scene` or a
     :class:`~throwmap.experiments.drop.DropResult` (model ``"engine"`` only; ``side0`` then unused).
     ``model``: any registered throw model (``"engine"``: chained engine runs). ``noise``: a
-    :class:`~throwmap.experiments.noise.Noise` (ω jitter per throw, the engine's realisation) or None
-    (exact ω; the impulse). ``rng``: generator or seed, used for the sensors and the jitter.
+    :class:`~throwmap.experiments.noise.Noise` (ω jitter per throw, and the arm's realisation for every model
+    that takes one: the engine, and rigid_body, which rides the recoil arm exactly) or None (exact ω; the
+    impulse). ``rng``: generator or seed, used for the sensors and the jitter.
     ``throw_options``: keywords of the throw (``fixtures``, ``alpha``, ``settings``, ``friction``, model
     options). See the module docstring for what the result says.
     """
@@ -164,6 +165,7 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
     rng = as_generator(rng)
     m = get_model(model)
     engine = getattr(m, "name", None) == "engine"
+    moving = bool(getattr(getattr(m, "features", None), "realisation", False))  # rigid_body rides the recoil arm
     goal = controller.goal
     if engine:
         from ..engine import ImpulseThrow, simulate
@@ -223,6 +225,8 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
                 scene = run.next_scene()
         else:
             opts = {kk: v for kk, v in throw_options.items()}
+            if moving and noise is not None and "realisation" not in opts:
+                opts["realisation"] = noise.realisation_for(w)  # the arm's motion, where the model takes one
             try:
                 o = m_throw(part, arm, x, k, w, model, opts)
             except InvalidStateError as err:

@@ -184,7 +184,7 @@ def low_rate(cfg: PositionConfig, eps: float | None = None, *, grid=None) -> flo
     best = float(grid[0])
     for w in grid:
         kw = {}
-        if cfg.model == "engine":
+        if _moving(cfg.model):
             kw["realisation"] = cfg.noise.noise().realisation_for(float(w))
         o = throw(part, arm, x0, side, float(w), model=cfg.model, **kw)
         if int(o.status) != 0 or o.side != side or not (o.x - x0) < eps:
@@ -249,7 +249,7 @@ class Position:
                 "length_m": arm.length, "mu": None if math.isinf(arm.mu) else arm.mu, "g_m_s2": arm.g,
                 "goal": {"x_m": cfg.x_f, "side": ctl.goal.side, "eps_m": cfg.eps}, "controller": ctl.to_dict(),
                 "model": cfg.model, "noise": cfg.noise.noise().to_dict()
-                if cfg.model == "engine" else dict(cfg.noise.noise().to_dict(), realisation="impulse (analytic model)"),
+                if _moving(cfg.model) else dict(cfg.noise.noise().to_dict(), realisation="impulse (analytic model)"),
                 "drop_height_m": list(cfg.height),
                 "drop_x_range_m": list(cfg.x_range) if cfg.x_range else [0.0 - arm.back, arm.length],
                 "max_throws": cfg.max_throws,
@@ -259,3 +259,10 @@ class Position:
 
 
 POSITION = register_experiment(Position())
+
+
+def _moving(model: str) -> bool:
+    """Whether ``model`` takes the arm's realisation (the engine; rigid_body rides the recoil arm)."""
+    from ..models import get_model
+
+    return bool(get_model(model).features.realisation)
