@@ -302,3 +302,11 @@ def test_side_landing_right_after_a_lift_off_against_the_engine():
     a = throwmap.throw(PART, arm, x, side, om, model="rigid_body", realisation=r, impact_law="velocity")
     e = throwmap.throw(PART, arm, x, side, om, model="engine", realisation=r, settings=fine)
     assert a.side == e.side and abs(a.x - e.x) <= 0.5e-3
+
+
+def test_iterate_takes_a_realisation_factory():
+    arm = Arm(h=-0.01, mu=1.5)
+    o = throwmap.iterate(PART, arm, (0.15, SIDE), [5.0, 4.0], model="rigid_body",
+                         realisation=RecoilThrow.for_release_rate)
+    a = throwmap.throw(PART, arm, 0.15, SIDE, 5.0, model="rigid_body", realisation=RecoilThrow.for_release_rate(5.0))
+    assert o.outcomes[0].x == a.x and o.outcomes[0].side == a.side

@@ -70,7 +70,7 @@ class RigidBodyOptions:
 
     def __post_init__(self):
         r = self.realisation
-        if r is not None and not callable(r):
+        if r is not None and not (callable(r) and not hasattr(r, "angle")):
             from ..engine.realisation import TiltTo, check_realisation  # no pymunk import
 
             check_realisation(r)
@@ -178,7 +178,7 @@ def realisation_for(o: RigidBodyOptions, omega: float, system):
     r = o.realisation
     if r is None:
         return None, omega
-    if callable(r):
+    if callable(r) and not hasattr(r, "angle"):  # a factory ω → realisation (as iterate's engine chain)
         from ..engine.realisation import check_realisation
 
         r = check_realisation(r(float(omega)))
