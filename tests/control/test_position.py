@@ -15,7 +15,7 @@ from throwmap.experiments.base import config_of, trial_generator
 from throwmap.experiments.runner import run_experiment
 
 runner = CliRunner()
-QUICK = {"model": "rigid_body", "max_throws": 60}
+QUICK = {"model": "paper", "max_throws": 60}  # the impulse map: fast (rigid_body rides the recoil arm in Python)
 KINDS = {"not_stopped", "stopped_off_goal", "stopped_wrong_side", "off_end", "behind_joint"}
 CONTRACT = ("n", "successes", "success_rate", "ci95", "failures", "seed", "parameters", "config", "values",
             "version", "elapsed_s", "workers", "resumed")
@@ -37,7 +37,7 @@ def one_error(result, field):
 @pytest.fixture()
 def quick_toml(tmp_path):
     p = tmp_path / "quick.toml"
-    p.write_text('model = "rigid_body"\nmax_throws = 60\n')
+    p.write_text('model = "paper"\nmax_throws = 60\n')
     return p
 
 
@@ -51,7 +51,7 @@ def test_json_has_the_contract_keys_and_matches_the_library(quick_toml):
     assert (doc["successes"], doc["failures"], doc["ci95"]) == (lib.successes, lib.failures, list(lib.ci95))
     p = doc["parameters"]
     assert p["goal"] == {"x_m": 0.48, "side": 1, "eps_m": 0.01} and p["controller"]["kind"] == "paper"
-    assert p["noise"]["realisation"].startswith("impulse")  # the analytic models throw the impulse
+    assert p["noise"]["realisation"].startswith("impulse")  # "paper" throws the impulse (rigid_body: the recoil)
     for t in lib.trials:
         assert t.success or t.failure in KINDS or t.failure.startswith("refused:")
         v = t.values
@@ -97,7 +97,7 @@ def test_parameters_and_the_inverse_controller():
     exp = get_experiment("position")
     cfg = config_of(exp, dict(QUICK, controller="inverse"))
     p = exp.parameters(cfg)
-    assert p["controller"]["kind"] == "inverse" and p["model"] == "rigid_body"
+    assert p["controller"]["kind"] == "inverse" and p["model"] == "paper"
     t = exp.trial(cfg, 0, trial_generator(1, 0))
     assert t.success or t.failure in KINDS or t.failure.startswith("refused:")
 
@@ -156,3 +156,10 @@ def test_the_experiments_benchmark_runs_position(tmp_path):
     data = bench.main(["--quick", "--experiments", "position", "--workers", "1"])
     run = data["experiments"][0]["runs"][0]
     assert data["experiments"][0]["experiment"] == "position" and run["cpu_s_per_trial"] > 0
+
+
+def test_rigid_body_rides_the_recoil_arm_in_the_experiment():
+    # rigid_body takes the arm's motion: its rows are made on the recoil arm, as the engine's are
+    cfg = config_of(get_experiment("position"), {"model": "rigid_body", "max_throws": 2})
+    p = get_experiment("position").parameters(cfg)
+    assert p["noise"]["realisation"] == "recoil"
