@@ -310,3 +310,16 @@ def test_iterate_takes_a_realisation_factory():
                          realisation=RecoilThrow.for_release_rate)
     a = throwmap.throw(PART, arm, 0.15, SIDE, 5.0, model="rigid_body", realisation=RecoilThrow.for_release_rate(5.0))
     assert o.outcomes[0].x == a.x and o.outcomes[0].side == a.side
+
+
+def test_frictionless_flat_slide_after_the_arm_stops_is_the_static_slide():
+    """μ = 0: a part still sliding flat when the arm stops never stops (NO_REST on an unbounded arm, the edge on
+    a bounded one), as the static automaton's slide_away — not an integration to the step cap."""
+    from throwmap.studies.validation import default_parts
+
+    pent = default_parts()["pentagon"]
+    r = RecoilThrow.for_release_rate(4.35)
+    o = throwmap.throw(pent, Arm(h=-0.01, mu=0.0), 0.0517, 1, 4.35, model="rigid_body", realisation=r)
+    assert o.status == C.NO_REST
+    o = throwmap.throw(pent, Arm(h=-0.01, mu=0.0, length=0.3), 0.0517, 1, 4.35, model="rigid_body", realisation=r)
+    assert o.status in (C.OFF_END, C.BEHIND_JOINT)

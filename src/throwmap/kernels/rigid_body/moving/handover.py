@@ -9,7 +9,9 @@ at α hands the state to the validated static automaton (:mod:`throwmap.kernels.
 * a PIVOT → :func:`~..automaton.throw_from_state` (kind 1): θ = angle of pivot → CM, its slip velocity;
   the automaton selects stick / slide / lift as after an impact;
 * FLAT sticking at rest → :func:`~..automaton.throw_one_rigid_body` with ω = 0 (rest, or the tip of
-  an unstable side, exactly as a throw with ω = 0).
+  an unstable side, exactly as a throw with ω = 0);
+* FLAT sliding → the static flat slide (:func:`~..tilt.settle` on a tilted arm, :func:`~..landing.slide_away`
+  at μ = 0, else :func:`~..landing.flat_slide` and :func:`~..landing.rest`), as ``land_side`` ends a landing.
 
 What the handover cannot take ends the throw as status UNRESOLVED with a reason (record WHY,
 :data:`~..wall_contact.WHY_MESSAGES`); the moving phase's own terminal statuses (BEHIND_JOINT,
@@ -24,7 +26,11 @@ import math
 import numpy as np
 
 from ... import codes as C
+from ...rows import start_record
 from ..automaton import throw_from_state, throw_one_rigid_body
+from ..landing import flat_slide, rest, slide_away
+from ..tilt import settle
+from ..trajectory import clear
 from .dynamics import Body, offsets
 from .phase import Phase, run_phase
 from .profile import arm_motion
@@ -62,9 +68,11 @@ def throw_moving(part, arm, x0, side, realisation, *, alpha=0.0, law=0, stable=N
             part.uR, part.ell, stable, tol, max_iter, max_events)
     no_traj = np.empty((0, 4))
     s = p.s
-    if len(p.act) == 2:  # flat, sticking, at rest: the static automaton's rest (or tip) from ω = 0
+    if len(p.act) == 2 and p.tmode == 0:  # flat, sticking, at rest: the static automaton's rest (or tip) from ω = 0
         xn, kn, st = throw_one_rigid_body(float(s[0]), p.side, 0.0, *args, rec, no_traj, 0.0, 0.0, 0.0)
         rec[C.T_REST] = p.t + (0.0 if math.isnan(rec[C.T_REST]) else rec[C.T_REST])
+    elif len(p.act) == 2:  # flat, sliding: the static automaton's flat slide (land_side's, after both vertices stop)
+        xn, kn, st = _flat_slide(part, arm, p, float(alpha), length, rec)
     else:
         start = np.zeros(14)
         start[1:8] = p.t, s[0], s[1], s[3], s[4], s[5], s[2]
@@ -82,6 +90,26 @@ def throw_moving(part, arm, x0, side, realisation, *, alpha=0.0, law=0, stable=N
     _counts(rec, p)
     rec[C.E_RELEASE] = math.nan  # (the automaton's release energy is not this throw's)
     return float(xn), int(kn), int(st), rec
+
+
+def _flat_slide(part, arm, p, alpha, length, rec):
+    """A side sliding flat on the arm at rest: :func:`~..tilt.settle` (α ≠ 0), :func:`~..landing.slide_away` (μ = 0,
+    for ever) or :func:`~..landing.flat_slide` and :func:`~..landing.rest`, as land_side ends a landing."""
+    start_record(rec)
+    traj = np.empty((0, 4))
+    ts = np.zeros(3)
+    clear(traj, ts, 0.0)
+    s, k = p.s, p.side
+    if alpha != 0.0:
+        x, k, st, t = settle(float(s[0]), float(s[3]), p.t, k, arm.mu, arm.g, alpha, arm.h, part.d, part.uL, part.uR,
+                             part.beta, length, arm.back, float(s[2]), traj, ts, rec)
+        return x, k, st
+    if arm.mu == 0.0:
+        x, st, t = slide_away(float(s[0]), float(s[3]), p.t, k, part.uL, part.uR, length, arm.back, float(s[1]),
+                              float(s[2]), traj, ts, rec)
+        return x, k, st
+    x, t = flat_slide(float(s[0]), float(s[3]), p.t, arm.mu, arm.g, float(s[1]), float(s[2]), traj, ts, rec)
+    return rest(x, k, t, arm.h, arm.g, part.d, part.uL, part.uR, part.beta, length, arm.back, float(s[2]), traj, ts, rec)
 
 
 def _counts(rec, p):

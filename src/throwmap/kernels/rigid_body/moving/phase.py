@@ -35,7 +35,7 @@ sliding pivot: a contact slips only as its normal force vanishes), μ itself in 
 
 The phase ends (:func:`run_phase` returns) once the arm is at rest (t ≥ duration) and the part is
 in a state the static automaton starts from: FLIGHT with every vertex ≥ 1 nm above the line, a
-PIVOT, or FLAT sticking at rest (:mod:`.handover`).
+PIVOT, or FLAT, sticking at rest or sliding (:mod:`.handover`).
 """
 
 from __future__ import annotations
@@ -441,10 +441,8 @@ def _clip(breaks, ib):
 
 
 def _handover_ready(c, p: Phase) -> bool:
-    """Arm at rest: FLIGHT clear of the line, a PIVOT, or FLAT sticking at rest (module docstring)."""
+    """Arm at rest: FLIGHT clear of the line, a PIVOT, or FLAT (module docstring)."""
     if not p.act:
         g, _rx, _ry = gaps(c.body, p.s, c.h)
         return bool(np.all(g >= CLEAR_GAP))
-    if len(p.act) == 1:
-        return True
-    return p.tmode == 0
+    return True  # a pivot, or a side flat (sticking at rest or sliding)
