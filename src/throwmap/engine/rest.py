@@ -60,7 +60,10 @@ def rest_status(part, pose_a, x: float, k: int, tilt: float, h: float, L: float,
     flat = abs(tilt) < FLAT_TILT and bool(part.stable[k])
     if over == Status.BEHIND_JOINT or (flat and x + float(part.uL[k]) <= -back - slack):
         return Status.BEHIND_JOINT
-    if over == Status.OFF_END or (flat and x + float(part.uR[k]) > L + slack) or x > L + slack:
+    # with fixtures a part "flat" within FLAT_TILT may be turned about a vertex at the wall's foot (propped on
+    # another part): its reach is read off its vertices, not off the flat side's u_R
+    reach = x + float(part.uR[k]) if plain else float(V[:, 0].max())
+    if over == Status.OFF_END or (flat and reach > L + slack) or x > L + slack:
         return Status.OFF_END
     if plain and not flat:
         return UNCONVERGED

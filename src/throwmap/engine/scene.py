@@ -13,7 +13,27 @@ from ..system.part import Part
 from ..throws.trajectory import pose_at_rest
 from .settings import Friction
 
-__all__ = ["Placement", "Scene"]
+__all__ = ["Placement", "Scene", "OVERLAP_TOL"]
+
+OVERLAP_TOL = 1e-3
+"""m: two placed parts may overlap by at most this much (resting contacts sit a collision slop, ~10 µm,
+inside each other, and a chained run starts where the last one ended); deeper is refused,
+as the engine refuses a run in which a vertex sinks deeper than its default ``penetration_tol`` (1 mm)."""
+
+
+def _check_overlap(placements, h: float) -> None:
+    """Raise :class:`InvalidStateError` ``placements`` naming the first two placements that overlap by more
+    than :data:`OVERLAP_TOL` (separating axes, :func:`throwmap.statics.contacts.overlap_depth`)."""
+    from ..statics.contacts import overlap_depth
+    from ..throws.trajectory import world_vertices
+
+    verts = [world_vertices(p.part, p.arm_pose(h)) for p in placements]
+    for i in range(len(verts)):
+        for j in range(i + 1, len(verts)):
+            depth = overlap_depth(verts[i], verts[j])
+            if depth > OVERLAP_TOL:
+                raise InvalidStateError("placements", f"placements {i} and {j} overlap by {depth * 1e3:.3g} mm "
+                                                      f"(> {OVERLAP_TOL * 1e3:g} mm): parts cannot start inside each other")
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,6 +98,8 @@ class Scene:
         if not pl:
             raise InvalidStateError("placements", "needs at least one part")
         object.__setattr__(self, "placements", pl)
+        if len(pl) > 1:
+            _check_overlap(pl, self.arm.h)
         fx = tuple(self.fixtures)
         for f in fx:
             if not isinstance(f, (Wall, Cavity)):

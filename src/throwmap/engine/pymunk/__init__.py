@@ -25,7 +25,8 @@ Checks (:mod:`.checks`)
   has left the arm, ``behind_joint`` or ``off_end`` at once (also after every
   exact-flight leap).
 * landing ahead: while a vertex not in contact is about to touch, no coarse steps.
-* energy: after the arm stops no part may gain mechanical energy.
+* energy: after the arm stops no part may gain mechanical energy (several parts: their total,
+  since parts pushing each other trade energy).
 * settling: after the arm has stopped, every part slower than ``settle_speed``
   and ``settle_spin`` for ``settle_hold`` → at rest, ``t_max`` → ``timeout``. A
   part at rest is ``ok`` only flat on a stable side with both support vertices

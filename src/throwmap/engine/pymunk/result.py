@@ -34,8 +34,8 @@ class EngineRun:
     periodic checks (penetration, escape, flips, settling) and ``n_clearance``
     clearance evaluations (exact flight); ``n_capped`` contact solves whose
     friction was capped (:mod:`.friction`). ``energy_gain`` (J/kg) is the largest
-    rise of any part's mechanical energy after the arm stopped (a blow-up if
-    large), ``dt`` the step the run used (s) and ``verified`` whether a
+    rise of any part's mechanical energy after the arm stopped (several parts: of
+    their total per unit total mass; a blow-up if large), ``dt`` the step the run used (s) and ``verified`` whether a
     half-step rerun was made and agreed (:func:`~throwmap.engine.simulate`).
     """
 

@@ -148,6 +148,8 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     landing_near = False  # a vertex not in contact may touch before the next check: no coarse steps
     e_low = [math.inf] * n_parts  # lowest energy of each part since the arm stopped, J/kg
     e_gain = 0.0  # largest energy gain over that, J/kg
+    masses = [float(p.mass) for p in w.parts]  # several parts: the gain is of their total energy per unit total mass
+    m_total = sum(masses)
     status = Status.OK
     message = ""
     pen_max = 0.0
@@ -182,6 +184,8 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 if n_parts > 1 else clearance(w, 0, margin) if tracks[0].fell is None else math.inf
             if gap > margin:
                 vmax = vertex_speed_bound(w, tracks)
+                if n_parts > 1:  # two parts in flight close on each other at up to the sum of their speeds
+                    vmax *= 2.0
                 vmax += 2.0 * omega_arm_bound * w.reach if arm_moving else 0.0
                 tau = min(leap_length(w, gap, vmax, margin), 0.05, t_max - t)
                 if record:
@@ -222,6 +226,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             ca, sa = math.cos(aa), math.sin(aa)
             landing_near = False
             states = [None] * n_parts  # each part's state, read once for all the checks of this instant
+            e_sum = 0.0  # Σ m_i e_i of the parts still on the arm (several parts), J
             for i in range(n_parts):
                 tr = tracks[i]
                 if tr.fell is not None:
@@ -241,10 +246,13 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     continue
                 if t >= arm_stop:
                     e = energy(w, i, st)
-                    if e < e_low[i]:  # min and max as ifs
-                        e_low[i] = e
-                    if e - e_low[i] > e_gain:
-                        e_gain = e - e_low[i]
+                    if n_parts > 1:  # parts push each other: only their total energy may not rise
+                        e_sum += masses[i] * e
+                    else:
+                        if e < e_low[i]:  # min and max as ifs
+                            e_low[i] = e
+                        if e - e_low[i] > e_gain:
+                            e_gain = e - e_low[i]
                 if pen > pen_part[i]:
                     pen_part[i] = pen
                 if pen > pen_max:
@@ -266,6 +274,12 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                         tr.last_side = k
             if done:
                 break
+            if n_parts > 1 and t >= arm_stop:  # the parts' total energy per unit total mass, J/kg (a part
+                e = e_sum / m_total  # leaving the arm only lowers it)
+                if e < e_low[0]:
+                    e_low[0] = e
+                if e - e_low[0] > e_gain:
+                    e_gain = e - e_low[0]
             if contacts.n_fell == n_parts:
                 break
             # settling

@@ -1,0 +1,350 @@
+"""Experiment ``assemble``: sensor-switched self-assembly of two triangles at the wall (paper Sec. VI, Fig. 11).
+
+The draft put two same-handed 17 cm 30-60-90 triangles on one arm with a frictionless vertical wall at
+its end, threw them with high throws until a one-bit vision sensor saw part *a* resting on its longer
+leg wholly left of part *b* resting on its hypotenuse, then lowered the arm to α = −10° and threw low
+until *b* jogged to the wall and *a* slid under it: 14/20 = 70 %, failing by a wrong switch and by the
+tilt disturbing the parts. One trial here (pymunk engine, both parts in one scene):
+
+1. **drop** both parts from random non-overlapping poses (φ uniform, CM x uniform over ``x_range``, lowest
+   vertex 2–10 cm up) and let them settle together (:func:`drop_pair`; redrawn, at most 20 times, until
+   both rest on the arm);
+2. **randomise**: look with the pair sensor (:class:`throwmap.control.pair_sensors.PairSensor`; ``confirm``
+   readings in a row must say "ready", a look costs no throw); while it does not, throw at ``omega_high``
+   (a rate drawn uniformly over ``omega_high`` a throw, then 3 % ω jitter, the recoil arm), drawn below
+   ``near_cap`` while a part's CM is within ``near_x`` of the joint (faster throws flip parts there back
+   over the joint), and ``kick`` while a part on its hypotenuse is within ``kick_x`` of it (that side creeps
+   inward there at high rates, as in the ``position`` experiment);
+3. **switch**: tilt the arm to ``alpha`` at ``tilt_rate`` (:class:`throwmap.engine.TiltTo`);
+4. **assemble**: throw at ``omega_low`` until the pair is assembled (:func:`~throwmap.control.pair_sensors.is_assembled`:
+   each CM within ``pos_tol`` and each angle within ``ang_tol`` of :func:`throwmap.statics.assembly.assembled_pair`),
+   at most ``max_low`` throws (at an ``approach`` rung's rate while the leftmost part is short of its x: low
+   jogs vanish near the joint); then ``hold`` more low throws (retention after 1 and after ``hold``).
+
+**Success** = assembled within ``max_high`` + ``max_low`` throws. Failures (first that applies):
+``no_switch`` (the sensor never fired), ``wrong_switch`` (it fired while the pair was not ready),
+``disrupted_by_tilt`` (ready before the tilt, not after), ``ejected`` (a part left the arm: off the end
+over the wall, or behind the joint), ``wrong_orientation`` (low throws ended with a part off its
+assembly side: *a* not on its longer leg or *b* neither flat on its hypotenuse nor assembled),
+``not_assembled`` (right sides, not within tolerance after ``max_low``), ``refused:<status>`` (an engine
+run refused: penetration, unconverged, timeout; ``refused:drop`` when no drop came to rest).
+
+Values: ``throws_high``, ``throws_low``, ``throws``, ``looks``, ``held_1``, ``held_hold`` (1/0, nan when
+not assembled), ``pos_err_m``/``ang_err_rad`` at the end, ``mu``, ``drop_redraws``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from ..errors import InvalidStateError, ThrowmapError
+from .base import Trial, seed_of
+from .drop import DEFAULT_HEIGHT, drop_kind
+from .noise import NoiseConfig
+from .registry import register_experiment
+
+__all__ = ["ASSEMBLE", "Assemble", "AssembleConfig", "PairSensorConfig", "drop_pair", "lean_bound"]
+
+Finite = Annotated[float, Field(allow_inf_nan=False)]
+Rate = Annotated[float, Field(ge=0, lt=1, allow_inf_nan=False)]
+
+
+class PairSensorConfig(BaseModel):
+    """The pair sensor's errors (independent at every read)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    false_positive: Rate = Field(0.0, description="P(reads 'ready' | not ready) per read")
+    false_negative: Rate = Field(0.0, description="P(reads 'not ready' | ready) per read")
+    confirm: int = Field(1, ge=1, le=100, description="readings 'ready' in a row needed to switch (extra looks)")
+
+
+class AssembleConfig(BaseModel):
+    """Config of ``assemble`` (SI units, rad). The defaults are the built-in example, with the values the draft
+    leaves blank chosen as follows:
+
+    * ``length`` 0.5 m, ``h`` −1 cm, μ = 1 ± 10 % (the draft's arm, measured μ > 1 "for our system"): room for
+      both 17 cm triangles (assembled they fill [L − 0.147, L]) and for *a* wholly left of *b*;
+    * ``wall_height`` 0.70 m: above the energy bound of the fastest high throw, ω²L²/2g = 0.52 m at 6.4 rad/s,
+      so no part flies over it; ``wall_mu`` 0 (the draft's frictionless wall, Fig. 13);
+    * ``omega_high`` uniform over 3–6 rad/s per throw: one fixed rate has a limit set that avoids the
+      hypotenuse (measured, 12 drops × 40 throws: at 5 rad/s the pair is "ready" after 1.7 % of throws, at
+      3 rad/s after none), and below 5.5 rad/s both parts standing on their shorter legs at the wall are a
+      fixed point (it holds at 3–5 rad/s; 5.5 and 6.5 rad/s break it); ``near_cap`` 4 rad/s while a part's CM
+      is within ``near_x`` = 22 cm of the joint: side 2 at 14–17 cm thrown at ≥ 5.5 rad/s lands behind the
+      joint (measured; 1 loss in 543 throws with the cap, 6 in 12 drops × 40 without); ``kick`` 6 rad/s for a
+      part on its hypotenuse within ``kick_x`` = 13 cm (at ≤ 4 rad/s it creeps over the joint: 11 of 57 trials
+      of a first run lost a part so);
+    * ``alpha`` −10° (the draft's); ``tilt_rate`` 0.1 rad/s: lowering at rate ṙ drops the arm away from a part
+      at radius r at r·ṙ, which it hits at that speed — 4.5 cm/s at r = 0.45 m, a tenth of a low throw;
+    * ``omega_low`` 1.9 rad/s, between two engine limits: the assembled pair at the wall (α = −10°) holds
+      under 20 throws at 2.0 rad/s (3 % jitter) but tips *b* over after 3–4 throws at 2.2 and 2.4 rad/s; and
+      *a* must still jog in from near the joint (at 2.0 rad/s 1.3 mm from 15 cm, 9 mm from 25 cm: 8/8
+      hand-placed ready pairs assembled in 22–77 throws; at 1.6 rad/s 0.6 / 5 mm). Leaning is no limit here:
+      *b* flat on its hypotenuse at the wall leans at most 0.05 rad in a throw at 2.1 rad/s (engine, μ = 1.1),
+      far below β* = 0.43 rad, the least lean it can hold (Fig. 13, :func:`throwmap.statics.lean_free_beta`
+      at μ = 1.1, α = −10°; the draft's "β < 0.25 rad"); :func:`lean_bound` (all of a throw's kinetic energy
+      at r = L into the lean) allows 1.76 rad/s and is only sufficient; ``max_low`` 150;
+    * ``approach`` rung (25 cm, 2.4 rad/s): *a* left near the joint barely moves at 1.9 rad/s (3 of the first 6
+      trials of a run without it ended with *a* parked 30 cm short); with it 7/8 hand-placed ready pairs with *a*
+      at 10–22 cm assembled in 15–81 throws (a rung (20 cm, 3 rad/s) was refused as unconverged in 4/8);
+    * ``mu_parts`` 0.5 (the engine's default part–part μ); tolerances 5 mm and 0.05 rad;
+    * the drop and the randomising throws run without half-step verification (``verify_high``: two parts
+      colliding are chaotic, the rerun at half the step lands them millimetres apart — a test of determinism,
+      not of validity; their outcome only has to be a plausible random state), without exact-flight leaps
+      (``exact_flight_high``: a leap let the two parts fly into each other, refused for 4–24 mm part–part
+      penetration in 13 of 57 trials of a first run; the same throw stepped sinks 0.33 mm) and with
+      ``penetration_tol_high`` 2 mm; the tilt and the low throws use the engine's defaults (verified).
+    """
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    part: str = Field("triangle", description="a built-in part name or a .toml/.json part file (a right triangle)")
+    h: Finite = Field(-0.01, description="arm surface height, m")
+    length: Finite = Field(0.50, gt=0, description="arm length = wall face, m")
+    mu: Finite = Field(1.0, ge=0, description="nominal arm–part friction")
+    mu_parts: Finite = Field(0.5, ge=0, description="part–part friction")
+    wall_height: Finite = Field(0.70, gt=0, description="wall height above the arm surface, m")
+    wall_mu: Finite = Field(0.0, ge=0, description="wall–part friction")
+    omega_high: tuple[Finite, Finite] = Field((3.0, 6.0), description="randomising release rate, uniform over "
+                                                                       "(low, high) per throw, rad/s")
+    near_x: Finite = Field(0.22, ge=0, description="a part's CM within this of the joint: randomise below near_cap, m")
+    near_cap: Finite = Field(4.0, gt=0, description="highest randomising rate with a part near the joint, rad/s")
+    kick_x: Finite = Field(0.13, ge=0, description="a part on its hypotenuse within this of the joint: kick, m")
+    kick: Finite = Field(6.0, gt=0, description="release rate of a kick, rad/s")
+    penetration_tol_high: Finite = Field(0.002, gt=0, description="engine penetration_tol of the drop and the "
+                                                                 "randomising throws, m")
+    omega_low: Finite = Field(1.9, gt=0, description="assembling release rate, rad/s")
+    approach: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.25, 2.4)],
+                                                  description="rungs (x m, ω rad/s): the leftmost part's CM short "
+                                                              "of x: assembling throws at ω")
+    alpha: Finite = Field(math.radians(-10.0), gt=-math.pi / 4, lt=0, description="assembly rest angle, rad")
+    tilt_rate: Finite = Field(0.1, gt=0, description="rate the arm is lowered at, rad/s")
+    sensor: PairSensorConfig = Field(default_factory=PairSensorConfig)
+    noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil"))
+    height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
+    x_range: tuple[Finite, Finite] = Field((0.12, 0.40), description="CM abscissa range of the drop, m")
+    gap: Finite = Field(0.005, ge=0, description="least clearance between the dropped parts at release, m")
+    max_high: int = Field(150, ge=0, le=100_000, description="randomising throws allowed")
+    max_low: int = Field(150, ge=1, le=100_000, description="assembling throws allowed")
+    hold: int = Field(5, ge=1, le=1000, description="low throws after assembly (retention)")
+    pos_tol: Finite = Field(0.005, gt=0, description="assembled: CM within this of assembled_pair, m")
+    ang_tol: Finite = Field(0.05, gt=0, description="assembled: angle within this of assembled_pair, rad")
+    verify_high: bool = Field(False, description="half-step verification of the drop and the randomising throws")
+    exact_flight_high: bool = Field(False, description="exact-flight leaps in the drop and the randomising throws")
+    settings: dict | None = Field(None, description="EngineSettings fields to override")
+
+
+def lean_bound(part, *, alpha: float, mu: float, length: float, h: float = 0.0) -> dict:
+    """The release rate below which part *b* cannot lean against the wall (Fig. 13): β* =
+    :func:`~throwmap.statics.lean_free_beta` (the least lean it can hold), the CM's rise to lean β* from flat
+    along −g (m), and ω = √(2 g rise) / ``length`` (rad/s; a throw gives a point at r ≤ L at most (ωL)²/2 of
+    kinetic energy per unit mass)."""
+    from ..statics import edge_frame_cm, lean_free_beta, leaning_bodies
+
+    a, b, _ = edge_frame_cm(part)
+    beta = lean_free_beta(a, b, alpha, mu)
+    if beta >= math.pi / 2:
+        return {"beta_star_rad": beta, "rise_m": math.inf, "omega_rad_s": math.inf}
+    (lean,), _ = leaning_bodies(part, beta, length=length, h=h, mu_arm=mu)
+    (flat,), _ = leaning_bodies(part, 1e-9, length=length, h=h, mu_arm=mu)
+    rise = (lean.y - flat.y) * math.cos(alpha) + (lean.x - flat.x) * math.sin(alpha)
+    return {"beta_star_rad": float(beta), "rise_m": float(rise), "omega_rad_s": math.sqrt(2 * 9.81 * rise) / length}
+
+
+def _setup(cfg: AssembleConfig):
+    from ..io.config import resolve_part
+    from ..statics.assembly import legs
+    from ..system.arm import Arm
+    from ..system.fixtures import Wall
+
+    try:
+        part = resolve_part(cfg.part).part
+        legs(part)
+    except ThrowmapError as err:
+        raise InvalidStateError("config.part", err.reason) from None
+    lo, hi = cfg.x_range
+    if not (lo < hi and hi > 0 and lo < cfg.length):
+        raise InvalidStateError("config.x_range", f"must be (low, high), low < high, on the arm [0, {cfg.length:g}] m")
+    arm = Arm(h=cfg.h, length=cfg.length, mu=cfg.mu)
+    return part, arm, Wall(height=cfg.wall_height, mu=cfg.wall_mu)
+
+
+def _settings(cfg: AssembleConfig):
+    """``(high, low)`` EngineSettings: the overrides, the high ones without half-step verification unless asked."""
+    import dataclasses
+
+    from ..engine.settings import EngineSettings
+    from .feed import _settings as feed_settings
+
+    base = feed_settings(cfg) or EngineSettings()
+    high = dataclasses.replace(base, penetration_tol=cfg.penetration_tol_high, exact_flight=cfg.exact_flight_high)
+    return (high if cfg.verify_high else dataclasses.replace(high, verify=False)), base
+
+
+def _kind(status, message: str = "") -> str:
+    return "ejected" if status.label in ("off_end", "behind_joint") else (drop_kind(status, 0.0, message)
+                                                                          or f"refused:{status.label}")
+
+
+def drop_pair(part, arm, wall, rng, *, alpha: float = 0.0, x_range=(0.12, 0.40), height=DEFAULT_HEIGHT, gap=0.005,
+              mu_parts: float = 0.5, settings=None, max_redraws: int = 20):
+    """Drop two copies of ``part`` from random poses at least ``gap`` (m) apart and let them settle together:
+    ``(EngineRun, redraws)`` — the first run with both at rest on the arm, else the last one."""
+    from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
+    from ..statics.contacts import overlap_depth
+    from ..throws.trajectory import world_vertices
+
+    run = None
+    for attempt in range(max_redraws + 1):
+        poses, verts = [], []
+        while len(poses) < 2:
+            phi = float(rng.uniform(0.0, 2.0 * math.pi))
+            x0 = float(rng.uniform(*x_range))
+            V = world_vertices(part, (x0, 0.0, phi))
+            y0 = arm.h - float(V[:, 1].min()) + float(rng.uniform(*height))
+            V = world_vertices(part, (x0, y0, phi))
+            if float(V[:, 0].max()) >= arm.length or (verts and overlap_depth(verts[0], V) > -gap):
+                continue  # inside the wall or the other part: draw this part again
+            poses.append((x0, y0, phi))
+            verts.append(V)
+        scene = Scene(arm, tuple(Placement(part, pose=q) for q in poses), (wall,), alpha,
+                      Friction(part_part=mu_parts))
+        run = simulate(scene, ImpulseThrow(0.0), settings)
+        if int(run.status) == 0:
+            return run, attempt
+    return run, max_redraws
+
+
+class Assemble:
+    """Drop two triangles, randomise until the pair sensor fires, tilt, assemble at the wall with low throws."""
+
+    name = "assemble"
+    summary = ("two same-handed triangles on an arm with a wall at its end: high throws until a one-bit sensor sees "
+               "a on its longer leg left of b on its hypotenuse, tilt to alpha, low throws; success = assembled "
+               "(Sec. VI)")
+    config_type = AssembleConfig
+
+    def trial(self, cfg: AssembleConfig, index: int, rng) -> Trial:
+        from ..control.pair_sensors import LONG_LEG, PairSensor, assembled_error, is_assembled, pair_ready
+        from ..engine import TiltTo, simulate
+        from ..throws.trajectory import state_from_pose
+
+        part, arm, wall = _setup(cfg)
+        noise = cfg.noise.noise()
+        high, low = _settings(cfg)
+        arm = noise.arm(arm, rng)
+        sensor = PairSensor(cfg.sensor.false_positive, cfg.sensor.false_negative)
+        L, h = arm.length, arm.h
+        v = {"mu": arm.mu, "drop_redraws": 0, "throws_high": 0, "throws_low": 0, "throws": 0, "looks": 0,
+             "held_1": math.nan, "held_hold": math.nan, "pos_err_m": math.nan, "ang_err_rad": math.nan}
+
+        def done(success, failure, run=None):
+            if run is not None:
+                v["pos_err_m"], v["ang_err_rad"] = assembled_error(part, run.poses, length=L, h=h)
+            v["throws"] = v["throws_high"] + v["throws_low"]
+            return Trial(index, seed_of(rng), success, failure, dict(v))
+
+        run, v["drop_redraws"] = drop_pair(part, arm, wall, rng, x_range=cfg.x_range, height=cfg.height, gap=cfg.gap,
+                                           mu_parts=cfg.mu_parts, settings=high)
+        if int(run.status) != 0:
+            return done(False, "refused:drop")
+        # -- randomise until the sensor says "ready" confirm times in a row
+        switched = False
+        while True:
+            streak = 0
+            for _ in range(cfg.sensor.confirm):
+                v["looks"] += 1
+                if not sensor.read(part, run.poses, rng):
+                    break
+                streak += 1
+            if streak == cfg.sensor.confirm:
+                switched = True
+                break
+            if v["throws_high"] >= cfg.max_high:
+                break
+            near = min(s[0] for s in run.states) < cfg.near_x
+            top = min(cfg.omega_high[1], cfg.near_cap) if near else cfg.omega_high[1]
+            nominal = float(rng.uniform(cfg.omega_high[0], max(top, cfg.omega_high[0])))
+            if any(k == 0 and x < cfg.kick_x for x, k, _ in run.states):
+                nominal = cfg.kick  # the hypotenuse creeps inward near the joint at high rates: kick it out
+            _, real = noise.throw(nominal, rng)
+            run = simulate(run.next_scene(), real, high)
+            v["throws_high"] += 1
+            if int(run.status) != 0:
+                return done(False, _kind(run.status, run.message))
+        if not switched:
+            return done(False, "no_switch", run)
+        if pair_ready(part, run.poses) is None:
+            return done(False, "wrong_switch", run)
+        # -- tilt to alpha
+        run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), low)
+        if int(run.status) != 0:
+            return done(False, _kind(run.status, run.message), run)
+        if pair_ready(part, run.poses) is None:
+            return done(False, "disrupted_by_tilt", run)
+
+        def ok(r):
+            return is_assembled(part, r.poses, length=L, h=h, pos_tol=cfg.pos_tol, ang_tol=cfg.ang_tol)
+
+        def throw_low(r):
+            x_left, nominal = min(s[0] for s in r.states), cfg.omega_low
+            for x, w in cfg.approach:
+                if x_left < x:
+                    nominal = w
+                    break
+            _, real = noise.throw(nominal, rng)
+            return simulate(r.next_scene(), real, low)
+
+        # -- low throws until assembled
+        assembled = False
+        while v["throws_low"] < cfg.max_low:
+            run = throw_low(run)
+            v["throws_low"] += 1
+            if int(run.status) != 0:
+                return done(False, _kind(run.status, run.message), run)
+            if ok(run):
+                assembled = True
+                break
+        if not assembled:
+            st = [state_from_pose(part, q) for q in run.poses]
+            on_sides = sorted(k for _, k, _ in st) == [0, LONG_LEG] and any(
+                k == LONG_LEG and abs(t) < 0.05 for _, k, t in st)
+            return done(False, "not_assembled" if on_sides else "wrong_orientation", run)
+        # -- retention (not part of success; a refused hold throw counts as not held)
+        end = run
+        held = []
+        for _ in range(cfg.hold):
+            r = throw_low(end)
+            good = int(r.status) == 0 and ok(r)
+            held.append(good)
+            if int(r.status) != 0:
+                break
+            end = r
+        held += [False] * (cfg.hold - len(held))
+        v["held_1"], v["held_hold"] = float(held[0]), float(all(held))
+        return done(True, None, run)
+
+    def parameters(self, cfg: AssembleConfig) -> dict:
+        part, arm, wall = _setup(cfg)
+        hi_mu = arm.mu * (1 + 2 * cfg.noise.mu_rel) if cfg.noise.mu_range is None else cfg.noise.mu_range[1]
+        return {"part": part.name, "part_mass_kg": part.mass, "h_m": arm.h, "length_m": arm.length, "mu": arm.mu,
+                "mu_parts": cfg.mu_parts, "wall": {"height_m": wall.height, "mu": wall.mu},
+                "omega_high_rad_s": list(cfg.omega_high), "near": {"x_m": cfg.near_x, "cap_rad_s": cfg.near_cap},
+                "kick": {"x_m": cfg.kick_x, "omega_rad_s": cfg.kick},
+                "omega_low_rad_s": cfg.omega_low, "approach": [list(r) for r in cfg.approach], "alpha_rad": cfg.alpha, "tilt_rate_rad_s": cfg.tilt_rate,
+                "lean_bound": lean_bound(part, alpha=cfg.alpha, mu=min(hi_mu, arm.mu * 1.1), length=arm.length,
+                                         h=arm.h),
+                "sensor": dict(cfg.sensor.model_dump()), "noise": cfg.noise.noise().to_dict(),
+                "drop": {"height_m": list(cfg.height), "x_range_m": list(cfg.x_range), "gap_m": cfg.gap},
+                "max_high": cfg.max_high, "max_low": cfg.max_low, "hold": cfg.hold,
+                "tolerance": {"pos_m": cfg.pos_tol, "ang_rad": cfg.ang_tol},
+                "engine": {"verify_high": cfg.verify_high, "exact_flight_high": cfg.exact_flight_high, "penetration_tol_high_m": cfg.penetration_tol_high,
+                           "overrides": cfg.settings or {}},
+                "success": "assembled (both parts within tolerance of assembled_pair) within max_high + max_low throws"}
+
+
+ASSEMBLE = register_experiment(Assemble())
