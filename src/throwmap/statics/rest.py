@@ -196,7 +196,8 @@ def analyse_rest(bodies, contacts, *, alpha: float = 0.0, g: float = G, tol_uniq
     need = _mu_needed(A, b, contacts)
     if not can:
         why = (f"no admissible contact forces: it needs μ ≥ {need:.4g} at every contact with friction"
-               if math.isfinite(need) else "no contact forces hold it, whatever the friction")
+               if math.isfinite(need) else "no contact forces hold it, whatever the friction of the contacts that have "
+                                            "friction (frictionless ones stay frictionless)")
         return RestAnalysis(False, need, contacts, (), (), (), weight, why)
     G_, bounds = _cones(contacts, None)
     sol = _lp(np.zeros(A.shape[1]), A, b, G_, bounds).x
