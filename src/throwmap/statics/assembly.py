@@ -20,7 +20,7 @@ import numpy as np
 
 from ..errors import InvalidStateError
 from .contacts import find_contacts
-from .rest import Body, analyse_rest
+from .rest import Body, analyse_rest, least_mu
 
 __all__ = ["legs", "assembled_pair", "partial_assembly", "partial_region"]
 
@@ -91,22 +91,10 @@ def partial_region(part, gammas, mus, *, alpha: float, mu_wall: float = 0.0, mu_
 
 
 def _arm_mu_needed(part, gamma, alpha, mu_wall, mu_parts, length) -> float:
-    """The least arm μ (others fixed) that holds the partial assembly at ``gamma`` (bisection; inf if none)."""
+    """The least arm μ (others fixed) that holds the partial assembly at ``gamma`` (:func:`least_mu`; inf if none)."""
 
     def ok(mu):
         bodies, cs = partial_assembly(part, gamma, length=length, mu_arm=mu, mu_wall=mu_wall, mu_parts=mu_parts)
         return analyse_rest(bodies, cs, alpha=alpha, detail=False).can_rest
 
-    if ok(0.0):
-        return 0.0
-    if not ok(math.inf):
-        return math.inf
-    lo, hi = 0.0, 1.0
-    while not ok(hi):
-        lo, hi = hi, 2 * hi
-        if hi > 1e6:
-            return math.inf
-    while hi - lo > 1e-6 * hi:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if ok(mid) else (mid, hi)
-    return hi
+    return least_mu(ok, rel=1e-6, cap=1e6)

@@ -32,7 +32,7 @@ import numpy as np
 from ..conventions import G
 from ..errors import InvalidStateError, shown
 
-__all__ = ["Body", "Contact", "RestAnalysis", "analyse_rest", "gravity_arm_frame"]
+__all__ = ["Body", "Contact", "RestAnalysis", "analyse_rest", "gravity_arm_frame", "least_mu"]
 
 
 def gravity_arm_frame(alpha: float, g: float = G) -> np.ndarray:
@@ -220,25 +220,26 @@ def _unit(n: int, i: int) -> np.ndarray:
     return e
 
 
-def _mu_needed(A, b, contacts) -> float:
-    """The least μ that, given to every contact with friction, admits rest (bisection; inf if none does)."""
-    if not any(c.mu > 0 for c in contacts):
-        return 0.0 if _feasible(A, b, contacts, 0.0) else math.inf
-    if _feasible(A, b, contacts, 0.0):
+def least_mu(ok, *, rel: float = 1e-10, cap: float = 1e9) -> float:
+    """The least μ ≥ 0 with ``ok(μ)`` for a predicate that holds above some μ* (0 if ``ok(0)``, inf if not even
+    ``ok(inf)``): doubling from 1, then bisection to ``rel`` (relative)."""
+    if ok(0.0):
         return 0.0
-    if not _feasible(A, b, contacts, math.inf):
+    if not ok(math.inf):
         return math.inf
     lo, hi = 0.0, 1.0
-    while not _feasible(A, b, contacts, hi):
+    while not ok(hi):
         lo, hi = hi, 2 * hi
-        if hi > 1e9:
+        if hi > cap:
             return math.inf
-    for _ in range(60):
+    while hi - lo > rel * hi:
         mid = 0.5 * (lo + hi)
-        if _feasible(A, b, contacts, mid):
-            hi = mid
-        else:
-            lo = mid
-        if hi - lo <= 1e-10 * hi:
-            break
+        lo, hi = (lo, mid) if ok(mid) else (mid, hi)
     return hi
+
+
+def _mu_needed(A, b, contacts) -> float:
+    """The least μ that, given to every contact with friction, admits rest (:func:`least_mu`; inf if none does)."""
+    if not any(c.mu > 0 for c in contacts):
+        return 0.0 if _feasible(A, b, contacts, 0.0) else math.inf
+    return least_mu(lambda mu: _feasible(A, b, contacts, mu))
