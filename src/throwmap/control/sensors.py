@@ -59,6 +59,14 @@ def _side(value, field: str) -> int:
     return int(value)
 
 
+def _check_bits(sensor, rates: tuple, lengths: tuple) -> None:
+    """Validate (and store as floats) a sensor's error rates and its lengths ≥ 0 (m), naming ``sensor.<field>``."""
+    for name in rates:
+        object.__setattr__(sensor, name, _rate(getattr(sensor, name), f"sensor.{name}"))
+    for name in lengths:
+        object.__setattr__(sensor, name, _length(getattr(sensor, name), f"sensor.{name}"))
+
+
 def _flip(truth: bool, u: float, fp: float, fn: float) -> bool:
     """The bit a sensor reports for ``truth`` given the uniform draw ``u``."""
     return (u >= fn) if truth else (u < fp)
@@ -74,8 +82,7 @@ class SideSensor:
 
     def __post_init__(self):
         object.__setattr__(self, "side", _side(self.side, "sensor.side"))
-        object.__setattr__(self, "false_positive", _rate(self.false_positive, "sensor.false_positive"))
-        object.__setattr__(self, "false_negative", _rate(self.false_negative, "sensor.false_negative"))
+        _check_bits(self, ("false_positive", "false_negative"), ())
 
     @property
     def label(self) -> str:
@@ -104,10 +111,7 @@ class BeyondSensor:
 
     def __post_init__(self):
         object.__setattr__(self, "x", _length(self.x, "sensor.x", signed=True))
-        object.__setattr__(self, "false_positive", _rate(self.false_positive, "sensor.false_positive"))
-        object.__setattr__(self, "false_negative", _rate(self.false_negative, "sensor.false_negative"))
-        object.__setattr__(self, "hysteresis", _length(self.hysteresis, "sensor.hysteresis"))
-        object.__setattr__(self, "sigma", _length(self.sigma, "sensor.sigma"))
+        _check_bits(self, ("false_positive", "false_negative"), ("hysteresis", "sigma"))
 
     @property
     def label(self) -> str:
@@ -137,10 +141,7 @@ class WithinSensor:
     def __post_init__(self):
         object.__setattr__(self, "x_f", _length(self.x_f, "sensor.x_f", signed=True))
         object.__setattr__(self, "eps", _length(self.eps, "sensor.eps", positive=True))
-        object.__setattr__(self, "false_positive", _rate(self.false_positive, "sensor.false_positive"))
-        object.__setattr__(self, "false_negative", _rate(self.false_negative, "sensor.false_negative"))
-        object.__setattr__(self, "hysteresis", _length(self.hysteresis, "sensor.hysteresis"))
-        object.__setattr__(self, "sigma", _length(self.sigma, "sensor.sigma"))
+        _check_bits(self, ("false_positive", "false_negative"), ("hysteresis", "sigma"))
 
     @property
     def label(self) -> str:
