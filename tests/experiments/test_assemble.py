@@ -65,6 +65,24 @@ def test_a_refused_run_is_counted_never_dropped(monkeypatch):
     assert not tr.success and tr.failure == "refused:penetration" and tr.values["throws_high"] == 1
 
 
+def test_parts_at_the_wall_are_not_read_off_the_end():
+    """Two rests the first engine runs read as off_end: b propped on a's tip at the wall's foot (flat within
+    FLAT_TILT, x + u_R past L but no vertex past it), and a part pressed 0.3 mm into the wall by the other."""
+    from throwmap.engine.rest import rest_status
+    from throwmap.throws.outcome import Status
+    from throwmap.throws.trajectory import state_from_pose
+
+    propped = (0.4296, 0.0158, 3.6473)  # read off an engine run (the wall's foot vertex at x = 0.5000 m)
+    x, k, tilt = state_from_pose(PART, propped)
+    assert k == 0 and abs(tilt) < 0.02 and x + PART.uR[0] > L + 1e-4
+    assert rest_status(PART, propped, x, k, tilt, H, L, 0.0, False) == Status.OK
+    pressed = Placement(PART, x=L - float(PART.uR[2]) + 3e-4, side=2).arm_pose(H)
+    assert rest_status(PART, pressed, pressed[0], 2, 0.0, H, L, 0.0, False) == Status.OK
+    deep = Placement(PART, x=L - float(PART.uR[2]) + 3e-3, side=2).arm_pose(H)
+    assert rest_status(PART, deep, deep[0], 2, 0.0, H, L, 0.0, False) == Status.OFF_END
+    assert rest_status(PART, pressed, pressed[0], 2, 0.0, H, L, 0.0, True) == Status.OFF_END  # bare arm: off
+
+
 # -------------------------------------------------------------------------------- the pair sensor
 
 def test_pair_ready_on_hand_placed_pairs():

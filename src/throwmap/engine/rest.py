@@ -17,7 +17,7 @@ import numpy as np
 from ..throws.outcome import Status
 from ..throws.trajectory import world_vertices
 
-__all__ = ["EDGE_EPS", "FLAT_TILT", "UNCONVERGED", "clamp_to_arm", "edge_status", "rest_status", "tilted_message"]
+__all__ = ["EDGE_EPS", "FLAT_TILT", "WALL_SLACK", "UNCONVERGED", "clamp_to_arm", "edge_status", "rest_status", "tilted_message"]
 
 UNCONVERGED = Status.UNCONVERGED
 """Status of a run refused as not converged (code 10 of :mod:`throwmap.kernels.codes`)."""
@@ -27,6 +27,10 @@ EDGE_EPS = 1e-4
 
 FLAT_TILT = 0.02
 """rad: a settled part within this angle of a side lies flat on it."""
+
+WALL_SLACK = 1e-3
+"""m a part at rest may reach past x = L into an end wall (pressed in by another part) and still be on the arm:
+the engine's default ``penetration_tol``, deeper than which a run is refused."""
 
 
 def edge_status(vx, vy, h: float, L: float, back: float, slack: float = 0.0):
@@ -61,9 +65,10 @@ def rest_status(part, pose_a, x: float, k: int, tilt: float, h: float, L: float,
     if over == Status.BEHIND_JOINT or (flat and x + float(part.uL[k]) <= -back - slack):
         return Status.BEHIND_JOINT
     # with fixtures a part "flat" within FLAT_TILT may be turned about a vertex at the wall's foot (propped on
-    # another part): its reach is read off its vertices, not off the flat side's u_R
+    # another part): its reach is read off its vertices, not off the flat side's u_R; and a part pressed into
+    # the end wall (by another part) sits up to WALL_SLACK inside it without having left the arm
     reach = x + float(part.uR[k]) if plain else float(V[:, 0].max())
-    if over == Status.OFF_END or (flat and reach > L + slack) or x > L + slack:
+    if over == Status.OFF_END or (flat and reach > L + (slack if plain else WALL_SLACK)) or x > L + slack:
         return Status.OFF_END
     if plain and not flat:
         return UNCONVERGED

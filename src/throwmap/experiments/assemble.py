@@ -30,7 +30,7 @@ assembly side: *a* not on its longer leg or *b* neither flat on its hypotenuse n
 run refused: penetration, unconverged, timeout; ``refused:drop`` when no drop came to rest).
 
 Values: ``throws_high``, ``throws_low``, ``throws``, ``looks``, ``held_1``, ``held_hold`` (1/0, nan when
-not assembled), ``pos_err_m``/``ang_err_rad`` at the end, ``mu``, ``drop_redraws``.
+not assembled), ``pos_err_m``/``ang_err_rad`` at the end, ``mu``, ``drop_redraws``, ``lost`` (``off_end``/``behind_joint`` for an ejection, else "").
 """
 
 from __future__ import annotations
@@ -68,16 +68,16 @@ class AssembleConfig(BaseModel):
 
     * ``length`` 0.5 m, ``h`` −1 cm, μ = 1 ± 10 % (the draft's arm, measured μ > 1 "for our system"): room for
       both 17 cm triangles (assembled they fill [L − 0.147, L]) and for *a* wholly left of *b*;
-    * ``wall_height`` 0.70 m: above the energy bound of the fastest high throw, ω²L²/2g = 0.52 m at 6.4 rad/s,
+    * ``wall_height`` 0.80 m: above the energy bound of the fastest throw, a kick, ω²L²/2g = 0.70 m at 7.4 rad/s,
       so no part flies over it; ``wall_mu`` 0 (the draft's frictionless wall, Fig. 13);
     * ``omega_high`` uniform over 3–6 rad/s per throw: one fixed rate has a limit set that avoids the
       hypotenuse (measured, 12 drops × 40 throws: at 5 rad/s the pair is "ready" after 1.7 % of throws, at
       3 rad/s after none), and below 5.5 rad/s both parts standing on their shorter legs at the wall are a
       fixed point (it holds at 3–5 rad/s; 5.5 and 6.5 rad/s break it); ``near_cap`` 4 rad/s while a part's CM
       is within ``near_x`` = 22 cm of the joint: side 2 at 14–17 cm thrown at ≥ 5.5 rad/s lands behind the
-      joint (measured; 1 loss in 543 throws with the cap, 6 in 12 drops × 40 without); ``kick`` 6 rad/s for a
-      part on its hypotenuse within ``kick_x`` = 13 cm (at ≤ 4 rad/s it creeps over the joint: 11 of 57 trials
-      of a first run lost a part so);
+      joint (measured; 1 loss in 543 throws with the cap, 6 in 12 drops × 40 without); ``kick`` 7 rad/s for a
+      part on its hypotenuse within ``kick_x`` = 13 cm: it creeps over the joint at 3–6 rad/s (single part at
+      x = 10 cm: −0.3 to −1 mm a throw at 3–6 rad/s, +1 mm at 7, +5.7 mm at 8; at 12 cm: +8.5 mm at 7);
     * ``alpha`` −10° (the draft's); ``tilt_rate`` 0.1 rad/s: lowering at rate ṙ drops the arm away from a part
       at radius r at r·ṙ, which it hits at that speed — 4.5 cm/s at r = 0.45 m, a tenth of a low throw;
     * ``omega_low`` 1.9 rad/s, between two engine limits: the assembled pair at the wall (α = −10°) holds
@@ -90,7 +90,10 @@ class AssembleConfig(BaseModel):
       at r = L into the lean) allows 1.76 rad/s and is only sufficient; ``max_low`` 150;
     * ``approach`` rung (25 cm, 2.4 rad/s): *a* left near the joint barely moves at 1.9 rad/s (3 of the first 6
       trials of a run without it ended with *a* parked 30 cm short); with it 7/8 hand-placed ready pairs with *a*
-      at 10–22 cm assembled in 15–81 throws (a rung (20 cm, 3 rad/s) was refused as unconverged in 4/8);
+      at 10–22 cm assembled in 15–81 throws (a rung (20 cm, 3 rad/s) was refused as unconverged in 4/8); and
+      (12 cm, 3.2 rad/s): at α = −10° a part on its longer leg does not move at 2.4 rad/s from ≤ 9 cm (8 of 100
+      trials of a run without this rung ended with *a* parked there), +0.6 / +1.3 mm from 9 cm at 3 / 3.5 rad/s;
+      *b* alone at the wall leans 0.37 rad at 3.7 rad/s and sticks leaning at 4.2 (0.79 rad), so no faster;
     * ``mu_parts`` 0.5 (the engine's default part–part μ); tolerances 5 mm and 0.05 rad;
     * the drop and the randomising throws run without half-step verification (``verify_high``: two parts
       colliding are chaotic, the rerun at half the step lands them millimetres apart — a test of determinism,
@@ -107,18 +110,18 @@ class AssembleConfig(BaseModel):
     length: Finite = Field(0.50, gt=0, description="arm length = wall face, m")
     mu: Finite = Field(1.0, ge=0, description="nominal arm–part friction")
     mu_parts: Finite = Field(0.5, ge=0, description="part–part friction")
-    wall_height: Finite = Field(0.70, gt=0, description="wall height above the arm surface, m")
+    wall_height: Finite = Field(0.80, gt=0, description="wall height above the arm surface, m")
     wall_mu: Finite = Field(0.0, ge=0, description="wall–part friction")
     omega_high: tuple[Finite, Finite] = Field((3.0, 6.0), description="randomising release rate, uniform over "
                                                                        "(low, high) per throw, rad/s")
     near_x: Finite = Field(0.22, ge=0, description="a part's CM within this of the joint: randomise below near_cap, m")
     near_cap: Finite = Field(4.0, gt=0, description="highest randomising rate with a part near the joint, rad/s")
     kick_x: Finite = Field(0.13, ge=0, description="a part on its hypotenuse within this of the joint: kick, m")
-    kick: Finite = Field(6.0, gt=0, description="release rate of a kick, rad/s")
+    kick: Finite = Field(7.0, gt=0, description="release rate of a kick, rad/s")
     penetration_tol_high: Finite = Field(0.002, gt=0, description="engine penetration_tol of the drop and the "
                                                                  "randomising throws, m")
     omega_low: Finite = Field(1.9, gt=0, description="assembling release rate, rad/s")
-    approach: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.25, 2.4)],
+    approach: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.12, 3.2), (0.25, 2.4)],
                                                   description="rungs (x m, ω rad/s): the leftmost part's CM short "
                                                               "of x: assembling throws at ω")
     alpha: Finite = Field(math.radians(-10.0), gt=-math.pi / 4, lt=0, description="assembly rest angle, rad")
@@ -185,7 +188,9 @@ def _settings(cfg: AssembleConfig):
     return (high if cfg.verify_high else dataclasses.replace(high, verify=False)), base
 
 
-def _kind(status, message: str = "") -> str:
+def _kind(status, message: str = "", values=None) -> str:
+    if values is not None and status.label in ("off_end", "behind_joint"):
+        values["lost"] = status.label
     return "ejected" if status.label in ("off_end", "behind_joint") else (drop_kind(status, 0.0, message)
                                                                           or f"refused:{status.label}")
 
@@ -240,7 +245,8 @@ class Assemble:
         sensor = PairSensor(cfg.sensor.false_positive, cfg.sensor.false_negative)
         L, h = arm.length, arm.h
         v = {"mu": arm.mu, "drop_redraws": 0, "throws_high": 0, "throws_low": 0, "throws": 0, "looks": 0,
-             "held_1": math.nan, "held_hold": math.nan, "pos_err_m": math.nan, "ang_err_rad": math.nan}
+             "held_1": math.nan, "held_hold": math.nan, "pos_err_m": math.nan, "ang_err_rad": math.nan,
+             "lost": ""}
 
         def done(success, failure, run=None):
             if run is not None:
@@ -275,7 +281,7 @@ class Assemble:
             run = simulate(run.next_scene(), real, high)
             v["throws_high"] += 1
             if int(run.status) != 0:
-                return done(False, _kind(run.status, run.message))
+                return done(False, _kind(run.status, run.message, v))
         if not switched:
             return done(False, "no_switch", run)
         if pair_ready(part, run.poses) is None:
@@ -283,7 +289,7 @@ class Assemble:
         # -- tilt to alpha
         run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), low)
         if int(run.status) != 0:
-            return done(False, _kind(run.status, run.message), run)
+            return done(False, _kind(run.status, run.message, v), run)
         if pair_ready(part, run.poses) is None:
             return done(False, "disrupted_by_tilt", run)
 
@@ -305,7 +311,7 @@ class Assemble:
             run = throw_low(run)
             v["throws_low"] += 1
             if int(run.status) != 0:
-                return done(False, _kind(run.status, run.message), run)
+                return done(False, _kind(run.status, run.message, v), run)
             if ok(run):
                 assembled = True
                 break
