@@ -61,7 +61,7 @@ def episode_cmd(config: ConfigArg = None,
             raise InvalidStateError("index", f"trial {index} of seed {seed}: no drop came to rest (refused:drop)")
         if plot is not None:
             save_figure(ep.plot(), plot, fmt, "plot")
-        rows = [{"throw": s.throw, "x_m": s.x, "side": s.side, "action": s.action, "omega_rad_s": s.omega,
+        rows = [{"throw": s.n_thrown, "x_m": s.x, "side": s.side, "action": s.action, "omega_rad_s": s.omega,
                  "mode": s.mode, "switched": s.switched, "reason": s.reason,
                  "readings": {k: (list(v) if isinstance(v, tuple) else v) for k, v in s.readings}} for s in ep.steps]
         if as_json:

@@ -63,9 +63,10 @@ def lean_cmd(
         for line in t.lines():
             typer.echo(line)
         if plot is not None:
+            from ..statics.figures import lean_data
             from ..viz.statics import lean_figure
 
-            save_figure(lean_figure(part, alpha=alpha, beta_show=0.5, mu_show=mu), plot, fmt, "plot")
+            save_figure(lean_figure(lean_data(part, alpha=alpha, beta_show=0.5, mu_show=mu)), plot, fmt, "plot")
             typer.echo(f"wrote {plot}")
 
 
@@ -94,10 +95,11 @@ def partial_cmd(
             st = "—" if stayed is None else ("yes" if stayed else f"no ({status})")
             typer.echo(f"| {g} | {need:.4f} | {'yes' if lp else 'no'} | {st} | {moved * 1e3:.3g} |")
         if plot is not None:
+            from ..statics.figures import partial_data
             from ..viz.statics import partial_figure
 
-            save_figure(partial_figure(part, alpha=math.radians(alpha_deg), gamma_show=math.radians(-15), mu_show=mu),
-                        plot, fmt, "plot")
+            data = partial_data(part, alpha=math.radians(alpha_deg), gamma_show=math.radians(-15), mu_show=mu)
+            save_figure(partial_figure(data), plot, fmt, "plot")
             typer.echo(f"wrote {plot}")
 
 

@@ -36,12 +36,12 @@ MAX_LOOKS_PER_THROW = 10
 
 @dataclass(frozen=True, slots=True)
 class Step:
-    """One decision: the rest it was made at (``x`` m, ``side``, ``tilt`` rad) after ``throw`` throws,
+    """One decision: the rest it was made at (``x`` m, ``side``, ``tilt`` rad) after ``n_thrown`` throws,
     the ``readings`` ((name, value) pairs: a bool, or ``(x̂, side)`` of a position sensor), the
     ``action`` with its nominal and actual ω (rad/s; nan unless a throw), the controller's ``mode``
     after it, whether it ``switched`` and why (``reason``)."""
 
-    throw: int
+    n_thrown: int
     x: float
     side: int
     tilt: float

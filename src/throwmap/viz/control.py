@@ -43,8 +43,8 @@ def plot_episode(ep, ax=None, *, title: str | None = None, unit: str = "cm"):
         ax.scatter(k[m], xs[m] * s, s=14, color=colors[int(side)], label=f"side {int(side)}", zorder=2)
     for st in ep.steps:
         if st.switched and st.action in ("throw", "stop"):
-            ax.axvline(st.throw, color="k", ls=":", lw=0.8, zorder=1)
-            ax.annotate(st.mode, (st.throw, ax.get_ylim()[1]), fontsize=7, rotation=90, va="top", ha="right")
+            ax.axvline(st.n_thrown, color="k", ls=":", lw=0.8, zorder=1)
+            ax.annotate(st.mode, (st.n_thrown, ax.get_ylim()[1]), fontsize=7, rotation=90, va="top", ha="right")
     end = "success" if ep.success else ep.failure
     ax.set_ylabel(f"x of CM ({unit})")
     ax.legend(loc="lower right", fontsize=7)
@@ -52,7 +52,7 @@ def plot_episode(ep, ax=None, *, title: str | None = None, unit: str = "cm"):
                            f"({ep.switches} switches, {ep.looks} looks)"), fontsize=9)
     if ax2 is not None:
         th = ep.throw_steps()
-        ax2.step([t.throw + 0.5 for t in th], [t.omega for t in th], where="mid", color="C0", lw=1)
+        ax2.step([t.n_thrown + 0.5 for t in th], [t.omega for t in th], where="mid", color="C0", lw=1)
         ax2.set_ylabel("ω (rad/s)")
         ax2.set_xlabel("throw number")
     else:

@@ -1,6 +1,6 @@
 """The Fig. 13 and Fig. 14 analogues: placements drawn with contact forces and friction cones, and the
-regions where they can rest (paper Sec. VI). Draws results of :mod:`throwmap.statics`; computes no physics
-beyond asking it. Lengths shown in cm, forces scaled to the parts' weight.
+regions where they can rest (paper Sec. VI). Draws the data of :mod:`throwmap.statics.figures`; computes
+nothing. Lengths shown in cm, forces scaled to the parts' weight.
 """
 
 from __future__ import annotations
@@ -51,62 +51,49 @@ def draw_placement(ax, bodies, analysis, *, length: float, h: float, wall_height
     ax.set_ylabel("y (cm)")
 
 
-def lean_figure(part, *, alpha: float, beta_show: float, mu_show: float, length: float = 0.3, h: float = -0.01,
-                mus=(0.3, 0.5, 1.0, 2.0, 4.0), n_beta: int = 300, n_mu: int = 200):
-    """Fig. 13 analogue: left, ``part`` leaning at ``beta_show`` on an arm at ``alpha`` (rad) with arm μ
-    ``mu_show`` and its forces; right, where a lean can rest over (β, μ) at that α (complete closed
-    form, checked by the LP in the tests) with the draft's printed boundary and the lean-free β*."""
-    from ..statics import analyse_rest, drafts_no_lean, edge_frame_cm, lean_possible, leaning_bodies
-
+def lean_figure(data: dict):
+    """Fig. 13 analogue from :func:`throwmap.statics.figures.lean_data`: left, the part leaning with its
+    forces; right, where a lean can rest over (β, μ) at that α (complete condition) with the draft's printed
+    boundary."""
     plt = _plt()
     fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 4.4))
-    bodies, cs = leaning_bodies(part, beta_show, length=length, h=h, mu_arm=mu_show)
-    an = analyse_rest(bodies, cs, alpha=alpha)
-    draw_placement(ax0, bodies, an, length=length, h=h, wall_height=0.12, alpha=alpha)
+    an, alpha = data["analysis"], data["alpha"]
+    draw_placement(ax0, data["bodies"], an, length=data["length"], h=data["h"], wall_height=0.12, alpha=alpha)
     state = "can rest" if an.can_rest else f"cannot rest ({an.message})"
-    ax0.set_title(f"leaning at β = {beta_show:.2f} rad, α = {math.degrees(alpha):.0f}°, μ = {mu_show:g}: {state}",
-                  fontsize=9)
-    a, b, c = edge_frame_cm(part)
-    betas = np.linspace(0.005, 1.5, n_beta)
-    mu_axis = np.linspace(0.0, max(mus), n_mu)
-    B, M = np.meshgrid(betas, mu_axis)
-    ok = lean_possible(a, b, B, alpha, M)
-    ax1.contourf(B, M, ok.astype(float), levels=[-0.5, 0.5, 1.5], colors=["white", "tab:orange"], alpha=0.6)
-    ax1.contour(B, M, drafts_no_lean(a, b, B, alpha, M).astype(float), levels=[0.5], colors="k", linestyles="--")
+    ax0.set_title(f"leaning at β = {data['beta_show']:.2f} rad, α = {math.degrees(alpha):.0f}°, μ = {data['mu_show']:g}: "
+                  f"{state}", fontsize=9)
+    B, M = np.meshgrid(data["betas"], data["mus"])
+    ax1.contourf(B, M, data["possible"].astype(float), levels=[-0.5, 0.5, 1.5], colors=["white", "tab:orange"],
+                 alpha=0.6)
+    ax1.contour(B, M, data["drafts_no_lean"].astype(float), levels=[0.5], colors="k", linestyles="--")
     ax1.plot([], [], color="tab:orange", lw=6, alpha=0.6, label="can lean (complete condition)")
     ax1.plot([], [], "k--", label="draft's printed boundary")
     ax1.set_xlabel("lean angle β (rad)")
     ax1.set_ylabel("arm μ")
-    ax1.set_title(f"{part.name}: where a lean rests, α = {math.degrees(alpha):.0f}°, frictionless wall", fontsize=9)
+    ax1.set_title(f"{data['part_name']}: where a lean rests, α = {math.degrees(alpha):.0f}°, frictionless wall",
+                  fontsize=9)
     ax1.legend(fontsize=8, loc="upper right")
     layout(fig)
     return fig
 
 
-def partial_figure(part, *, alpha: float, gamma_show: float, mu_show: float = 1.0, length: float = 0.5,
-                   h: float = -0.01, gammas_deg=None, mus=None):
-    """Fig. 14 analogue: left, the partial assembly at ``gamma_show`` (rad) with its forces; right, where it
-    rests over (γ, μ) at ``alpha`` (LP) and the arm friction it needs against γ."""
-    from ..statics import analyse_rest
-    from ..statics.assembly import partial_assembly, partial_region
-
+def partial_figure(data: dict):
+    """Fig. 14 analogue from :func:`throwmap.statics.figures.partial_data`: left, the partial assembly with its
+    forces; right, where it rests over (γ, μ) (LP) and the arm friction it needs against γ."""
     plt = _plt()
     fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11, 4.4))
-    bodies, cs = partial_assembly(part, gamma_show, length=length, h=h, mu_arm=mu_show)
-    an = analyse_rest(bodies, cs, alpha=alpha)
-    draw_placement(ax0, bodies, an, length=length, h=h, wall_height=0.12, alpha=alpha)
-    ax0.set_title(f"partial assembly γ = {math.degrees(gamma_show):.0f}°, α = {math.degrees(alpha):.0f}°, "
-                  f"μ = {mu_show:g}: {'rests' if an.can_rest else 'cannot rest'} (needs μ ≥ {an.mu_needed:.3g})",
+    an, alpha = data["analysis"], data["alpha"]
+    draw_placement(ax0, data["bodies"], an, length=data["length"], h=data["h"], wall_height=0.12, alpha=alpha)
+    ax0.set_title(f"partial assembly γ = {math.degrees(data['gamma_show']):.0f}°, α = {math.degrees(alpha):.0f}°, "
+                  f"μ = {data['mu_show']:g}: {'rests' if an.can_rest else 'cannot rest'} (needs μ ≥ {an.mu_needed:.3g})",
                   fontsize=9)
-    g = np.linspace(-29.5, -0.5, 30) if gammas_deg is None else np.asarray(gammas_deg, float)
-    m = np.linspace(0.0, 0.6, 25) if mus is None else np.asarray(mus, float)
-    reg = partial_region(part, np.radians(g), m, alpha=alpha, length=length)
+    g, m = data["gammas_deg"], data["mus"]
     G, M = np.meshgrid(g, m, indexing="ij")
-    ax1.contourf(G, M, reg["rests"].astype(float), levels=[-0.5, 0.5, 1.5], colors=["white", "tab:green"], alpha=0.5)
-    ax1.plot(g, reg["mu_needed"], "k-", label="arm μ needed (LP)")
+    ax1.contourf(G, M, data["rests"].astype(float), levels=[-0.5, 0.5, 1.5], colors=["white", "tab:green"], alpha=0.5)
+    ax1.plot(g, data["mu_needed"], "k-", label="arm μ needed (LP)")
     ax1.set_xlabel("γ (deg; −30 assembled, 0 flat)")
     ax1.set_ylabel("arm μ")
-    ax1.set_ylim(0, m.max())
+    ax1.set_ylim(0, float(np.max(m)))
     ax1.set_title(f"where the partial assembly rests, α = {math.degrees(alpha):.0f}° (frictionless wall and parts)",
                   fontsize=9)
     ax1.legend(fontsize=8)
