@@ -30,7 +30,8 @@ assembly side: *a* not on its longer leg or *b* neither flat on its hypotenuse n
 run refused: penetration, unconverged, timeout; ``refused:drop`` when no drop came to rest).
 
 Values: ``throws_high``, ``throws_low``, ``throws``, ``looks``, ``held_1``, ``held_hold`` (1/0, nan when
-not assembled), ``pos_err_m``/``ang_err_rad`` at the end, ``mu``, ``drop_redraws``, ``lost`` (``off_end``/``behind_joint`` for an ejection, else "").
+not assembled), ``pos_err_m``/``ang_err_rad`` at the end, ``mu``, ``drop_redraws``, ``lost``
+(``off_end``/``behind_joint`` for an ejection, else "").
 """
 
 from __future__ import annotations
