@@ -91,3 +91,17 @@ def test_engine_inverse_jog_checked_forward():
     r = inverse_jog(PART, ARM, 0.3, 0, 0.31, "engine", omega_max=6.0, n_grid=12)
     out = tm.throw(PART, ARM, 0.3, 0, r.omega, "engine")
     assert out.side == 0 and abs(out.x - 0.31) <= 1e-6
+
+
+def test_first_rate_already_leaving_the_branch_ends_instead_of_halving_for_ever():
+    # frictionless arm: any throw makes the part slide off; the branch is empty and the answer is a refusal
+    with pytest.raises(InvalidStateError, match="x_target"):
+        inverse_jog(PART, tm.Arm(h=-0.01, mu=0.0), 0.25, 0, 0.26, "rigid_body")
+
+
+def test_a_large_omega_max_does_not_step_over_the_branch():
+    # the first rate of a 48-point grid up to 500 rad/s lands back on side 0 on a later branch; the grid's
+    # spacing cap keeps the first branch, whose answer is the default search's
+    a = inverse_jog(PART, ARM, 0.25, 0, 0.26, "rigid_body")
+    b = inverse_jog(PART, ARM, 0.25, 0, 0.26, "rigid_body", omega_max=500.0)
+    assert b.omega == pytest.approx(a.omega, rel=1e-6) and b.omega_flip == pytest.approx(a.omega_flip, rel=1e-6)

@@ -59,3 +59,14 @@ def test_bad_arguments_are_refused():
         plan_throws(PART, ARM, 0.2, 0, 0.45, 1, max_throws=0, model="paper")
     with pytest.raises(InvalidStateError, match="side_f"):
         plan_throws(PART, ARM, 0.2, 0, 0.45, 7, model="paper")
+
+
+def test_jogs_alone_reach_a_goal_on_the_start_side_whatever_the_high_rate():
+    # Prop. 4.3's screen is sufficient, not necessary: at 5.6 rad/s every orbit escapes, yet the goal is one jog away
+    p = plan_throws(PART, ARM, 0.25, 0, 0.27, 0, omegas=(5.6,), model="rigid_body")
+    assert p.reachable and [s.phase for s in p.steps] == ["jog"] and p.error <= 1e-6
+
+
+def test_non_finite_goal_is_refused():
+    with pytest.raises(InvalidStateError, match="x_f"):
+        plan_throws(PART, ARM, 0.2, 0, float("nan"), 1, model="paper")

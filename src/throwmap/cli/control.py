@@ -70,8 +70,9 @@ def episode_cmd(config: ConfigArg = None,
             typer.echo(repr(ep))
             for r in rows:
                 if r["switched"] or r["action"] != "throw":
-                    typer.echo(f"  throw {r['throw']:>3}: x = {100 * r['x_m']:.2f} cm side {r['side']} → {r['action']} "
-                               f"{r['mode']} ({r['reason']})")
+                    what = r["action"] if r["mode"] == r["action"] else f"{r['action']} (mode {r['mode']})"
+                    typer.echo(f"  throw {r['throw']:>3}: x = {100 * r['x_m']:.2f} cm side {r['side']} → {what} "
+                               f"({r['reason']})")
 
 
 @control_app.command("fan")

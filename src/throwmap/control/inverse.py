@@ -38,6 +38,9 @@ __all__ = ["InverseJog", "inverse_jog", "jog_rate", "jog_size", "realisation_fac
 
 N_GRID = 48
 """Grid rates on (0, ω_max] sampled before bisecting (the flip and the target)."""
+MAX_SPACING = 0.25
+"""Largest spacing of those rates, rad/s (more rates for a large ω_max: a coarse grid can step past the end of
+the jog branch onto a later return to the same side)."""
 
 
 def realisation_factory(realisation, *, recoil: float = math.radians(3.0), zeta: float = 0.5):
@@ -168,6 +171,7 @@ def inverse_jog(part, arm, x0: float, side: int, x_target: float, model: str = D
     branch = [(0.0, x0)]  # (ω, T) on the jog branch; T(0) = x0
     grid_rates = {0.0}
     flip_lo, flip_hi, beyond = omega_max, math.inf, "jogs (no flip up to omega_max)"
+    n_grid = max(n_grid, math.ceil(omega_max / MAX_SPACING))  # a coarse grid could step over a branch's end
     for j in range(1, n_grid + 1):
         w = omega_max * j / n_grid
         x, k, st = thrower(w)
@@ -179,7 +183,7 @@ def inverse_jog(part, arm, x0: float, side: int, x_target: float, model: str = D
         break
     if math.isfinite(flip_hi):  # bisect the end of the branch
         lo, hi = flip_lo, flip_hi
-        while hi - lo > 1e-9 * hi:
+        while hi - lo > 1e-9 * hi and hi > 1e-9 * omega_max:  # lo = 0: the first rate already flips
             mid = 0.5 * (lo + hi)
             x, k, st = thrower(mid)
             if st == "ok" and k == side:
@@ -230,10 +234,12 @@ def inverse_jog(part, arm, x0: float, side: int, x_target: float, model: str = D
     steps = np.diff(np.array([p[1] for p in branch if p[0] in grid_rates]))  # the grid: the trend, not the scatter
     monotone = bool(np.all(steps > -1e-9) or np.all(steps < 1e-9))
     if residual > tol:
+        how = (f"the map scatters by {scatter * 1e6:.3g} µm about a smooth fit there" if scatter < 1e-4 else
+               f"the map jumps there (a change of contact mode: landings {scatter * 1e3:.3g} mm rms about a line "
+               f"through the jump), so no rate lands on the target")
         raise InvalidStateError("tol", f"the jog map of model {model} is discontinuous at {x_target:.6g} m: the "
                                        f"closest rate, ω = {w_best:.9g} rad/s, lands {residual * 1e6:.3g} µm from it "
-                                       f"(tol {tol * 1e6:.3g} µm; the map scatters by {scatter * 1e6:.3g} µm about a "
-                                       f"smooth fit there)")
+                                       f"(tol {tol * 1e6:.3g} µm; {how})")
     return InverseJog(omega=w_best, x=x_best, residual=residual, x0=x0, side=side, x_target=x_target,
                       omega_flip=flip_hi, beyond=beyond, reach=reach, monotone=monotone, model=model,
                       n_throws=thrower.n, samples=tuple(branch), scatter=scatter)

@@ -88,11 +88,11 @@ def _rest_check(part, arm, x_f: float, side_f: int) -> tuple[bool, str]:
 
     lo, hi = start_interval(part, arm, side_f)
     if x_f <= lo:
-        return False, (f"x_f = {x_f:.4f} m is not a rest on side {side_f}: its support would start behind the joint "
-                       f"(rests need x > {lo:.4f} m)")
+        return False, (f"x_f = {x_f:.6g} m is not a rest on side {side_f}: its support would start behind the joint "
+                       f"(rests need x > {lo:.6g} m)")
     if x_f > hi:
-        return False, (f"x_f = {x_f:.4f} m is not a rest on side {side_f}: it would overhang the arm's end at "
-                       f"{arm.length:.4f} m (rests need x ≤ {hi:.4f} m)")
+        return False, (f"x_f = {x_f:.6g} m is not a rest on side {side_f}: it would overhang the arm's end at "
+                       f"{arm.length:.6g} m (rests need x ≤ {hi:.6g} m)")
     return True, ""
 
 
@@ -163,7 +163,9 @@ class Plan:
         head = (f"plan ({self.model}) from ({self.x0:.4f} m, side {self.side0}) to ({self.x_f:.4f} m, side {self.side_f}): ")
         if not self.reachable:
             return head + "NOT REACHED — " + self.explanation
-        return head + (f"{len(self.steps)} throws ({n_round} round the limit set, {len(self.steps) - n_round} jogs), "
+        n = len(self.steps)
+        return head + (f"{n} throw{'s' if n != 1 else ''} ({n_round} round the limit set, {n - n_round} "
+                       f"jog{'s' if n - n_round != 1 else ''}), "
                        f"ends {self.error * 1e6:.3g} µm from x_f; {self.explanation}")
 
     def table(self) -> str:
@@ -189,6 +191,10 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
 
     side0 = part.check_side(side0, field="side0")
     side_f = part.check_side(side_f, field="side_f")
+    for value, name in ((x0, "x0"), (x_f, "x_f"), (tol, "tol"), (jog_omega_max, "jog_omega_max")):
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
+                or not math.isfinite(value):
+            raise InvalidStateError(name, f"must be a finite number, got {shown(value)}")
     if isinstance(max_throws, bool) or not isinstance(max_throws, int) or max_throws < 1:
         raise InvalidStateError("max_throws", f"must be an integer ≥ 1, got {shown(max_throws)}")
     omegas = tuple(float(w) for w in np.atleast_1d(np.asarray(omegas, dtype=float)))
@@ -201,6 +207,11 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
     ok, why = _rest_check(part, arm, float(x_f), side_f)
     if not ok:
         return done([], False, why)
+    if side0 == side_f:  # Prop. 4.3 is sufficient, not necessary: jogs alone may already get there
+        steps, why = _attempt(part, arm, float(x0), side0, float(x_f), side_f, None, model, max_throws, tol,
+                              jog_omega_max, throw, throw_options, realisation)
+        if why is None:
+            return done(steps, True, "jogs only (Lemma 4.2): already on side_f, no high throw needed")
     if check_reachability:
         r = reachability(part, arm, x_f, side_f, omegas, model, x_max=x_max, realisation=realisation, **throw_options)
         if not r.reachable:
@@ -220,7 +231,7 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
 
 
 def _attempt(part, arm, x, k, x_f, side_f, w_high, model, max_throws, tol, jog_max, throw_fn, opts, realisation):
-    """One plan with high rate ``w_high``: ``(steps, None)`` or ``(steps, reason)``."""
+    """One plan with high rate ``w_high`` (None: jogs only): ``(steps, None)`` or ``(steps, reason)``."""
     factory = realisation_factory(realisation)
 
     def throw(part, arm, x, k, w, model, **o):
@@ -250,6 +261,8 @@ def _attempt(part, arm, x, k, x_f, side_f, w_high, model, max_throws, tol, jog_m
                 x, k = float(out.x), int(out.side)
                 stuck = stuck + 1 if moved < 1e-7 else 0
                 continue
+        if w_high is None:  # jogs only: no progress left
+            return steps, f"jogs alone stop at x = {x:.4f} m on side {k}"
         out = throw(part, arm, x, k, w_high, model, **opts)
         st = str(out.status)
         steps.append(PlanStep(w_high, x, k, float(out.x), int(out.side), "round", st))

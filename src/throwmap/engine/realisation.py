@@ -337,5 +337,7 @@ def angle_function(r):
 
 def check_realisation(r):
     if not isinstance(r, (ImpulseThrow, FiniteThrow, RecoilThrow, SampledThrow, TiltTo)):
-        raise InvalidStateError("realisation", f"unknown throw realisation {shown(r)}")
+        hint = (" (a name is taken by throwmap.control's functions; to throw, pass an object, e.g. "
+                 "RecoilThrow.for_release_rate(omega))") if isinstance(r, str) else ""
+        raise InvalidStateError("realisation", f"unknown throw realisation {shown(r)}{hint}")
     return r
