@@ -197,7 +197,7 @@ def _kind(status, message: str = "", values=None) -> str:
 
 
 def drop_pair(part, arm, wall, rng, *, alpha: float = 0.0, x_range=(0.12, 0.40), height=DEFAULT_HEIGHT, gap=0.005,
-              mu_parts: float = 0.5, settings=None, max_redraws: int = 20):
+              mu_parts: float = 0.5, settings=None, max_redraws: int = 20, record: bool = False):
     """Drop two copies of ``part`` from random poses at least ``gap`` (m) apart and let them settle together:
     ``(EngineRun, redraws)`` — the first run with both at rest on the arm, else the last one."""
     from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
@@ -219,7 +219,7 @@ def drop_pair(part, arm, wall, rng, *, alpha: float = 0.0, x_range=(0.12, 0.40),
             verts.append(V)
         scene = Scene(arm, tuple(Placement(part, pose=q) for q in poses), (wall,), alpha,
                       Friction(part_part=mu_parts))
-        run = simulate(scene, ImpulseThrow(0.0), settings)
+        run = simulate(scene, ImpulseThrow(0.0), settings, record=record)
         if int(run.status) == 0:
             return run, attempt
     return run, max_redraws
@@ -234,9 +234,19 @@ class Assemble:
                "(Sec. VI)")
     config_type = AssembleConfig
 
-    def trial(self, cfg: AssembleConfig, index: int, rng) -> Trial:
+    def trial(self, cfg: AssembleConfig, index: int, rng, *, observer=None) -> Trial:
+        """One trial. ``observer(phase, run, omega)``, if given, is called after every engine run, ``phase`` one
+        of ``"drop"``, ``"high"``, ``"tilt"``, ``"low"``, ``"hold"``, ``omega`` the nominal rate (rad/s; 0 for the
+        drop and the tilt); with an observer the runs record their trajectories (``run.trajectory``)."""
         from ..control.pair_sensors import LONG_LEG, PairSensor, assembled_error, is_assembled, pair_ready
-        from ..engine import TiltTo, simulate
+        from ..engine import TiltTo
+        from ..engine import simulate as _simulate
+
+        def simulate(scene, real, settings, phase="high", omega=0.0):
+            run = _simulate(scene, real, settings, record=observer is not None)
+            if observer is not None:
+                observer(phase, run, omega)
+            return run
         from ..throws.trajectory import state_from_pose
 
         part, arm, wall = _setup(cfg)
@@ -256,7 +266,9 @@ class Assemble:
             return Trial(index, seed_of(rng), success, failure, dict(v))
 
         run, v["drop_redraws"] = drop_pair(part, arm, wall, rng, x_range=cfg.x_range, height=cfg.height, gap=cfg.gap,
-                                           mu_parts=cfg.mu_parts, settings=high)
+                                           mu_parts=cfg.mu_parts, settings=high, record=observer is not None)
+        if observer is not None:
+            observer("drop", run, 0.0)
         if int(run.status) != 0:
             return done(False, "refused:drop")
         # -- randomise until the sensor says "ready" confirm times in a row
@@ -279,7 +291,7 @@ class Assemble:
             if any(k == 0 and x < cfg.kick_x for x, k, _ in run.states):
                 nominal = cfg.kick  # the hypotenuse creeps inward near the joint at high rates: kick it out
             _, real = noise.throw(nominal, rng)
-            run = simulate(run.next_scene(), real, high)
+            run = simulate(run.next_scene(), real, high, "high", nominal)
             v["throws_high"] += 1
             if int(run.status) != 0:
                 return done(False, _kind(run.status, run.message, v))
@@ -288,7 +300,7 @@ class Assemble:
         if pair_ready(part, run.poses) is None:
             return done(False, "wrong_switch", run)
         # -- tilt to alpha
-        run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), low)
+        run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), low, "tilt")
         if int(run.status) != 0:
             return done(False, _kind(run.status, run.message, v), run)
         if pair_ready(part, run.poses) is None:
@@ -297,14 +309,14 @@ class Assemble:
         def ok(r):
             return is_assembled(part, r.poses, length=L, h=h, pos_tol=cfg.pos_tol, ang_tol=cfg.ang_tol)
 
-        def throw_low(r):
+        def throw_low(r, phase="low"):
             x_left, nominal = min(s[0] for s in r.states), cfg.omega_low
             for x, w in cfg.approach:
                 if x_left < x:
                     nominal = w
                     break
             _, real = noise.throw(nominal, rng)
-            return simulate(r.next_scene(), real, low)
+            return simulate(r.next_scene(), real, low, phase, nominal)
 
         # -- low throws until assembled
         assembled = False
@@ -325,7 +337,7 @@ class Assemble:
         end = run
         held = []
         for _ in range(cfg.hold):
-            r = throw_low(end)
+            r = throw_low(end, "hold")
             good = int(r.status) == 0 and ok(r)
             held.append(good)
             if int(r.status) != 0:
