@@ -19,7 +19,6 @@ line on stderr, exit 2.
 from __future__ import annotations
 
 import math
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated
 
@@ -27,31 +26,10 @@ import typer
 
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits
 from ..errors import InvalidStateError
-from .options import (ForceOpt, JsonOpt, MaxMemoryOpt, MaxTimeOpt, check_out_dir, figure_format, guard, save_figure,
+from .options import (ForceOpt, progress_bar, JsonOpt, MaxMemoryOpt, MaxTimeOpt, check_out_dir, figure_format, guard, save_figure,
                       strict_int, to_json)
 
 __all__ = ["register", "experiment_cmd"]
-
-
-@contextmanager
-def _progress(name: str):
-    """Yields ``update(done, total)``: a Rich bar on stderr (a no-op off a terminal)."""
-    from rich.console import Console
-
-    console = Console(stderr=True)
-    if not console.is_terminal:
-        yield lambda done, total: None
-        return
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-    with Progress(TextColumn(f"experiment {name}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                  console=console, transient=True) as bar:
-        task = bar.add_task(name, total=None)
-
-        def update(done, total):
-            bar.update(task, completed=done, total=total)
-
-        yield update
 
 
 def _table(result) -> None:
@@ -121,7 +99,7 @@ def experiment_cmd(
         if out is not None:
             check_out_dir(out)
         fmt = figure_format(plot, "plot")
-        with _progress(exp.name) as update:
+        with progress_bar(exp.name) as update:
             result = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=out, resume=resume,
                                     progress=update, **limits)
         if plot is not None:

@@ -39,7 +39,7 @@ from ..io.files import atomic_write_bytes, atomic_write_text, json_ready
 from ..system.arm import Arm
 from ..throws.throw import DEFAULT_MODEL, MODELS
 
-__all__ = [
+__all__ = ["progress_bar", 
     "BackOpt", "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "ModelOptionOpt", "MuOpt", "OmegaOpt", "PartOpt",
     "SideOpt", "XOpt", "ForceOpt", "MaxMemoryOpt", "MaxTimeOpt", "AlphaOpt", "WallOpt", "WallMuOpt", "CavityOpt",
     "model_options", "options_doc", "parse_alpha", "system_options", "system_doc",
@@ -482,3 +482,19 @@ def save_figure(fig, path: Path, fmt: str, field: str) -> None:
         plt = sys.modules.get("matplotlib.pyplot")
         if plt is not None:
             plt.close(fig)
+
+
+@contextmanager
+def progress_bar(name: str):
+    """Yields ``update(done, total)``: a Rich bar ``experiment NAME`` on stderr (a no-op off a terminal)."""
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+    console = Console(stderr=True)
+    if not console.is_terminal:
+        yield lambda done, total: None
+        return
+    with Progress(TextColumn(f"experiment {name}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                  console=console, transient=True) as bar:
+        task = bar.add_task(name, total=None)
+        yield lambda done, total: bar.update(task, completed=done, total=total)

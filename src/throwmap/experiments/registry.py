@@ -16,7 +16,7 @@ __all__ = ["register_experiment", "get_experiment", "experiment_names", "unregis
 
 _REGISTRY: dict[str, Experiment] = {}
 _DISCOVERED = False
-_INFRA = ("base", "registry", "runner", "stats", "noise", "drop", "plot")
+_INFRA = ("base", "registry", "runner", "stats", "noise", "drop", "plot", "sensitivity", "assemble_episode")
 
 
 def _discover() -> None:

@@ -147,7 +147,11 @@ def _length_text(metres: float) -> str:
 
 
 def _bounds(traj: Trajectory, fixtures_outlines) -> tuple[float, float, float, float]:
-    """Axis limits holding every sample's parts, the arm at every angle drawn and the fixtures."""
+    """Axis limits holding every sample's parts, the arm at every angle drawn and the fixtures; a trajectory whose
+    ``meta["view"]`` is ``(x0, x1, y0, y1)`` (m, world) is drawn in that window instead (e.g. a tall wall cut)."""
+    view = traj.meta.get("view") if isinstance(traj.meta, dict) else None
+    if view is not None and len(view) == 4 and view[0] < view[1] and view[2] < view[3]:
+        return tuple(float(v) for v in view)
     pts = [np.zeros((1, 2))]
     L, h = traj.length, traj.h
     arm_pts = np.array([[0.0, h], [L, h], [L, h - 0.01], [0.0, h - 0.01], [0.0, 0.0]])
