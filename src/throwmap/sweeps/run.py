@@ -1,0 +1,185 @@
+"""Run a sweep on Dask: a local cluster by default, or an existing one; resume what a killed run left.
+
+:func:`run_sweep` builds the design (:mod:`throwmap.sweeps.design`), creates or checks ``out``
+(:mod:`throwmap.sweeps.store`), lists the chunks already stored, and submits only the missing ones, one
+Dask task per chunk (``client.map`` of :func:`throwmap.sweeps.targets.run_chunk`, ``retries`` from the
+sweep). The client writes each chunk's Parquet file as its task finishes (workers need no access to
+``out``), so a run killed at any moment keeps every chunk it reported, and a worker killed mid-task only
+delays its chunk: the scheduler runs it again on another worker (``distributed.scheduler.allowed-failures``,
+default 3, bounds how many worker deaths one task survives). A chunk is written once, under its own name,
+so no point is ever duplicated.
+
+Without ``scheduler`` or ``client`` a :class:`distributed.LocalCluster` is started for the call (worker
+processes, one thread each; ``workers=0``: all cores) and closed at the end. ``import throwmap`` does not
+import dask: it is imported here, inside the functions.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import InvalidStateError, shown
+from .design import make_design
+from .schema import SweepSpec, spec_hash
+from .store import column_types, count_rows, finished_chunks, prepare_out, write_chunk
+from .targets import RESULT_COLUMNS
+
+__all__ = ["SweepRun", "run_sweep", "sweep_status"]
+
+
+@dataclass(frozen=True, slots=True)
+class SweepRun:
+    """What a call did: ``out`` (the directory), ``sweep_sha256``, ``n_points``/``n_chunks`` of the design,
+    ``rows_before`` (rows stored when it began), ``computed`` (points computed by this call) in
+    ``chunks_computed`` chunks, ``rows_after`` (rows stored at the end), ``complete`` (every point stored),
+    ``elapsed_s`` (s), ``workers`` (Dask workers seen; 0 when nothing was computed), ``scheduler`` (its
+    address, or ``"local"``)."""
+
+    out: str
+    sweep_sha256: str
+    target: str
+    n_points: int
+    n_chunks: int
+    rows_before: int
+    computed: int
+    chunks_computed: int
+    rows_after: int
+    complete: bool
+    elapsed_s: float
+    workers: int
+    scheduler: str
+
+    def to_dict(self) -> dict:
+        return {k: getattr(self, k) for k in self.__slots__}
+
+    def summary(self) -> str:
+        state = "complete" if self.complete else f"incomplete ({self.n_points - self.rows_after} points missing)"
+        return (f"sweep {self.sweep_sha256[:12]} ({self.target}): {self.n_points} points in {self.n_chunks} parts; "
+                f"rows before {self.rows_before}, computed now {self.computed}, rows after {self.rows_after} — "
+                f"{state}; {self.elapsed_s:.3g} s on {self.workers} worker(s) ({self.scheduler}) → {self.out}")
+
+
+def _manifest(spec: SweepSpec, design, columns: dict) -> dict:
+    return {"sweep_sha256": spec_hash(spec), "target": spec.target, "kind": spec.kind, "n_points": design.n_points,
+            "n_chunks": design.n_chunks, "chunk": design.chunk, "parameters": list(design.names),
+            "columns": columns, "spec": spec.model_dump(mode="json")}
+
+
+def _plan(spec: SweepSpec, out):
+    design = make_design(spec)
+    columns = column_types(design.names, design.points, RESULT_COLUMNS[spec.target_kind])
+    manifest = prepare_out(out, _manifest(spec, design, columns))
+    done = finished_chunks(out, design.n_chunks, lambda c: len(design.chunk_points(c)))
+    return design, manifest["columns"], done
+
+
+def sweep_status(spec: SweepSpec, out) -> dict:
+    """What is stored in ``out`` for ``spec`` without computing anything: ``n_points``, ``n_chunks``,
+    ``rows`` stored, ``missing`` points, ``chunks_missing``."""
+    design, _, done = _plan(spec, out)
+    rows = count_rows(out)
+    return {"out": str(out), "sweep_sha256": spec_hash(spec), "n_points": design.n_points,
+            "n_chunks": design.n_chunks, "rows": rows, "missing": design.n_points - rows,
+            "chunks_missing": design.n_chunks - len(done)}
+
+
+def _client(scheduler, workers: int):
+    """``(client, cluster or None)``: connect to ``scheduler``, or start a local cluster of worker processes."""
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        try:
+            return Client(scheduler, timeout="20s", set_as_default=False), None
+        except (OSError, TimeoutError, ValueError) as err:
+            raise InvalidStateError("scheduler", f"cannot connect to {shown(scheduler)}: {' '.join(str(err).split())}") from None
+    n = (os.cpu_count() or 1) if workers == 0 else workers
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                           silence_logs=logging.CRITICAL)
+    return Client(cluster, set_as_default=False), cluster
+
+
+def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None, workers: int = 0,
+              progress=None, stop_after: int | None = None) -> SweepRun:
+    """Compute every design point of ``spec`` missing from ``out`` on Dask and store it (module docstring).
+
+    ``scheduler``: the address of a running Dask scheduler (``tcp://host:8786``); ``client``: a
+    :class:`distributed.Client` to use as it is; neither: a local cluster of ``workers`` processes (0: all
+    cores). ``progress(done, total)`` counts points (stored ones count as done at the start). ``stop_after``:
+    write at most this many chunks, then cancel the rest and return (an interruption on purpose).
+
+    Raises :class:`~throwmap.errors.InvalidStateError` on a bad sweep (before anything runs), a changed
+    sweep in ``out``, an unreachable scheduler, or a task that failed after its retries (chunks already
+    written are kept).
+    """
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
+        raise InvalidStateError("workers", f"must be an integer ≥ 0 (0: all cores), got {shown(workers)}")
+    if stop_after is not None and (isinstance(stop_after, bool) or not isinstance(stop_after, int) or stop_after < 1):
+        raise InvalidStateError("stop_after", f"must be an integer ≥ 1, got {shown(stop_after)}")
+    t0 = time.perf_counter()
+    out = Path(out)
+    design, columns, done = _plan(spec, out)
+    rows_before = count_rows(out)
+    todo = [c for c in range(design.n_chunks) if c not in done]
+    digest = spec_hash(spec)
+    n_done = rows_before
+    if progress is not None:
+        progress(n_done, design.n_points)
+    computed = chunks = n_workers = 0
+    where = "local" if scheduler is None and client is None else (scheduler or "client")
+    if todo:
+        from distributed import as_completed
+
+        own = client is None
+        cluster = None
+        if own:
+            client, cluster = _client(scheduler, workers)
+        try:
+            if client.scheduler is not None and where == "client":
+                where = client.scheduler.address
+            n_workers = len(client.scheduler_info().get("workers", {}))
+            from .targets import run_chunk
+
+            args = [([design.configs[i] for i in design.chunk_points(c)],
+                     [design.seeds[i] for i in design.chunk_points(c)]) for c in todo]
+            futures = client.map(run_chunk, [spec.target] * len(todo), [a[0] for a in args], [a[1] for a in args],
+                                 [spec.n] * len(todo), key=[f"throwmap-sweep-{digest[:16]}-{c}" for c in todo],
+                                 retries=spec.retries, pure=False)
+            chunk_of = {f.key: c for f, c in zip(futures, todo)}
+            pending = as_completed(futures, loop=client.loop)
+            for fut in pending:
+                c = chunk_of[fut.key]
+                try:
+                    results = fut.result()
+                except Exception as err:  # a task that failed after its retries, or killed too many workers
+                    client.cancel(futures)
+                    raise InvalidStateError("sweep", f"part {c} (points {design.chunk_points(c).start}–"
+                                                     f"{design.chunk_points(c).stop - 1}) failed: {type(err).__name__}: "
+                                                     f"{' '.join(str(err).split())[:300]}; the {chunks} parts finished "
+                                                     f"are kept in {str(out)!r}") from None
+                rows = []
+                for i, res in zip(design.chunk_points(c), results):
+                    rows.append({"point": i, **dict(zip(design.names, design.points[i])), "seed": design.seeds[i], **res})
+                write_chunk(out, c, rows, columns)
+                computed += len(rows)
+                chunks += 1
+                n_done += len(rows)
+                if progress is not None:
+                    progress(n_done, design.n_points)
+                if stop_after is not None and chunks >= stop_after:
+                    client.cancel(futures)
+                    break
+            n_workers = max(n_workers, len(client.scheduler_info().get("workers", {})))
+        finally:
+            if own:
+                client.close()
+                if cluster is not None:
+                    cluster.close()
+    rows_after = count_rows(out)
+    return SweepRun(str(out), digest, spec.target, design.n_points, design.n_chunks, rows_before, computed, chunks,
+                    rows_after, rows_after == design.n_points, time.perf_counter() - t0, n_workers, where)
+

@@ -1,0 +1,156 @@
+"""What one task of a sweep computes: the rows of a chunk of design points, for each kind of target.
+
+:func:`run_chunk` is the function a Dask worker runs. It receives only JSON-ready values (the target, the
+points' configs, seeds and indices, ``n``) and returns one dict per point; the client writes them
+(:mod:`throwmap.sweeps.store`). Each row's result columns by target:
+
+* ``experiment:NAME`` — ``n``, ``successes``, ``success_rate``, ``ci95_low``, ``ci95_high`` (Wilson 95 %),
+  ``failures`` (JSON: count by kind), ``values`` (JSON: the per-trial value summary), via
+  :func:`throwmap.experiments.runner.run_experiment` (``workers=1``: the worker is the process);
+* ``throw`` — ``landing_x`` (m), ``landing_side``, ``status`` (label), via :func:`throwmap.throw_batch`
+  (``on_invalid="status"``: an inadmissible start is a row with status ``invalid_start``);
+* ``limit_set`` — ``kind``, ``n_attractors``, ``unique``, ``escapes`` (JSON: share by fate),
+  ``attractors`` (JSON: :meth:`Attractor.to_dict` each), via :func:`throwmap.limit_set`.
+
+Every row also has ``elapsed_s`` (wall time of the point, s; a throw chunk's time shared equally) and
+``version`` (``throwmap.__version__`` in the worker) and ``error`` (None, or ``"field: reason"`` when the library refused the point: the row is kept, so a
+restart does not try it again).
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+import time
+import warnings
+
+from .. import __version__
+from ..errors import ThrowmapError
+
+__all__ = ["run_chunk", "RESULT_COLUMNS"]
+
+RESULT_COLUMNS = {
+    "experiment": {"n": "int64", "successes": "int64", "success_rate": "float64", "ci95_low": "float64",
+                   "ci95_high": "float64", "failures": "string", "values": "string"},
+    "throw": {"landing_x": "float64", "landing_side": "int64", "status": "string"},
+    "limit_set": {"kind": "string", "n_attractors": "int64", "unique": "bool", "escapes": "string",
+                  "attractors": "string"},
+}
+"""The result columns of each target kind and their Arrow types."""
+
+
+def _json(obj) -> str:
+    return json.dumps(obj, sort_keys=True, allow_nan=False, default=lambda v: None)
+
+
+def _clean(v):
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, dict):
+        return {k: _clean(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_clean(x) for x in v]
+    return v
+
+
+@functools.lru_cache(maxsize=64)
+def _part(name: str):
+    from ..io.config import resolve_part
+
+    return resolve_part(name).part
+
+
+def _arm(cfg: dict):
+    from ..system.arm import Arm
+
+    return Arm(h=cfg["h"], g=cfg["g"], length=cfg["length"], mu=math.inf if cfg["mu"] is None else cfg["mu"],
+               back=cfg["back"])
+
+
+def _fixtures(cfg: dict) -> tuple:
+    from ..system.fixtures import Wall
+
+    return () if cfg.get("wall_height") is None else (Wall(height=cfg["wall_height"]),)
+
+
+def _error_row(err: Exception) -> dict:
+    return {"error": str(err) if isinstance(err, ThrowmapError) else f"{type(err).__name__}: {err}"}
+
+
+def _experiment_point(name: str, cfg: dict, seed: int, n: int) -> dict:
+    from ..experiments.runner import run_experiment
+
+    res = run_experiment(name, cfg, n=n, seed=seed, workers=1, force=True)
+    return {"n": res.n, "successes": res.successes,
+            "success_rate": None if math.isnan(res.success_rate) else res.success_rate,
+            "ci95_low": float(res.ci95[0]), "ci95_high": float(res.ci95[1]),
+            "failures": _json(dict(res.failures)), "values": _json(_clean(res.value_summary()))}
+
+
+def _limit_set_point(cfg: dict, seed: int) -> dict:
+    from ..analysis.limitset import limit_set
+
+    ls = limit_set(_part(cfg["part"]), _arm(cfg), cfg["omega"], cfg["model"], n_starts=cfg["n_starts"],
+                   rng=seed, x_max=cfg["x_max"], transient=cfg["transient"], n_record=cfg["n_record"],
+                   force=True, **({"fixtures": _fixtures(cfg)} if cfg.get("wall_height") is not None else {}),
+                   **({"alpha": cfg["alpha"]} if cfg["alpha"] else {}))
+    return {"kind": ls.kind, "n_attractors": len(ls.attractors), "unique": bool(ls.unique),
+            "escapes": _json(dict(ls.escapes)), "attractors": _json(_clean([a.to_dict() for a in ls.attractors]))}
+
+
+def _throw_rows(configs: list) -> list:
+    """Rows of a chunk of throws: one :func:`throw_batch` per distinct map (all but x, side, ω)."""
+    import numpy as np
+
+    from ..throws.outcome import Status
+    from ..throws.throw import throw_batch
+
+    rows: list = [None] * len(configs)
+    groups: dict = {}
+    for i, cfg in enumerate(configs):
+        key = json.dumps({k: v for k, v in cfg.items() if k not in ("x", "side", "omega")}, sort_keys=True)
+        groups.setdefault(key, []).append(i)
+    for key, idx in groups.items():
+        t0 = time.perf_counter()
+        cfg = configs[idx[0]]
+        try:
+            out = throw_batch(_part(cfg["part"]), _arm(cfg), np.array([configs[i]["x"] for i in idx], dtype=float),
+                              np.array([configs[i]["side"] for i in idx], dtype=np.int64),
+                              np.array([configs[i]["omega"] for i in idx], dtype=float), cfg["model"],
+                              on_invalid="status", fixtures=_fixtures(cfg), alpha=cfg["alpha"])
+        except ThrowmapError as err:
+            dt = (time.perf_counter() - t0) / len(idx)
+            for i in idx:
+                rows[i] = {**_error_row(err), "elapsed_s": dt}
+            continue
+        dt = (time.perf_counter() - t0) / len(idx)
+        for j, i in enumerate(idx):
+            st = int(out.status[j])
+            rows[i] = {"landing_x": None if not math.isfinite(out.x[j]) else float(out.x[j]),
+                       "landing_side": int(out.side[j]), "status": Status(st).label, "error": None, "elapsed_s": dt}
+    return rows
+
+
+def run_chunk(target: str, configs: list, seeds: list, n: int | None) -> list:
+    """The result columns of each point of a chunk (``target``: ``"throw"``, ``"limit_set"`` or
+    ``"experiment:NAME"``); a point the library refuses gets its ``error`` instead."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # regime warnings: a worker has no one to tell
+        if target == "throw":
+            return [{**r, "version": __version__} for r in _throw_rows(configs)]
+        rows = []
+        for cfg, seed in zip(configs, seeds):
+            t0 = time.perf_counter()
+            try:
+                if target == "limit_set":
+                    row = _limit_set_point(cfg, seed)
+                else:
+                    row = _experiment_point(target.split(":", 1)[1], cfg, seed, n)
+                row["error"] = None
+            except ThrowmapError as err:
+                row = _error_row(err)
+            row["elapsed_s"] = time.perf_counter() - t0
+            row["version"] = __version__
+            rows.append(row)
+        return rows
