@@ -23,7 +23,7 @@ from pathlib import Path
 
 from ..errors import InvalidStateError, shown
 from .design import make_design
-from .schema import SweepSpec, spec_hash
+from .schema import SweepSpec, jsonable, spec_hash
 from .store import column_types, count_rows, finished_chunks, prepare_out, write_chunk
 from .targets import RESULT_COLUMNS
 
@@ -65,7 +65,7 @@ class SweepRun:
 def _manifest(spec: SweepSpec, design, columns: dict) -> dict:
     return {"sweep_sha256": spec_hash(spec), "target": spec.target, "kind": spec.kind, "n_points": design.n_points,
             "n_chunks": design.n_chunks, "chunk": design.chunk, "parameters": list(design.names),
-            "columns": columns, "spec": spec.model_dump(mode="json")}
+            "columns": columns, "spec": jsonable(spec.model_dump(mode="json"))}
 
 
 def _plan(spec: SweepSpec, out):

@@ -38,7 +38,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from ..errors import ConfigError, InvalidStateError
 
 __all__ = ["Range", "SweepSpec", "ThrowConfig", "LimitSetConfig", "read_sweep", "parse_sweep", "spec_hash",
-           "MAX_POINTS", "DEFAULT_CHUNK"]
+           "MAX_POINTS", "DEFAULT_CHUNK", "jsonable"]
 
 Finite = Annotated[float, Field(allow_inf_nan=False)]
 
@@ -162,7 +162,7 @@ class SweepSpec(BaseModel):
 
 class ThrowConfig(BaseModel):
     """One throw (target ``throw``): the part (built-in name or part file) resting at ``(x, side)`` on the arm,
-    thrown at ``omega`` by ``model``. Arm: ``h`` (m), ``length`` (m; None: unbounded), ``mu`` (None: ∞),
+    thrown at ``omega`` by ``model``. Arm: ``h`` (m), ``length`` (m; ``inf``: unbounded), ``mu`` (``inf``: no slip),
     ``g`` (m/s²), ``back`` (m); ``alpha`` the arm's rest angle (rad); ``wall_height`` a wall at the arm's end
     (m; None: none)."""
 
@@ -174,8 +174,8 @@ class ThrowConfig(BaseModel):
     side: int = Field(0, ge=0, description="the side it rests on")
     omega: Finite = Field(5.0, ge=0, description="release rate, rad/s")
     h: Finite = Field(-0.01, description="arm surface height, m")
-    length: Finite | None = Field(0.40, gt=0, description="arm length, m (None: unbounded)")
-    mu: float | None = Field(0.8, ge=0, description="arm–part friction (None: ∞)")
+    length: float | None = Field(0.40, gt=0, description="arm length, m (inf or None: unbounded)")
+    mu: float | None = Field(0.8, ge=0, description="arm–part friction (inf or None: no slip)")
     g: Finite = Field(9.81, gt=0, description="gravity, m/s²")
     back: Finite = Field(0.0, ge=0, description="arm behind the joint, m")
     alpha: Finite = Field(0.0, gt=-math.pi / 2, lt=math.pi / 2, description="arm rest angle, rad")
@@ -193,8 +193,8 @@ class LimitSetConfig(BaseModel):
     model: str = "rigid_body"
     omega: Finite = Field(5.0, ge=0, description="release rate, rad/s")
     h: Finite = Field(-0.01, description="arm surface height, m")
-    length: Finite | None = Field(0.40, gt=0, description="arm length, m (None: unbounded)")
-    mu: float | None = Field(0.8, ge=0, description="arm–part friction (None: ∞)")
+    length: float | None = Field(0.40, gt=0, description="arm length, m (inf or None: unbounded)")
+    mu: float | None = Field(0.8, ge=0, description="arm–part friction (inf or None: no slip)")
     g: Finite = Field(9.81, gt=0, description="gravity, m/s²")
     back: Finite = Field(0.0, ge=0, description="arm behind the joint, m")
     alpha: Finite = Field(0.0, gt=-math.pi / 2, lt=math.pi / 2, description="arm rest angle, rad")
@@ -256,8 +256,19 @@ def read_sweep(path) -> tuple[SweepSpec, str]:
     return parse_sweep(doc, path.name), text
 
 
+def jsonable(obj):
+    """``obj`` with non-finite floats as the strings ``"inf"``, ``"-inf"``, ``"nan"`` (TOML has them, strict JSON not)."""
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return str(obj)
+    if isinstance(obj, dict):
+        return {k: jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [jsonable(v) for v in obj]
+    return obj
+
+
 def spec_hash(spec: SweepSpec) -> str:
     """SHA-256 of the sweep's canonical content (the validated spec as sorted JSON): comments, key order and
     layout of the file do not change it; any value that changes the results does."""
-    canon = json.dumps(spec.model_dump(mode="json"), sort_keys=True, separators=(",", ":"), allow_nan=False)
+    canon = json.dumps(jsonable(spec.model_dump(mode="json")), sort_keys=True, separators=(",", ":"), allow_nan=False)
     return hashlib.sha256(canon.encode()).hexdigest()

@@ -25,6 +25,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..errors import InvalidStateError, shown
+from .schema import jsonable
 
 __all__ = ["MANIFEST", "FORMAT", "column_types", "prepare_out", "finished_chunks", "write_chunk", "read_table",
            "count_rows", "part_path"]
@@ -179,7 +180,7 @@ def write_chunk(out, chunk: int, rows: list, columns: dict) -> Path:
     for name, kind in columns.items():
         col = [r.get(name) for r in rows]
         if kind == "json":
-            col = [None if v is None else json.dumps(v, sort_keys=True) for v in col]
+            col = [None if v is None else json.dumps(jsonable(v), sort_keys=True, allow_nan=False) for v in col]
         elif kind == "float64":
             col = [None if v is None else float(v) for v in col]
         data[name] = col

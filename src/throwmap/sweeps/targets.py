@@ -64,7 +64,8 @@ def _part(name: str):
 def _arm(cfg: dict):
     from ..system.arm import Arm
 
-    return Arm(h=cfg["h"], g=cfg["g"], length=cfg["length"], mu=math.inf if cfg["mu"] is None else cfg["mu"],
+    length = None if cfg["length"] is None or math.isinf(cfg["length"]) else cfg["length"]
+    return Arm(h=cfg["h"], g=cfg["g"], length=length, mu=math.inf if cfg["mu"] is None else cfg["mu"],
                back=cfg["back"])
 
 
