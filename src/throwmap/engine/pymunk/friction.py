@@ -37,6 +37,8 @@ import math
 
 __all__ = ["CAP", "FrictionCap", "attach_raw", "cap_bound", "install_friction_cap"]
 
+EXACT = True
+"""One part: solve the steps where the cap would bind exactly (:mod:`.exact`) instead of capping μ."""
 CAP = 0.7
 """Largest μ |K_nt| / K_nn allowed: the solver's error shrinks by at least this factor per iteration."""
 
@@ -67,12 +69,13 @@ class FrictionCap:
     maps ``id(body)`` to ``(1/m, 1/I)`` of each dynamic body (absent: kinematic).
     """
 
-    __slots__ = ("inv", "mu_of", "n_capped")
+    __slots__ = ("inv", "mu_of", "n_capped", "exact")
 
     def __init__(self, inv: dict, mu_of):
         self.inv = inv
         self.mu_of = mu_of
         self.n_capped = 0
+        self.exact = None  # one part: its exact solver (.exact), which replaces the cap
 
     def __call__(self, arbiter, space_, data):
         shapes = arbiter.shapes  # one call for the pair's μ and its bodies (each arbiter property is a C round trip)
@@ -99,7 +102,11 @@ class FrictionCap:
                 cap = min(cap, CAP * knn / abs(knt))
         if cap < mu:
             self.n_capped += 1
-            arbiter.friction = cap
+            if self.exact is None:
+                arbiter.friction = cap
+            else:  # the step is solved exactly with the pair's μ (.exact)
+                self.exact.arm()
+                arbiter.friction = mu if math.isfinite(mu) else 1.0e30
         else:
             arbiter.friction = mu if math.isfinite(mu) else 1.0e30
 
@@ -131,26 +138,36 @@ def install_friction_cap(world) -> FrictionCap | None:
             return None
         fast = _single_part_hook(world, mu_arm)
         if fast is not None:
-            return fast
+            return _with_exact(fast, world)
     elif world.n == 1 and not (mu_arm <= bound and mu_wall <= bound):
         fast = _single_part_fixture_hook(world, mu_arm, mu_wall, FIXTURE)
         if fast is not None:
-            return fast
+            return _with_exact(fast, world)
     hook = FrictionCap(inv, mu_of)
     if world.n == 1 and mu_arm <= bound and mu_wall <= bound:
         return None
+    return _with_exact(hook, world)
+
+
+def _with_exact(hook, world):
+    """``hook`` with its exact solver (:mod:`.exact`) where :data:`EXACT` is on."""
+    if EXACT:
+        from .exact import exact_solver
+
+        hook.exact = exact_solver(world)
     return hook
 
 
 class _SinglePartCap:
     """:class:`FrictionCap` for one part on a bare arm on Chipmunk's raw calls (same values, ~5× cheaper)."""
 
-    __slots__ = ("lib", "body", "rho2", "mu", "n_capped", "callback")
+    __slots__ = ("lib", "body", "rho2", "mu", "n_capped", "callback", "exact")
 
     def __init__(self, lib, body, rho2: float, mu: float):
         self.lib, self.body, self.rho2, self.mu = lib, body, rho2, mu
         self.n_capped = 0
         self.callback = None
+        self.exact = None
 
     def __call__(self, arbiter, space_, data):
         self.raw(arbiter._arbiter, None, None)
@@ -178,7 +195,11 @@ def _set_capped(hook, arb, point, mu: float) -> None:
             cap = min(cap, CAP * (rho2 + rn * rn) / abs(rn * rt))
     if cap < mu:
         hook.n_capped += 1
-        lib.cpArbiterSetFriction(arb, cap)
+        if hook.exact is None:
+            lib.cpArbiterSetFriction(arb, cap)
+        else:  # the step is solved exactly with the pair's μ (.exact)
+            hook.exact.arm()
+            lib.cpArbiterSetFriction(arb, mu if math.isfinite(mu) else 1.0e30)
     else:
         lib.cpArbiterSetFriction(arb, mu if math.isfinite(mu) else 1.0e30)
 
@@ -210,7 +231,7 @@ class _SinglePartFixtureCap:
     look-up instead) where two different μ map to the same engine value (∞ and :data:`NO_SLIP_MU`)."""
 
     __slots__ = ("lib", "body", "rho2", "mu", "mu_fix", "fix", "sa", "sb", "ba", "bb", "by_u", "n_capped", "callback",
-                 "raw")
+                 "raw", "exact")
 
     def __init__(self, lib, ffi, body, rho2: float, mu: float, mu_fix: float, fix: int):
         from ..settings import engine_mu
@@ -222,6 +243,7 @@ class _SinglePartFixtureCap:
         self.by_u = None if (u_arm == u_fix and mu != mu_fix) else {u_arm: mu, u_fix: mu_fix}
         self.n_capped = 0
         self.callback = None
+        self.exact = None
         self.raw = self._slow if self.by_u is None else self._fast()
 
     def __call__(self, arbiter, space_, data):
@@ -277,7 +299,13 @@ class _SinglePartFixtureCap:
                         cap = v
             if cap < mu:
                 hook.n_capped += 1
-                set_u(arb, cap)
+                exact = hook.exact
+                if exact is None:
+                    set_u(arb, cap)
+                else:  # the step is solved exactly with the pair's μ (.exact)
+                    exact.arm()
+                    if uncapped != u:
+                        set_u(arb, uncapped)
             elif uncapped != u:  # (finite μ: the arbiter already holds it)
                 set_u(arb, uncapped)
 

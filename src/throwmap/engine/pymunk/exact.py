@@ -1,0 +1,227 @@
+"""Exact Coulomb contact solves for the steps where Chipmunk's own solver cannot converge (issue 11, item 2).
+
+Why
+---
+Chipmunk updates a contact's normal and tangential impulse from the same
+relative velocity (a Jacobi step inside the contact). While the contact slides,
+that multiplies the normal-velocity error by ``μ |K_nt| / K_nn`` per pass and
+diverges above 1 (:mod:`.friction`). The old remedy lowered the pair's μ to
+``CAP · K_nn/|K_nt|`` in those steps, which changes the model: a pivot at
+μ = 2–3 slips earlier and faster and lands 0.5–1.1 mm away from model
+"rigid_body" and from an independent ODE reference
+(``tests/kernels/test_tilt_landing.py``); at μ = ∞ a sticking contact creeps.
+
+What
+----
+For a single part (the only dynamic body), in a step where the cap would bind on
+any of its contacts, the friction hook arms :class:`ExactSolve` instead of
+capping. Its velocity-update function (Chipmunk calls it after every arbiter's
+pre-step, before the impulses are applied) integrates gravity as Chipmunk does,
+then solves the step's contact problem of the part against the kinematic arm and
+fixtures exactly: non-penetration ``v_n ≥ 0 ⊥ j_n ≥ 0`` and Coulomb friction with
+the pair's true μ (μ = ∞: stick while pushing), by block Gauss–Seidel over the
+contacts, each block the exact 2×2 solve of one contact (stick, separate, or
+slide at ``|j_t| = μ j_n`` with the normal solved through
+``D = K_nn − σ μ K_nt``). It writes the new velocities into the body and the
+impulses into the contacts' accumulators, and hands Chipmunk a solved problem:
+the tangential effective mass is set to 0 (the friction impulse stays) and the
+normal target (``bounce``) to minus the solved normal velocity, so Chipmunk's
+iterations change nothing but still run its position correction (bias
+impulses, which use the normal effective mass only) as in every other step.
+The arbiters are marked first-contact for this step so the cached (warm-start)
+impulses are not applied twice; the next ordinary step warm-starts from the
+exact impulses. The function removes itself after the step, so a step where the
+cap does not bind runs through Chipmunk's own code unchanged.
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["ExactSolve", "exact_solver", "solve_contact"]
+
+INF_MU = 1.0e29
+"""Arbiter friction at or above this is μ = ∞ (the hooks give pymunk 1e30 for it)."""
+MU_SKID = 1e6
+"""μ of a μ = ∞ contact that cannot stick with a pushing normal impulse: it slides with this μ (the μ → ∞
+limit; :data:`throwmap.kernels.rigid_body.modes.MU_SKID`)."""
+MAX_SWEEPS = 500
+"""Most Gauss–Seidel sweeps over the contacts in one step."""
+TOL = 1e-13
+"""Sweeps stop once no impulse changes by more than TOL × (largest impulse + m g dt)."""
+
+
+def solve_contact(wn: float, wt: float, ann: float, ant: float, att: float, mu: float):
+    """The impulse ``(j_n, j_t, mode)`` of one contact given its relative velocity without it ``(wn, wt)``
+    (normal, tangential), its inverse effective mass ``[[ann, ant], [ant, att]]`` and friction ``mu``
+    (``inf``: no slip while it pushes). ``mode``: 0 separate, 1 stick, 2 slide, 3 fallback (no consistent
+    Coulomb solution: the frictionless normal impulse). μ = ∞ that cannot stick slides with μ = :data:`MU_SKID`."""
+    if wn >= 0.0:
+        return 0.0, 0.0, 0
+    det = ann * att - ant * ant
+    jn = (ant * wt - att * wn) / det
+    jt = (ant * wn - ann * wt) / det
+    if jn > 0.0 and abs(jt) <= mu * jn:
+        return jn, jt, 1
+    m = mu if mu <= MU_SKID else MU_SKID  # μ = ∞ slides (normal force → 0) as its μ → ∞ limit, as rigid_body
+    s0 = -1.0 if jt > 0.0 else 1.0  # the slip the needed friction opposes
+    for s in (s0, -s0):
+        d = ann - s * m * ant
+        if d > 0.0:
+            jn = -wn / d
+            jt = -s * m * jn
+            vt = wt + ant * jn + att * jt
+            if s * vt >= 0.0:
+                return jn, jt, 2
+    return -wn / ann, 0.0, 3
+
+
+class ExactSolve:
+    """The exact contact solve of one part's steps where the friction cap would bind (see the module doc).
+
+    ``arm()`` (from the friction hook, in the step's pre-solve) installs the body's velocity-update function for
+    that step; counts: ``n_steps`` exact steps, ``n_sweeps`` Gauss–Seidel sweeps, ``n_unconverged`` steps that
+    reached :data:`MAX_SWEEPS`, ``n_fallback`` contact solves without a consistent Coulomb solution."""
+
+    __slots__ = ("lib", "ffi", "body", "m_inv", "i_inv", "armed", "callback", "default", "each", "found", "warm",
+                 "n_steps", "n_sweeps", "n_unconverged", "n_fallback", "first")
+
+    def __init__(self, lib, ffi, body, mass: float, moment: float):
+        self.lib, self.ffi, self.body = lib, ffi, body
+        self.m_inv, self.i_inv = 1.0 / mass, 1.0 / moment
+        self.armed = False
+        self.warm = {}
+        self.found = []
+        self.n_steps = self.n_sweeps = self.n_unconverged = self.n_fallback = 0
+        self.first = lib.CP_ARBITER_STATE_FIRST_COLLISION
+        self.default = ffi.addressof(lib, "cpBodyUpdateVelocity")
+        self.callback = ffi.callback("cpBodyVelocityFunc", self._velocity)
+        self.each = ffi.callback("cpBodyArbiterIteratorFunc", self._collect)
+
+    def arm(self) -> None:
+        """Solve this step's contacts exactly (called by the hook, at most once per step matters)."""
+        if not self.armed:
+            self.armed = True
+            self.lib.cpBodySetVelocityUpdateFunc(self.body, self.callback)
+
+    def _collect(self, body, arb, data):
+        self.found.append(arb)
+
+    def _velocity(self, body, gravity, damping, dt):
+        lib = self.lib
+        lib.cpBodyUpdateVelocity(body, gravity, damping, dt)
+        lib.cpBodySetVelocityUpdateFunc(body, self.default)  # one step only: the hook arms the next
+        self.armed = False
+        try:
+            self._solve(body, gravity, dt)
+        except Exception:  # pragma: no cover - never let an exception cross the C callback
+            import traceback
+
+            traceback.print_exc()
+
+    def _solve(self, body, gravity, dt):
+        lib = self.lib
+        self.found = []
+        lib.cpBodyEachArbiter(body, self.each, self.ffi.NULL)
+        arbs = self.found
+        m_inv, i_inv = self.m_inv, self.i_inv
+        v = lib.cpBodyGetVelocity(body)
+        vx, vy, w = v.x, v.y, lib.cpBodyGetAngularVelocity(body)
+        # contacts: (con, G rows n and t as (x, y, torque) with the sign of the part's side, A block, mu, e_n, e_t)
+        cons = []
+        for arb in arbs:
+            a, b = arb.body_a, arb.body_b
+            part_b = b == body
+            other = a if part_b else b
+            s = 1.0 if part_b else -1.0
+            nx, ny = arb.n.x, arb.n.y
+            tx, ty = -ny, nx
+            mu = arb.u
+            mu = math.inf if mu >= INF_MU else mu
+            ov = lib.cpBodyGetVelocity(other)
+            ow = lib.cpBodyGetAngularVelocity(other)
+            svr = arb.surface_vr
+            for i in range(arb.count):
+                c = arb.contacts[i]
+                r, ro = (c.r2, c.r1) if part_b else (c.r1, c.r2)
+                rx, ry, ox, oy = r.x, r.y, ro.x, ro.y
+                # the other body's point velocity, and the pair's relative velocity (b minus a) without the part
+                pvx, pvy = ov.x - oy * ow, ov.y + ox * ow
+                gn = (s * nx, s * ny, s * (rx * ny - ry * nx))
+                gt = (s * tx, s * ty, s * (rx * ty - ry * tx))
+                en = -s * (pvx * nx + pvy * ny) + svr.x * nx + svr.y * ny
+                et = -s * (pvx * tx + pvy * ty) + svr.x * tx + svr.y * ty
+                ann = m_inv * (gn[0] * gn[0] + gn[1] * gn[1]) + i_inv * gn[2] * gn[2]
+                ant = m_inv * (gn[0] * gt[0] + gn[1] * gt[1]) + i_inv * gn[2] * gt[2]
+                att = m_inv * (gt[0] * gt[0] + gt[1] * gt[1]) + i_inv * gt[2] * gt[2]
+                cons.append([c, gn, gt, ann, ant, att, mu, en, et, 0.0, 0.0, arb])
+        if not cons:
+            return
+        self.n_steps += 1
+        # warm start from the previous exact step (same contact hash); velocities with those impulses
+        warm = self.warm
+        ux, uy, uw = vx, vy, w
+        for k in cons:
+            x = warm.get(k[0].hash)
+            if x is not None:
+                k[9], k[10] = x
+                gn, gt = k[1], k[2]
+                ux += m_inv * (gn[0] * x[0] + gt[0] * x[1])
+                uy += m_inv * (gn[1] * x[0] + gt[1] * x[1])
+                uw += i_inv * (gn[2] * x[0] + gt[2] * x[1])
+        scale = abs(math.hypot(gravity.x, gravity.y)) * dt / m_inv
+        sweeps = 0
+        while True:
+            sweeps += 1
+            biggest = change = 0.0
+            fallback = False
+            for k in cons:
+                c, gn, gt, ann, ant, att, mu, en, et, jn0, jt0, _ = k
+                vn = gn[0] * ux + gn[1] * uy + gn[2] * uw + en
+                vt = gt[0] * ux + gt[1] * uy + gt[2] * uw + et
+                wn = vn - ann * jn0 - ant * jt0
+                wt = vt - ant * jn0 - att * jt0
+                jn, jt, mode = solve_contact(wn, wt, ann, ant, att, mu)
+                djn, djt = jn - jn0, jt - jt0
+                if djn != 0.0 or djt != 0.0:
+                    ux += m_inv * (gn[0] * djn + gt[0] * djt)
+                    uy += m_inv * (gn[1] * djn + gt[1] * djt)
+                    uw += i_inv * (gn[2] * djn + gt[2] * djt)
+                    k[9], k[10] = jn, jt
+                    change = max(change, abs(djn), abs(djt))
+                biggest = max(biggest, abs(jn), abs(jt))
+                if mode == 3:
+                    fallback = True
+            if change <= TOL * (biggest + scale):
+                break
+            if sweeps >= MAX_SWEEPS:
+                self.n_unconverged += 1
+                break
+        self.n_sweeps += sweeps
+        if fallback:
+            self.n_fallback += 1
+        lib.cpBodySetVelocity(body, (ux, uy))
+        lib.cpBodySetAngularVelocity(body, uw)
+        first = self.first
+        self.warm = warm = {}
+        for k in cons:
+            c, gn, gt, jn, jt, arb = k[0], k[1], k[2], k[9], k[10], k[11]
+            arb.state = first  # the impulses are in the velocities already: no cached (warm-start) impulse
+            c.jnAcc, c.jtAcc = jn, jt
+            c.tMass = 0.0  # the friction impulse stays as solved
+            c.bounce = -(gn[0] * ux + gn[1] * uy + gn[2] * uw + k[7])  # Chipmunk's normal update then gives 0
+            warm[c.hash] = (jn, jt)
+
+
+def exact_solver(world):
+    """An :class:`ExactSolve` for ``world``'s only part, or None (several parts, or no cffi binding)."""
+    if world.n != 1:
+        return None
+    try:
+        from pymunk._chipmunk import ffi, lib
+
+        lib.cpBodyEachArbiter, lib.cpBodySetVelocityUpdateFunc, lib.CP_ARBITER_STATE_FIRST_COLLISION  # noqa: B018
+        body = world.bodies[0]
+        return ExactSolve(lib, ffi, body._body, body.mass, body.moment)
+    except (ImportError, AttributeError):  # pragma: no cover - another pymunk
+        return None
