@@ -1,0 +1,209 @@
+"""``throwmap chain …``: stochastic throw maps as Markov chains, checked against the Monte Carlo (issue 14).
+
+``throwmap chain throw``     one part, open loop at a fixed ω: the chain (ω jitter, μ per trial, realisation),
+                             P(goal by k) against a Monte Carlo of the same model, the long-run distribution
+``throwmap chain position``  the ``position`` experiment's closed loop as a chain, against a Monte Carlo run
+                             of ``throwmap experiment position CONFIG --out DIR`` (its trials' ``throws``)
+
+Errors: one ``error: <field>: <reason>`` line, exit 2 (:mod:`throwmap.cli.options`). SI units.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from .options import check_finite, figure_format, guard, save_figure, to_json, write_text
+from .usage import ThrowmapGroup
+
+__all__ = ["register", "chain_app"]
+
+chain_app = typer.Typer(name="chain", cls=ThrowmapGroup, no_args_is_help=True, add_completion=False,
+                        pretty_exceptions_enable=False,
+                        help="Stochastic throw maps as Markov chains on cells: P(goal by throw k), absorption, "
+                             "the long-run distribution; checked against the Monte Carlo's 95 % band.")
+CellOpt = Annotated[float, typer.Option("--cell", help="Largest cell, m.")]
+SamplesOpt = Annotated[int, typer.Option("--samples", help="Throws per cell (split in halves for the check).")]
+MuNodesOpt = Annotated[int, typer.Option("--mu-nodes", help="μ nodes of the per-trial μ mixture.")]
+SeedOpt = Annotated[int, typer.Option("--seed", help="Seed of the chain's throws (and the Monte Carlo's).")]
+OutOpt = Annotated[Path | None, typer.Option("--out", help="Write the comparison as JSON here.")]
+PlotOpt = Annotated[Path | None, typer.Option("--plot", help="Figure of P(goal by k) with the Monte Carlo points.")]
+StatOpt = Annotated[Path | None, typer.Option("--plot-stationary", help="Figure of the long-run mass per side.")]
+
+
+def _positive(value, field: str, integer: bool = False):
+    from ..errors import InvalidStateError
+
+    if integer:
+        if value < 1:
+            raise InvalidStateError(field, f"must be ≥ 1, got {value}")
+        return value
+    check_finite(value, field)
+    if value <= 0:
+        raise InvalidStateError(field, f"must be > 0, got {value}")
+    return value
+
+
+def _emit(result: dict, out: Path | None) -> None:
+    text = to_json(result)
+    if out is not None:
+        write_text(out, text + "\n", "out")
+        typer.echo(f"wrote {out}")
+
+
+def _report(cmp, check: dict) -> None:
+    s = cmp.summary()
+    typer.echo(f"{s['label']}: {s['trials']} trials, k = 0…{s['k_max']}: chain inside the Wilson 95 % band at "
+               f"{100 * s['fraction_inside']:.1f} % of k (largest miss {100 * s['max_outside']:.2f} points; "
+               f"sup |chain − MC| {100 * s['sup_abs_diff']:.2f} points)")
+    typer.echo(f"  at k = {s['k_max']}: chain {100 * s['final']['chain']:.1f} %, Monte Carlo "
+               f"{100 * s['final']['mc']:.1f} % [{100 * s['final']['band'][0]:.1f}, {100 * s['final']['band'][1]:.1f}]")
+    typer.echo(f"  check: {check['n_cells']} cells ≤ {1000 * check['cell_m']:g} mm, {check['samples']} throws/cell "
+               f"({check['throws']} throws); halves' rows TV max {check['tv_max']:.3f}, mean {check['tv_mean']:.3f}; "
+               f"halves' curves differ by ≤ {100 * check.get('curve_gap', float('nan')):.2f} points")
+
+
+@chain_app.command("throw")
+def throw_cmd(
+    part: Annotated[str, typer.Option("--part", help="Built-in part name or part file.")] = "triangle",
+    h: Annotated[float, typer.Option("--h", help="Arm surface height, m.")] = -0.01,
+    length: Annotated[float, typer.Option("--length", help="Arm length, m.")] = 0.60,
+    mu: Annotated[float, typer.Option("--mu", help="Nominal arm μ.")] = 1.0,
+    omega: Annotated[float, typer.Option("--omega", help="Nominal release rate, rad/s.")] = 3.0,
+    model: Annotated[str, typer.Option("--model", help="An analytic model (rigid_body, paper, small_angle).")]
+    = "rigid_body",
+    omega_rel: Annotated[float, typer.Option("--omega-rel", help="ω jitter, relative σ per throw.")] = 0.03,
+    mu_rel: Annotated[float, typer.Option("--mu-rel", help="μ spread, relative σ per trial.")] = 0.1,
+    realisation: Annotated[str, typer.Option("--realisation", help="impulse or recoil (rigid_body).")] = "impulse",
+    goal: Annotated[str, typer.Option("--goal", help="'off_end', 'behind_joint' or SIDE:LO:HI (m).")] = "off_end",
+    cell: CellOpt = 0.005,
+    samples: SamplesOpt = 32,
+    mu_nodes: MuNodesOpt = 5,
+    trials: Annotated[int, typer.Option("--trials", help="Monte Carlo trials (0: none).")] = 400,
+    k_max: Annotated[int, typer.Option("--k-max", help="Throws compared.")] = 60,
+    seed: SeedOpt = 0,
+    out: OutOpt = None,
+    plot: PlotOpt = None,
+    plot_stationary: StatOpt = None,
+) -> None:
+    """One part thrown open loop at a fixed ω: the chain against a Monte Carlo of the same model."""
+    import numpy as np
+
+    from ..errors import InvalidStateError
+    from ..experiments.noise import Noise
+    from ..stochastic import Cells, GoalSet, ThrowStep, build_mixture, compare_curve, open_loop_trials
+    from .options import part_and_arm
+
+    with guard():
+        _positive(cell, "cell")
+        _positive(samples, "samples", True)
+        _positive(k_max, "k_max", True)
+        fmt = figure_format(plot, "plot")
+        fmt_s = figure_format(plot_stationary, "plot_stationary")
+        p, arm = part_and_arm(part, h, None, length, mu)
+        noise = Noise(omega_rel=omega_rel, mu_rel=mu_rel, realisation=realisation)
+        if goal in ("off_end", "behind_joint"):
+            gs = GoalSet(label=goal)
+        else:
+            try:
+                s, lo, hi = goal.split(":")
+                gs = GoalSet(side=int(s), lo=float(lo), hi=float(hi))
+            except ValueError:
+                raise InvalidStateError("goal", f"must be off_end, behind_joint or SIDE:LO:HI, got {goal!r}") from None
+        cells = Cells.on_arm(p, arm, cell, breaks=gs.breaks)
+        step = ThrowStep(p, arm, check_finite(omega, "omega"), model, noise)
+        init = np.ones(cells.n)
+        mix, builds = build_mixture(cells, step, samples=samples, rng=seed, n_mu=mu_nodes, initial=init,
+                                    meta={"kind": "open_loop", "omega": omega, "model": model})
+        mask = gs.mask(mix.chains[0])
+        curve = mix.p_goal_by(k_max, mask, init)
+        check = dict(mix.meta["check"], curve_gap=max(b.curve_gap(k_max, mask, init) for b in builds))
+        st = mix.stationary(init)
+        result = {"chain": {"cells": cells.n, "check": check, "mu_nodes": mix.meta["mu_nodes"],
+                            "p_goal_by": curve.tolist(), "goal": gs.to_dict(),
+                            "absorbed": mix.absorption_of(init),
+                            "stationary": {"on_arm": st.on_arm, "absorbed": st.absorbed(), "converged": st.converged}}}
+        typer.echo(f"chain: {cells.n} cells, P(goal by {k_max}) = {100 * curve[-1]:.1f} %; long run: "
+                   f"{100 * st.on_arm:.1f} % on the arm, "
+                   + ", ".join(f"{k} {100 * v:.1f} %" for k, v in st.absorbed().items() if v > 5e-4))
+        if trials > 0:
+            hits = open_loop_trials(step, cells, init, gs, n=trials, k_max=k_max, rng=seed + 1)
+            cmp = compare_curve(curve, hits, k_max, label=f"{p.name}, ω = {omega:g} rad/s ({model}), goal "
+                                                           f"{goal}", meta={"check": check})
+            _report(cmp, check)
+            result["comparison"] = cmp.to_dict()
+            if plot is not None:
+                save_figure(cmp.plot(), plot, fmt, "plot")
+                typer.echo(f"wrote {plot}")
+        if plot_stationary is not None:
+            save_figure(st.plot(title=f"long run at ω = {omega:g} rad/s ({model}), uniform start"),
+                        plot_stationary, fmt_s, "plot_stationary")
+            typer.echo(f"wrote {plot_stationary}")
+        _emit(result, out)
+
+
+@chain_app.command("position")
+def position_cmd(
+    trials: Annotated[Path, typer.Argument(help="A Monte Carlo run directory (throwmap experiment position … --out).")],
+    config: Annotated[Path | None, typer.Argument(help="The run's config (.toml/.json; default: the run's own).")]
+    = None,
+    initial: Annotated[Path | None, typer.Option("--initial", help="Take the drops from this run directory "
+                                                                  "instead (an independent start distribution).")]
+    = None,
+    cell: CellOpt = 0.005,
+    samples: SamplesOpt = 64,
+    mu_nodes: MuNodesOpt = 5,
+    seed: SeedOpt = 0,
+    out: OutOpt = None,
+    plot: PlotOpt = None,
+    plot_stationary: StatOpt = None,
+) -> None:
+    """The ``position`` experiment's closed loop as a chain against the run's trials (their ``throws``)."""
+    import json
+
+    from ..experiments.base import config_of, read_config
+    from ..experiments.registry import get_experiment
+    from ..stochastic import compare_curve
+    from ..stochastic.experiments import position_chain, position_hits, position_initial, read_trials
+
+    with guard():
+        _positive(cell, "cell")
+        _positive(samples, "samples", True)
+        fmt = figure_format(plot, "plot")
+        fmt_s = figure_format(plot_stationary, "plot_stationary")
+        exp = get_experiment("position")
+        if config is not None:
+            cfg = read_config(exp, config)
+        else:
+            run = json.loads((Path(trials) / "run.json").read_text(encoding="utf-8"))
+            cfg = config_of(exp, run.get("config"))
+        rows = read_trials(trials)
+        mix, builds = position_chain(cfg, cell=cell, samples=samples, n_mu=mu_nodes, rng=seed)
+        init = position_initial(mix.cells, read_trials(initial) if initial is not None else rows)
+        hits = position_hits(rows)
+        k_max = max(1, int(hits.max()))
+        curve = mix.p_goal_by(k_max, "stop:goal", init)
+        check = dict(mix.meta["check"],
+                     curve_gap=max(b.curve_gap(k_max, "stop:goal", init) for b in builds))
+        cmp = compare_curve(curve, hits, k_max, label=f"position ({cfg.model})",
+                            meta={"check": check, "mu_nodes": mix.meta["mu_nodes"],
+                                  "initial": str(initial or trials)})
+        _report(cmp, check)
+        ab = mix.absorption_of(init)
+        typer.echo("  chain's end states: " + ", ".join(f"{k} {100 * v:.1f} %" for k, v in ab.items() if v > 5e-4
+                                                       and not k.startswith("side ")))
+        if plot is not None:
+            save_figure(cmp.plot(), plot, fmt, "plot")
+            typer.echo(f"wrote {plot}")
+        if plot_stationary is not None:
+            st = mix.stationary(init)
+            save_figure(st.plot(title=f"position ({cfg.model}): long-run mass from the drops"), plot_stationary,
+                        fmt_s, "plot_stationary")
+            typer.echo(f"wrote {plot_stationary}")
+        _emit(dict(cmp.to_dict(), absorbed=ab), out)
+
+
+def register(app: typer.Typer) -> None:
+    app.add_typer(chain_app, name="chain")
