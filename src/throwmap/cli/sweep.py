@@ -3,6 +3,7 @@
 ::
 
     throwmap sweep SWEEP.toml [--out DIR] [--scheduler ADDRESS] [--workers N] [--status] [--json]
+                   [--stop-after K] [--connect-timeout S]
 
 A thin shell over :func:`throwmap.sweeps.run_sweep`. ``SWEEP.toml`` is validated first
 (:class:`throwmap.sweeps.SweepSpec`; every design point's config too), then the points missing from
@@ -56,6 +57,7 @@ def sweep_cmd(
     stop_after: Annotated[int | None, typer.Option("--stop-after", parser=strict_int, metavar="INTEGER",
                                                    help="Write at most this many parts, then stop (the rest stays "
                                                         "missing for a later run).")] = None,
+    connect_timeout: Annotated[float, typer.Option("--connect-timeout", help="Seconds to wait for --scheduler.")] = 20.0,
     as_json: JsonOpt = False,
 ) -> None:
     """Run a sweep (grid or random design) of an experiment or an analysis on Dask; results as Parquet."""
@@ -77,7 +79,8 @@ def sweep_cmd(
                            f"({st['chunks_missing']} parts)")
             return
         with _bar(f"sweep {sweep.name}") as update:
-            run = run_sweep(spec, target, scheduler=scheduler, workers=workers, progress=update, stop_after=stop_after)
+            run = run_sweep(spec, target, scheduler=scheduler, workers=workers, progress=update, stop_after=stop_after,
+                            connect_timeout=connect_timeout)
         typer.echo(to_json(run.to_dict()) if as_json else run.summary())
 
 

@@ -65,7 +65,7 @@ class SweepRun:
 def _manifest(spec: SweepSpec, design, columns: dict) -> dict:
     return {"sweep_sha256": spec_hash(spec), "target": spec.target, "kind": spec.kind, "n_points": design.n_points,
             "n_chunks": design.n_chunks, "chunk": design.chunk, "parameters": list(design.names),
-            "columns": columns, "spec": jsonable(spec.model_dump(mode="json"))}
+            "columns": columns, "spec": jsonable(spec.model_dump())}
 
 
 def _plan(spec: SweepSpec, out):
@@ -86,7 +86,7 @@ def sweep_status(spec: SweepSpec, out) -> dict:
             "chunks_missing": design.n_chunks - len(done)}
 
 
-def _client(scheduler, workers: int):
+def _client(scheduler, workers: int, timeout: float):
     """``(client, cluster or None)``: connect to ``scheduler``, or start a local cluster of worker processes."""
     import logging
 
@@ -94,23 +94,24 @@ def _client(scheduler, workers: int):
 
     if scheduler is not None:
         try:
-            return Client(scheduler, timeout="20s", set_as_default=False), None
+            return Client(scheduler, timeout=f"{timeout}s", set_as_default=False), None
         except (OSError, TimeoutError, ValueError) as err:
             raise InvalidStateError("scheduler", f"cannot connect to {shown(scheduler)}: {' '.join(str(err).split())}") from None
     n = (os.cpu_count() or 1) if workers == 0 else workers
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
                            silence_logs=logging.CRITICAL)
     return Client(cluster, set_as_default=False), cluster
 
 
 def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None, workers: int = 0,
-              progress=None, stop_after: int | None = None) -> SweepRun:
+              progress=None, stop_after: int | None = None, connect_timeout: float = 20.0) -> SweepRun:
     """Compute every design point of ``spec`` missing from ``out`` on Dask and store it (module docstring).
 
     ``scheduler``: the address of a running Dask scheduler (``tcp://host:8786``); ``client``: a
     :class:`distributed.Client` to use as it is; neither: a local cluster of ``workers`` processes (0: all
     cores). ``progress(done, total)`` counts points (stored ones count as done at the start). ``stop_after``:
     write at most this many chunks, then cancel the rest and return (an interruption on purpose).
+    ``connect_timeout``: seconds to wait for ``scheduler`` before giving up (one line on ``scheduler``).
 
     Raises :class:`~throwmap.errors.InvalidStateError` on a bad sweep (before anything runs), a changed
     sweep in ``out``, an unreachable scheduler, or a task that failed after its retries (chunks already
@@ -120,6 +121,8 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
         raise InvalidStateError("workers", f"must be an integer ≥ 0 (0: all cores), got {shown(workers)}")
     if stop_after is not None and (isinstance(stop_after, bool) or not isinstance(stop_after, int) or stop_after < 1):
         raise InvalidStateError("stop_after", f"must be an integer ≥ 1, got {shown(stop_after)}")
+    if isinstance(connect_timeout, bool) or not isinstance(connect_timeout, (int, float)) or not connect_timeout > 0:
+        raise InvalidStateError("connect_timeout", f"must be a number of seconds > 0, got {shown(connect_timeout)}")
     t0 = time.perf_counter()
     out = Path(out)
     design, columns, done = _plan(spec, out)
@@ -137,7 +140,7 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
         own = client is None
         cluster = None
         if own:
-            client, cluster = _client(scheduler, workers)
+            client, cluster = _client(scheduler, workers, connect_timeout)
         try:
             if client.scheduler is not None and where == "client":
                 where = client.scheduler.address

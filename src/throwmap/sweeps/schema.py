@@ -213,27 +213,37 @@ def parse_sweep(doc: Any, source: str = "sweep") -> SweepSpec:
     try:
         spec = SweepSpec.model_validate(doc)
     except ValidationError as err:
-        raise _first_error(err) from None
+        raise _first_error(err, doc) from None
     return spec.check()
 
 
-def _first_error(err: ValidationError) -> ConfigError:
+def _first_error(err: ValidationError, doc: dict) -> ConfigError:
     errors = sorted(err.errors(include_url=False), key=lambda e: e["type"] != "extra_forbidden")
     e = errors[0]
+    if e["loc"][:1] == ("parameters",) and len(e["loc"]) >= 2:
+        key = e["loc"][1]
+        value = (doc.get("parameters") or {}).get(key)
+        mine = [x for x in errors if x["loc"][:2] == ("parameters", key)]
+        if isinstance(value, dict):  # it meant a Range: its own error, not the list branch's
+            mine = [x for x in mine if len(x["loc"]) > 2 and x["loc"][2] == "Range"] or mine
+            mine.sort(key=lambda x: x["type"] != "extra_forbidden")
+            e = mine[0]
+            rest = [str(x) for x in e["loc"][3:]]
+            field = ".".join(["parameters", str(key), *rest])
+            if e["type"] == "extra_forbidden":
+                return ConfigError(field, f"unknown key (a range has: {', '.join(Range.model_fields)})")
+            return ConfigError(field, "required" if e["type"] == "missing" else e["msg"].removeprefix("Value error, "))
+        if not isinstance(value, list):
+            return ConfigError(f"parameters.{key}", f"must be a list of values or a range table {{low, high, num}}, "
+                                                    f"got {type(value).__name__}")
+        e = mine[0] if mine else e
     loc = [str(x) for x in e["loc"]]
-    if len(loc) >= 2 and loc[0] == "parameters":  # the union's branch name (list[...] / Range) is noise
-        loc = [x for x in loc if x not in ("list[any]", "Range")]
-        loc = [x for x in loc if not x.startswith(("list[", "function-"))]
     field = ".".join(loc) or "sweep"
     if e["type"] == "extra_forbidden":
-        model = Range if loc[0] == "parameters" else SweepSpec
-        return ConfigError(field, f"unknown key (allowed: {', '.join(model.model_fields)})")
+        return ConfigError(field, f"unknown key (allowed: {', '.join(SweepSpec.model_fields)})")
     if e["type"] == "missing":
         return ConfigError(field, "required")
-    msg = e["msg"].removeprefix("Value error, ")
-    if loc and loc[0] == "parameters" and len(loc) == 2 and e["type"] in ("list_type", "model_type", "dict_type"):
-        msg = "must be a list of values or a range table {low, high, num}"
-    return ConfigError(field, msg)
+    return ConfigError(field, e["msg"].removeprefix("Value error, "))
 
 
 def read_sweep(path) -> tuple[SweepSpec, str]:
@@ -270,5 +280,5 @@ def jsonable(obj):
 def spec_hash(spec: SweepSpec) -> str:
     """SHA-256 of the sweep's canonical content (the validated spec as sorted JSON): comments, key order and
     layout of the file do not change it; any value that changes the results does."""
-    canon = json.dumps(jsonable(spec.model_dump(mode="json")), sort_keys=True, separators=(",", ":"), allow_nan=False)
+    canon = json.dumps(jsonable(spec.model_dump()), sort_keys=True, separators=(",", ":"), allow_nan=False)
     return hashlib.sha256(canon.encode()).hexdigest()

@@ -1,0 +1,128 @@
+"""Sweep files, designs and the Parquet store, without a cluster (fast)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from throwmap.errors import ThrowmapError
+from throwmap.sweeps import make_design, parse_sweep, read_sweep, spec_hash
+from throwmap.sweeps.schema import jsonable
+from throwmap.sweeps.design import point_seed
+from throwmap.sweeps.run import sweep_status
+from throwmap.sweeps.store import column_types, finished_chunks, part_path, prepare_out, read_table, write_chunk
+
+SETTLE = {"kind": "grid", "target": "experiment:settle", "n": 5, "seed": 3,
+          "parameters": {"mu": [0.4, 0.8], "h": {"low": -0.02, "high": 0.0, "num": 3}}}
+
+
+def test_import_throwmap_loads_no_dask():
+    code = "import sys, throwmap, throwmap.sweeps, throwmap.cli.sweep; print(sorted(m for m in ('dask', 'distributed', 'pyarrow') if m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_grid_is_every_combination_last_fastest():
+    d = make_design(parse_sweep(SETTLE))
+    assert d.n_points == 6 and d.names == ("mu", "h")
+    assert d.points[:3] == ((0.4, -0.02), (0.4, -0.01), (0.4, 0.0))
+    assert d.configs[4]["mu"] == 0.8 and d.configs[4]["h"] == -0.01
+    assert set(d.seeds) == {3}  # common random numbers by default
+    assert d.chunk == 1 and d.n_chunks == 6
+
+
+def test_random_design_is_seeded_and_within_ranges():
+    doc = {"kind": "random", "target": "throw", "samples": 50, "seed": 11,
+           "parameters": {"omega": {"low": 2.0, "high": 8.0}, "mu": {"low": 0.1, "high": 10.0, "log": True},
+                          "side": [0, 1, 2]}}
+    a, b = make_design(parse_sweep(doc)), make_design(parse_sweep(doc))
+    assert a.points == b.points and a.n_points == 50
+    assert all(2.0 <= p[0] < 8.0 and 0.1 <= p[1] < 10.0 and p[2] in (0, 1, 2) for p in a.points)
+    c = make_design(parse_sweep({**doc, "seed": 12}))
+    assert c.points != a.points
+    assert a.chunk == 256 and a.n_chunks == 1
+
+
+def test_spawned_point_seeds():
+    d = make_design(parse_sweep({**SETTLE, "common_random_numbers": False}))
+    assert d.seeds == tuple(point_seed(3, i) for i in range(6)) and len(set(d.seeds)) == 6
+
+
+def test_plus_key_sets_several_fields():
+    doc = {"kind": "grid", "target": "experiment:settle", "n": 2,
+           "parameters": {"noise.mu_rel+noise.omega_rel": [0.0, 0.1]}}
+    d = make_design(parse_sweep(doc))
+    assert [(c["noise"]["mu_rel"], c["noise"]["omega_rel"]) for c in d.configs] == [(0.0, 0.0), (0.1, 0.1)]
+
+
+@pytest.mark.parametrize("doc, field", [
+    ({**SETTLE, "bogus": 1}, "bogus"),
+    ({**SETTLE, "kind": "lattice"}, "kind"),
+    ({**SETTLE, "target": "experiment:nosuch"}, "target"),
+    ({**SETTLE, "target": "throws"}, "target"),
+    ({k: v for k, v in SETTLE.items() if k != "n"}, "n"),
+    ({**SETTLE, "parameters": {"mu": [0.4, -1.0]}}, "parameters.mu"),
+    ({**SETTLE, "parameters": {"muu": [0.4]}}, "parameters.muu"),
+    ({**SETTLE, "parameters": {"mu": 3}}, "parameters.mu"),
+    ({**SETTLE, "parameters": {"mu": []}}, "parameters"),
+    ({**SETTLE, "parameters": {"h": {"low": 0.0, "high": 1.0}}}, "parameters.h.num"),
+    ({**SETTLE, "parameters": {"h": {"low": 1.0, "high": 0.0, "num": 2}}}, "parameters.h.high"),
+    ({**SETTLE, "parameters": {"h": {"low": 0.0, "high": 1.0, "num": 2, "step": 1}}}, "parameters.h.step"),
+    ({**SETTLE, "kind": "random"}, "samples"),
+    ({**SETTLE, "config": {"muu": 1}}, "config.muu"),
+    ({"kind": "grid", "target": "throw", "n": 3, "parameters": {"x": [0.1]}}, "n"),
+    ({"kind": "grid", "target": "throw", "parameters": {"side": [0.5]}}, "parameters.side"),
+    ({"kind": "grid", "target": "throw", "parameters": {"status": ["ok"]}}, "parameters.status"),
+    ({"kind": "grid", "target": "throw", "config": {"omega": -1}, "parameters": {"x": [0.1]}}, "config.omega"),
+])
+def test_errors_are_one_line_naming_the_field(doc, field):
+    with pytest.raises(ThrowmapError) as info:
+        spec = parse_sweep(doc)
+        d = make_design(spec)
+        column_types(d.names, d.points, {"status": "string"})
+    assert info.value.field == field, str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_hash_ignores_layout_and_comments(tmp_path):
+    a = tmp_path / "a.toml"
+    b = tmp_path / "b.toml"
+    a.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nx = [0.1, 0.2]\nomega = [5.0]\n')
+    b.write_text('# a comment\ntarget = "throw"\nkind = "grid"\n\n[parameters]\nx = [0.1, 0.2]  # m\nomega = [5.0]\n')
+    assert spec_hash(read_sweep(a)[0]) == spec_hash(read_sweep(b)[0])
+    b.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nx = [0.1, 0.3]\nomega = [5.0]\n')
+    assert spec_hash(read_sweep(a)[0]) != spec_hash(read_sweep(b)[0])
+
+
+def test_inf_in_a_sweep_file(tmp_path):
+    f = tmp_path / "s.toml"
+    f.write_text('kind = "grid"\ntarget = "limit_set"\n[config]\nlength = inf\n[parameters]\nmu = [0.5, inf]\n')
+    spec, _ = read_sweep(f)
+    d = make_design(spec)
+    assert d.configs[1]["mu"] == float("inf") and d.configs[0]["length"] == float("inf")
+    st = sweep_status(spec, tmp_path / "out")
+    assert (st["n_points"], st["rows"], st["missing"]) == (2, 0, 2)
+    assert json.loads((tmp_path / "out" / "_manifest.json").read_text())["spec"]["config"]["length"] == "inf"
+
+
+def test_store_parts_are_atomic_and_a_changed_sweep_is_refused(tmp_path):
+    spec = parse_sweep({"kind": "grid", "target": "throw", "chunk": 2, "parameters": {"x": [0.1, 0.2, 0.3]}})
+    d = make_design(spec)
+    cols = column_types(d.names, d.points, {"status": "string"})
+    out = tmp_path / "out"
+    prepare_out(out, {"sweep_sha256": spec_hash(spec), "spec": jsonable(spec.model_dump()), "columns": cols})
+    write_chunk(out, 0, [{"point": 0, "x": 0.1, "seed": 0, "version": "v", "status": "ok", "elapsed_s": 0.1},
+                         {"point": 1, "x": 0.2, "seed": 0, "version": "v", "status": "ok", "elapsed_s": 0.1}], cols)
+    (out / ".part-000001.parquet.123.tmp").write_bytes(b"torn")  # a killed run's temporary file
+    part_path(out, 5).write_bytes(b"not parquet")  # a chunk the design does not have
+    assert finished_chunks(out, 2, lambda c: 2 if c == 0 else 1) == {0}
+    assert sorted(p.name for p in out.iterdir()) == ["_manifest.json", "part-000000.parquet"]
+    t = read_table(out)
+    assert t.num_rows == 2 and t.column("x").to_pylist() == [0.1, 0.2] and t.column("error").to_pylist() == [None, None]
+    other = parse_sweep({"kind": "grid", "target": "throw", "chunk": 2, "parameters": {"x": [0.1, 0.2, 0.4]}})
+    with pytest.raises(ThrowmapError) as info:
+        prepare_out(out, {"sweep_sha256": spec_hash(other), "spec": jsonable(other.model_dump()), "columns": cols})
+    assert info.value.field == "out" and "first difference: parameters.x" in str(info.value)
