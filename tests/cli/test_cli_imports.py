@@ -17,7 +17,7 @@ import throwmap.cli
 
 CLI_DIR = Path(throwmap.cli.__file__).parent
 MODULES = sorted(p.stem for p in CLI_DIR.glob("*.py"))
-COMMAND_MODULES = ("analysis", "animate", "assemble", "chain", "control", "design", "experiment", "plan", "statics", "studies", "sweep", "throws", "view")
+COMMAND_MODULES = ("analysis", "animate", "assemble", "chain", "control", "design", "experiment", "plan", "reproduce", "statics", "studies", "sweep", "throws", "view")
 SUPPORT_MODULES = ("usage",)  # the app's command group (usage errors as one line); imports options only
 SUBCOMMAND_MODULES = {"cavity": "design", "passage": "design"}  # module → the command group that registers it (by name, at run time)
 GROUP_MODULES = ("assemble", "chain", "control", "design", "plan", "statics")  # commands that are groups of subcommands (they use usage's ThrowmapGroup)
@@ -99,4 +99,4 @@ def test_each_module_imports_first_in_a_fresh_interpreter(stem):
     assert done.returncode == 0, done.stderr
     assert done.stdout.split() == sorted(["throw", "iterate", "demo", "compare", "validate", "validate-fixtures", "validate-recoil",
                                           "animate", "limitset", "basins", "funnels", "design", "experiment", "control", "plan", "statics",
-                                          "assemble", "sensitivity", "view", "sweep", "chain"])
+                                          "assemble", "sensitivity", "reproduce", "view", "sweep", "chain"])
