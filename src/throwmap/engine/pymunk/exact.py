@@ -40,13 +40,14 @@ import math
 
 __all__ = ["ExactSolve", "exact_solver", "solve_contact"]
 
-INF_MU = 1.0e29
-"""Arbiter friction at or above this is μ = ∞ (the hooks give pymunk 1e30 for it)."""
 MU_SKID = 1e6
 """μ of a μ = ∞ contact that cannot stick with a pushing normal impulse: it slides with this μ (the μ → ∞
 limit; :data:`throwmap.kernels.rigid_body.modes.MU_SKID`)."""
 MAX_SWEEPS = 500
 """Most Gauss–Seidel sweeps over the contacts in one step."""
+TRIGGER = 0.8
+"""A contact whose previous impulses used more than TRIGGER × the cap of its friction ratio (or that is new, or did
+not push) is solved exactly; below that the capped μ leaves the (sticking) solution unchanged and Chipmunk solves it."""
 TOL = 1e-13
 """Sweeps stop once no impulse changes by more than TOL × (largest impulse + m g dt)."""
 
@@ -84,24 +85,41 @@ class ExactSolve:
     reached :data:`MAX_SWEEPS`, ``n_fallback`` contact solves without a consistent Coulomb solution."""
 
     __slots__ = ("lib", "ffi", "body", "m_inv", "i_inv", "armed", "callback", "default", "each", "found", "warm",
-                 "n_steps", "n_sweeps", "n_unconverged", "n_fallback", "first")
+                 "n_steps", "n_sweeps", "n_unconverged", "n_fallback", "first", "mu_arm", "mu_wall", "fixture")
 
-    def __init__(self, lib, ffi, body, mass: float, moment: float):
+    def __init__(self, lib, ffi, body, mass: float, moment: float, mu_arm: float, mu_wall: float, fixture: int):
         self.lib, self.ffi, self.body = lib, ffi, body
         self.m_inv, self.i_inv = 1.0 / mass, 1.0 / moment
+        self.mu_arm, self.mu_wall, self.fixture = mu_arm, mu_wall, fixture
         self.armed = False
         self.warm = {}
         self.found = []
         self.n_steps = self.n_sweeps = self.n_unconverged = self.n_fallback = 0
         self.first = lib.CP_ARBITER_STATE_FIRST_COLLISION
-        self.default = ffi.addressof(lib, "cpBodyUpdateVelocity")
-        self.callback = ffi.callback("cpBodyVelocityFunc", self._velocity)
-        self.each = ffi.callback("cpBodyArbiterIteratorFunc", self._collect)
+        self.default = self.callback = self.each = None  # made on the first exact step (most runs have none)
+
+    @staticmethod
+    def wanted(arb, cap: float) -> bool:
+        """Whether raw arbiter ``arb`` (its impulses still those of the previous step) needs the exact solve at
+        friction cap ``cap``: a contact is new or did not push, or its friction ratio exceeded TRIGGER × cap."""
+        lim = TRIGGER * cap
+        cons = arb.contacts
+        for i in range(arb.count):
+            c = cons[i]
+            jn = c.jnAcc
+            if jn <= 0.0 or abs(c.jtAcc) > lim * jn:
+                return True
+        return False
 
     def arm(self) -> None:
         """Solve this step's contacts exactly (called by the hook, at most once per step matters)."""
         if not self.armed:
             self.armed = True
+            if self.callback is None:
+                ffi, lib = self.ffi, self.lib
+                self.default = ffi.addressof(lib, "cpBodyUpdateVelocity")
+                self.callback = ffi.callback("cpBodyVelocityFunc", self._velocity)
+                self.each = ffi.callback("cpBodyArbiterIteratorFunc", self._collect)
             self.lib.cpBodySetVelocityUpdateFunc(self.body, self.callback)
 
     def _collect(self, body, arb, data):
@@ -136,8 +154,10 @@ class ExactSolve:
             s = 1.0 if part_b else -1.0
             nx, ny = arb.n.x, arb.n.y
             tx, ty = -ny, nx
-            mu = arb.u
-            mu = math.inf if mu >= INF_MU else mu
+            fix = self.fixture
+            mu = self.mu_wall if (lib.cpShapeGetCollisionType(arb.a) == fix
+                                  or lib.cpShapeGetCollisionType(arb.b) == fix) else self.mu_arm
+            arb.u = mu if math.isfinite(mu) else 1.0e30  # (the hook may have capped it before the step was armed)
             ov = lib.cpBodyGetVelocity(other)
             ow = lib.cpBodyGetAngularVelocity(other)
             svr = arb.surface_vr
@@ -221,7 +241,9 @@ def exact_solver(world):
         from pymunk._chipmunk import ffi, lib
 
         lib.cpBodyEachArbiter, lib.cpBodySetVelocityUpdateFunc, lib.CP_ARBITER_STATE_FIRST_COLLISION  # noqa: B018
+        from .world import FIXTURE
+
         body = world.bodies[0]
-        return ExactSolve(lib, ffi, body._body, body.mass, body.moment)
+        return ExactSolve(lib, ffi, body._body, body.mass, body.moment, world.mu_arm, world.mu_wall, FIXTURE)
     except (ImportError, AttributeError):  # pragma: no cover - another pymunk
         return None

@@ -102,7 +102,7 @@ class FrictionCap:
                 cap = min(cap, CAP * knn / abs(knt))
         if cap < mu:
             self.n_capped += 1
-            if self.exact is None:
+            if self.exact is None or not self.exact.wanted(arbiter._arbiter, cap):
                 arbiter.friction = cap
             else:  # the step is solved exactly with the pair's μ (.exact)
                 self.exact.arm()
@@ -195,7 +195,7 @@ def _set_capped(hook, arb, point, mu: float) -> None:
             cap = min(cap, CAP * (rho2 + rn * rn) / abs(rn * rt))
     if cap < mu:
         hook.n_capped += 1
-        if hook.exact is None:
+        if hook.exact is None or not hook.exact.wanted(arb, cap):
             lib.cpArbiterSetFriction(arb, cap)
         else:  # the step is solved exactly with the pair's μ (.exact)
             hook.exact.arm()
@@ -300,7 +300,7 @@ class _SinglePartFixtureCap:
             if cap < mu:
                 hook.n_capped += 1
                 exact = hook.exact
-                if exact is None:
+                if exact is None or not exact.wanted(arb, cap):
                     set_u(arb, cap)
                 else:  # the step is solved exactly with the pair's μ (.exact)
                     exact.arm()
