@@ -1,0 +1,312 @@
+"""Experiments ``assemble-sequential`` and ``assemble-serial``: the draft's sequential assembly (Sec. V-D, Fig. 10).
+
+The draft threw its designed triangle and a four-sided part on one arm until both lay in the cavity at its end,
+the four-sided part "perfectly matching the sides of the cavity and the top of the triangle": 11/20 = 55 %, and
+assembled parts stayed assembled after the next throw 17/20 = 85 %; its failures were the second part ejected
+from the assembled state and stuck in the cavity in a wrong orientation, and it suggested handling the parts
+separately (serially). Here (pymunk engine, :mod:`throwmap.design.stack` for the design):
+
+* the first part is the recoil feeder of issue 11 (``experiment feed``'s built-in example: triangle + 80 g lead,
+  side 0, the 1 cm pocket ending at the end wall, L = 0.38 m, ω = 4.56 rad/s, 3 % jitter, the recoil arm);
+* the second is the wedge of :func:`~throwmap.design.stack.design_stack` (the slot between the captured triangle's
+  short leg and the end wall), ``[wedge]`` in the config;
+* ``assemble-sequential``: both parts are dropped together (random non-overlapping poses, CM x over ``x_range``,
+  lowest vertex 2–10 cm up) and thrown open-loop at ω until assembled (:meth:`StackDesign.assembled`), at most
+  ``max_throws``;
+* ``assemble-serial`` (the draft's suggestion): the triangle alone is dropped and thrown until captured in the
+  pocket (at most ``max_first``), then the wedge is dropped onto the arm (``x_range_second``) and both are thrown
+  at ``omega_second`` until assembled (at most ``max_second``).
+
+Then ``hold`` more throws: ``held_1`` (assembled after the next throw), ``held_k`` (after each of them). Success
+= assembled within the caps (retention is reported, not part of success, as in ``assemble``). Failures (first
+that applies): ``ejected`` (a part left the arm: off the end or behind the joint; ``lost`` says which and how),
+``wrong_orientation`` (at the cap a part is in the cavity's end, past the lip, but the pair is not assembled:
+the triangle off its target side or the wedge stuck otherwise), ``not_assembled`` (neither in the cavity's end),
+``refused:<status>`` (an engine run refused; ``refused:drop`` when no drop came to rest) — never dropped.
+
+Values: ``throws``, ``throws_to_assemble`` (nan if never), ``triangle_at``/``wedge_at`` (first throw after which
+the triangle was captured / the wedge's CM past the lip, counted from the start of the trial), ``order``
+(``triangle_first``, ``wedge_first``, ``same_throw``, ``none``), ``held_1``, ``held_k``, ``hold_breaks``, the end's
+``pos_err_m``/``ang_err_rad`` (the wedge from its assembled pose), ``mu``, ``drop_redraws``, ``lost``; serial:
+``throws_first``, ``throws_second``.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Annotated
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from ..errors import InvalidStateError
+from .base import Trial, seed_of
+from .drop import DEFAULT_HEIGHT
+from .noise import NoiseConfig
+from .registry import register_experiment
+
+__all__ = ["SEQUENTIAL", "SERIAL", "SequentialAssembly", "SequentialConfig", "WedgeConfig", "build_stack",
+           "drop_parts"]
+
+Finite = Annotated[float, Field(allow_inf_nan=False)]
+
+
+class WedgeConfig(BaseModel):
+    """The second part (:func:`throwmap.design.stack.stack_part`; m, kg)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    top: Finite = Field(0.0168, gt=0, le=0.1, description="top of the wedge above the triangle's apex, m")
+    clearance: Finite = Field(0.001, ge=0, le=0.005, description="gap to the triangle's leg and the end wall, m")
+    lead_mass: Finite = Field(0.115, ge=0, le=1.0, description="lead in the tip, kg (0: none)")
+    lead_at: tuple[Finite, Finite] = Field((-0.0037, 0.0435), description="lead from the wedge's tip (x, y), m")
+
+
+class SequentialConfig(BaseModel):
+    """Config of ``assemble-sequential`` / ``assemble-serial`` (SI units). The pocket and the first part are
+    ``experiment feed``'s built-in example (the recoil feeder); see the module docstring."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    wedge: WedgeConfig = Field(default_factory=WedgeConfig)
+    omega: Finite | None = Field(None, gt=0, description="release rate, rad/s (None: the feeder's 4.56)")
+    omega_second: Finite | None = Field(None, gt=0, description="serial: rate once the triangle is captured, "
+                                                                 "rad/s (None: omega)")
+    mu: Finite = Field(1.0, ge=0, description="nominal arm–part friction")
+    mu_parts: Finite = Field(0.5, ge=0, description="part–part friction")
+    noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
+                                                                   zeta=0.2))
+    height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
+    x_range: tuple[Finite, Finite] = Field((0.0, 0.25), description="CM abscissa range of the drops, m")
+    x_range_second: tuple[Finite, Finite] = Field((0.0, 0.18), description="serial: the wedge's drop range, m")
+    gap: Finite = Field(0.005, ge=0, description="least clearance between the dropped parts at release, m")
+    max_throws: int = Field(150, ge=1, le=100_000, description="sequential: throws allowed until assembled")
+    max_first: int = Field(100, ge=1, le=100_000, description="serial: throws allowed until the triangle is captured")
+    max_second: int = Field(150, ge=1, le=100_000, description="serial: throws allowed until assembled")
+    hold: int = Field(10, ge=1, le=1000, description="throws after assembly (retention after 1 and after hold)")
+    pos_tol: Finite = Field(0.01, gt=0, description="assembled: wedge CM within this of its assembled pose, m")
+    ang_tol: Finite = Field(0.1, gt=0, description="assembled: wedge angle within this of its assembled pose, rad")
+    settings: dict | None = Field(default_factory=lambda: {"agreement": 0.005, "retries": 4},
+                                  description="EngineSettings fields to override (feed's: 5 mm agreement, 4 retries)")
+
+
+@functools.lru_cache(maxsize=4)
+def _stack_cached(wedge_json: str, mu: float):
+    from ..design.stack import design_stack
+    from .feed import FEED, build_design
+
+    w = WedgeConfig.model_validate_json(wedge_json)
+    cavity = build_design(FEED.example().model_copy(update={"mu": mu}))
+    return design_stack(cavity, top=w.top, clearance=w.clearance, lead_mass=w.lead_mass, lead_at=w.lead_at)
+
+
+def build_stack(cfg: SequentialConfig):
+    """The :class:`~throwmap.design.stack.StackDesign` of a config (computed once per process)."""
+    from ..errors import ThrowmapError
+
+    try:
+        return _stack_cached(cfg.wedge.model_dump_json(), float(cfg.mu))
+    except ThrowmapError as err:
+        raise InvalidStateError(f"config.wedge.{err.field.split('.')[-1]}", err.reason) from None
+
+
+def _check(cfg: SequentialConfig, arm) -> None:
+    for name in ("x_range", "x_range_second", "height"):
+        lo, hi = getattr(cfg, name)
+        if not lo < hi:
+            raise InvalidStateError(f"config.{name}", f"must be (low, high) with low < high, got {[lo, hi]}")
+    for name in ("x_range", "x_range_second"):
+        lo, hi = getattr(cfg, name)
+        if hi <= 0 or lo >= arm.length:
+            raise InvalidStateError(f"config.{name}", f"must overlap the arm [0, {arm.length:g}] m, got {[lo, hi]}")
+    if cfg.height[0] < 0:
+        raise InvalidStateError("config.height", f"must be ≥ 0 m above the arm, got {list(cfg.height)}")
+
+
+def drop_parts(parts, arm, fixtures, rng, *, fixed=(), x_range=(0.0, 0.25), height=DEFAULT_HEIGHT, gap=0.005,
+               mu_parts=0.5, settings=None, max_redraws: int = 20):
+    """Drop ``parts`` from random poses (φ uniform, CM x uniform over ``x_range``, lowest vertex ``height`` above
+    the arm, each at least ``gap`` from the others and from the ``fixed`` ``(part, pose)`` already on the arm) and
+    let them settle with the fixed ones: ``(EngineRun, redraws)``, the first run at rest, else the last one. The
+    placements are ordered fixed first, then ``parts``."""
+    from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
+    from ..statics.contacts import overlap_depth
+    from ..throws.trajectory import world_vertices
+
+    base = [world_vertices(p, q) for p, q in fixed]
+    run = None
+    for attempt in range(max_redraws + 1):
+        poses, verts = [], list(base)
+        tries = 0
+        while len(poses) < len(parts) and tries < 1000:
+            tries += 1
+            part = parts[len(poses)]
+            phi = float(rng.uniform(0.0, 2.0 * math.pi))
+            x0 = float(rng.uniform(*x_range))
+            V = world_vertices(part, (x0, 0.0, phi))
+            y0 = arm.h - float(V[:, 1].min()) + float(rng.uniform(*height))
+            V = world_vertices(part, (x0, y0, phi))
+            if float(V[:, 0].max()) >= arm.length or any(overlap_depth(U, V) > -gap for U in verts):
+                continue
+            poses.append((x0, y0, phi))
+            verts.append(V)
+        if len(poses) < len(parts):
+            raise InvalidStateError("config.x_range", "no room to drop the parts apart there (1000 draws)")
+        pl = tuple(Placement(p, pose=q) for p, q in fixed) + tuple(Placement(p, pose=q) for p, q in zip(parts, poses))
+        run = simulate(Scene(arm, pl, fixtures, 0.0, Friction(part_part=mu_parts)), ImpulseThrow(0.0), settings)
+        if int(run.status) == 0:
+            return run, attempt
+    return run, max_redraws
+
+
+class SequentialAssembly:
+    """The triangle and the wedge thrown into the pocket (``variant`` "sequential": together; "serial": one by one)."""
+
+    config_type = SequentialConfig
+
+    def __init__(self, variant: str):
+        self.variant = variant
+        self.name = "assemble-sequential" if variant == "sequential" else "assemble-serial"
+        self.summary = (("the designed triangle and a four-sided wedge dropped together and thrown open-loop at the "
+                         "feeder's rate until the wedge sits on the triangle in the pocket (Sec. V-D)")
+                        if variant == "sequential" else
+                        ("the draft's serial variant of Sec. V-D: the triangle thrown alone until captured in the "
+                         "pocket, then the wedge dropped and thrown until it sits on it"))
+
+    def setup(self, cfg: SequentialConfig):
+        """``(design, omega, omega_second)``."""
+        from .feed import FEED
+
+        d = build_stack(cfg)
+        _check(cfg, d.arm)
+        w = FEED.example().omega if cfg.omega is None else cfg.omega
+        return d, float(w), float(w if cfg.omega_second is None else cfg.omega_second)
+
+    def trial(self, cfg: SequentialConfig, index: int, rng) -> Trial:
+        from ..engine import simulate
+        from .feed import _settings
+
+        d, omega, omega2 = self.setup(cfg)
+        noise = cfg.noise.noise()
+        settings = _settings(cfg)
+        arm = noise.arm(d.arm, rng)
+        tri, wedge = d.parts
+        v = {"mu": arm.mu, "drop_redraws": 0, "throws": 0, "throws_to_assemble": math.nan, "triangle_at": math.nan,
+             "wedge_at": math.nan, "order": "none", "held_1": math.nan, "held_k": math.nan, "hold_breaks": 0,
+             "pos_err_m": math.nan, "ang_err_rad": math.nan, "lost": ""}
+        if self.variant == "serial":
+            v.update(throws_first=0, throws_second=0)
+
+        def done(failure, run=None):
+            if run is not None and len(run.poses) == 2:
+                v["pos_err_m"], v["ang_err_rad"] = d.wedge_error(run.poses[1])
+            v["order"] = _order(v["triangle_at"], v["wedge_at"])
+            return Trial(index, seed_of(rng), failure is None, failure, dict(v))
+
+        def lost(run):
+            who = [f"{n}:{s.label}" for n, s in zip(("triangle", "wedge"), run.statuses) if s.label in
+                   ("off_end", "behind_joint")]
+            if who:
+                v["lost"] = ",".join(who)
+                return "ejected"
+            return f"refused:{run.status.label}"
+
+        def throw(run, w_nominal):
+            _, real = noise.throw(w_nominal, rng)
+            return simulate(run.next_scene(), real, settings)
+
+        def note(run):
+            t = v["throws"]
+            if math.isnan(v["triangle_at"]) and d.triangle_captured(run.poses[0]):
+                v["triangle_at"] = t
+            if len(run.poses) == 2 and math.isnan(v["wedge_at"]) and d.in_cavity(1, run.poses[1]):
+                v["wedge_at"] = t
+
+        def at_cap(run):
+            if len(run.poses) == 2 and d.in_cavity(1, run.poses[1]):
+                return "wrong_orientation"
+            if d.in_cavity(0, run.poses[0]) and not d.triangle_captured(run.poses[0]):
+                return "wrong_orientation"
+            return "not_assembled"
+
+        if self.variant == "sequential":
+            run, v["drop_redraws"] = drop_parts((tri, wedge), arm, d.fixtures, rng, x_range=cfg.x_range,
+                                                height=cfg.height, gap=cfg.gap, mu_parts=cfg.mu_parts,
+                                                settings=settings)
+            if int(run.status) != 0:
+                return done("refused:drop")
+            cap, w_assemble = cfg.max_throws, omega
+        else:
+            run, v["drop_redraws"] = drop_parts((tri,), arm, d.fixtures, rng, x_range=cfg.x_range, height=cfg.height,
+                                                gap=cfg.gap, mu_parts=cfg.mu_parts, settings=settings)
+            if int(run.status) != 0:
+                return done("refused:drop")
+            while not d.triangle_captured(run.poses[0]):
+                if v["throws"] >= cfg.max_first:
+                    return done(at_cap(run), run)
+                run = throw(run, omega)
+                v["throws"] += 1
+                v["throws_first"] = v["throws"]
+                if int(run.status) != 0:
+                    return done(lost(run), run)
+                note(run)
+            run, r2 = drop_parts((wedge,), arm, d.fixtures, rng, fixed=((tri, tuple(run.poses[0])),),
+                                 x_range=cfg.x_range_second, height=cfg.height, gap=cfg.gap, mu_parts=cfg.mu_parts,
+                                 settings=settings)
+            v["drop_redraws"] += r2
+            if int(run.status) != 0:
+                return done("refused:drop")
+            cap, w_assemble = cfg.max_second, omega2
+        n0 = v["throws"]
+        while not d.assembled(run.poses, pos_tol=cfg.pos_tol, ang_tol=cfg.ang_tol):
+            if v["throws"] - n0 >= cap:
+                return done(at_cap(run), run)
+            run = throw(run, w_assemble)
+            v["throws"] += 1
+            if self.variant == "serial":
+                v["throws_second"] = v["throws"] - n0
+            if int(run.status) != 0:
+                return done(lost(run), run)
+            note(run)
+        v["throws_to_assemble"] = v["throws"]
+        end, held = run, []
+        for _ in range(cfg.hold):
+            r = throw(end, w_assemble)
+            good = int(r.status) == 0 and d.assembled(r.poses, pos_tol=cfg.pos_tol, ang_tol=cfg.ang_tol)
+            held.append(good)
+            if int(r.status) != 0:
+                break
+            end = r
+        held += [False] * (cfg.hold - len(held))
+        v["held_1"], v["held_k"], v["hold_breaks"] = float(held[0]), float(all(held)), int(held.count(False))
+        return done(None, run)
+
+    def parameters(self, cfg: SequentialConfig) -> dict:
+        d, omega, omega2 = self.setup(cfg)
+        out = {"variant": self.variant, "design": d.to_dict(), "omega_rad_s": omega, "mu": cfg.mu,
+               "mu_parts": cfg.mu_parts, "noise": cfg.noise.noise().to_dict(),
+               "drop": {"height_m": list(cfg.height), "x_range_m": list(cfg.x_range), "gap_m": cfg.gap},
+               "hold": cfg.hold, "tolerance": {"pos_m": cfg.pos_tol, "ang_rad": cfg.ang_tol},
+               "engine": {"pymunk overrides": cfg.settings or {}},
+               "success": ("the triangle flat on side 0 in the pocket and the wedge within tolerance of its assembled "
+                           "pose within the throw caps")}
+        if self.variant == "serial":
+            out.update(omega_second_rad_s=omega2, max_first=cfg.max_first, max_second=cfg.max_second,
+                       x_range_second_m=list(cfg.x_range_second))
+        else:
+            out["max_throws"] = cfg.max_throws
+        return out
+
+
+def _order(a: float, b: float) -> str:
+    if math.isnan(a) and math.isnan(b):
+        return "none"
+    if math.isnan(b) or (not math.isnan(a) and a < b):
+        return "triangle_first"
+    if math.isnan(a) or b < a:
+        return "wedge_first"
+    return "same_throw"
+
+
+SEQUENTIAL = register_experiment(SequentialAssembly("sequential"))
+SERIAL = register_experiment(SequentialAssembly("serial"))
