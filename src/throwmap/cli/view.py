@@ -76,20 +76,21 @@ def _read_trials(directory: Path) -> list[dict]:
     if not path.exists():
         return []
     out = {}
-    for k, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+    lines = path.read_text(encoding="utf-8").splitlines()
+    for k, line in enumerate(lines, start=1):
         if not line.strip():
             continue
         try:
             rec = json.loads(line)
         except json.JSONDecodeError:
-            if k == len(path.read_text(encoding="utf-8").splitlines()):
-                continue  # a line cut by an interrupted run
+            if k == len(lines):
+                continue  # the last line cut by an interrupted run
             raise InvalidStateError("result", f"{path}: line {k} is not JSON") from None
         out[int(rec["index"])] = rec
     return [out[i] for i in sorted(out)]
 
 
-def experiment_page(directory: Path, trial: int | None = None, fps: float = 60.0):
+def experiment_page(directory: Path, trial: int | None = None):
     """``(trajectory or None, title, subtitle, sections)`` of an experiment's ``--out`` directory: its header,
     the outcomes with Wilson intervals, the trials table, and with ``trial`` that trial's motion re-created
     (an experiment whose ``trial`` takes an ``observer``, e.g. ``assemble``)."""
@@ -260,7 +261,7 @@ def view_cmd(
             check_output(save_trajectory, "save_trajectory")
         traj, subtitle, sections = None, "", ""
         if result is not None and Path(result).is_dir():
-            traj, title, subtitle, sections = experiment_page(Path(result), trial, fps)
+            traj, title, subtitle, sections = experiment_page(Path(result), trial)
         elif result is not None:
             from ..io.trajectory_file import load_trajectory
 
