@@ -38,13 +38,14 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["ExactSolve", "exact_solver", "solve_contact"]
+__all__ = ["ExactSolve", "enumerate_modes", "exact_solver", "solve_contact"]
 
 MU_SKID = 1e6
 """μ of a μ = ∞ contact that cannot stick with a pushing normal impulse: it slides with this μ (the μ → ∞
 limit; :data:`throwmap.kernels.rigid_body.modes.MU_SKID`)."""
-MAX_SWEEPS = 500
-"""Most Gauss–Seidel sweeps over the contacts in one step."""
+MAX_SWEEPS = 40
+"""Most Gauss–Seidel sweeps over the contacts in one step; then every combination of contact modes is tried
+(:func:`enumerate_modes`)."""
 TRIGGER = 0.8
 """A contact whose previous impulses used more than TRIGGER × the cap of its friction ratio (or that is new, or did
 not push) is solved exactly; below that the capped μ leaves the (sticking) solution unchanged and Chipmunk solves it."""
@@ -77,15 +78,84 @@ def solve_contact(wn: float, wt: float, ann: float, ant: float, att: float, mu: 
     return -wn / ann, 0.0, 3
 
 
+def enumerate_modes(cons, u0, m_inv: float, i_inv: float, scale: float):
+    """The contact impulses ``[(j_n, j_t), …]`` of the step by trying every combination of contact modes
+    (separate, stick, slide ±; μ = 0: separate or frictionless; μ = ∞ slides with :data:`MU_SKID`), or None
+    where no combination is consistent. ``cons`` as in :meth:`ExactSolve._solve`, ``u0`` the part's velocity
+    without contact impulses, ``scale`` an impulse scale for the tolerances. Where several are consistent, the
+    one nearest the Gauss–Seidel iterate (``cons[k][9:11]``)."""
+    import itertools
+
+    import numpy as np
+
+    k = len(cons)
+    G = np.array([row for c in cons for row in (c[1], c[2])], dtype=float)  # 2k × 3, rows n and t
+    Minv = np.array([m_inv, m_inv, i_inv])
+    A = (G * Minv) @ G.T
+    b = G @ np.asarray(u0, dtype=float) + np.array([e for c in cons for e in (c[7], c[8])])
+    prev = np.array([v for c in cons for v in (c[9], c[10])])
+    tol_j = 1e-9 * scale
+    tol_v = 1e-9 * (np.max(np.abs(b)) + np.max(np.abs(A)) * scale)
+    choices = []
+    for c in cons:
+        mu = c[6]
+        choices.append((0, 4) if mu == 0.0 else (0, 1, 2, 3))  # separate, stick, slide +, slide −, frictionless
+    best = None
+    for modes in itertools.product(*choices):
+        rows, rhs = [], []
+        for i, (c, m) in enumerate(zip(cons, modes)):
+            n, t = 2 * i, 2 * i + 1
+            e = np.zeros(2 * k)
+            if m == 0:  # j_n = j_t = 0
+                e[n] = 1.0; rows.append(e.copy()); rhs.append(0.0)
+                e[:] = 0.0; e[t] = 1.0; rows.append(e); rhs.append(0.0)
+                continue
+            rows.append(A[n].copy()); rhs.append(-b[n])  # v_n = 0
+            if m == 1:
+                rows.append(A[t].copy()); rhs.append(-b[t])  # v_t = 0
+            else:
+                mu = 0.0 if m == 4 else min(c[6], MU_SKID)
+                sg = 1.0 if m == 2 else -1.0
+                e[t] = 1.0; e[n] = sg * mu; rows.append(e); rhs.append(0.0)  # j_t = −σ μ j_n
+        M, r = np.array(rows), np.array(rhs)
+        x = np.linalg.lstsq(M, r, rcond=None)[0]
+        if np.max(np.abs(M @ x - r)) > tol_v + tol_j:
+            continue
+        v = b + A @ x
+        ok = True
+        for i, (c, m) in enumerate(zip(cons, modes)):
+            jn, jt, vn, vt = x[2 * i], x[2 * i + 1], v[2 * i], v[2 * i + 1]
+            if m == 0:
+                ok = vn >= -tol_v
+            elif m == 1:
+                ok = jn >= -tol_j and abs(jt) <= c[6] * jn + tol_j
+            elif m in (2, 3):
+                ok = jn >= -tol_j and (1.0 if m == 2 else -1.0) * vt >= -tol_v
+            else:
+                ok = jn >= -tol_j
+            if not ok:
+                break
+        if ok:
+            d = float(np.max(np.abs(x - prev)))
+            if best is None or d < best[0]:
+                best = (d, x)
+    if best is None:
+        return None
+    x = best[1]
+    return [(max(float(x[2 * i]), 0.0), float(x[2 * i + 1])) for i in range(k)]
+
+
 class ExactSolve:
     """The exact contact solve of one part's steps where the friction cap would bind (see the module doc).
 
     ``arm()`` (from the friction hook, in the step's pre-solve) installs the body's velocity-update function for
-    that step; counts: ``n_steps`` exact steps, ``n_sweeps`` Gauss–Seidel sweeps, ``n_unconverged`` steps that
-    reached :data:`MAX_SWEEPS`, ``n_fallback`` contact solves without a consistent Coulomb solution."""
+    that step; counts: ``n_steps`` exact steps, ``n_sweeps`` Gauss–Seidel sweeps, ``n_enumerated`` steps that
+    reached :data:`MAX_SWEEPS` and were solved by :func:`enumerate_modes`, ``n_unconverged`` those where no mode
+    combination was consistent either (the last iterate is kept), ``n_fallback`` steps whose last sweep had a
+    contact without a consistent Coulomb solution."""
 
     __slots__ = ("lib", "ffi", "body", "m_inv", "i_inv", "armed", "callback", "default", "each", "found", "warm",
-                 "n_steps", "n_sweeps", "n_unconverged", "n_fallback", "first", "mu_arm", "mu_wall", "fixture")
+                 "n_steps", "n_sweeps", "n_unconverged", "n_fallback", "n_enumerated", "first", "mu_arm", "mu_wall", "fixture")
 
     def __init__(self, lib, ffi, body, mass: float, moment: float, mu_arm: float, mu_wall: float, fixture: int):
         self.lib, self.ffi, self.body = lib, ffi, body
@@ -94,7 +164,7 @@ class ExactSolve:
         self.armed = False
         self.warm = {}
         self.found = []
-        self.n_steps = self.n_sweeps = self.n_unconverged = self.n_fallback = 0
+        self.n_steps = self.n_sweeps = self.n_unconverged = self.n_fallback = self.n_enumerated = 0
         self.first = lib.CP_ARBITER_STATE_FIRST_COLLISION
         self.default = self.callback = self.each = None  # made on the first exact step (most runs have none)
 
@@ -214,8 +284,20 @@ class ExactSolve:
                     fallback = True
             if change <= TOL * (biggest + scale):
                 break
-            if sweeps >= MAX_SWEEPS:
-                self.n_unconverged += 1
+            if sweeps >= MAX_SWEEPS:  # (a cycle: contacts that switch each other on and off) every mode, exactly
+                x = enumerate_modes(cons, (vx, vy, w), m_inv, i_inv, biggest + scale)
+                if x is None:
+                    self.n_unconverged += 1
+                else:
+                    self.n_enumerated += 1
+                    fallback = False
+                    ux, uy, uw = vx, vy, w
+                    for k, (jn, jt) in zip(cons, x):
+                        k[9], k[10] = jn, jt
+                        gn, gt = k[1], k[2]
+                        ux += m_inv * (gn[0] * jn + gt[0] * jt)
+                        uy += m_inv * (gn[1] * jn + gt[1] * jt)
+                        uw += i_inv * (gn[2] * jn + gt[2] * jt)
                 break
         self.n_sweeps += sweeps
         if fallback:
