@@ -114,7 +114,11 @@ def test_a_worker_killed_mid_sweep(tmp_path):
 
         run = run_sweep(spec, tmp_path / "k", client=c, progress=progress)
         after = set(c.run(os.getpid).values())
+        moved = c.run_on_scheduler(lambda dask_scheduler: [
+            e[0] for e in dask_scheduler.transition_log if "sweep" in str(e[0]) and e[1] == "processing"
+            and e[2] == "released" and str(e[4]).startswith("handle-worker-cleanup")])
     assert killed and killed[0] not in after  # the nanny started a new worker process
+    assert moved, "no task was running on the killed worker"  # its tasks were released and run again elsewhere
     assert (run.rows_after, run.computed, run.complete) == (8, 8, True)
     t = read_table(tmp_path / "k").to_pylist()
     assert [r["point"] for r in t] == list(range(8))  # each point once
