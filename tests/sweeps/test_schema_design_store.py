@@ -126,3 +126,37 @@ def test_store_parts_are_atomic_and_a_changed_sweep_is_refused(tmp_path):
     with pytest.raises(ThrowmapError) as info:
         prepare_out(out, {"sweep_sha256": spec_hash(other), "spec": jsonable(other.model_dump()), "columns": cols})
     assert info.value.field == "out" and "first difference: parameters.x" in str(info.value)
+
+
+def _cli(*args):
+    from typer.testing import CliRunner
+
+    from throwmap.cli.app import app
+
+    return CliRunner().invoke(app, ["sweep", *[str(a) for a in args]])
+
+
+@pytest.mark.parametrize("text, field", [
+    ('kind = "grid"\ntarget = "throw"\n[parameters]\nx = {low = 0.1, high = 0.2}\n', "parameters.x.num"),
+    ('kind = "grid"\ntarget = "experiment:settle"\nn = 2\n[parameters]\nmu = [0.5, -1.0]\n', "parameters.mu"),
+    ('kind = "grid"\ntarget = "throw"\n[parameters\n', "sweep"),
+])
+def test_cli_errors_are_one_line(tmp_path, text, field):
+    f = tmp_path / "s.toml"
+    f.write_text(text)
+    res = _cli(f, "--status")
+    assert res.exit_code == 2 and res.stdout == ""
+    assert len(res.stderr.splitlines()) == 1 and res.stderr.startswith(f"error: {field}: "), res.stderr
+
+
+def test_cli_status_and_a_changed_sweep(tmp_path):
+    f = tmp_path / "s.toml"
+    f.write_text('kind = "grid"\ntarget = "throw"\nchunk = 2\n[parameters]\nx = [0.1, 0.2, 0.3]\n')
+    res = _cli(f, "--status", "--json")
+    assert res.exit_code == 0, res.stderr
+    st = json.loads(res.stdout)
+    assert (st["n_points"], st["n_chunks"], st["rows"], st["missing"]) == (3, 2, 0, 3)
+    assert st["out"] == str(tmp_path / "s.parquet")
+    f.write_text('kind = "grid"\ntarget = "throw"\nchunk = 3\n[parameters]\nx = [0.1, 0.2, 0.3]\n')
+    res = _cli(f, "--status")
+    assert res.exit_code == 2 and "first difference: chunk" in res.stderr and res.stderr.startswith("error: out: ")
