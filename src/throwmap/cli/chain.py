@@ -4,6 +4,8 @@
                              P(goal by k) against a Monte Carlo of the same model, the long-run distribution
 ``throwmap chain position``  the ``position`` experiment's closed loop as a chain, against a Monte Carlo run
                              of ``throwmap experiment position CONFIG --out DIR`` (its trials' ``throws``)
+``throwmap chain assemble``  self-assembly's first low phase on a reduced pair state, from recorded engine
+                             episodes (estimated on the even ones, checked on the odd ones)
 
 Errors: one ``error: <field>: <reason>`` line, exit 2 (:mod:`throwmap.cli.options`). SI units.
 """
@@ -203,6 +205,62 @@ def position_cmd(
                         fmt_s, "plot_stationary")
             typer.echo(f"wrote {plot_stationary}")
         _emit(dict(cmp.to_dict(), absorbed=ab), out)
+
+
+@chain_app.command("assemble")
+def assemble_cmd(
+    episodes: Annotated[Path, typer.Argument(help="Recorded episodes (JSON lines; --record adds to it).")],
+    record: Annotated[int, typer.Option("--record", help="Record episodes 0…N−1 of --seed first (engine; resumes).")]
+    = 0,
+    seed: Annotated[int, typer.Option("--seed", help="Seed of the recorded run.")] = 0,
+    bin_m: Annotated[float, typer.Option("--bin", help="Bin of a's CM abscissa, m.")] = 0.02,
+    out: OutOpt = None,
+    plot: PlotOpt = None,
+) -> None:
+    """Self-assembly's first low phase as a chain on a reduced pair state, estimated on the even-indexed
+    episodes, against the odd-indexed ones' hitting throws (P(assembled by low throw k))."""
+    import json
+
+    from ..errors import InvalidStateError
+    from ..experiments.assemble import AssembleConfig, _setup
+    from ..stochastic import compare_curve
+    from ..stochastic.assembly import low_phase_chain, low_phase_hits, low_phase_sequences, record_episodes
+
+    with guard():
+        _positive(bin_m, "bin")
+        fmt = figure_format(plot, "plot")
+        if record > 0:
+            rows = record_episodes(episodes, seed, record)
+        elif not Path(episodes).is_file():
+            raise InvalidStateError("episodes", f"no file {episodes} (record some with --record N)")
+        else:
+            rows = [json.loads(line) for line in Path(episodes).read_text(encoding="utf-8").splitlines() if line]
+        part, arm, _ = _setup(AssembleConfig())
+        est = [r for r in rows if r["index"] % 2 == 0]
+        test = [r for r in rows if r["index"] % 2 == 1]
+        if not est or not test:
+            raise InvalidStateError("episodes", f"need even and odd episodes, got {len(est)} and {len(test)}")
+        seq_est = low_phase_sequences(est, part, length=arm.length, h=arm.h, bin=bin_m)
+        seq_test = low_phase_sequences(test, part, length=arm.length, h=arm.h, bin=bin_m)
+        chain = low_phase_chain(seq_est)
+        hits = low_phase_hits(seq_test)
+        k_max = max(1, int(hits.max()))
+        curve = chain.p_goal_by(k_max, ["assembled"])
+        cmp = compare_curve(curve, hits, k_max, label="self-assembly, first low phase (engine episodes)",
+                            meta={"check": dict(chain.meta, states=chain.n_cells, bin_m=bin_m,
+                                                test_episodes=len(seq_test))})
+        s = cmp.summary()
+        typer.echo(f"chain: {chain.n_cells} reduced states from {chain.meta['transitions']} low throws of "
+                   f"{chain.meta['episodes']} episodes; test: {len(seq_test)} episodes reaching the low phase")
+        typer.echo(f"{s['label']}: k = 0…{s['k_max']}: chain inside the Wilson 95 % band at "
+                   f"{100 * s['fraction_inside']:.1f} % of k (largest miss {100 * s['max_outside']:.2f} points; "
+                   f"sup |chain − MC| {100 * s['sup_abs_diff']:.2f} points); at k = {s['k_max']}: chain "
+                   f"{100 * s['final']['chain']:.1f} %, episodes {100 * s['final']['mc']:.1f} % "
+                   f"[{100 * s['final']['band'][0]:.1f}, {100 * s['final']['band'][1]:.1f}]")
+        if plot is not None:
+            save_figure(cmp.plot(), plot, fmt, "plot")
+            typer.echo(f"wrote {plot}")
+        _emit(dict(cmp.to_dict(), states=list(chain.labels)), out)
 
 
 def register(app: typer.Typer) -> None:

@@ -8,7 +8,8 @@
                           μ per trial as a mixture, the convergence check
 :mod:`.montecarlo`        :class:`GoalSet`, the open-loop Monte Carlo the chain is checked against
 :mod:`.compare`           the chain's curve against the Monte Carlo's Wilson 95 % band
-:mod:`.experiments`       the chains of the ``position`` and ``assemble`` experiments
+:mod:`.experiments`       the chain of the ``position`` experiment (its memoryless controller)
+:mod:`.assembly`          self-assembly's first low phase on a reduced pair state, from episodes
 ========================  ===============================================================
 """
 
