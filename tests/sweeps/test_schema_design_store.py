@@ -93,6 +93,8 @@ def test_hash_ignores_layout_and_comments(tmp_path):
     a.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nx = [0.1, 0.2]\nomega = [5.0]\n')
     b.write_text('# a comment\ntarget = "throw"\nkind = "grid"\n\n[parameters]\nx = [0.1, 0.2]  # m\nomega = [5.0]\n')
     assert spec_hash(read_sweep(a)[0]) == spec_hash(read_sweep(b)[0])
+    b.write_text(a.read_text().replace('target = "throw"', 'target = "throw"\nretries = 5'))
+    assert spec_hash(read_sweep(a)[0]) == spec_hash(read_sweep(b)[0])  # retries do not change the results
     b.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nx = [0.1, 0.3]\nomega = [5.0]\n')
     assert spec_hash(read_sweep(a)[0]) != spec_hash(read_sweep(b)[0])
 

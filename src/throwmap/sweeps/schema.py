@@ -279,6 +279,8 @@ def jsonable(obj):
 
 def spec_hash(spec: SweepSpec) -> str:
     """SHA-256 of the sweep's canonical content (the validated spec as sorted JSON): comments, key order and
-    layout of the file do not change it; any value that changes the results does."""
-    canon = json.dumps(jsonable(spec.model_dump()), sort_keys=True, separators=(",", ":"), allow_nan=False)
+    layout of the file do not change it, nor does ``retries``; any value that changes the results or their
+    partitioning does."""
+    content = jsonable(spec.model_dump(exclude={"retries"}))
+    canon = json.dumps(content, sort_keys=True, separators=(",", ":"), allow_nan=False)
     return hashlib.sha256(canon.encode()).hexdigest()
