@@ -28,8 +28,8 @@ def made_up_trajectory(throws: int = 6, per_throw: float = 1.0, rate: float = 24
         px, py, phi = pose_at_rest(part, h, x, 1, a)
         poses[i, 0] = (px, py + dy, phi + 3 * dy)
         poses[i, 1] = pose_at_rest(part, h, 0.35, 1, a)
-    contacts = tuple(np.array([[poses[i, 1, 0], poses[i, 1, 1] - 0.02]]) if lift[i] > 0 else
-                     np.array([[poses[i, 0, 0], poses[i, 0, 1] - 0.02], [poses[i, 1, 0], poses[i, 1, 1] - 0.02]])
+    contacts = tuple(np.array([[poses[i, 1, 0], poses[i, 1, 1] - part.d[1]]]) if lift[i] > 0 else
+                     np.array([[poses[i, 0, 0], poses[i, 0, 1] - part.d[1]], [poses[i, 1, 0], poses[i, 1, 1] - part.d[1]]])
                      for i in range(t.size))
     events = tuple(e for j in range(throws) for e in ((j * per_throw + 0.3 * per_throw, "release"),
                                                     (j * per_throw + 0.7 * per_throw, "impact v1"),
