@@ -116,3 +116,24 @@ def test_the_page_plays_in_chromium(browser, tmp_path, two_part_trajectory):
     for colour in PART_COLORS[:2]:  # both parts are drawn (scene and orbit plot)
         assert _colour_pixels(png, colour) > 200, colour
     assert _errors(browser) == []
+
+
+def test_pages_without_an_orbit_or_a_player_load_cleanly(browser, tmp_path, two_part_trajectory):
+    import dataclasses
+
+    from throwmap.viz.viewer import table_html
+
+    bare = dataclasses.replace(two_part_trajectory, meta={})
+    for name, player, sections in (("bare", player_data(bare), ""),
+                                   ("tables", None, table_html(("k", "v"), [("a", 1)], table_id="t"))):
+        out = write_viewer(tmp_path / f"{name}.html", viewer_html(title=name, player=player, sections=sections))
+        browser.get(out.resolve().as_uri())
+        assert _errors(browser) == [], name
+        player_el = browser.find_element("id", "player")
+        if player is None:
+            assert not player_el.is_displayed() and browser.find_element("id", "t").is_displayed()
+        else:
+            assert browser.find_element("id", "throw").get_attribute("disabled") is not None
+            _set_range(browser, "frame", 5)
+            assert player_el.get_attribute("data-frame") == "5" and player_el.get_attribute("data-step") == "-1"
+            assert _errors(browser) == [], name
