@@ -82,3 +82,10 @@ def test_a_mixture_averages_the_curves():
     m = ChainMixture((a, b), [1, 3])
     want = 0.25 * a.p_goal_by(5, ["won"], [1, 0, 0]) + 0.75 * b.p_goal_by(5, ["won"], [1, 0, 0])
     assert m.p_goal_by(5, ["won"], [1, 0, 0]) == pytest.approx(want)
+
+
+def test_reach_gives_the_probability_and_the_conditional_mean_throws():
+    p, mean = ruin(0.5).reach(["won"], [0, 0, 1.0])
+    assert p == pytest.approx(0.75)
+    # from 3 (fair ruin, n = 4): E[T | won] = (n² − i²)/3 = (16 − 9)/3
+    assert mean == pytest.approx(7 / 3)

@@ -189,11 +189,21 @@ def position_cmd(
         curve = mix.p_goal_by(k_max, "stop:goal", init)
         check = dict(mix.meta["check"],
                      curve_gap=max(b.curve_gap(k_max, "stop:goal", init) for b in builds))
-        cmp = compare_curve(curve, hits, k_max, label=f"position ({cfg.model})",
+        sn = cfg.sensors
+        errs = f", sensor errors fp {sn.false_positive:g} / fn {sn.false_negative:g}" if sn.false_positive or \
+            sn.false_negative else ""
+        cmp = compare_curve(curve, hits, k_max, label=f"position ({cfg.model}, {cfg.noise.realisation}{errs})",
                             meta={"check": check, "mu_nodes": mix.meta["mu_nodes"],
                                   "initial": str(initial or trials)})
         _report(cmp, check)
+        import numpy as np
+
         ab = mix.absorption_of(init)
+        p_reach, mean_chain = mix.reach("stop:goal", init)
+        ok = hits[hits >= 0].astype(float)
+        half = 1.96 * ok.std(ddof=1) / np.sqrt(ok.size) if ok.size > 1 else float("nan")
+        typer.echo(f"  throws of a success: chain mean {mean_chain:.2f}, Monte Carlo mean {ok.mean():.2f} ± {half:.2f} "
+                   f"(95 %); P(success) chain {100 * p_reach:.1f} %")
         typer.echo("  chain's end states: " + ", ".join(f"{k} {100 * v:.1f} %" for k, v in ab.items() if v > 5e-4
                                                        and not k.startswith("side ")))
         if plot is not None:
@@ -204,7 +214,8 @@ def position_cmd(
             save_figure(st.plot(title=f"position ({cfg.model}): long-run mass from the drops"), plot_stationary,
                         fmt_s, "plot_stationary")
             typer.echo(f"wrote {plot_stationary}")
-        _emit(dict(cmp.to_dict(), absorbed=ab), out)
+        _emit(dict(cmp.to_dict(), absorbed=ab, mean_throws={"chain": mean_chain, "mc": float(ok.mean()),
+                                                             "mc_half_width_95": float(half)}), out)
 
 
 @chain_app.command("assemble")

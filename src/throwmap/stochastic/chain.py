@@ -279,6 +279,18 @@ class MarkovChain:
         out[g] = 0.0
         return out[: chain.n_cells]
 
+    def reach(self, goal, initial=None) -> tuple[float, float]:
+        """``(P(goal reached), E[throws | goal reached])`` from ``initial`` (the goal made absorbing)."""
+        w = self._initial(initial)[: self.n_cells]
+        chain = self.with_goal(goal)
+        g = chain.states(goal)
+        ab = chain.absorption()
+        cols = [j for j, lab in enumerate(ab.labels) if g[chain.labels.index(lab)]]
+        h = ab.B[:, cols].sum(axis=1)
+        e = np.nan_to_num(chain.expected_throws(goal), nan=0.0, posinf=0.0)
+        p = float(w @ h)
+        return p, float(w @ (h * e)) / p if p > 0 else math.nan
+
     def stationary(self, initial=None, *, max_steps: int = 100_000, tol: float = 1e-10) -> Stationary:
         """The long-run distribution from ``initial``: the mean of π₀Pᵏ over the window (m, 2m], m doubling
         until two windows' means differ by < ``tol`` in total variation or 2m passes ``max_steps`` (then
@@ -334,6 +346,13 @@ class ChainMixture:
 
     def p_goal_by(self, k_max: int, goal, initial=None) -> np.ndarray:
         return sum(w * c.p_goal_by(k_max, goal, initial) for w, c in zip(self.weights, self.chains))
+
+    def reach(self, goal, initial=None) -> tuple[float, float]:
+        """``(P(goal reached), E[throws | goal reached])`` of the mixture."""
+        parts = [c.reach(goal, initial) for c in self.chains]
+        p = float(sum(w * q for w, (q, _) in zip(self.weights, parts)))
+        m = sum(w * q * e for w, (q, e) in zip(self.weights, parts) if q > 0)
+        return p, float(m) / p if p > 0 else math.nan
 
     def absorption_of(self, initial=None) -> dict:
         out: dict = {}

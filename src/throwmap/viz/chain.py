@@ -37,7 +37,7 @@ def plot_goal_curve(k, chain, mc, low, high, *, n: int | None = None, label: str
     ax.set_ylabel("P(goal reached by throw k) (%)")
     ax.set_ylim(-2, 102)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=8, loc="best")
     ax.set_title(title or (label or "P(goal by throw k)"), fontsize=10)
     fig.tight_layout()
     return fig
