@@ -82,6 +82,7 @@ def test_the_page_plays_in_chromium(browser, tmp_path, two_part_trajectory):
     browser.get(out.resolve().as_uri())
     player = browser.find_element("id", "player")
     assert _errors(browser) == []
+    assert browser.execute_script("return performance.getEntriesByType('resource').length;") == 0  # nothing fetched
     assert player.get_attribute("data-frame") == "0"
     n = int(browser.find_element("id", "frame").get_attribute("max")) + 1
     assert n > 10
