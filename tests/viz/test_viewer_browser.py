@@ -97,6 +97,10 @@ def test_the_page_plays_in_chromium(browser, tmp_path, two_part_trajectory):
     step = int(player.get_attribute("data-step"))
     assert step >= 0 and int(player.get_attribute("data-frame")) != n // 2
 
+    browser.find_element("id", "next-throw").click()  # the start of the next step
+    assert int(player.get_attribute("data-step")) == step + 1
+    browser.find_element("id", "prev-throw").click()
+    assert int(player.get_attribute("data-step")) == step
     browser.find_element("id", "step-fwd").click()
     frame = int(player.get_attribute("data-frame"))
     browser.find_element("id", "play").click()  # play advances by itself
