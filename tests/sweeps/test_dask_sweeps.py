@@ -196,3 +196,16 @@ def test_cli_sweep_killed_and_restarted(tmp_path):
     res = json.loads(done.stdout)
     assert (res["rows_before"], res["computed"], res["rows_after"], res["complete"]) == (before, 12 - before, 12, True)
     assert read_table(out).column("point").to_pylist() == list(range(12))
+
+
+def test_trials_split_across_tasks_give_the_same_rows(client, tmp_path):
+    """``trials_per_task``: a point's trials run in several tasks; its row equals the one-task row."""
+    whole = run_sweep(parse_sweep({**SETTLE, "n": 7}), tmp_path / "a", client=client)
+    split = run_sweep(parse_sweep({**SETTLE, "n": 7, "trials_per_task": 3}), tmp_path / "b", client=client)
+    assert (whole.rows_after, split.rows_after) == (4, 4)
+    a, b = read_table(tmp_path / "a").drop(["elapsed_s"]), read_table(tmp_path / "b").drop(["elapsed_s"])
+    assert a.equals(b)
+    bad = run_sweep(parse_sweep({**SETTLE, "n": 2, "trials_per_task": 1, "parameters": {"part": ["triangle", "nosuch"]}}),
+                    tmp_path / "c", client=client)
+    rows = read_table(tmp_path / "c").to_pylist()
+    assert rows[0]["error"] is None and rows[1]["error"].startswith("part") and rows[1]["n"] is None

@@ -74,6 +74,8 @@ def test_plus_key_sets_several_fields():
     ({**SETTLE, "kind": "random"}, "samples"),
     ({**SETTLE, "config": {"muu": 1}}, "config.muu"),
     ({"kind": "grid", "target": "throw", "n": 3, "parameters": {"x": [0.1]}}, "n"),
+    ({"kind": "grid", "target": "throw", "trials_per_task": 3, "parameters": {"x": [0.1]}}, "trials_per_task"),
+    ({**SETTLE, "trials_per_task": 0}, "trials_per_task"),
     ({"kind": "grid", "target": "throw", "parameters": {"side": [0.5]}}, "parameters.side"),
     ({"kind": "grid", "target": "throw", "parameters": {"status": ["ok"]}}, "parameters.status"),
     ({"kind": "grid", "target": "throw", "config": {"omega": -1}, "parameters": {"x": [0.1]}}, "config.omega"),

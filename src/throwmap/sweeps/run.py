@@ -2,8 +2,8 @@
 
 :func:`run_sweep` builds the design (:mod:`throwmap.sweeps.design`), creates or checks ``out``
 (:mod:`throwmap.sweeps.store`), lists the chunks already stored, and submits only the missing ones, one
-Dask task per chunk (``client.map`` of :func:`throwmap.sweeps.targets.run_chunk`, ``retries`` from the
-sweep). The client writes each chunk's Parquet file as its task finishes (workers need no access to
+Dask task per chunk (:func:`throwmap.sweeps.targets.run_chunk`; with ``trials_per_task`` one task per block
+of a point's trials, :func:`~throwmap.sweeps.targets.run_trials`; ``retries`` from the sweep). The client writes each chunk's Parquet file as its task finishes (workers need no access to
 ``out``), so a run killed at any moment keeps every chunk it reported, and a worker killed mid-task only
 delays its chunk: the scheduler runs it again on another worker (``distributed.scheduler.allowed-failures``,
 default 3, bounds how many worker deaths one task survives). A chunk is written once, under its own name,
@@ -76,6 +76,39 @@ def _plan(spec: SweepSpec, out):
     return design, manifest["columns"], done
 
 
+def _tasks(spec: SweepSpec, design, todo, digest: str) -> dict:
+    """``{key: (function, args, (chunk, point, block))}``: one :func:`run_chunk` per chunk, or with
+    ``trials_per_task`` one :func:`run_trials` per block of trials of each point (point, block = −1 otherwise)."""
+    from .targets import run_chunk, run_trials
+
+    tasks = {}
+    for c in todo:
+        pts = design.chunk_points(c)
+        if spec.trials_per_task is None:
+            args = (spec.target, [design.configs[i] for i in pts], [design.seeds[i] for i in pts], spec.n)
+            tasks[f"throwmap-sweep-{digest[:16]}-{c}"] = (run_chunk, args, (c, -1, -1))
+            continue
+        for i in pts:
+            for j, start in enumerate(range(0, spec.n, spec.trials_per_task)):
+                stop = min(start + spec.trials_per_task, spec.n)
+                args = (spec.experiment, design.configs[i], design.seeds[i], start, stop)
+                tasks[f"throwmap-sweep-{digest[:16]}-{c}-{i}-{j}"] = (run_trials, args, (c, i, j))
+    return tasks
+
+
+def _results(spec: SweepSpec, design, c: int, got: dict) -> list:
+    """The result columns of chunk ``c``'s points from its finished tasks ``{(point, block): result}``."""
+    if spec.trials_per_task is None:
+        return got[(-1, -1)]
+    from .targets import summarise_trials
+
+    out = []
+    for i in design.chunk_points(c):
+        blocks = [got[k] for k in sorted(k for k in got if k[0] == i)]
+        out.append(summarise_trials(spec.experiment, design.configs[i], design.seeds[i], spec.n, blocks))
+    return out
+
+
 def sweep_status(spec: SweepSpec, out) -> dict:
     """What is stored in ``out`` for ``spec`` without computing anything: ``n_points``, ``n_chunks``,
     ``rows`` stored, ``missing`` points, ``chunks_missing``."""
@@ -145,28 +178,32 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
             if client.scheduler is not None and where == "client":
                 where = client.scheduler.address
             n_workers = len(client.scheduler_info().get("workers", {}))
-            from .targets import run_chunk
-
-            args = [([design.configs[i] for i in design.chunk_points(c)],
-                     [design.seeds[i] for i in design.chunk_points(c)]) for c in todo]
-            futures = client.map(run_chunk, [spec.target] * len(todo), [a[0] for a in args], [a[1] for a in args],
-                                 [spec.n] * len(todo), key=[f"throwmap-sweep-{digest[:16]}-{c}" for c in todo],
-                                 retries=spec.retries, pure=False)
-            chunk_of = {f.key: c for f, c in zip(futures, todo)}
-            pending = as_completed(futures, loop=client.loop)
-            for fut in pending:
-                c = chunk_of[fut.key]
+            tasks = _tasks(spec, design, todo, digest)
+            futures = []
+            for fn in {v[0] for v in tasks.values()}:  # one client.map per function: the graph goes in one message
+                keys = [k for k, v in tasks.items() if v[0] is fn]
+                futures += client.map(fn, *zip(*(tasks[k][1] for k in keys)), key=keys, retries=spec.retries,
+                                      pure=False)
+            need = {c: 0 for c in todo}
+            for _, _, (c, _, _) in tasks.values():
+                need[c] += 1
+            got: dict = {c: {} for c in todo}
+            for fut in as_completed(futures, loop=client.loop):
+                c, i, j = tasks[fut.key][2]
                 try:
-                    results = fut.result()
+                    got[c][(i, j)] = fut.result()
                 except Exception as err:  # a task that failed after its retries, or killed too many workers
                     client.cancel(futures)
-                    raise InvalidStateError("sweep", f"part {c} (points {design.chunk_points(c).start}–"
-                                                     f"{design.chunk_points(c).stop - 1}) failed: {type(err).__name__}: "
-                                                     f"{' '.join(str(err).split())[:300]}; the {chunks} parts finished "
-                                                     f"are kept in {str(out)!r}") from None
+                    pts = design.chunk_points(c)
+                    raise InvalidStateError("sweep", f"part {c} (points {pts.start}–{pts.stop - 1}) failed: "
+                                                     f"{type(err).__name__}: {' '.join(str(err).split())[:300]}; the "
+                                                     f"{chunks} parts finished are kept in {str(out)!r}") from None
+                if len(got[c]) < need[c]:
+                    continue
                 rows = []
-                for i, res in zip(design.chunk_points(c), results):
-                    rows.append({"point": i, **dict(zip(design.names, design.points[i])), "seed": design.seeds[i], **res})
+                for i, res in zip(design.chunk_points(c), _results(spec, design, c, got.pop(c))):
+                    rows.append({"point": i, **dict(zip(design.names, design.points[i])), "seed": design.seeds[i],
+                                 **res})
                 write_chunk(out, c, rows, columns)
                 computed += len(rows)
                 chunks += 1

@@ -80,8 +80,9 @@ class SweepSpec(BaseModel):
     :class:`Range`), ``samples`` (random: how many points), ``seed`` (≥ 0), ``n`` (experiment: trials per
     point), ``common_random_numbers`` (experiment: every point runs with ``seed`` itself, so that points
     differ only by their parameters; false: point i's seed is spawned from ``seed``), ``chunk`` (points per
-    task and per Parquet file), ``retries`` (Dask retries of a task that raised), ``config`` (the fixed
-    values of the target's config)."""
+    task and per Parquet file), ``trials_per_task`` (experiment: a point's trials split into Dask tasks of this
+    many; its row is written when all of them are done), ``retries`` (Dask retries of a task that raised),
+    ``config`` (the fixed values of the target's config)."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
@@ -93,6 +94,8 @@ class SweepSpec(BaseModel):
     n: int | None = Field(None, ge=1, description="experiment targets: trials per design point")
     common_random_numbers: bool = True
     chunk: int | None = Field(None, ge=1, description="design points per task and per Parquet file")
+    trials_per_task: int | None = Field(None, ge=1, description="experiment: split a point's n trials into tasks "
+                                                                 "of this many (None: one task per chunk)")
     retries: int = Field(2, ge=0, le=100)
     config: dict[str, Any] = Field(default_factory=dict)
 
@@ -157,6 +160,8 @@ class SweepSpec(BaseModel):
             raise InvalidStateError("n", f"only experiment targets take `n` (target is {self.target!r})")
         elif not self.common_random_numbers:
             raise InvalidStateError("common_random_numbers", f"only experiment targets use it (target is {self.target!r})")
+        elif self.trials_per_task is not None:
+            raise InvalidStateError("trials_per_task", f"only experiment targets have trials (target is {self.target!r})")
         return self
 
 

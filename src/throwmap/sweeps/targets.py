@@ -28,7 +28,7 @@ import warnings
 from .. import __version__
 from ..errors import ThrowmapError
 
-__all__ = ["run_chunk", "RESULT_COLUMNS"]
+__all__ = ["run_chunk", "run_trials", "summarise_trials", "RESULT_COLUMNS"]
 
 RESULT_COLUMNS = {
     "experiment": {"n": "int64", "successes": "int64", "success_rate": "float64", "ci95_low": "float64",
@@ -87,6 +87,46 @@ def _experiment_point(name: str, cfg: dict, seed: int, n: int) -> dict:
             "success_rate": None if math.isnan(res.success_rate) else res.success_rate,
             "ci95_low": float(res.ci95[0]), "ci95_high": float(res.ci95[1]),
             "failures": _json(dict(res.failures)), "values": _json(_clean(res.value_summary()))}
+
+
+def run_trials(name: str, cfg: dict, seed: int, start: int, stop: int) -> tuple:
+    """Trials ``start … stop−1`` of experiment ``name`` with ``cfg`` and run seed ``seed`` (each trial's generator
+    is ``trial_generator(seed, i)`` (:mod:`throwmap.experiments.base`), as the runner's: a point split into
+    several tasks gives the trials one task would). Returns ``(trials as JSON objects, seconds, the worker's
+    throwmap.__version__, error)``: ``error`` is None, or ``"field: reason"`` where the library refused."""
+    from ..experiments.base import config_of, trial_generator
+    from ..experiments.registry import get_experiment
+
+    t0 = time.perf_counter()
+    try:
+        exp = get_experiment(name)
+        config = config_of(exp, cfg)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            trials = [exp.trial(config, i, trial_generator(seed, i)).to_json() for i in range(start, stop)]
+    except ThrowmapError as err:
+        return [], time.perf_counter() - t0, __version__, str(err)
+    return trials, time.perf_counter() - t0, __version__, None
+
+
+def summarise_trials(name: str, cfg: dict, seed: int, n: int, blocks: list) -> dict:
+    """A point's row from the ``blocks`` (:func:`run_trials` results) that together hold its trials 0 … n−1."""
+    from ..experiments.base import Trial
+    from ..experiments.runner import ExperimentResult
+
+    errors = [b[3] for b in blocks if b[3] is not None]
+    if errors:
+        return {"error": errors[0], "elapsed_s": sum(b[1] for b in blocks), "version": blocks[0][2]}
+    trials = [Trial.from_json(t) for b in blocks for t in b[0]]
+    if sorted(t.index for t in trials) != list(range(n)):
+        raise ValueError(f"the tasks of a point returned trials {sorted(t.index for t in trials)[:5]}…, not 0…{n - 1}")
+    res = ExperimentResult.from_trials(name, trials, seed=seed, parameters={}, planned=n,
+                                       elapsed_s=sum(b[1] for b in blocks), workers=len(blocks))
+    return {"n": res.n, "successes": res.successes,
+            "success_rate": None if math.isnan(res.success_rate) else res.success_rate,
+            "ci95_low": float(res.ci95[0]), "ci95_high": float(res.ci95[1]),
+            "failures": _json(dict(res.failures)), "values": _json(_clean(res.value_summary())),
+            "error": None, "elapsed_s": res.elapsed_s, "version": blocks[0][2]}
 
 
 def _limit_set_point(cfg: dict, seed: int) -> dict:
