@@ -67,3 +67,8 @@ def test_cli_chain_errors_are_one_line(tmp_path):
     assert "error: goal:" in r.output
     r = CliRunner().invoke(app, ["chain", "throw", "--cell", "-1"])
     assert r.exit_code == 2 and "error: cell:" in r.output
+
+
+def test_cli_chain_position_without_a_run_is_one_line(tmp_path):
+    r = CliRunner().invoke(app, ["chain", "position", str(tmp_path)])
+    assert r.exit_code == 2 and "error: trials: no run.json" in r.output

@@ -179,7 +179,15 @@ def position_cmd(
         if config is not None:
             cfg = read_config(exp, config)
         else:
-            run = json.loads((Path(trials) / "run.json").read_text(encoding="utf-8"))
+            from ..errors import InvalidStateError
+
+            meta = Path(trials) / "run.json"
+            if not meta.is_file():
+                raise InvalidStateError("trials", f"no run.json in {trials} (a run directory of 'throwmap experiment "
+                                                  f"position … --out DIR', or give the config)")
+            run = json.loads(meta.read_text(encoding="utf-8"))
+            if run.get("experiment") not in (None, "position"):
+                raise InvalidStateError("trials", f"{trials} is a run of {run.get('experiment')!r}, not 'position'")
             cfg = config_of(exp, run.get("config"))
         rows = read_trials(trials)
         mix, builds = position_chain(cfg, cell=cell, samples=samples, n_mu=mu_nodes, rng=seed)
@@ -228,8 +236,7 @@ def assemble_cmd(
     out: OutOpt = None,
     plot: PlotOpt = None,
 ) -> None:
-    """Self-assembly's first low phase as a chain on a reduced pair state, estimated on the even-indexed
-    episodes, against the odd-indexed ones' hitting throws (P(assembled by low throw k))."""
+    """Self-assembly's first low phase as a chain on a reduced pair state (even episodes) against the odd ones."""
     import json
 
     from ..errors import InvalidStateError
