@@ -27,7 +27,8 @@ the triangle off its target side or the wedge stuck otherwise), ``not_assembled`
 Values: ``throws``, ``throws_to_assemble`` (nan if never), ``triangle_at``/``wedge_at`` (first throw after which
 the triangle was captured / the wedge's CM past the lip, counted from the start of the trial), ``order``
 (``triangle_first``, ``wedge_first``, ``same_throw``, ``none``), ``held_1``, ``held_k``, ``hold_breaks``, the end's
-``pos_err_m``/``ang_err_rad`` (the wedge from its assembled pose), ``mu``, ``drop_redraws``, ``lost``; serial:
+``pos_err_m``/``ang_err_rad`` (the wedge from its assembled pose), each part's ``<part>_x``, ``_y``, ``_side``,
+``_tilt`` there (arm frame, m, rad; side as :func:`~throwmap.throws.trajectory.state_from_pose`), ``mu``, ``drop_redraws``, ``lost``; serial:
 ``throws_first``, ``throws_second``.
 """
 
@@ -184,6 +185,7 @@ class SequentialAssembly:
 
     def trial(self, cfg: SequentialConfig, index: int, rng) -> Trial:
         from ..engine import simulate
+        from ..throws.trajectory import state_from_pose
         from .feed import _settings
 
         d, omega, omega2 = self.setup(cfg)
@@ -198,8 +200,12 @@ class SequentialAssembly:
             v.update(throws_first=0, throws_second=0)
 
         def done(failure, run=None):
-            if run is not None and len(run.poses) == 2:
-                v["pos_err_m"], v["ang_err_rad"] = d.wedge_error(run.poses[1])
+            if run is not None:
+                for name, part, pose in zip(("triangle", "wedge"), d.parts, run.poses):
+                    x, k, tilt = state_from_pose(part, pose)
+                    v.update({f"{name}_x": x, f"{name}_y": float(pose[1]), f"{name}_side": k, f"{name}_tilt": tilt})
+                if len(run.poses) == 2:
+                    v["pos_err_m"], v["ang_err_rad"] = d.wedge_error(run.poses[1])
             v["order"] = _order(v["triangle_at"], v["wedge_at"])
             return Trial(index, seed_of(rng), failure is None, failure, dict(v))
 
