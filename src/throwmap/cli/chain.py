@@ -233,10 +233,12 @@ def assemble_cmd(
     = 0,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the recorded run.")] = 0,
     bin_m: Annotated[float, typer.Option("--bin", help="Bin of a's CM abscissa, m.")] = 0.02,
+    estimate_on: Annotated[str, typer.Option("--estimate-on", help="'even' or 'odd' episodes estimate the chain; "
+                                                                   "the others check it.")] = "even",
     out: OutOpt = None,
     plot: PlotOpt = None,
 ) -> None:
-    """Self-assembly's first low phase as a chain on a reduced pair state (even episodes) against the odd ones."""
+    """Self-assembly's first low phase as a chain on a reduced pair state, from half the episodes, against the rest."""
     import json
 
     from ..errors import InvalidStateError
@@ -254,8 +256,11 @@ def assemble_cmd(
         else:
             rows = [json.loads(line) for line in Path(episodes).read_text(encoding="utf-8").splitlines() if line]
         part, arm, _ = _setup(AssembleConfig())
-        est = [r for r in rows if r["index"] % 2 == 0]
-        test = [r for r in rows if r["index"] % 2 == 1]
+        if estimate_on not in ("even", "odd"):
+            raise InvalidStateError("estimate_on", f"must be 'even' or 'odd', got {estimate_on!r}")
+        par = 0 if estimate_on == "even" else 1
+        est = [r for r in rows if r["index"] % 2 == par]
+        test = [r for r in rows if r["index"] % 2 != par]
         if not est or not test:
             raise InvalidStateError("episodes", f"need even and odd episodes, got {len(est)} and {len(test)}")
         seq_est = low_phase_sequences(est, part, length=arm.length, h=arm.h, bin=bin_m)
@@ -264,7 +269,8 @@ def assemble_cmd(
         hits = low_phase_hits(seq_test)
         k_max = max(1, int(hits.max()))
         curve = chain.p_goal_by(k_max, ["assembled"])
-        cmp = compare_curve(curve, hits, k_max, label="self-assembly, first low phase (engine episodes)",
+        cmp = compare_curve(curve, hits, k_max, label=f"self-assembly, first low phase (chain from the {estimate_on} "
+                                                      f"episodes)",
                             meta={"check": dict(chain.meta, states=chain.n_cells, bin_m=bin_m,
                                                 test_episodes=len(seq_test))})
         s = cmp.summary()
