@@ -184,3 +184,57 @@ def test_a_ready_pair_assembles_and_stays():
     assert is_assembled(PART, run.poses, length=L, h=H)
     run = simulate(run.next_scene(), RecoilThrow.for_release_rate(2.4))
     assert run.status == Status.OK and is_assembled(PART, run.poses, length=L, h=H)
+
+
+# -------------------------------------------------------------------------------- the wider switch and the randomiser's rules
+
+def test_rectangle_anywhere_on_the_arm():
+    """The assembled pair shifted along the arm is a rectangle (the low throws carry it to the wall); the ready
+    pair, a flipped b, or a rectangle with a near the joint are not."""
+    from throwmap.control.pair_sensors import is_rectangle, rectangle_error
+
+    a, b = assembled_pair(PART, length=L, h=H)
+    for dx in (0.0, -0.1, -0.25):
+        poses = ((a.x + dx, a.y, a.phi), (b.x + dx, b.y, b.phi))
+        d, e, xa = rectangle_error(PART, poses[::-1], h=H)
+        assert d == pytest.approx(0.0, abs=1e-12) and e == pytest.approx(0.0, abs=1e-12) and xa == pytest.approx(a.x + dx)
+        assert is_rectangle(PART, poses, h=H)
+    shifted = ((a.x - 0.30, a.y, a.phi), (b.x - 0.30, b.y, b.phi))
+    assert not is_rectangle(PART, shifted, h=H, a_min_x=0.15)  # a's CM at 0.10 m
+    assert not is_rectangle(PART, _poses((0.20, 1), (0.40, 0)), h=H)
+    assert not is_rectangle(PART, ((a.x - 0.1, a.y, a.phi), (b.x - 0.1, b.y, b.phi + 0.06)), h=H)
+
+
+def test_sensor_reads_the_rectangle_and_a_min_x():
+    a, b = assembled_pair(PART, length=L, h=H)
+    rect = ((a.x - 0.1, a.y, a.phi), (b.x - 0.1, b.y, b.phi))
+    assert not PairSensor().truth(PART, rect) and PairSensor(rectangle_h=H).truth(PART, rect)
+    near = _poses((0.12, 1), (0.40, 0))
+    assert pair_ready(PART, near) == (0, 1) and pair_ready(PART, near, a_min_x=0.15) is None
+    assert PairSensor().truth(PART, near) and not PairSensor(a_min_x=0.15).truth(PART, near)
+    with pytest.raises(InvalidStateError, match="sensor.a_min_x"):
+        PairSensor(a_min_x=-0.1)
+
+
+class _Run:
+    def __init__(self, *states):
+        self.states = states
+
+
+def test_randomising_rate_rules():
+    """Uniform over omega_high; capped near the joint; the kick only for a flat hypotenuse near the joint with the
+    other part well clear and no shorter leg near the joint; the wall sink read from the states."""
+    from throwmap.experiments.assemble import AssembleConfig, _stuck_at_wall, _uniform_rate
+
+    cfg, rng = AssembleConfig(), np.random.default_rng(0)
+    far = [_uniform_rate(cfg, _Run((0.30, 1, 0.0), (0.42, 0, 0.0)), rng) for _ in range(200)]
+    assert min(far) >= 3.0 and max(far) <= 6.0 and max(far) > 5.0
+    near = [_uniform_rate(cfg, _Run((0.20, 1, 0.0), (0.42, 0, 0.0)), rng) for _ in range(200)]
+    assert max(near) <= cfg.near_cap
+    assert _uniform_rate(cfg, _Run((0.15, 0, 0.0), (0.40, 1, 0.0)), rng) == cfg.kick
+    assert _uniform_rate(cfg, _Run((0.15, 0, 0.5), (0.40, 1, 0.0)), rng) <= cfg.near_cap  # tilted: no kick
+    assert _uniform_rate(cfg, _Run((0.15, 0, 0.0), (0.22, 1, 0.0)), rng) <= cfg.near_cap  # other part too close
+    assert _uniform_rate(cfg, _Run((0.15, 0, 0.0), (0.21, 2, 0.0)), rng) <= cfg.near_cap  # a shorter leg near
+    assert _stuck_at_wall(cfg, _Run((0.20, 1, 0.0), (0.47, 2, 0.0)))
+    assert not _stuck_at_wall(cfg, _Run((0.20, 1, 0.0), (0.30, 2, 0.0)))
+    assert not _stuck_at_wall(cfg, _Run((0.20, 1, 0.0), (0.47, 2, 0.3)))

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["PairSensor", "pair_ready", "assembled_error", "is_assembled", "READY_TILT", "HYPOTENUSE", "LONG_LEG"]
+__all__ = ["PairSensor", "pair_ready", "assembled_error", "is_assembled", "rectangle_error", "is_rectangle", "READY_TILT", "HYPOTENUSE", "LONG_LEG"]
 
 READY_TILT = 0.02
 """rad: a part within this angle of a side rests flat on it (the engine's :data:`~throwmap.engine.rest.FLAT_TILT`)."""
@@ -40,10 +40,12 @@ def _wrap(a: float) -> float:
     return (a + math.pi) % (2.0 * math.pi) - math.pi
 
 
-def pair_ready(part, poses, *, tilt: float = READY_TILT, side_a: int = LONG_LEG, side_b: int = HYPOTENUSE):
+def pair_ready(part, poses, *, tilt: float = READY_TILT, side_a: int = LONG_LEG, side_b: int = HYPOTENUSE,
+               a_min_x: float = 0.0):
     """``(i, j)`` (the indices playing *a* and *b*) when part *i* rests flat on ``side_a`` wholly left of part
-    *j* flat on ``side_b`` (every vertex of *i* at smaller x than every vertex of *j*), else None.
-    ``poses``: the two arm-frame poses ``(x, y, φ)`` (m, m, rad)."""
+    *j* flat on ``side_b`` (every vertex of *i* at smaller x than every vertex of *j*) and *i*'s CM is at
+    least ``a_min_x`` (m) from the joint, else None. ``poses``: the two arm-frame poses ``(x, y, φ)``
+    (m, m, rad)."""
     from ..throws.trajectory import state_from_pose, world_vertices
 
     if len(poses) != 2:
@@ -52,7 +54,7 @@ def pair_ready(part, poses, *, tilt: float = READY_TILT, side_a: int = LONG_LEG,
     xs = [world_vertices(part, q)[:, 0] for q in poses]
     for i, j in ((0, 1), (1, 0)):
         if (st[i][1] == side_a and st[j][1] == side_b and abs(st[i][2]) < tilt and abs(st[j][2]) < tilt
-                and float(xs[i].max()) < float(xs[j].min())):
+                and float(xs[i].max()) < float(xs[j].min()) and st[i][0] >= a_min_x):
             return i, j
     return None
 
@@ -72,6 +74,30 @@ def assembled_error(part, poses, *, length: float, h: float) -> tuple[float, flo
     return float(best[0]), float(best[1])
 
 
+def rectangle_error(part, poses, *, h: float) -> tuple[float, float, float]:
+    """``(position error, angle error, x of a)``: as :func:`assembled_error`, but of the assembled pair shifted
+    along the arm to wherever *a* is (the rectangle formed away from the wall), for the better labelling."""
+    from ..statics.assembly import assembled_pair
+
+    a, b = assembled_pair(part, length=1.0, h=h)
+    best = (math.inf, math.inf, math.nan)
+    for i, j in ((0, 1), (1, 0)):
+        dx = poses[i][0] - a.x
+        d = max(abs(poses[i][1] - a.y), math.hypot(poses[j][0] - b.x - dx, poses[j][1] - b.y))
+        e = max(abs(_wrap(poses[i][2] - a.phi)), abs(_wrap(poses[j][2] - b.phi)))
+        if (d, e) < best[:2]:
+            best = (d, e, poses[i][0])
+    return float(best[0]), float(best[1]), float(best[2])
+
+
+def is_rectangle(part, poses, *, h: float, pos_tol: float = 0.005, ang_tol: float = 0.05,
+                 a_min_x: float = 0.0) -> bool:
+    """The pair assembled anywhere on the arm (:func:`rectangle_error` within ``pos_tol``, ``ang_tol``), *a*'s
+    CM at least ``a_min_x`` from the joint."""
+    d, e, x = rectangle_error(part, poses, h=h)
+    return d <= pos_tol and e <= ang_tol and x >= a_min_x
+
+
 def is_assembled(part, poses, *, length: float, h: float, pos_tol: float = 0.005, ang_tol: float = 0.05) -> bool:
     """Both parts within ``pos_tol`` (m) and ``ang_tol`` (rad) of the assembled pair (:func:`assembled_error`)."""
     d, e = assembled_error(part, poses, length=length, h=h)
@@ -88,17 +114,26 @@ def _rate(value, field: str) -> float:
 @dataclass(frozen=True, slots=True)
 class PairSensor:
     """The draft's one-bit "ready to assemble" sensor (:func:`pair_ready`) with error rates per read:
-    ``false_positive`` P(reads 1 | not ready), ``false_negative`` P(reads 0 | ready)."""
+    ``false_positive`` P(reads 1 | not ready), ``false_negative`` P(reads 0 | ready); ``a_min_x`` (m) the
+    least CM abscissa of *a* (:func:`pair_ready`); with ``rectangle_h`` (the arm's h, m) "ready" also when the
+    pair is already a rectangle anywhere on the arm (:func:`is_rectangle`)."""
 
     false_positive: float = 0.0
     false_negative: float = 0.0
+    a_min_x: float = 0.0
+    rectangle_h: float | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "false_positive", _rate(self.false_positive, "sensor.false_positive"))
         object.__setattr__(self, "false_negative", _rate(self.false_negative, "sensor.false_negative"))
+        if isinstance(self.a_min_x, bool) or not isinstance(self.a_min_x, (int, float)) \
+                or not math.isfinite(self.a_min_x) or self.a_min_x < 0:
+            raise InvalidStateError("sensor.a_min_x", f"must be a finite length >= 0 m, got {shown(self.a_min_x)}")
 
     def truth(self, part, poses) -> bool:
-        return pair_ready(part, poses) is not None
+        if pair_ready(part, poses, a_min_x=self.a_min_x) is not None:
+            return True
+        return self.rectangle_h is not None and is_rectangle(part, poses, h=self.rectangle_h, a_min_x=self.a_min_x)
 
     def read(self, part, poses, rng) -> bool:
         """One reading (draws one uniform from ``rng``)."""
@@ -109,4 +144,5 @@ class PairSensor:
 
     def to_dict(self) -> dict:
         return {"kind": "pair_ready", "false_positive": self.false_positive, "false_negative": self.false_negative,
-                "flat_within_rad": READY_TILT}
+                "flat_within_rad": READY_TILT,
+                "a_min_x_m": self.a_min_x, "or_rectangle": self.rectangle_h is not None}

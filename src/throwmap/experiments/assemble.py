@@ -9,29 +9,33 @@ tilt disturbing the parts. One trial here (pymunk engine, both parts in one scen
 1. **drop** both parts from random non-overlapping poses (φ uniform, CM x uniform over ``x_range``, lowest
    vertex 2–10 cm up) and let them settle together (:func:`drop_pair`; redrawn, at most 20 times, until
    both rest on the arm);
-2. **randomise**: look with the pair sensor (:class:`throwmap.control.pair_sensors.PairSensor`; ``confirm``
-   readings in a row must say "ready", a look costs no throw); while it does not, throw at ``omega_high``
-   (a rate drawn uniformly over ``omega_high`` a throw, then 3 % ω jitter, the recoil arm), drawn below
-   ``near_cap`` while a part's CM is within ``near_x`` of the joint (faster throws flip parts there back
-   over the joint), and ``kick`` while a part on its hypotenuse is within ``kick_x`` of it (that side creeps
-   inward there at high rates, as in the ``position`` experiment);
+2. **randomise** (arm at α = 0): look with the pair sensor (:class:`throwmap.control.pair_sensors.PairSensor`;
+   ``confirm`` readings "ready" in a row switch, a look costs no throw; a pair already assembled switches
+   too); else throw at a rate uniform over ``omega_high`` (3 % ω jitter, the recoil arm), below ``near_cap``
+   while a part's CM is within ``near_x`` of the joint, a ``kick`` that marches a flat hypotenuse out from
+   within ``kick_x``; and break the arm's two sinks when a throw left the pair unchanged (to 1 cm): a part
+   standing on its shorter leg at the wall (CM ≥ ``wall_x``) gets an **escape** throw (tilt to
+   ``escape_alpha``, throw at ``escape_omega``, tilt back), parts within ``slide_x`` of the joint a
+   **slide** (tilt to −``slide_alpha``, past the friction angle, and back: both slide to the wall);
 3. **switch**: tilt the arm to ``alpha`` at ``tilt_rate`` (:class:`throwmap.engine.TiltTo`);
 4. **assemble**: throw at ``omega_low`` until the pair is assembled (:func:`~throwmap.control.pair_sensors.is_assembled`:
    each CM within ``pos_tol`` and each angle within ``ang_tol`` of :func:`throwmap.statics.assembly.assembled_pair`),
-   at most ``max_low`` throws (at an ``approach`` rung's rate while the leftmost part is short of its x: low
-   jogs vanish near the joint); then ``hold`` more low throws (retention after 1 and after ``hold``).
+   at an ``approach`` rung's rate while the leftmost part is short of its x; when ``stall_low`` throws in a
+   row move no CM more than ``still_m`` (a wrong stack), tilt back to 0 and randomise again (at most
+   ``resets`` times); then ``hold`` more low throws (retention after 1 and after ``hold``).
 
-**Success** = assembled within ``max_high`` + ``max_low`` throws. Failures (first that applies):
-``no_switch`` (the sensor never fired), ``wrong_switch`` (it fired while the pair was not ready),
-``disrupted_by_tilt`` (ready before the tilt, not after), ``ejected`` (a part left the arm: off the end
-over the wall, or behind the joint), ``wrong_orientation`` (low throws ended with a part off its
+**Success** = assembled within ``max_high`` randomising + ``max_low`` assembling throws. Failures (first
+that applies): ``no_switch`` (the sensor never fired), ``wrong_switch`` (it fired while the pair was not
+ready), ``disrupted_by_tilt`` (ready before the tilt, not after), ``ejected`` (a part left the arm: off the
+end over the wall, or behind the joint), ``wrong_orientation`` (low throws ended with a part off its
 assembly side: *a* not on its longer leg or *b* neither flat on its hypotenuse nor assembled),
-``not_assembled`` (right sides, not within tolerance after ``max_low``), ``refused:<status>`` (an engine
-run refused: penetration, unconverged, timeout; ``refused:drop`` when no drop came to rest).
+``not_assembled`` (right sides, not within tolerance), ``refused:<status>`` (an engine run refused:
+penetration, unconverged, timeout; ``refused:drop`` when no drop came to rest).
 
 Values: ``throws_high``, ``throws_low``, ``throws``, ``looks``, ``held_1``, ``held_hold`` (1/0, nan when
 not assembled), ``pos_err_m``/``ang_err_rad`` at the end, ``mu``, ``drop_redraws``, ``lost``
-(``off_end``/``behind_joint`` for an ejection, else "").
+(``off_end``/``behind_joint`` for an ejection, else ""), ``escapes``, ``slides``, ``resets``, ``phase``
+(where the trial ended: drop, high, tilt, low, hold).
 """
 
 from __future__ import annotations
@@ -117,12 +121,21 @@ class AssembleConfig(BaseModel):
                                                                        "(low, high) per throw, rad/s")
     near_x: Finite = Field(0.22, ge=0, description="a part's CM within this of the joint: randomise below near_cap, m")
     near_cap: Finite = Field(4.0, gt=0, description="highest randomising rate with a part near the joint, rad/s")
-    kick_x: Finite = Field(0.13, ge=0, description="a part on its hypotenuse within this of the joint: kick, m")
     kick: Finite = Field(7.0, gt=0, description="release rate of a kick, rad/s")
+    kick_x: Finite = Field(0.20, ge=0, description="a part flat on its hypotenuse within this of the joint: kick, m")
+    kick_clear: Finite = Field(0.12, ge=0, description="kick only with the other CM this much farther out, m")
+    wall_x: Finite = Field(0.40, description="a part standing on its shorter leg with its CM beyond this is stuck "
+                                            "at the wall: escape throw, m")
+    escape_alpha: Finite = Field(math.radians(5.0), gt=0, lt=0.5, description="arm angle of an escape throw, rad")
+    escape_omega: Finite = Field(4.0, gt=0, description="release rate of an escape throw, rad/s")
+    slide_x: Finite = Field(0.13, ge=0, description="a part's CM within this of the joint, unmoved by a throw: "
+                                                   "slide both to the wall (0: never), m")
+    slide_alpha: Finite = Field(math.radians(55.0), gt=0, lt=1.5, description="arm angle of a slide, rad")
+    slide_rate: Finite = Field(2.0, gt=0, description="tilt rate of a slide, rad/s")
     penetration_tol_high: Finite = Field(0.002, gt=0, description="engine penetration_tol of the drop and the "
                                                                  "randomising throws, m")
     omega_low: Finite = Field(1.9, gt=0, description="assembling release rate, rad/s")
-    approach: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.12, 3.2), (0.25, 2.4)],
+    approach: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.25, 2.4)],
                                                   description="rungs (x m, ω rad/s): the leftmost part's CM short "
                                                               "of x: assembling throws at ω")
     alpha: Finite = Field(math.radians(-10.0), gt=-math.pi / 4, lt=0, description="assembly rest angle, rad")
@@ -137,6 +150,12 @@ class AssembleConfig(BaseModel):
     hold: int = Field(5, ge=1, le=1000, description="low throws after assembly (retention)")
     pos_tol: Finite = Field(0.005, gt=0, description="assembled: CM within this of assembled_pair, m")
     ang_tol: Finite = Field(0.05, gt=0, description="assembled: angle within this of assembled_pair, rad")
+    rectangle: bool = Field(True, description="the sensor also reads 'ready' for a rectangle away from the wall")
+    a_min_x: Finite = Field(0.15, ge=0, description="ready: a's CM at least this from the joint, m")
+    stall_low: int = Field(8, ge=1, le=1000, description="low throws moving no CM more than still_m: tilt back "
+                                                         "and randomise again")
+    still_m: Finite = Field(0.001, gt=0, description="a low throw moving no CM more than this is still, m")
+    resets: int = Field(3, ge=0, le=100, description="tilts back to randomising allowed")
     verify_high: bool = Field(False, description="half-step verification of the drop and the randomising throws")
     exact_flight_high: bool = Field(False, description="exact-flight leaps in the drop and the randomising throws")
     settings: dict | None = Field(None, description="EngineSettings fields to override")
@@ -225,6 +244,41 @@ def drop_pair(part, arm, wall, rng, *, alpha: float = 0.0, x_range=(0.12, 0.40),
     return run, max_redraws
 
 
+def _coarse(run) -> tuple:
+    """The pair's rest state: CM abscissae to 1 cm and sides, sorted (unchanged by a throw: stuck)."""
+    return tuple(sorted((round(float(x), 2), int(k)) for x, k, _ in run.states))
+
+
+def _uniform_rate(cfg: AssembleConfig, run, rng) -> float:
+    """The randomising rate: uniform over ``omega_high``, capped at ``near_cap`` while a part's CM is within
+    ``near_x`` of the joint; a ``kick`` while a part lies flat on its hypotenuse within ``kick_x`` of the joint,
+    no part stands on its shorter leg within ``near_x`` (thrown fast there it lands behind the joint) and
+    the other part's CM is ``kick_clear`` or more farther out (it would fall back onto the kicked one)."""
+    near = min(s[0] for s in run.states) < cfg.near_x
+    top = min(cfg.omega_high[1], cfg.near_cap) if near else cfg.omega_high[1]
+    nominal = float(rng.uniform(cfg.omega_high[0], max(top, cfg.omega_high[0])))
+    (x0, k0, t0), (x1, k1, _) = sorted(((float(x), int(k), float(t)) for x, k, t in run.states), key=lambda q: q[0])
+    if (k0 == 0 and abs(t0) < 0.02 and x0 < cfg.kick_x and x1 - x0 >= cfg.kick_clear
+            and not any(k == 2 and x < cfg.near_x for x, k, _ in run.states)):
+        nominal = cfg.kick  # the hypotenuse creeps inward near the joint at lower rates: march it out
+    return nominal
+
+
+def _stuck_at_wall(cfg: AssembleConfig, run) -> bool:
+    """A part standing flat on its shorter leg with its CM at ``wall_x`` or beyond (no throw at α = 0 moves it)."""
+    return any(k == 2 and abs(t) < 0.02 and x >= cfg.wall_x for x, k, t in run.states)
+
+
+def _throw_low(cfg: AssembleConfig, run, noise, rng, simulate, settings, phase: str):
+    """One assembling throw at ``omega_low`` or an ``approach`` rung's rate."""
+    x_left, nominal = min(s[0] for s in run.states), cfg.omega_low
+    for x, w in cfg.approach:
+        if x_left < x:
+            nominal = w
+            break
+    _, real = noise.throw(nominal, rng)
+    return simulate(run.next_scene(), real, settings, phase, nominal)
+
 class Assemble:
     """Drop two triangles, randomise until the pair sensor fires, tilt, assemble at the wall with low throws."""
 
@@ -236,28 +290,31 @@ class Assemble:
 
     def trial(self, cfg: AssembleConfig, index: int, rng, *, observer=None) -> Trial:
         """One trial. ``observer(phase, run, omega)``, if given, is called after every engine run, ``phase`` one
-        of ``"drop"``, ``"high"``, ``"tilt"``, ``"low"``, ``"hold"``, ``omega`` the nominal rate (rad/s; 0 for the
-        drop and the tilt); with an observer the runs record their trajectories (``run.trajectory``)."""
-        from ..control.pair_sensors import LONG_LEG, PairSensor, assembled_error, is_assembled, pair_ready
+        of ``"drop"``, ``"high"``, ``"escape"`` (the arm tilted to ``escape_alpha`` before an escape throw, which
+        is a ``"high"`` run, and back to 0 after it), ``"tilt"``, ``"low"``, ``"reset"`` (the arm tilted back to 0
+        after a stalled assembly, before randomising again), ``"hold"``; ``omega`` the nominal rate (rad/s; 0 for
+        the drop and the tilts); with an observer the runs record their trajectories (``run.trajectory``)."""
+        from ..control.pair_sensors import LONG_LEG, PairSensor, assembled_error, is_assembled
         from ..engine import TiltTo
         from ..engine import simulate as _simulate
+        from ..throws.trajectory import state_from_pose
 
         def simulate(scene, real, settings, phase="high", omega=0.0):
             run = _simulate(scene, real, settings, record=observer is not None)
             if observer is not None:
                 observer(phase, run, omega)
             return run
-        from ..throws.trajectory import state_from_pose
 
         part, arm, wall = _setup(cfg)
         noise = cfg.noise.noise()
         high, low = _settings(cfg)
         arm = noise.arm(arm, rng)
-        sensor = PairSensor(cfg.sensor.false_positive, cfg.sensor.false_negative)
+        sensor = PairSensor(cfg.sensor.false_positive, cfg.sensor.false_negative, cfg.a_min_x,
+                            arm.h if cfg.rectangle else None)
         L, h = arm.length, arm.h
         v = {"mu": arm.mu, "drop_redraws": 0, "throws_high": 0, "throws_low": 0, "throws": 0, "looks": 0,
              "held_1": math.nan, "held_hold": math.nan, "pos_err_m": math.nan, "ang_err_rad": math.nan,
-             "lost": ""}
+             "lost": "", "escapes": 0, "slides": 0, "resets": 0, "phase": "drop"}
 
         def done(success, failure, run=None):
             if run is not None:
@@ -265,79 +322,105 @@ class Assemble:
             v["throws"] = v["throws_high"] + v["throws_low"]
             return Trial(index, seed_of(rng), success, failure, dict(v))
 
+        def ok(r):
+            return is_assembled(part, r.poses, length=L, h=h, pos_tol=cfg.pos_tol, ang_tol=cfg.ang_tol)
+
+        def ready(poses):
+            return sensor.truth(part, poses)
+
         run, v["drop_redraws"] = drop_pair(part, arm, wall, rng, x_range=cfg.x_range, height=cfg.height, gap=cfg.gap,
                                            mu_parts=cfg.mu_parts, settings=high, record=observer is not None)
         if observer is not None:
             observer("drop", run, 0.0)
         if int(run.status) != 0:
             return done(False, "refused:drop")
-        # -- randomise until the sensor says "ready" confirm times in a row
-        switched = False
         while True:
-            streak = 0
-            for _ in range(cfg.sensor.confirm):
-                v["looks"] += 1
-                if not sensor.read(part, run.poses, rng):
+            # -- randomise until the sensor says "ready" confirm times in a row (or the pair is assembled already)
+            v["phase"] = "high"
+            switched, key = False, None
+            while True:
+                if ok(run):
+                    switched = True
                     break
-                streak += 1
-            if streak == cfg.sensor.confirm:
-                switched = True
-                break
-            if v["throws_high"] >= cfg.max_high:
-                break
-            near = min(s[0] for s in run.states) < cfg.near_x
-            top = min(cfg.omega_high[1], cfg.near_cap) if near else cfg.omega_high[1]
-            nominal = float(rng.uniform(cfg.omega_high[0], max(top, cfg.omega_high[0])))
-            if any(k == 0 and x < cfg.kick_x for x, k, _ in run.states):
-                nominal = cfg.kick  # the hypotenuse creeps inward near the joint at high rates: kick it out
-            _, real = noise.throw(nominal, rng)
-            run = simulate(run.next_scene(), real, high, "high", nominal)
-            v["throws_high"] += 1
-            if int(run.status) != 0:
-                return done(False, _kind(run.status, run.message, v))
-        if not switched:
-            return done(False, "no_switch", run)
-        if pair_ready(part, run.poses) is None:
-            return done(False, "wrong_switch", run)
-        # -- tilt to alpha
-        run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), low, "tilt")
-        if int(run.status) != 0:
-            return done(False, _kind(run.status, run.message, v), run)
-        if pair_ready(part, run.poses) is None:
-            return done(False, "disrupted_by_tilt", run)
-
-        def ok(r):
-            return is_assembled(part, r.poses, length=L, h=h, pos_tol=cfg.pos_tol, ang_tol=cfg.ang_tol)
-
-        def throw_low(r, phase="low"):
-            x_left, nominal = min(s[0] for s in r.states), cfg.omega_low
-            for x, w in cfg.approach:
-                if x_left < x:
-                    nominal = w
+                streak = 0
+                for _ in range(cfg.sensor.confirm):
+                    v["looks"] += 1
+                    if not sensor.read(part, run.poses, rng):
+                        break
+                    streak += 1
+                if streak == cfg.sensor.confirm:
+                    switched = True
                     break
-            _, real = noise.throw(nominal, rng)
-            return simulate(r.next_scene(), real, low, phase, nominal)
-
-        # -- low throws until assembled
-        assembled = False
-        while v["throws_low"] < cfg.max_low:
-            run = throw_low(run)
-            v["throws_low"] += 1
+                if v["throws_high"] >= cfg.max_high:
+                    break
+                if cfg.slide_x > 0 and min(x for x, _, _ in run.states) < cfg.slide_x and _coarse(run) == key:
+                    # near the joint no throw moves the parts out (they creep in): slide them to the wall
+                    for turn in (-cfg.slide_alpha, cfg.slide_alpha):
+                        run = simulate(run.next_scene(), TiltTo(turn, cfg.slide_rate), high, "slide")
+                        if int(run.status) != 0:
+                            return done(False, _kind(run.status, run.message, v))
+                    v["slides"] += 1
+                    key = None
+                    continue
+                if _stuck_at_wall(cfg, run) and _coarse(run) == key:
+                    # escape: tilt up, throw, tilt back (at alpha = 0 no rate moves a part standing at the wall)
+                    run = simulate(run.next_scene(), TiltTo(cfg.escape_alpha, cfg.tilt_rate * 10), high, "escape")
+                    if int(run.status) != 0:
+                        return done(False, _kind(run.status, run.message, v))
+                    nominal = cfg.escape_omega
+                    v["escapes"] += 1
+                else:
+                    nominal = _uniform_rate(cfg, run, rng)
+                key = _coarse(run)
+                _, real = noise.throw(nominal, rng)
+                run = simulate(run.next_scene(), real, high, "high", nominal)
+                v["throws_high"] += 1
+                if int(run.status) != 0:
+                    return done(False, _kind(run.status, run.message, v))
+                if run.alpha != 0.0:
+                    run = simulate(run.next_scene(), TiltTo(-run.alpha, cfg.tilt_rate * 10), high, "escape")
+                    if int(run.status) != 0:
+                        return done(False, _kind(run.status, run.message, v))
+            if not switched:
+                return done(False, "no_switch", run)
+            if not ok(run) and not ready(run.poses):
+                return done(False, "wrong_switch", run)
+            # -- tilt to alpha
+            v["phase"] = "tilt"
+            run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), low, "tilt")
             if int(run.status) != 0:
                 return done(False, _kind(run.status, run.message, v), run)
-            if ok(run):
-                assembled = True
+            if not ok(run) and not ready(run.poses):
+                return done(False, "disrupted_by_tilt", run)
+            # -- low throws until assembled, or until the pair stalls (then tilt back and randomise again)
+            v["phase"] = "low"
+            assembled, still = ok(run), 0
+            while not assembled and v["throws_low"] < cfg.max_low and still < cfg.stall_low:
+                before = run.poses
+                run = _throw_low(cfg, run, noise, rng, simulate, low, "low")
+                v["throws_low"] += 1
+                if int(run.status) != 0:
+                    return done(False, _kind(run.status, run.message, v), run)
+                assembled = ok(run)
+                moved = max(math.hypot(q[0] - p[0], q[1] - p[1]) for p, q in zip(before, run.poses))
+                still = still + 1 if moved < cfg.still_m else 0
+            if assembled:
                 break
-        if not assembled:
+            if still >= cfg.stall_low and v["resets"] < cfg.resets and v["throws_high"] < cfg.max_high:
+                v["resets"] += 1
+                run = simulate(run.next_scene(), TiltTo(-run.alpha, cfg.tilt_rate), low, "reset")
+                if int(run.status) != 0:
+                    return done(False, _kind(run.status, run.message, v), run)
+                continue
             st = [state_from_pose(part, q) for q in run.poses]
             on_sides = sorted(k for _, k, _ in st) == [0, LONG_LEG] and any(
                 k == LONG_LEG and abs(t) < 0.05 for _, k, t in st)
             return done(False, "not_assembled" if on_sides else "wrong_orientation", run)
         # -- retention (not part of success; a refused hold throw counts as not held)
-        end = run
-        held = []
+        v["phase"] = "hold"
+        end, held = run, []
         for _ in range(cfg.hold):
-            r = throw_low(end, "hold")
+            r = _throw_low(cfg, end, noise, rng, simulate, low, "hold")
             good = int(r.status) == 0 and ok(r)
             held.append(good)
             if int(r.status) != 0:
