@@ -55,6 +55,8 @@ MAX_SWEEPS = 40
 TRIGGER = 0.8
 """A contact whose previous impulses used more than TRIGGER × the cap of its friction ratio (or that is new, or did
 not push) is solved exactly; below that the capped μ leaves the (sticking) solution unchanged and Chipmunk solves it."""
+SAME_POINT = 2e-4
+"""Contacts whose points on the part are closer than this (m, each coordinate) act at one point (:func:`_merge_points`)."""
 TOL = 1e-13
 """Sweeps stop once no impulse changes by more than TOL × (largest impulse + m g dt)."""
 
@@ -250,9 +252,11 @@ class ExactSolve:
                 ann = m_inv * (gn[0] * gn[0] + gn[1] * gn[1]) + i_inv * gn[2] * gn[2]
                 ant = m_inv * (gn[0] * gt[0] + gn[1] * gt[1]) + i_inv * gn[2] * gt[2]
                 att = m_inv * (gt[0] * gt[0] + gt[1] * gt[1]) + i_inv * gt[2] * gt[2]
-                cons.append([c, gn, gt, ann, ant, att, mu, en, et, 0.0, 0.0, arb])
+                cons.append([c, gn, gt, ann, ant, att, mu, en, et, 0.0, 0.0, arb, rx, ry])
         if not cons:
             return
+        if len(cons) > 1:
+            _merge_points(cons, m_inv, i_inv)
         self.n_steps += 1
         # warm start from the previous exact step (same contact hash); velocities with those impulses
         warm = self.warm
@@ -272,7 +276,7 @@ class ExactSolve:
             biggest = change = 0.0
             fallback = False
             for k in cons:
-                c, gn, gt, ann, ant, att, mu, en, et, jn0, jt0, _ = k
+                c, gn, gt, ann, ant, att, mu, en, et, jn0, jt0 = k[:11]
                 vn = gn[0] * ux + gn[1] * uy + gn[2] * uw + en
                 vt = gt[0] * ux + gt[1] * uy + gt[2] * uw + et
                 wn = vn - ann * jn0 - ant * jt0
@@ -319,6 +323,41 @@ class ExactSolve:
             c.tMass = 0.0  # the friction impulse stays as solved
             c.bounce = -(gn[0] * ux + gn[1] * uy + gn[2] * uw + k[7])  # Chipmunk's normal update then gives 0
             warm[c.hash] = (jn, jt)
+
+
+def _merge_points(cons, m_inv: float, i_inv: float) -> None:
+    """Give contacts whose points on the part lie within :data:`SAME_POINT` of each other one common point (their
+    mean): the torque rows of ``G`` and the blocks ``A`` of ``cons`` (as in :meth:`ExactSolve._solve`, the point
+    relative to the part's CM in ``k[12:14]``) are recomputed in place.
+
+    Why: a vertex in a corner of two shapes (the cavity's floor and lip ramp) gets one contact per shape, a few µm
+    apart, and Chipmunk's normal of one is often the part's edge normal or a segment end's, not the surface's. With
+    friction μ ≳ 1 the two cones then hold opposite directions, and the exact solve finds a jam: a squeeze of
+    ~10⁴ × the weight whose couple over those µm holds the part's weight torque, a part resting on one vertex
+    (measured, feed trial 0 of seed 0). A point contact has no couple: the merged point takes it away."""
+    k = len(cons)
+    group = list(range(k))
+    for i in range(k):
+        for j in range(i + 1, k):
+            if abs(cons[i][12] - cons[j][12]) < SAME_POINT and abs(cons[i][13] - cons[j][13]) < SAME_POINT:
+                gi, gj = group[i], group[j]
+                if gi != gj:
+                    group = [gi if g == gj else g for g in group]
+    for g in set(group):
+        members = [cons[i] for i in range(k) if group[i] == g]
+        if len(members) < 2:
+            continue
+        rx = sum(m[12] for m in members) / len(members)
+        ry = sum(m[13] for m in members) / len(members)
+        for m in members:
+            gn, gt = m[1], m[2]
+            nx, ny, tx, ty = gn[0], gn[1], gt[0], gt[1]  # signed with the part's side: the torque is r × (nx, ny)
+            gn = (nx, ny, rx * ny - ry * nx)
+            gt = (tx, ty, rx * ty - ry * tx)
+            m[1], m[2] = gn, gt
+            m[3] = m_inv * (gn[0] * gn[0] + gn[1] * gn[1]) + i_inv * gn[2] * gn[2]
+            m[4] = m_inv * (gn[0] * gt[0] + gn[1] * gt[1]) + i_inv * gn[2] * gt[2]
+            m[5] = m_inv * (gt[0] * gt[0] + gt[1] * gt[1]) + i_inv * gt[2] * gt[2]
 
 
 def exact_solver(world):
