@@ -35,7 +35,7 @@ def test_the_pair_fills_the_wedge_without_overlap(design):
     # the wall (a solid at x >= L) does not overlap it
     wall = np.array([[design.cavity.length, -1], [1, -1], [1, 1], [design.cavity.length, 1]])
     assert overlap_depth(W, wall) < 0
-    assert design.wedge.n_sides == 4 and design.wedge.mass > 0.1  # 115 g of lead in the tip
+    assert design.wedge.n_sides == 4 and 0.06 < design.wedge.mass < 0.08  # 50 g of lead in the tip
     assert design.assembled(design.poses)
     bad = (design.wedge_pose[0] - 0.02, design.wedge_pose[1], design.wedge_pose[2])
     assert not design.assembled((design.triangle_pose, bad))
@@ -87,7 +87,7 @@ def test_contract_json_keys():
         assert set(d["failures"]) <= {"ejected", "wrong_orientation", "not_assembled"} | {
             f for f in d["failures"] if f.startswith("refused:")}
         p = d["parameters"]
-        assert p["variant"] == name.split("-")[1] and p["design"]["wedge"]["mass_kg"] > 0.1
+        assert p["variant"] == name.split("-")[1] and p["design"]["wedge"]["mass_kg"] > 0.06
 
 
 @pytest.mark.slow
