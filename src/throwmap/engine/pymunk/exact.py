@@ -27,7 +27,8 @@ the pair's true μ (μ = ∞: stick while pushing), by block Gauss–Seidel over
 contacts, each block the exact 2×2 solve of one contact (stick, separate, or
 slide at ``|j_t| = μ j_n`` with the normal solved through
 ``D = K_nn − σ μ K_nt``; μ = ∞ that cannot stick skids with :data:`MU_SKID` as
-model "rigid_body" does); where the sweeps cycle (contacts switching each other
+model "rigid_body" does; contacts at one point of the part, a vertex in a corner of two
+shapes, act at their common point: :func:`_merge_points`); where the sweeps cycle (contacts switching each other
 on and off), every combination of contact modes (:func:`enumerate_modes`). It writes the new velocities into the body and the
 impulses into the contacts' accumulators, and hands Chipmunk a solved problem:
 the tangential effective mass is set to 0 (the friction impulse stays) and the

@@ -32,8 +32,10 @@ class EngineRun:
     The run's cost: ``n_steps`` pymunk steps (``n_coarse`` of them at
     ``coarse_dt``), ``n_leaps`` exact-flight leaps, ``n_checks`` rounds of the
     periodic checks (penetration, escape, flips, settling) and ``n_clearance``
-    clearance evaluations (exact flight); ``n_capped`` contact solves whose
-    friction was capped (:mod:`.friction`). ``energy_gain`` (J/kg) is the largest
+    clearance evaluations (exact flight); ``n_capped`` contact solves where
+    the friction cap of :mod:`.friction` would bind (below the pair's μ): one part (:data:`.friction.EXACT`), each
+    was solved exactly with the true μ (:mod:`.exact`) or, its previous impulses well inside the capped cone,
+    by Chipmunk at the cap with the same (sticking) solution; several parts, its friction was capped. ``energy_gain`` (J/kg) is the largest
     rise of any part's mechanical energy after the arm stopped (several parts: of
     their total per unit total mass; a blow-up if large), ``dt`` the step the run used (s) and ``verified`` whether a
     half-step rerun was made and agreed (:func:`~throwmap.engine.simulate`).
