@@ -231,7 +231,10 @@ def test_randomising_rate_rules():
     assert min(far) >= 3.0 and max(far) <= 6.0 and max(far) > 5.0
     near = [_uniform_rate(cfg, _Run((0.20, 1, 0.0), (0.42, 0, 0.0)), rng) for _ in range(200)]
     assert max(near) <= cfg.near_cap
+    tilted = [_uniform_rate(cfg, _Run((0.30, 1, 0.3), (0.42, 0, 0.0)), rng) for _ in range(200)]
+    assert max(tilted) <= cfg.tilted_cap < cfg.omega_high[1]  # a leaning part thrown fast lands behind the joint
     assert _uniform_rate(cfg, _Run((0.15, 0, 0.0), (0.40, 1, 0.0)), rng) == cfg.kick
+    assert _uniform_rate(cfg, _Run((0.10, 0, 0.0), (0.40, 1, 0.0)), rng) <= cfg.near_cap  # < slide_x: no kick
     assert _uniform_rate(cfg, _Run((0.15, 0, 0.5), (0.40, 1, 0.0)), rng) <= cfg.near_cap  # tilted: no kick
     assert _uniform_rate(cfg, _Run((0.15, 0, 0.0), (0.22, 1, 0.0)), rng) <= cfg.near_cap  # other part too close
     assert _uniform_rate(cfg, _Run((0.15, 0, 0.0), (0.21, 2, 0.0)), rng) <= cfg.near_cap  # a shorter leg near

@@ -75,14 +75,31 @@ class AssembleConfig(BaseModel):
       both 17 cm triangles (assembled they fill [L − 0.147, L]) and for *a* wholly left of *b*;
     * ``wall_height`` 0.80 m: above the energy bound of the fastest throw, a kick, ω²L²/2g = 0.70 m at 7.4 rad/s,
       so no part flies over it; ``wall_mu`` 0 (the draft's frictionless wall, Fig. 13);
-    * ``omega_high`` uniform over 3–6 rad/s per throw: one fixed rate has a limit set that avoids the
-      hypotenuse (measured, 12 drops × 40 throws: at 5 rad/s the pair is "ready" after 1.7 % of throws, at
-      3 rad/s after none), and below 5.5 rad/s both parts standing on their shorter legs at the wall are a
-      fixed point (it holds at 3–5 rad/s; 5.5 and 6.5 rad/s break it); ``near_cap`` 4 rad/s while a part's CM
-      is within ``near_x`` = 22 cm of the joint: side 2 at 14–17 cm thrown at ≥ 5.5 rad/s lands behind the
-      joint (measured; 1 loss in 543 throws with the cap, 6 in 12 drops × 40 without); ``kick`` 7 rad/s for a
-      part on its hypotenuse within ``kick_x`` = 13 cm: it creeps over the joint at 3–6 rad/s (single part at
-      x = 10 cm: −0.3 to −1 mm a throw at 3–6 rad/s, +1 mm at 7, +5.7 mm at 8; at 12 cm: +8.5 mm at 7);
+    * randomising at α = 0 with ``omega_high`` uniform over 3–6 rad/s (one fixed rate has a limit set that
+      avoids the hypotenuse: at 3 rad/s no "ready" pair in 480 throws), ``near_cap`` 4 rad/s while a CM is
+      within ``near_x`` = 22 cm of the joint (side 2 at 12–18 cm lands behind the joint from 5.5–6.5 rad/s).
+      One part's throw here is almost deterministic (engine, sides × 13 x × 21 rates × 3 noisy repeats): a
+      flip moves a part 6–8 cm *in*, a jog 0–3 cm *out*, so the arm has two sinks: near the joint (side 0
+      at 12–15 cm stays on it at every rate ≤ 7.5 rad/s, jogging +1 / +3 cm at 7 rad/s from 12 / 15 cm, none at
+      ≤ 4) and at the wall (a part standing on its shorter leg with CM ≥ 39 cm stays there at every rate).
+      Hence ``kick`` 7 rad/s for a flat hypotenuse within ``kick_x`` = 20 cm (it marches out: +3 cm from 15,
+      +5 from 18 cm), only when the other CM is ``kick_clear`` = 12 cm farther out and no shorter leg is within
+      ``near_x`` (kicks with the other part leaning on the kicked one, or at 9.8 cm tilted, threw a part
+      behind the joint in 2 trials); an **escape** when a throw left a part standing at the wall
+      (CM ≥ ``wall_x`` = 40 cm): tilt to ``escape_alpha`` = +5° (at 1 rad/s), throw at ``escape_omega``
+      = 4 rad/s, tilt back — single part at 47 cm, +5°: 3 / 4 / 5 / 6 rad/s land it on the hypotenuse at
+      31 / 28 / 25 / 21 cm, 7 behind the joint; an escape at +6°, 6.5 rad/s threw the *other* part behind the
+      joint in 4 of 6 trials, at +5°, 4 rad/s those 4 trials assembled; a **slide** when a throw left a CM
+      within ``slide_x`` = 13 cm: tilt to −55° at 2 rad/s (past the friction angle, atan 1.1 = 48°), both
+      slide to the wall, and back (a leaning pair at 10–16 cm crept 1 mm a throw over the joint; with the
+      slide that trial assembled). Uniform rates alone (this low phase): 10/20, ``no_switch`` 5, ``ejected`` 5;
+    * the switch (``rectangle``): "ready" also when the pair is already the assembled rectangle anywhere on the
+      arm (:func:`~throwmap.control.pair_sensors.is_rectangle`): high throws at α = 0 make it (4 of the 10
+      successes above were assembled during randomising; in a no_switch trial it formed away from the wall 4
+      throws running), and the low throws carry it to the wall: 6/6 hand-placed rectangles shifted 5 / 15 /
+      25 cm in (μ 0.9, 1.1) assembled in 3 / 12 / 26–27 throws. ``a_min_x`` 15 cm: *a* nearer the joint
+      needed a rung (12 cm, 3.2 rad/s) that makes *b* lean and flip at the wall (4 of 100 trials refused as
+      unconverged, 4 wrong_orientation after 150 low throws in a previous version);
     * ``alpha`` −10° (the draft's); ``tilt_rate`` 0.1 rad/s: lowering at rate ṙ drops the arm away from a part
       at radius r at r·ṙ, which it hits at that speed — 4.5 cm/s at r = 0.45 m, a tenth of a low throw;
     * ``omega_low`` 1.9 rad/s, between two engine limits: the assembled pair at the wall (α = −10°) holds
@@ -95,10 +112,11 @@ class AssembleConfig(BaseModel):
       at r = L into the lean) allows 1.76 rad/s and is only sufficient; ``max_low`` 150;
     * ``approach`` rung (25 cm, 2.4 rad/s): *a* left near the joint barely moves at 1.9 rad/s (3 of the first 6
       trials of a run without it ended with *a* parked 30 cm short); with it 7/8 hand-placed ready pairs with *a*
-      at 10–22 cm assembled in 15–81 throws (a rung (20 cm, 3 rad/s) was refused as unconverged in 4/8); and
-      (12 cm, 3.2 rad/s): at α = −10° a part on its longer leg does not move at 2.4 rad/s from ≤ 9 cm (8 of 100
-      trials of a run without this rung ended with *a* parked there), +0.6 / +1.3 mm from 9 cm at 3 / 3.5 rad/s;
+      at 10–22 cm assembled in 15–81 throws (a rung (20 cm, 3 rad/s) was refused as unconverged in 4/8);
       *b* alone at the wall leans 0.37 rad at 3.7 rad/s and sticks leaning at 4.2 (0.79 rad), so no faster;
+    * ``stall_low`` 8 throws moving no CM more than ``still_m`` 1 mm, then tilt back and randomise (``resets``
+      3): the wrong stacks the low throws cannot undo (*b* on *a*'s hypotenuse on its longer leg, 150 throws
+      without a change) are static;
     * ``mu_parts`` 0.5 (the engine's default part–part μ); tolerances 5 mm and 0.05 rad;
     * the drop and the randomising throws run without half-step verification (``verify_high``: two parts
       colliding are chaotic, the rerun at half the step lands them millimetres apart — a test of determinism,
@@ -121,6 +139,7 @@ class AssembleConfig(BaseModel):
                                                                        "(low, high) per throw, rad/s")
     near_x: Finite = Field(0.22, ge=0, description="a part's CM within this of the joint: randomise below near_cap, m")
     near_cap: Finite = Field(4.0, gt=0, description="highest randomising rate with a part near the joint, rad/s")
+    tilted_cap: Finite = Field(4.5, gt=0, description="highest randomising rate with a part tilted, rad/s")
     kick: Finite = Field(7.0, gt=0, description="release rate of a kick, rad/s")
     kick_x: Finite = Field(0.20, ge=0, description="a part flat on its hypotenuse within this of the joint: kick, m")
     kick_clear: Finite = Field(0.12, ge=0, description="kick only with the other CM this much farther out, m")
@@ -251,14 +270,16 @@ def _coarse(run) -> tuple:
 
 def _uniform_rate(cfg: AssembleConfig, run, rng) -> float:
     """The randomising rate: uniform over ``omega_high``, capped at ``near_cap`` while a part's CM is within
-    ``near_x`` of the joint; a ``kick`` while a part lies flat on its hypotenuse within ``kick_x`` of the joint,
-    no part stands on its shorter leg within ``near_x`` (thrown fast there it lands behind the joint) and
-    the other part's CM is ``kick_clear`` or more farther out (it would fall back onto the kicked one)."""
+    ``near_x`` of the joint and at ``tilted_cap`` while a part is tilted (leaning on the wall or the other
+    part); a ``kick`` while a part lies flat on its hypotenuse at ``slide_x``–``kick_x`` from the joint, the
+    other part flat, its CM ``kick_clear`` or more farther out, and no shorter leg within ``near_x``."""
     near = min(s[0] for s in run.states) < cfg.near_x
+    tilted = any(abs(t) >= 0.02 for _, _, t in run.states)
     top = min(cfg.omega_high[1], cfg.near_cap) if near else cfg.omega_high[1]
+    top = min(top, cfg.tilted_cap) if tilted else top
     nominal = float(rng.uniform(cfg.omega_high[0], max(top, cfg.omega_high[0])))
-    (x0, k0, t0), (x1, k1, _) = sorted(((float(x), int(k), float(t)) for x, k, t in run.states), key=lambda q: q[0])
-    if (k0 == 0 and abs(t0) < 0.02 and x0 < cfg.kick_x and x1 - x0 >= cfg.kick_clear
+    (x0, k0, _), (x1, _, _) = sorted(((float(x), int(k), float(t)) for x, k, t in run.states), key=lambda q: q[0])
+    if (k0 == 0 and not tilted and cfg.slide_x <= x0 < cfg.kick_x and x1 - x0 >= cfg.kick_clear
             and not any(k == 2 and x < cfg.near_x for x, k, _ in run.states)):
         nominal = cfg.kick  # the hypotenuse creeps inward near the joint at lower rates: march it out
     return nominal
