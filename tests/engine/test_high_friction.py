@@ -149,6 +149,22 @@ def test_reproducer_lands_on_the_uncapped_reference(monkeypatch):
 
 
 # ----------------------------------------------------------------------------------------------- a vertex in a corner
+def _feeder_scene(mu, pose):
+    """The recoil feeder of ``throwmap experiment feed`` (its part, arm, 1 cm pocket and frictionless end wall at
+    L = 0.38 m, as the packaged design builds them) with arm μ ``mu`` and the part at arm-frame ``pose``."""
+    from throwmap.system.arm import Arm
+    from throwmap.system.fixtures import Cavity, Wall
+    from throwmap.system.part import Part
+
+    part = Part(vertices=((0.14722431864335458, 0.0), (0.0, 0.085), (0.0, 0.0)), mass=0.12728127396271163,
+                com=(0.037125249452450236, 0.04010804106650658), radius_of_gyration=0.027617919039357206,
+                point_masses=((0.08, (0.030062890815516597, 0.04706708084354437)),), name="recoil feeder")
+    arm = Arm(h=-0.02042023480254783, length=0.38, mu=mu)
+    fixtures = (Cavity(profile=((0.18077350269189627, 0.0), (0.17500000000000002, -0.01), (0.0, -0.01))),
+                Wall(height=0.15376261062739635, thickness=0.01, mu=0.0))
+    return Scene(arm, (Placement(part, pose=pose),), fixtures)
+
+
 def test_contacts_at_one_point_of_the_part_share_it():
     """Two contacts of one vertex with two shapes (a corner), 10 µm apart and with normals 98° apart: merged, both
     act at their mean point, so a squeeze between them (opposite impulses, inside both μ = 1.14 cones) has no couple."""
@@ -183,22 +199,14 @@ def test_contacts_at_one_point_of_the_part_share_it():
     assert abs(torque) < 1e-12
 
 
-@pytest.mark.slow
 def test_a_part_landing_in_the_cavity_corner_lies_flat(monkeypatch):
     """Feed trial 0 (seed 0), throw 6: the recoil feeder's triangle lands with a vertex in the corner of the pocket's
     floor and lip ramp (μ = 1.14). Solved with two contacts 10 µm apart it stayed at rest on that one vertex, tilted
     0.142 rad with its CM 11 cm beyond it, held by a 9 N·s squeeze per 0.5 ms step (10⁴ × its weight's impulse);
     at one point it falls flat against the end wall as the capped engine has it (within 2 µm)."""
-    from dataclasses import replace
-
     from throwmap.engine import RecoilThrow
-    from throwmap.experiments.feed import FEED
-    from throwmap.experiments.runner import config_of
 
-    cfg = config_of(FEED, None)
-    part, arm, fixtures, _omega, _side, _design = FEED.setup(cfg)
-    scene = Scene(replace(arm, mu=1.1443690954698125),
-                  (Placement(part, pose=(0.32435089071059525, -0.010231668381324152, 3.665443924923759)),), fixtures)
+    scene = _feeder_scene(1.1443690954698125, (0.32435089071059525, -0.010231668381324152, 3.665443924923759))
     throw = RecoilThrow(omega_n=180.94221640791883, recoil=0.05235987755982989, zeta=0.2, t_recoil=0.05, hold=0.03,
                         t_return=0.05)
     settings = tm.engine.EngineSettings(agreement=0.005, retries=4)
@@ -209,3 +217,23 @@ def test_a_part_landing_in_the_cavity_corner_lies_flat(monkeypatch):
     for run in runs.values():
         assert run.statuses[0].name == "OK" and run.states[0][1] == 0 and abs(run.states[0][2]) < 0.05
     assert abs(runs[True].states[0][0] - runs[False].states[0][0]) < 20e-6
+
+
+def test_a_lean_on_the_frictionless_end_wall_holds_where_coulomb_says(monkeypatch):
+    """The recoil feeder's triangle released at rest leaning on the pocket's frictionless end wall (a vertex on the
+    wall 84 mm above the floor, one on the floor, its CM 90 mm beyond that vertex: statics need floor friction
+    0.0902/0.0842 = 1.072 × the weight). Exact: it stays at μ = 1.09 and slides down flat at μ = 1.06. Capped, the
+    floor contact's cap (0.92 there) is below that need, so it slid down at every μ (feed trials at μ ≳ 1.05 were
+    held at the end wall by this)."""
+    pose = (0.3225128460757078, 0.044320252670049264, 4.1831278400448735)
+    settings = tm.engine.EngineSettings(agreement=0.005, retries=4)
+
+    def tilt(mu, exact):
+        monkeypatch.setattr(F, "EXACT", exact)
+        run = _quiet(simulate, _feeder_scene(mu, pose), ImpulseThrow(0.0), settings)
+        assert run.statuses[0].name == "OK" and run.states[0][1] == 0
+        return run.states[0][2]
+
+    assert tilt(1.09, True) == pytest.approx(0.518, abs=0.005)  # held: the lean of the feed run
+    assert abs(tilt(1.06, True)) < 0.01  # slid down flat
+    assert abs(tilt(1.09, False)) < 0.01  # the cap let it slide
