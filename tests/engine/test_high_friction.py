@@ -167,7 +167,8 @@ def _feeder_scene(mu, pose):
 
 def test_contacts_at_one_point_of_the_part_share_it():
     """Two contacts of one vertex with two shapes (a corner), 10 µm apart and with normals 98° apart: merged, both
-    act at their mean point, so a squeeze between them (opposite impulses, inside both μ = 1.14 cones) has no couple."""
+    act at their mean point, so a squeeze between them (opposite impulses, inside both μ = 1.14 cones) has no
+    couple."""
     m_inv, i_inv = 1.0 / 0.127, 1.0 / (0.127 * 0.0276**2)
 
     def con(nx, ny, rx, ry, s):

@@ -57,7 +57,8 @@ TRIGGER = 0.8
 """A contact whose previous impulses used more than TRIGGER × the cap of its friction ratio (or that is new, or did
 not push) is solved exactly; below that the capped μ leaves the (sticking) solution unchanged and Chipmunk solves it."""
 SAME_POINT = 2e-4
-"""Contacts whose points on the part are closer than this (m, each coordinate) act at one point (:func:`_merge_points`)."""
+"""Contacts whose points on the part are closer than this (m, each coordinate) act at one point
+(:func:`_merge_points`)."""
 TOL = 1e-13
 """Sweeps stop once no impulse changes by more than TOL × (largest impulse + m g dt)."""
 

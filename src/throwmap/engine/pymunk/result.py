@@ -35,8 +35,8 @@ class EngineRun:
     clearance evaluations (exact flight); ``n_capped`` contact solves where
     the friction cap of :mod:`.friction` would bind (below the pair's μ): one part (:data:`.friction.EXACT`), each
     was solved exactly with the true μ (:mod:`.exact`) or, its previous impulses well inside the capped cone,
-    by Chipmunk at the cap with the same (sticking) solution; several parts, its friction was capped. ``energy_gain`` (J/kg) is the largest
-    rise of any part's mechanical energy after the arm stopped (several parts: of
+    by Chipmunk at the cap with the same (sticking) solution; several parts, its friction was capped.
+    ``energy_gain`` (J/kg) is the largest rise of any part's mechanical energy after the arm stopped (several parts: of
     their total per unit total mass; a blow-up if large), ``dt`` the step the run used (s) and ``verified`` whether a
     half-step rerun was made and agreed (:func:`~throwmap.engine.simulate`).
     """
