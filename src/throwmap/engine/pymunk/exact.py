@@ -254,7 +254,7 @@ class ExactSolve:
                 ann = m_inv * (gn[0] * gn[0] + gn[1] * gn[1]) + i_inv * gn[2] * gn[2]
                 ant = m_inv * (gn[0] * gt[0] + gn[1] * gt[1]) + i_inv * gn[2] * gt[2]
                 att = m_inv * (gt[0] * gt[0] + gt[1] * gt[1]) + i_inv * gt[2] * gt[2]
-                cons.append([c, gn, gt, ann, ant, att, mu, en, et, 0.0, 0.0, arb, rx, ry])
+                cons.append([c, gn, gt, ann, ant, att, mu, en, et, 0.0, 0.0, arb, rx, ry, gn])
         if not cons:
             return
         if len(cons) > 1:
@@ -323,14 +323,16 @@ class ExactSolve:
             arb.state = first  # the impulses are in the velocities already: no cached (warm-start) impulse
             c.jnAcc, c.jtAcc = jn, jt
             c.tMass = 0.0  # the friction impulse stays as solved
-            c.bounce = -(gn[0] * ux + gn[1] * uy + gn[2] * uw + k[7])  # Chipmunk's normal update then gives 0
+            g = k[14]  # the contact's own point (Chipmunk's; a merged one solved at the common point)
+            c.bounce = -(g[0] * ux + g[1] * uy + g[2] * uw + k[7])  # Chipmunk's normal update then gives 0
             warm[c.hash] = (jn, jt)
 
 
 def _merge_points(cons, m_inv: float, i_inv: float) -> None:
     """Give contacts whose points on the part lie within :data:`SAME_POINT` of each other one common point (their
     mean): the torque rows of ``G`` and the blocks ``A`` of ``cons`` (as in :meth:`ExactSolve._solve`, the point
-    relative to the part's CM in ``k[12:14]``) are recomputed in place.
+    relative to the part's CM in ``k[12:14]``) are recomputed in place (``k[14]``, the contact's own normal row, is
+    kept for Chipmunk's normal target).
 
     Why: a vertex in a corner of two shapes (the cavity's floor and lip ramp) gets one contact per shape, a few µm
     apart, and Chipmunk's normal of one is often the part's edge normal or a segment end's, not the surface's. With
