@@ -136,11 +136,13 @@ def test_contract_json_keys(tmp_path):
                 "version", "elapsed_s", "workers", "resumed"):
         assert key in d
     assert d["n"] == 2 and sum(d["failures"].values()) + d["successes"] == 2
-    for key in ("throws_high", "throws_low", "throws", "looks", "held_1", "held_hold", "pos_err_m", "mu"):
+    for key in ("throws_high", "throws_low", "throws", "looks", "held_1", "held_hold", "pos_err_m", "mu", "escapes",
+                "slides", "resets", "phase"):
         assert key in res.trials[0].values
     assert "throws_high" in d["values"] and "mu" in d["values"]
     p = d["parameters"]
     assert p["alpha_rad"] == pytest.approx(math.radians(-10)) and p["lean_bound"]["beta_star_rad"] > 0.25
+    assert p["escape"]["alpha_rad"] > 0 > p["slide"]["alpha_rad"] and p["switch"]["rectangle"] is True
     assert set(d["failures"]) <= {"no_switch", "wrong_switch", "refused:drop"}
 
 
