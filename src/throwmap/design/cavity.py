@@ -217,7 +217,8 @@ class CavityDesign:
                  f"({self.realisation['kind']}), σ_ω = {100 * self.realisation['sigma']:.3g} %: {self.message}"),
                  (f"  arm end (end wall) L = {100 * self.length:.2f} cm, lip at {100 * self.lip_x:.2f} cm, "
                  f"depth {100 * self.cavity.depth:.2f} cm, floor {100 * n['floor_m']:.2f} cm, "
-                 f"ramp {100 * n['ramp_m']:.2f} cm, wall {100 * self.wall.height:.2f} cm (μ {self.wall.mu:g})"),
+                 f"ramp {100 * n['ramp_m']:.2f} cm, wall {100 * self.wall.height:.2f} cm (μ {self.wall.mu:g})"
+                 + (", floor lined (the wall's μ)" if self.cavity.lined else "")),
                  ((f"  window for L: [{100 * n['L_lo_m']:.2f}, {100 * n['L_hi_m']:.2f}] cm" if n["n_windows"] else
                    "  window for L: none") + f" at ω ∈ [{n['omega_lo']:.4g}, {n['omega_hi']:.4g}] rad/s")]
         lines += [f"  {c}" for c in self.checks]
@@ -233,7 +234,7 @@ class CavityDesign:
 
         return {"part": self.part.name, "side": self.side, "omega_rad_s": self.omega, "success": self.success,
                 "message": self.message, "arm": {"h_m": self.arm.h, "length_m": self.length, "mu": fin(self.arm.mu)},
-                "cavity_profile_m": [list(p) for p in self.cavity.profile],
+                "cavity_profile_m": [list(p) for p in self.cavity.profile], "cavity_lined": self.cavity.lined,
                 "wall": {"height_m": self.wall.height, "thickness_m": self.wall.thickness, "mu": self.wall.mu},
                 "realisation": dict(self.realisation), "numbers": {k: fin(v) for k, v in self.numbers.items()},
                 "checks": [c.to_dict() for c in self.checks], "reasons": list(self.reasons),
@@ -272,7 +273,7 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
                   z_release: float = 1.0, realisation: str = "impulse", recoil: float = math.radians(3.0),
                   zeta: float = 0.5, depth: float = 0.02, clearance: float = 0.005, ramp_angle: float = math.radians(60.0),
                   end_gap: float = 0.0, end_angle: float = math.radians(60.0), wall_mu: float = 0.0,
-                  wall_margin: float = 0.01, place: float = 0.5, length: float | None = None, verify: bool = True,
+                  lined: bool = False, wall_margin: float = 0.01, place: float = 0.5, length: float | None = None, verify: bool = True,
                   settings=None) -> CavityDesign:
     """Design the cavity at the arm's end that holds ``part`` on ``side`` (see the module docstring).
 
@@ -282,7 +283,8 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
     widest window (or is ``length``, m). ``realisation`` ``"impulse"`` or ``"recoil"`` (``recoil``
     rad, ``zeta``): the arm's motion in the experiment. Geometry (m, rad): ``depth``, ``clearance``
     (floor beyond side k's length), ``ramp_angle`` (lip), ``end_gap`` (0: the floor runs to the
-    wall; > 0: it ends that short of it in a ramp at ``end_angle``), ``wall_mu``, ``wall_margin``
+    wall; > 0: it ends that short of it in a ramp at ``end_angle``), ``wall_mu``, ``lined`` (the floor faced with
+    the wall's material: its μ is ``wall_mu``, :attr:`Cavity.lined <throwmap.system.fixtures.Cavity.lined>`), ``wall_margin``
     (wall top above the energy bound). ``verify``: engine checks. Returns a :class:`CavityDesign`
     (``success`` False, naming the failed checks, when there is no window or a check fails).
     """
@@ -300,7 +302,8 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
     place = _num(place, "place", lo=0.0, hi=1.0)
     w_hi = omega * (1.0 + _num(z_hold, "z_hold", lo=0.0) * sigma)
     w_lo = omega * max(0.05, 1.0 - _num(z_release, "z_release", lo=0.0) * sigma)
-    floor_arm = Arm(h=arm.h - depth, g=arm.g, mu=arm.mu, back=arm.back)
+    wall_mu = _num(wall_mu, "wall_mu", lo=0.0)
+    floor_arm = Arm(h=arm.h - depth, g=arm.g, mu=wall_mu if lined else arm.mu, back=arm.back)
     jm = jog_map(part, floor_arm, (w_lo, omega, w_hi), realisation=realisation, recoil=recoil, zeta=zeta)
     uR = {j: float(part.uR[j]) for j in part.stable_sides}
     runs = _windows(jm, part, side, end_gap)
@@ -318,11 +321,11 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
     floor, ramp = float(part.length[side]) + clearance, depth / math.tan(ramp_angle)
     top = min(0.0, -depth + end_gap * math.tan(end_angle)) if end_gap > 0 else -depth
     prof = ((floor + end_gap + ramp, 0.0), (floor + end_gap, -depth), (end_gap, -depth))
-    cavity = Cavity(prof + ((0.0, top),) if end_gap > 0 else prof)
+    cavity = Cavity(prof + ((0.0, top),) if end_gap > 0 else prof, lined=bool(lined))
     x_c, y_c = L - end_gap - uR[side], arm.h - depth + float(part.d[side])
     rise = w_hi**2 * (x_c**2 + y_c**2) / (2.0 * arm.g)
     H = float(part.d[side]) - depth + rise + _num(wall_margin, "wall_margin", lo=0.0)
-    wall = Wall(height=H, mu=_num(wall_mu, "wall_mu", lo=0.0))
+    wall = Wall(height=H, mu=wall_mu)
     sweep = outward_sweep(part, side, x_c, y_c, w_hi, arm.g)
     numbers = {"L_m": L, "L_lo_m": L_lo, "L_hi_m": L_hi, "n_windows": len(runs), "omega_lo": w_lo, "omega_hi": w_hi,
                "floor_m": floor, "ramp_m": ramp, "depth_m": depth, "end_gap_m": end_gap, "end_angle_rad": end_angle,
@@ -344,6 +347,8 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
         (f"lip ramp at {math.degrees(ramp_angle):.0f}° (friction angle {math.degrees(math.atan(arm.mu)):.0f}°): a vertex "
         "landing on it slides into the cavity"),
         f"end wall {100 * H:.1f} cm: after a throw the CM rises at most ω_hi²(x²+y²)/2g = {100 * rise:.1f} cm",
+        (f"end wall and pocket floor lined (μ {wall_mu:g}): a part leaning on the wall slides flat (a lean needs floor "
+         "friction ≥ 0.45, README) instead of resting against it (the draft's failure)") if lined else
         f"end wall μ = {wall_mu:g}: a part swung into it slides down instead of resting against it (the draft's failure)",
         (f"floor ends {100 * end_gap:.2f} cm short of the end wall in a {math.degrees(end_angle):.0f}° ramp: the part "
          "turns in flight without touching the wall") if end_gap > 0 else

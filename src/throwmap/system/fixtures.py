@@ -77,9 +77,14 @@ class Cavity:
     (s = 0), with s non-increasing; equal s gives a vertical step. Example: a
     rectangular pocket 6 cm long and 2 cm deep is
     ``Cavity(((0.06, 0), (0.06, -0.02), (0, -0.02)))``.
+
+    ``lined``: the floor (the segments at the full depth) is faced with the end wall's material, so
+    part contacts there have the wall's μ (:attr:`Wall.mu`) instead of the arm's (e.g. a PTFE insert:
+    a part leaning on the end wall then slides flat; README, the recoil feeder).
     """
 
     profile: tuple
+    lined: bool = False
 
     def __post_init__(self):
         try:
@@ -104,6 +109,9 @@ class Cavity:
         if pts[0][0] <= 0.0:
             raise InvalidStateError("cavity.profile[0]", "the cavity must have a positive length")
         object.__setattr__(self, "profile", pts)
+        if not isinstance(self.lined, (bool, np.bool_)):
+            raise InvalidStateError("cavity.lined", f"must be true or false, got {shown(self.lined)}")
+        object.__setattr__(self, "lined", bool(self.lined))
 
     @property
     def depth(self) -> float:
@@ -162,11 +170,11 @@ def arm_solids(h: float, length: float, thickness: float, fixtures=()) -> tuple[
 
 def fixture_to_dict(f) -> dict:
     """A fixture as a JSON-ready dict: ``{"kind": "wall", "height": …, "thickness": …, "mu": …}`` or
-    ``{"kind": "cavity", "profile": [[s, y], …]}`` (m; ``mu`` None: the arm's)."""
+    ``{"kind": "cavity", "profile": [[s, y], …]}`` (m; ``mu`` None: the arm's; a lined cavity adds ``"lined": true``)."""
     if isinstance(f, Wall):
         return {"kind": "wall", "height": f.height, "thickness": f.thickness, "mu": f.mu}
     if isinstance(f, Cavity):
-        return {"kind": "cavity", "profile": [list(p) for p in f.profile]}
+        return {"kind": "cavity", "profile": [list(p) for p in f.profile], **({"lined": True} if f.lined else {})}
     raise InvalidStateError("fixtures", f"unknown fixture {f!r} (use Wall or Cavity)")
 
 
@@ -176,5 +184,5 @@ def fixture_from_dict(d: dict):
     if kind == "wall":
         return Wall(d["height"], d["thickness"], d.get("mu"))
     if kind == "cavity":
-        return Cavity(tuple(tuple(p) for p in d["profile"]))
+        return Cavity(tuple(tuple(p) for p in d["profile"]), bool(d.get("lined", False)))
     raise InvalidStateError("fixtures", f"unknown fixture record {d!r} (kind must be 'wall' or 'cavity')")

@@ -23,7 +23,7 @@ from operator import attrgetter
 import numpy as np
 
 from ...errors import ThrowmapError
-from ...system.fixtures import arm_solids
+from ...system.fixtures import Cavity, arm_solids
 from ..settings import engine_mu
 
 __all__ = ["ARM", "FIXTURE", "PART", "Chipmunk", "World", "build_world", "load_pymunk"]
@@ -149,8 +149,11 @@ def _static_geometry(h: float, L: float, thickness: float, fixtures: tuple, back
         first[first[:, 0] <= 0.0, 0] = -back
         arm_pieces = [first] + list(arm_pieces[1:])
     depth = float(h - min(float(np.min(np.asarray(p)[:, 1])) for p in arm_pieces))
+    # a lined cavity's floor (the pieces whose top is at the full depth) gets the fixture's μ (Cavity.lined)
+    floor = [h + min(y for _, y in f.profile) for f in fixtures if isinstance(f, Cavity) and f.lined]
+    lined = [bool(floor) and float(p[2][1]) == floor[0] and float(p[3][1]) == floor[0] for p in arm_pieces]
     pieces, boxes, corners = [], [], []
-    for piece, fixture in [(p, False) for p in arm_pieces] + [(p, True) for p in fixture_pieces]:
+    for piece, fixture in [(p, f) for p, f in zip(arm_pieces, lined)] + [(p, True) for p in fixture_pieces]:
         piece = tuple(tuple(v) for v in piece.tolist())
         xs, ys = [x for x, _ in piece], [y for _, y in piece]
         boxes.append((min(xs), max(xs), min(ys), max(ys)))
