@@ -243,3 +243,18 @@ def test_randomising_rate_rules():
     assert _stuck_at_wall(cfg, _Run((0.20, 1, 0.0), (0.47, 2, 0.0)))
     assert not _stuck_at_wall(cfg, _Run((0.20, 1, 0.0), (0.30, 2, 0.0)))
     assert not _stuck_at_wall(cfg, _Run((0.20, 1, 0.0), (0.47, 2, 0.3)))
+
+
+def test_a_vertex_in_the_walls_foot_is_not_off_the_end():
+    """Read off trial 87 (seed 1) of a randomising run: a part landing with a vertex 0.2 mm into the wall and 0.5 mm
+    into the arm at the wall's foot was refused as off_end (an ejection); with a wall it is on the arm."""
+    from throwmap.engine.rest import rest_status
+    from throwmap.throws.outcome import Status
+    from throwmap.throws.trajectory import state_from_pose, world_vertices
+
+    pose = (0.4105744680510525, 0.038499723036507894, 6.064353778742166)
+    V = world_vertices(PART, pose)
+    assert V[:, 0].max() > L + 1e-4 and V[np.argmax(V[:, 0]), 1] < H - 1e-4
+    x, k, tilt = state_from_pose(PART, pose)
+    assert rest_status(PART, pose, x, k, tilt, H, L, 0.0, False) == Status.OK
+    assert rest_status(PART, pose, x, k, tilt, H, L, 0.0, True) == Status.OFF_END  # bare arm: it is over the end

@@ -33,17 +33,18 @@ WALL_SLACK = 1e-3
 the engine's default ``penetration_tol``, deeper than which a run is refused."""
 
 
-def edge_status(vx, vy, h: float, L: float, back: float, slack: float = 0.0):
+def edge_status(vx, vy, h: float, L: float, back: float, slack: float = 0.0, end_slack: float | None = None):
     """``behind_joint``/``off_end`` if a vertex (arm-frame coordinates ``vx``, ``vy``, m) is below the
     surface line y = h (by more than :data:`EDGE_EPS`) behind x = −back − ``slack`` / beyond
     x = L + ``slack``, else None. ``slack`` (m) is :data:`EDGE_EPS` where fixtures stand at the
     ends: a part pressed into a wall at the arm's end, down in a cavity, sits a collision slop
-    (~10 µm) inside the wall, below the surface line and "past" L without having left the arm."""
+    (~10 µm) inside the wall, below the surface line and "past" L without having left the arm;
+    ``end_slack`` (default ``slack``) replaces it at the end x = L."""
     below = np.asarray(vy) < h - EDGE_EPS
     vx = np.asarray(vx)
     if np.any(below & (vx < -back - slack)):
         return Status.BEHIND_JOINT
-    if np.any(below & (vx > L + slack)):
+    if np.any(below & (vx > L + (slack if end_slack is None else end_slack))):
         return Status.OFF_END
     return None
 
@@ -60,7 +61,9 @@ def rest_status(part, pose_a, x: float, k: int, tilt: float, h: float, L: float,
     """
     V = world_vertices(part, pose_a)
     slack = 0.0 if plain else EDGE_EPS
-    over = edge_status(V[:, 0], V[:, 1], h, L, back, slack)
+    # not plain: a vertex driven into the wall's foot (pymunk lets it sink up to penetration_tol into the corner)
+    # reads past L and below the surface; up to WALL_SLACK that is no part off the end
+    over = edge_status(V[:, 0], V[:, 1], h, L, back, slack, slack if plain else WALL_SLACK)
     flat = abs(tilt) < FLAT_TILT and bool(part.stable[k])
     if over == Status.BEHIND_JOINT or (flat and x + float(part.uL[k]) <= -back - slack):
         return Status.BEHIND_JOINT

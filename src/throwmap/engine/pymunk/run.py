@@ -136,6 +136,9 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     omega_arm_bound = abs(getattr(realisation, "omega", 0.0)) + abs(getattr(realisation, "peak_rate", 0.0)) \
         + abs(getattr(realisation, "rate_", 0.0))
     n_parts = w.n
+    # a wall at the arm's end: a vertex "below the surface beyond L" is one pressed into the wall's foot (within
+    # penetration_tol), not a part that left the arm; one that flew over the wall is caught by its CM (escape)
+    end_wall = any(type(f).__name__ == "Wall" for f in scene.fixtures)
     pen_tol, thickness, impact_window = settings.penetration_tol, settings.arm_thickness, settings.impact_window
     settle_speed, settle_spin, settle_hold = settings.settle_speed, settings.settle_spin, settings.settle_hold
     exact_flight = settings.exact_flight
@@ -201,7 +204,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     for i in range(n_parts):
                         if tracks[i].fell is None:
                             _, xa, ya, _, over, _ = inspect(w, i, aa, ca, sa)
-                            gone = escape(w, i, xa, ya, thickness, over)
+                            gone = escape(w, i, xa, ya, thickness, 0 if end_wall and over > 0 else over)
                             if gone is not None:
                                 contacts.fell(i, t, gone)
                     if contacts.n_fell == n_parts:
@@ -240,7 +243,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 if near:  # a landing is coming: fine steps until impact_window after it (pymunk's warm
                     landing_near = True  # start would scale the landing impulse by coarse_dt / dt)
                     contacts.last_begin = t
-                gone = escape(w, i, xa, ya, thickness, over)
+                gone = escape(w, i, xa, ya, thickness, 0 if end_wall and over > 0 else over)
                 if gone is not None:  # left the arm: its depth "into" the arm's far side is no penetration
                     contacts.fell(i, t, gone)
                     continue
