@@ -15,7 +15,7 @@ tilt disturbing the parts. One trial here (pymunk engine, both parts in one scen
    while a part's CM is within ``near_x`` of the joint, a ``kick`` that marches a flat hypotenuse out from
    within ``kick_x``; and break the arm's two sinks when a throw left the pair unchanged (to 1 cm): a part
    standing on its shorter leg at the wall (CM ≥ ``wall_x``) gets an **escape** throw (tilt to
-   ``escape_alpha``, throw at ``escape_omega``, tilt back), parts within ``slide_x`` of the joint a
+   ``escape_alpha``, throw at ``escape_omega``, tilt back), a part within ``slide_x`` of the joint a
    **slide** (tilt to −``slide_alpha``, past the friction angle, and back: both slide to the wall);
 3. **switch**: tilt the arm to ``alpha`` at ``tilt_rate`` (:class:`throwmap.engine.TiltTo`);
 4. **assemble**: throw at ``omega_low`` until the pair is assembled (:func:`~throwmap.control.pair_sensors.is_assembled`:
@@ -89,8 +89,8 @@ class AssembleConfig(BaseModel):
       (CM ≥ ``wall_x`` = 40 cm): tilt to ``escape_alpha`` = +5° (at 1 rad/s), throw at ``escape_omega``
       = 4 rad/s, tilt back — single part at 47 cm, +5°: 3 / 4 / 5 / 6 rad/s land it on the hypotenuse at
       31 / 28 / 25 / 21 cm, 7 behind the joint; an escape at +6°, 6.5 rad/s threw the *other* part behind the
-      joint in 4 of 6 trials, at +5°, 4 rad/s those 4 trials assembled; a **slide** when a throw left a CM
-      within ``slide_x`` = 13 cm: tilt to −55° at 2 rad/s (past the friction angle, atan 1.1 = 48°), both
+      joint in 4 of 6 trials, at +5°, 4 rad/s those 4 trials assembled; a **slide** whenever a CM is
+      within ``slide_x`` = 13 cm (no side flips there, and a hypotenuse creeps in: 10.1 → 9.8 cm, then lost): tilt to −55° at 2 rad/s (past the friction angle, atan 1.1 = 48°), both
       slide to the wall, and back (a leaning pair at 10–16 cm crept 1 mm a throw over the joint; with the
       slide that trial assembled). Uniform rates alone (this low phase): 10/20, ``no_switch`` 5, ``ejected`` 5;
     * the switch (``rectangle``): "ready" also when the pair is already the assembled rectangle anywhere on the
@@ -147,8 +147,8 @@ class AssembleConfig(BaseModel):
                                             "at the wall: escape throw, m")
     escape_alpha: Finite = Field(math.radians(5.0), gt=0, lt=0.5, description="arm angle of an escape throw, rad")
     escape_omega: Finite = Field(4.0, gt=0, description="release rate of an escape throw, rad/s")
-    slide_x: Finite = Field(0.13, ge=0, description="a part's CM within this of the joint, unmoved by a throw: "
-                                                   "slide both to the wall (0: never), m")
+    slide_x: Finite = Field(0.13, ge=0, description="a part's CM within this of the joint: slide both to the "
+                                                   "wall (0: never), m")
     slide_alpha: Finite = Field(math.radians(55.0), gt=0, lt=1.5, description="arm angle of a slide, rad")
     slide_rate: Finite = Field(2.0, gt=0, description="tilt rate of a slide, rad/s")
     penetration_tol_high: Finite = Field(0.002, gt=0, description="engine penetration_tol of the drop and the "
@@ -374,7 +374,7 @@ class Assemble:
                     break
                 if v["throws_high"] >= cfg.max_high:
                     break
-                if cfg.slide_x > 0 and min(x for x, _, _ in run.states) < cfg.slide_x and _coarse(run) == key:
+                if cfg.slide_x > 0 and min(x for x, _, _ in run.states) < cfg.slide_x:
                     # near the joint no throw moves the parts out (they creep in): slide them to the wall
                     for turn in (-cfg.slide_alpha, cfg.slide_alpha):
                         run = simulate(run.next_scene(), TiltTo(turn, cfg.slide_rate), high, "slide")
