@@ -21,6 +21,14 @@ captured triangle, and the part hops in place. A plain plexiglas wedge (17 g, it
 thrown out over the apex by the first throw; lead low in the tip keeps it: with 50 g the pair held 30 throws of 30
 in two runs, the triangle moving ≤ 5 mm in its pocket and the part tilting ≤ 0.04 rad with it.
 
+What still fails (the experiments, 100 trials each, README-free numbers in the helper's evidence): a *trap* — the
+wedge flat on its leg side on the pocket's floor at the wall with the triangle leaning 30° on it. It forms when the
+wedge reaches the wall corner while the triangle is off it (the triangle hops at every throw; in
+``assemble-sequential`` the wedge, 2–5× faster outward than the triangle, usually reaches the pocket first) and no
+throw rate breaks it (3.5, 4.56, 5.0, 5.5 rad/s: 3 of 3 traps unchanged after 3 throws each). Making the leg side
+unstable (the CM beyond the apex end of the leg side: lead in the top corner, top 4–6 cm) removes the trap's
+resting state but also the hold: 0 of 10 throws held in 3 of 3 runs (the CM 6–7 cm above the arm is thrown out).
+
 :func:`design_stack` builds the :class:`StackDesign` (the pocket design, both parts and their assembled poses);
 :meth:`StackDesign.assembled` is the predicate with pose tolerances; :meth:`StackDesign.checks` the geometry
 (no overlap, the part inside the cavity's end, its CM over its wedge).
