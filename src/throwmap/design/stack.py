@@ -21,7 +21,7 @@ captured triangle, and the part hops in place. A plain plexiglas wedge (17 g, it
 thrown out over the apex by the first throw; lead low in the tip keeps it: with 50 g the pair held 30 throws of 30
 in two runs, the triangle moving ≤ 5 mm in its pocket and the part tilting ≤ 0.04 rad with it.
 
-What still fails (the experiments, 100 trials each, README-free numbers in the helper's evidence): a *trap* — the
+What still fails (the experiments, about 100 trials each): a *trap* — the
 wedge flat on its leg side on the pocket's floor at the wall with the triangle leaning 30° on it. It forms when the
 wedge reaches the wall corner while the triangle is off it (the triangle hops at every throw; in
 ``assemble-sequential`` the wedge, 2–5× faster outward than the triangle, usually reaches the pocket first) and no
