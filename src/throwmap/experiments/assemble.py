@@ -312,9 +312,10 @@ class Assemble:
     def trial(self, cfg: AssembleConfig, index: int, rng, *, observer=None) -> Trial:
         """One trial. ``observer(phase, run, omega)``, if given, is called after every engine run, ``phase`` one
         of ``"drop"``, ``"high"``, ``"escape"`` (the arm tilted to ``escape_alpha`` before an escape throw, which
-        is a ``"high"`` run, and back to 0 after it), ``"tilt"``, ``"low"``, ``"reset"`` (the arm tilted back to 0
-        after a stalled assembly, before randomising again), ``"hold"``; ``omega`` the nominal rate (rad/s; 0 for
-        the drop and the tilts); with an observer the runs record their trajectories (``run.trajectory``)."""
+        is a ``"high"`` run, and back to 0 after it), ``"slide"`` (the arm tilted to −``slide_alpha`` and back),
+        ``"tilt"``, ``"low"``, ``"reset"`` (the arm tilted back to 0 after a stalled assembly, before randomising
+        again), ``"hold"``; ``omega`` the nominal rate (rad/s; 0 for the drop and the tilts); with an observer the
+        runs record their trajectories (``run.trajectory``)."""
         from ..control.pair_sensors import LONG_LEG, PairSensor, assembled_error, is_assembled
         from ..engine import TiltTo
         from ..engine import simulate as _simulate
