@@ -86,3 +86,27 @@ def test_open_loop_chain_lies_in_the_monte_carlo_band(setup):
     cmp = compare_curve(curve, hits, 40)
     assert cmp.fraction_inside >= 0.8, cmp.summary()
     assert cmp.max_outside < 0.03
+
+
+def test_the_noise_realisation_reaches_models_that_take_one(setup, monkeypatch):
+    """rigid_body rides the noise's recoil arm (a callable ω → realisation, as closed_loop does); 'paper' never
+    gets one; the impulse is passed as no realisation (the batched kernel)."""
+    import throwmap.throws.throw as T
+
+    part, arm = setup
+    seen = []
+    real = T.throw_batch
+
+    def spy(*a, **kw):
+        seen.append((a[5] if len(a) > 5 else "rigid_body", kw.get("realisation")))
+        return real(*a, **{k: v for k, v in kw.items() if k != "realisation"})
+
+    monkeypatch.setattr(T, "throw_batch", spy)
+    x, s = np.array([0.3]), np.array([1])
+    rng = np.random.default_rng(0)
+    recoil = Noise(realisation="recoil")
+    ThrowStep(part, arm, 3.0, "rigid_body", recoil)(x, s, rng)
+    ThrowStep(part, arm, 3.0, "paper", recoil)(x, s, rng)
+    ThrowStep(part, arm, 3.0, "rigid_body", Noise())(x, s, rng)
+    assert seen[0][1] is not None and callable(seen[0][1])
+    assert seen[1][1] is None and seen[2][1] is None
