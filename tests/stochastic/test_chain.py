@@ -89,3 +89,11 @@ def test_reach_gives_the_probability_and_the_conditional_mean_throws():
     assert p == pytest.approx(0.75)
     # from 3 (fair ruin, n = 4): E[T | won] = (n² − i²)/3 = (16 − 9)/3
     assert mean == pytest.approx(7 / 3)
+
+
+def test_quasi_stationary_of_a_symmetric_leaky_pair():
+    # a <-> b with probability 0.5, off with 0.5: conditioned on staying, half and half; survival 0.5 a throw
+    P = np.array([[0, 0.5, 0.5], [0.5, 0, 0.5], [0, 0, 1.0]])
+    q = MarkovChain(P, ("a", "b", "off"), 2).quasi_stationary()
+    assert q.pi == pytest.approx([0.5, 0.5, 0.0])
+    assert q.rate == pytest.approx(0.5)

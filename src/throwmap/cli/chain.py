@@ -89,6 +89,8 @@ def throw_cmd(
     out: OutOpt = None,
     plot: PlotOpt = None,
     plot_stationary: StatOpt = None,
+    plot_quasi: Annotated[Path | None, typer.Option("--plot-quasi", help="Figure of the quasi-stationary mass "
+                                                                         "per side (the nominal-μ chain).")] = None,
 ) -> None:
     """One part thrown open loop at a fixed ω: the chain against a Monte Carlo of the same model."""
     import numpy as np
@@ -104,6 +106,7 @@ def throw_cmd(
         _positive(k_max, "k_max", True)
         fmt = figure_format(plot, "plot")
         fmt_s = figure_format(plot_stationary, "plot_stationary")
+        fmt_q = figure_format(plot_quasi, "plot_quasi")
         p, arm = part_and_arm(part, h, None, length, mu)
         noise = Noise(omega_rel=omega_rel, mu_rel=mu_rel, realisation=realisation)
         if goal in ("off_end", "behind_joint"):
@@ -143,6 +146,15 @@ def throw_cmd(
             save_figure(st.plot(title=f"long run at ω = {omega:g} rad/s ({model}), uniform start"),
                         plot_stationary, fmt_s, "plot_stationary")
             typer.echo(f"wrote {plot_stationary}")
+        q = mix.chains[len(mix.chains) // 2].quasi_stationary()  # the median μ node
+        result["chain"]["quasi_stationary"] = {"rate": q.rate, "per_side": {k: float(v[2].sum())
+                                                                              for k, v in q.per_side().items()}}
+        typer.echo(f"quasi-stationary (μ = {mix.meta['mu_nodes'][len(mix.chains) // 2]:.3g}): a part still moving "
+                   f"on the arm stays another throw with probability {q.rate:.4f}; by side "
+                   + ", ".join(f"{k}: {100 * float(v[2].sum()):.1f} %" for k, v in q.per_side().items()))
+        if plot_quasi is not None:
+            save_figure(q.plot(title=f"quasi-stationary (not yet absorbed), ω = {omega:g} rad/s ({model})"), plot_quasi, fmt_q, "plot_quasi")
+            typer.echo(f"wrote {plot_quasi}")
         _emit(result, out)
 
 

@@ -64,7 +64,9 @@ class Absorption:
 
 @dataclass(frozen=True, slots=True, eq=False)
 class Stationary:
-    """The long-run distribution (the mean of π₀Pᵏ over k in (steps/2, steps]): ``pi`` over all states,
+    """The long-run distribution (the mean of π₀Pᵏ over k in (steps/2, steps]; or, from
+    :meth:`MarkovChain.quasi_stationary`, the distribution conditioned on not yet absorbed, with ``rate`` the
+    probability per throw of staying unabsorbed): ``pi`` over all states,
     ``converged`` (the mean moved by < ``tol`` in total variation over the last doubling), ``labels``,
     ``cells`` (for the per-side split), ``n_cells``."""
 
@@ -74,6 +76,7 @@ class Stationary:
     steps: int
     converged: bool
     cells: object = None
+    rate: float = math.nan
 
     @property
     def on_arm(self) -> float:
@@ -290,6 +293,21 @@ class MarkovChain:
         e = np.nan_to_num(chain.expected_throws(goal), nan=0.0, posinf=0.0)
         p = float(w @ h)
         return p, float(w @ (h * e)) / p if p > 0 else math.nan
+
+    def quasi_stationary(self) -> Stationary:
+        """The quasi-stationary distribution: the left Perron vector of the block Q of the non-absorbing states
+        (where a part that has not left the arm is found after many throws, whatever the start, on an irreducible
+        Q; Darroch & Seneta 1965), normalised; ``rate`` its eigenvalue (the per-throw probability of staying).
+        A cell that maps to itself alone is absorbing here, not part of Q."""
+        T = np.flatnonzero(~self.absorbing)
+        pi = np.zeros(self.n)
+        if T.size == 0:
+            return Stationary(pi, self.labels, self.n_cells, 0, False, self.cells, 0.0)
+        vals, vecs = np.linalg.eig(self.P[np.ix_(T, T)].T)
+        j = int(np.argmax(vals.real))
+        v = np.abs(vecs[:, j].real)
+        pi[T] = v / v.sum() if v.sum() > 0 else 0.0
+        return Stationary(pi, self.labels, self.n_cells, 0, bool(v.sum() > 0), self.cells, float(vals[j].real))
 
     def stationary(self, initial=None, *, max_steps: int = 100_000, tol: float = 1e-10) -> Stationary:
         """The long-run distribution from ``initial``: the mean of π₀Pᵏ over the window (m, 2m], m doubling
