@@ -212,7 +212,8 @@ def position_cmd(
         sn = cfg.sensors
         errs = f", sensor errors fp {sn.false_positive:g} / fn {sn.false_negative:g}" if sn.false_positive or \
             sn.false_negative else ""
-        cmp = compare_curve(curve, hits, k_max, label=f"position ({cfg.model}, {cfg.noise.realisation}{errs})",
+        cmp = compare_curve(curve, hits, k_max, label=f"position ({cfg.model}, {cfg.noise.realisation}, {cfg.controller} "
+                                                         f"controller{errs})",
                             meta={"check": check, "mu_nodes": mix.meta["mu_nodes"],
                                   "initial": str(initial or trials)})
         _report(cmp, check)
