@@ -19,6 +19,9 @@ def test_config_reads_from_any_directory(tmp_path, monkeypatch):
     part, arm, fixtures, omega, side, design = FEED.setup(cfg)
     assert arm.length == pytest.approx(0.38)
     assert design.cavity.depth == pytest.approx(0.01)
+    # the pocket's floor and end wall lined (μ 0.2): a lean on the wall slides flat (tests/design/test_cavity_lined.py)
+    assert design.cavity.lined and design.wall.mu == pytest.approx(0.2)
+    assert any(getattr(f, "lined", False) for f in fixtures)  # what the trials simulate
     # side 0 (17 cm) lies in the pocket: its floor is longer than the side
     assert design.numbers["floor_m"] >= float(part.length[side])
     # the chute drops clear of the end wall: every side's outer vertex short of L from the farthest drop
