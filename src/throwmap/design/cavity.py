@@ -32,6 +32,11 @@ The other numbers
   from where the next throw flips it out. Hence a low-friction wall (μ 0) and a flush floor: the
   part resting against the wall cannot start its turn (its outer vertex would move into the wall),
   so it hops in place; with a gap before the wall it turns, jogs 6–8 cm and lands leaning.
+* a lined floor (``lined``: the floor faced with the wall's material, μ ``wall_mu``): with the true
+  μ (the exact engine) a frictionless wall alone is not enough — a hop can still land leaning on it
+  (0.50–0.87 rad for the recoil feeder), and that lean rests whenever the floor's μ ≥ (x_CM − x_floor
+  vertex)/(wall contact height) = 0.45–1.11, inside μ = 1 ± 10 %. On a μ 0.2 floor (PTFE) no lean
+  flatter than 1.1 rad rests; the recoil feeder is fed 199/200 lined against 18/30 unlined.
 
 Checks (:class:`Check`: name, pass/fail, figure): ``window``, ``hold``, ``release_<j>``,
 ``fits``, ``wall_energy`` (``end_gap`` with a gap), and with ``verify`` the engine's
