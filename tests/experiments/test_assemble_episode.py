@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 from throwmap.cli import app
 from throwmap.control.pair_sensors import is_assembled
 from throwmap.errors import InvalidStateError
-from throwmap.experiments.assemble_episode import PHASES, assembly_episode, first_success
+from throwmap.experiments.assemble_episode import MOTIONS, PHASES, assembly_episode, first_success
 from throwmap.experiments.runner import run_experiment
 
 QUICK = {"max_high": 3}  # a drop and at most three randomising throws: seconds
@@ -31,7 +31,7 @@ def test_numbering_phases_and_states():
     ep = assembly_episode(QUICK, 0, 5)
     assert ep.phases[0] == "drop" and set(ep.phases) <= set(PHASES)
     assert ep.throw_no[0] == 0 and np.all(np.diff(ep.throw_no) >= 0)
-    throws = sum(p not in ("drop", "tilt") for p in ep.phases)
+    throws = sum(p not in MOTIONS for p in ep.phases)
     v = ep.trial.values
     assert ep.throw_no[-1] == throws == v["throws_high"] + v["throws_low"] + ep.phases.count("hold")
     assert ep.poses.shape == (ep.n_runs, 2, 3) and ep.states.shape == (ep.n_runs, 2, 3)

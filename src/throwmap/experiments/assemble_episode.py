@@ -26,7 +26,13 @@ from .registry import get_experiment
 
 __all__ = ["AssemblyEpisode", "assembly_episode", "first_success"]
 
-PHASES = ("drop", "high", "tilt", "low", "hold")
+PHASES = ("drop", "high", "slide", "escape", "tilt", "low", "reset", "hold")
+"""The ``assemble`` trial's engine runs (its observer's phases): the drop, randomising throws, the arm tilted to slide
+the parts from the joint to the wall and back, tilted up and back around an escape throw, the switch's tilt to α,
+assembling throws, a stalled low phase's tilt back, retention throws."""
+
+MOTIONS = frozenset({"drop", "slide", "escape", "tilt", "reset"})
+"""Phases that move the arm without throwing (they keep the throw number before them)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -44,11 +50,11 @@ class AssemblyEpisode:
     length, h, wall_height : float
         Arm length = wall face (m), arm surface height (m), wall height (m).
     phases : tuple of str
-        Per engine run: ``"drop"``, ``"high"``, ``"tilt"``, ``"low"``, ``"hold"``.
+        Per engine run, one of :data:`PHASES`.
     omegas : (R,) array, rad/s
         Nominal release rate of each run (0 for the drop and the tilt).
     throw_no : (R,) int array
-        Throw number after each run (the drop 0; the tilt keeps the number before it).
+        Throw number after each run (the drop 0; an arm motion without a throw keeps the number before it).
     poses : (R, 2, 3) array
         Both parts' arm-frame poses ``(x, y, φ)`` at the end of each run (m, m, rad).
     states : (R, 2, 3) array
@@ -86,9 +92,15 @@ class AssemblyEpisode:
         return len(self.phases)
 
     @property
+    def switch_runs(self) -> tuple:
+        """Indices of every switch's tilt run (a stalled low phase tilts back and randomises again)."""
+        return tuple(i for i, p in enumerate(self.phases) if p == "tilt")
+
+    @property
     def switch_run(self) -> int | None:
-        """Index of the tilt run (the sensor fired just before it), None when it never fired."""
-        return self.phases.index("tilt") if "tilt" in self.phases else None
+        """Index of the last switch's tilt run (the sensor fired just before it), None when it never fired."""
+        runs = self.switch_runs
+        return runs[-1] if runs else None
 
     @property
     def switch_throw(self) -> int | None:
@@ -98,11 +110,16 @@ class AssemblyEpisode:
 
     @property
     def assembled_run(self) -> int | None:
-        """Index of the run that assembled the pair (the last ``"low"`` run of a success), else None."""
-        if not self.success:
+        """Index of the first run after the last switch with the pair assembled (a success), else None."""
+        from ..control.pair_sensors import is_assembled
+
+        k = self.switch_run
+        if not self.success or k is None:
             return None
-        lows = [i for i, p in enumerate(self.phases) if p == "low"]
-        return lows[-1] if lows else None
+        for i in range(k, self.n_runs):
+            if is_assembled(self.part, self.poses[i], length=self.length, h=self.h):
+                return i
+        return None
 
     def roles(self) -> tuple:
         """``((name, side), …)`` per part: at the switch the part on its longer leg is *a* (side 1) and the one on
@@ -128,7 +145,7 @@ class AssemblyEpisode:
             if lows:
                 gap = [abs(self.states[i, 0, 0] - self.states[i, 1, 0]) for i in lows]
                 out.append(("partial", lows[int(np.argmin(gap))]))
-            if self.assembled_run is not None:
+            if self.assembled_run is not None and self.assembled_run != k:
                 out.append(("assembled", self.assembled_run))
         return tuple(out)
 
@@ -221,7 +238,7 @@ def assembly_episode(config=None, index: int = 0, seed: int = 0, *, motion: bool
     trial = exp.trial(cfg, int(index), trial_generator(int(seed), int(index)), observer=observer)
     throws, k = [], 0
     for p in rec["phase"]:
-        if p not in ("drop", "tilt"):
+        if p not in MOTIONS:
             k += 1
         throws.append(k)
     n = len(rec["phase"])

@@ -46,7 +46,7 @@ def plot_assembly_episode(ep, *, unit: str = "cm", title: str | None = None):
             ax.axvspan(k[i] - 0.5, k[j] + 0.5, color=color, zorder=0, label=None if p in seen else label)
             seen.add(p)
         i = j + 1
-    keep = np.array([p != "tilt" for p in phases])
+    keep = np.array([p not in ("tilt", "slide", "escape", "reset") for p in phases])
     roles = ep.roles()
     for p in range(ep.states.shape[1]):
         x = ep.states[:, p, 0] * s
@@ -59,6 +59,8 @@ def plot_assembly_episode(ep, *, unit: str = "cm", title: str | None = None):
         ax.scatter(k[on], x[on], marker=MARKERS[p], s=18, color=COLORS[p], zorder=3)
     ax.axhline(ep.length * s, color="k", lw=1.0)
     ax.annotate("wall", (k[0], ep.length * s), fontsize=7, va="bottom")
+    for r in ep.switch_runs[:-1]:  # switches whose low phase stalled (tilted back, randomised again)
+        ax.axvline(k[r] + 0.5, color="0.5", ls="--", lw=0.8, zorder=1)
     if ep.switch_throw is not None:
         ax.axvline(ep.switch_throw + 0.5, color="k", ls="--", lw=1.0, zorder=1)
         ax.annotate(f"switch after throw {ep.switch_throw}: tilt to α = {math.degrees(ep.alphas[ep.switch_run]):.0f}°",
@@ -75,7 +77,7 @@ def plot_assembly_episode(ep, *, unit: str = "cm", title: str | None = None):
     t = ep.trial
     end = f"assembled after {ep.summary()['assembled_throw']} throws" if t.success else f"failed: {t.failure}"
     ax.set_title(title or f"self-assembly, seed {ep.seed} trial {ep.index}: {end}", fontsize=9)
-    thr = np.array([ph not in ("drop", "tilt") for ph in phases])
+    thr = np.array([ph not in ("drop", "tilt", "slide", "escape", "reset") for ph in phases])
     ax2.step(k[thr], ep.omegas[thr], where="mid", color="0.3", lw=0.9)
     ax2.set_ylabel("ω (rad/s)")
     ax2.set_xlabel("throw number")
