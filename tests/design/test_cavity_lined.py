@@ -63,7 +63,8 @@ def _lean(phi, mu_floor, mu_wall):
 
 def test_the_leans_of_the_feed_runs_cannot_rest_on_the_lined_floor():
     body, cons = _lean(LEAN[2], 1.09, 0.0)
-    assert body.x == pytest.approx(LEAN[0], abs=1e-4) and body.y == pytest.approx(LEAN[1], abs=1e-4)  # (the engine pose: slop)
+    # the pose the engine held (its contacts a collision slop deep)
+    assert body.x == pytest.approx(LEAN[0], abs=1e-4) and body.y == pytest.approx(LEAN[1], abs=1e-4)
     unlined = analyse_rest([body], cons)
     assert unlined.can_rest and unlined.mu_needed == pytest.approx(1.072, abs=0.002)  # feedfix's statics
     for tilt in np.linspace(0.45, 0.95, 11):  # every lean the exact engine held (0.50–0.87 rad), and beyond

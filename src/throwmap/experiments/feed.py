@@ -197,8 +197,8 @@ def _design_cached(key: str):
     c, nz = cfg.cavity, cfg.noise
     d = design_cavity(part, arm, omega, side, sigma=nz.omega_rel, z_hold=c.z_hold, z_release=c.z_release,
                       realisation=nz.realisation, recoil=nz.recoil, zeta=nz.zeta, depth=c.depth, clearance=c.clearance,
-                      ramp_angle=c.ramp_angle, end_gap=c.end_gap, end_angle=c.end_angle, wall_mu=c.wall_mu, lined=c.lined,
-                      wall_margin=c.wall_margin, place=c.place, length=c.length, verify=False)
+                      ramp_angle=c.ramp_angle, end_gap=c.end_gap, end_angle=c.end_angle, wall_mu=c.wall_mu,
+                      lined=c.lined, wall_margin=c.wall_margin, place=c.place, length=c.length, verify=False)
     return _clearing_wall(d, cfg)
 
 
