@@ -17,7 +17,9 @@ from typing import Annotated
 
 import typer
 
-from .options import check_finite, figure_format, guard, save_figure, to_json, write_text
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
+from .options import (ForceOpt, MaxMemoryOpt, MaxTimeOpt, check_finite, figure_format, guard, save_figure, to_json,
+                      write_text)
 from .usage import ThrowmapGroup
 
 __all__ = ["register", "chain_app"]
@@ -35,17 +37,36 @@ PlotOpt = Annotated[Path | None, typer.Option("--plot", help="Figure of P(goal b
 StatOpt = Annotated[Path | None, typer.Option("--plot-stationary", help="Figure of the long-run mass per side.")]
 
 
-def _positive(value, field: str, integer: bool = False):
+def _positive(value, field: str, integer: bool = False, minimum: int = 1, why: str = ""):
     from ..errors import InvalidStateError
 
     if integer:
-        if value < 1:
-            raise InvalidStateError(field, f"must be ≥ 1, got {value}")
+        if value < minimum:
+            raise InvalidStateError(field, f"must be an integer ≥ {minimum}{why}, got {value}")
         return value
     check_finite(value, field)
     if value <= 0:
         raise InvalidStateError(field, f"must be > 0, got {value}")
     return value
+
+
+def _seconds_per_throw(step, part, arm, n: int = 32) -> float:
+    """Seconds per throw of ``step``, measured on ``n`` rests spread over the first stable side (after a warm-up)."""
+    import time
+
+    import numpy as np
+
+    from ..throws.throw import start_interval
+
+    k = part.stable_sides[0]
+    lo, hi = start_interval(part, arm, k)
+    x = np.linspace(lo, hi, n + 2)[1:-1] if np.isfinite(lo) and np.isfinite(hi) else np.zeros(n)
+    side = np.full(n, k, dtype=np.int64)
+    rng = np.random.default_rng(0)
+    step(x[:2], side[:2], rng)
+    t0 = time.perf_counter()
+    step(x, side, rng)
+    return (time.perf_counter() - t0) / n
 
 
 def _emit(result: dict, out: Path | None) -> None:
@@ -91,19 +112,31 @@ def throw_cmd(
     plot_stationary: StatOpt = None,
     plot_quasi: Annotated[Path | None, typer.Option("--plot-quasi", help="Figure of the quasi-stationary mass "
                                                                          "per side (the nominal-μ chain).")] = None,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """One part thrown open loop at a fixed ω: the chain against a Monte Carlo of the same model."""
+    import math
+
     import numpy as np
 
+    from ..budget import cli_limits
     from ..errors import InvalidStateError
     from ..experiments.noise import Noise
+    from ..stochastic.budget import count_cells, guard_chain
     from ..stochastic import Cells, GoalSet, ThrowStep, build_mixture, compare_curve, open_loop_trials
     from .options import part_and_arm
 
     with guard():
         _positive(cell, "cell")
-        _positive(samples, "samples", True)
+        _positive(samples, "samples", True, 2, " (two halves)")
         _positive(k_max, "k_max", True)
+        _positive(mu_nodes, "mu_nodes", True)
+        _positive(omega, "omega")
+        if trials < 0:
+            raise InvalidStateError("trials", f"must be an integer ≥ 0 (0: no Monte Carlo), got {trials}")
+        limits = cli_limits(max_memory, max_time, force)
         fmt = figure_format(plot, "plot")
         fmt_s = figure_format(plot_stationary, "plot_stationary")
         fmt_q = figure_format(plot_quasi, "plot_quasi")
@@ -117,8 +150,17 @@ def throw_cmd(
                 gs = GoalSet(side=int(s), lo=float(lo), hi=float(hi))
             except ValueError:
                 raise InvalidStateError("goal", f"must be off_end, behind_joint or SIDE:LO:HI, got {goal!r}") from None
+            if gs.side not in p.stable_sides:
+                raise InvalidStateError("goal", f"side {gs.side} is not a stable side of {p.name} (its stable sides: "
+                                                f"{', '.join(map(str, p.stable_sides))})")
+            if math.isnan(gs.lo) or math.isnan(gs.hi) or not gs.lo < gs.hi:
+                raise InvalidStateError("goal", f"needs LO < HI (m), got {gs.lo:g} and {gs.hi:g}")
+        step = ThrowStep(p, arm, omega, model, noise)
+        n_cells = count_cells(p, arm, cell, gs.breaks)
+        n_mu = 1 if noise.mu_range is None and (noise.mu_rel == 0 or math.isinf(arm.mu)) else mu_nodes
+        guard_chain(n_cells=n_cells, n_labels=len(step.labels), samples=samples, n_mu=n_mu, k_max=k_max,
+                    trials=trials, timer=lambda: _seconds_per_throw(step, p, arm), **limits)
         cells = Cells.on_arm(p, arm, cell, breaks=gs.breaks)
-        step = ThrowStep(p, arm, check_finite(omega, "omega"), model, noise)
         init = np.ones(cells.n)
         mix, builds = build_mixture(cells, step, samples=samples, rng=seed, n_mu=mu_nodes, initial=init,
                                     meta={"kind": "open_loop", "omega": omega, "model": model})
@@ -131,8 +173,8 @@ def throw_cmd(
                             "absorbed": mix.absorption_of(init),
                             "stationary": {"on_arm": st.on_arm, "absorbed": st.absorbed(), "converged": st.converged}}}
         typer.echo(f"chain: {cells.n} cells, P(goal by {k_max}) = {100 * curve[-1]:.1f} %; long run: "
-                   f"{100 * st.on_arm:.1f} % on the arm, "
-                   + ", ".join(f"{k} {100 * v:.1f} %" for k, v in st.absorbed().items() if v > 5e-4))
+                   + ", ".join([f"{100 * st.on_arm:.1f} % on the arm"]
+                               + [f"{k} {100 * v:.1f} %" for k, v in st.absorbed().items() if v > 5e-4]))
         if trials > 0:
             hits = open_loop_trials(step, cells, init, gs, n=trials, k_max=k_max, rng=seed + 1)
             cmp = compare_curve(curve, hits, k_max, label=f"{p.name}, ω = {omega:g} rad/s ({model}), goal "
@@ -184,7 +226,7 @@ def position_cmd(
 
     with guard():
         _positive(cell, "cell")
-        _positive(samples, "samples", True)
+        _positive(samples, "samples", True, 2, " (two halves)")
         fmt = figure_format(plot, "plot")
         fmt_s = figure_format(plot_stationary, "plot_stationary")
         exp = get_experiment("position")
@@ -252,12 +294,11 @@ def assemble_cmd(
     plot: PlotOpt = None,
 ) -> None:
     """Self-assembly's first low phase as a chain on a reduced pair state, from half the episodes, against the rest."""
-    import json
-
     from ..errors import InvalidStateError
     from ..experiments.assemble import AssembleConfig, _setup
     from ..stochastic import compare_curve
-    from ..stochastic.assembly import low_phase_chain, low_phase_hits, low_phase_sequences, record_episodes
+    from ..stochastic.assembly import (low_phase_chain, low_phase_hits, low_phase_sequences, read_episodes,
+                                       record_episodes)
 
     with guard():
         _positive(bin_m, "bin")
@@ -267,7 +308,11 @@ def assemble_cmd(
         elif not Path(episodes).is_file():
             raise InvalidStateError("episodes", f"no file {episodes} (record some with --record N)")
         else:
-            rows = [json.loads(line) for line in Path(episodes).read_text(encoding="utf-8").splitlines() if line]
+            rows = read_episodes(episodes)
+        seeds = sorted({r["seed"] for r in rows})
+        if len(seeds) > 1:
+            raise InvalidStateError("episodes", f"{str(episodes)!r} holds episodes of several seeds "
+                                                f"({', '.join(map(str, seeds))}): keep one seed per file")
         part, arm, _ = _setup(AssembleConfig())
         if estimate_on not in ("even", "odd"):
             raise InvalidStateError("estimate_on", f"must be 'even' or 'odd', got {estimate_on!r}")

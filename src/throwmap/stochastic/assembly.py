@@ -26,7 +26,7 @@ import numpy as np
 from ..errors import InvalidStateError
 from .chain import MarkovChain
 
-__all__ = ["low_phase_sequences", "low_phase_chain", "low_phase_hits", "episode_row", "record_episodes"]
+__all__ = ["low_phase_sequences", "low_phase_chain", "low_phase_hits", "episode_row", "read_episodes", "record_episodes"]
 
 
 def _first_low(phases) -> list[int]:
@@ -132,6 +132,47 @@ def episode_row(ep) -> dict:
             "poses": ep.poses.tolist(), "states": ep.states.tolist(), "statuses": list(ep.statuses)}
 
 
+def read_episodes(path, *, cut: bool = False) -> list[dict]:
+    """The episode rows of the JSON-lines file ``path`` (:func:`record_episodes`). A torn last line (a recording
+    interrupted while writing it: no newline, or not JSON) is skipped with a warning, and cut off the file when
+    ``cut`` (before appending); any other line that is not an episode row is refused (field ``episodes``)."""
+    import json
+    import warnings
+    from pathlib import Path
+
+    from ..errors import ThrowmapWarning
+
+    p = Path(path)
+    try:
+        raw = p.read_bytes()
+    except OSError as err:
+        raise InvalidStateError("episodes", f"cannot read {str(p)!r}: {err.strerror or err}") from None
+    lines = raw.splitlines(keepends=True)
+    rows, good = [], 0
+    for i, line in enumerate(lines):
+        last = i == len(lines) - 1
+        try:
+            row = json.loads(line.decode("utf-8")) if line.strip() else None
+        except (UnicodeDecodeError, ValueError):
+            row = ...
+        ok = row is None or (isinstance(row, dict) and isinstance(row.get("index"), int)
+                             and isinstance(row.get("seed"), int))
+        if last and (i > 0 or cut) and (not ok or (cut and not line.endswith(b"\n"))):
+            warnings.warn(f"episodes: skipped the torn last line {i + 1} of {str(p)!r} (an interrupted recording)"
+                          + ("; cut off the file" if cut else ""), ThrowmapWarning, stacklevel=2)
+            if cut:
+                with open(p, "r+b") as fh:
+                    fh.truncate(good)
+            break
+        if not ok:
+            raise InvalidStateError("episodes", f"{str(p)!r} line {i + 1} is not an episode row (JSON lines of "
+                                                f"'throwmap chain assemble FILE --record N')")
+        if row is not None:
+            rows.append(row)
+        good += len(line)
+    return rows
+
+
 def record_episodes(path, seed: int, n: int, config=None, progress=None) -> list[dict]:
     """Episodes ``0 … n−1`` of seed ``seed`` recorded into the JSON-lines file ``path`` (those already there are
     kept and not rerun: an interrupted recording resumes); returns all rows of the file."""
@@ -141,8 +182,11 @@ def record_episodes(path, seed: int, n: int, config=None, progress=None) -> list
     from ..experiments.assemble_episode import assembly_episode
 
     p = Path(path)
-    rows = [json.loads(line) for line in p.read_text(encoding="utf-8").splitlines() if line.strip()] \
-        if p.exists() else []
+    rows = read_episodes(p, cut=True) if p.exists() else []
+    stored = sorted({r["seed"] for r in rows})
+    if stored and stored != [int(seed)]:
+        raise InvalidStateError("seed", f"differs from the episodes stored in {str(p)!r} (stored "
+                                        f"{', '.join(map(str, stored))}, given {int(seed)}): use another file")
     have = {(r["seed"], r["index"]) for r in rows}
     for i in range(int(n)):
         if (int(seed), i) in have:
