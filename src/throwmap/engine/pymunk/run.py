@@ -15,6 +15,7 @@ from ..scene import Scene
 from ..settings import EngineSettings
 from .checks import all_slow, body_state, clearance, energy, escape, inspect
 from .contacts import Contacts, nearest_side
+from .interrupt import deferred_interrupts
 from .result import EngineRun, Recorder, finish
 from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
 from .verify import disagreement, flags
@@ -63,6 +64,11 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
     if isinstance(run_for, (int, float)) and not isinstance(run_for, bool) and math.isfinite(run_for):
         t_max = max(t_max, float(run_for))
     # an unbounded arm is simulated long enough for the throw; a part reaching its end reruns on a longer one
+    with deferred_interrupts():  # a Ctrl-C inside a pymunk callback would be dropped (see .interrupt)
+        return _simulate(scene, realisation, settings, record, progress, run_for, t_max)
+
+
+def _simulate(scene, realisation, settings, record, progress, run_for, t_max) -> EngineRun:
     tried = lengths(scene, realisation, settings.default_length, t_max)
     for n, L in enumerate(tried):
         run = _with_retries(scene, realisation, settings, record, progress, run_for, L)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 
+from .interrupt import check as check_interrupt
 from .world import World
 
 __all__ = ["leap_length", "vertex_speed_bound", "leap", "fixed_steps"]
@@ -74,6 +75,7 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
             t = t_next
             if contacts.need_post:
                 contacts.record_post(step)
+        check_interrupt()
         return t
     set_angle, set_spin = cp.set_angle, cp.set_spin
     a_next = None  # α + θ(t) for the current t, carried over from the previous step
@@ -96,4 +98,5 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
         if contacts.need_post:
             contacts.record_post(step)
     w.arm_w = wa
+    check_interrupt()
     return t
