@@ -156,7 +156,8 @@ def read_episodes(path, *, cut: bool = False) -> list[dict]:
         except (UnicodeDecodeError, ValueError):
             row = ...
         ok = row is None or (isinstance(row, dict) and isinstance(row.get("index"), int)
-                             and isinstance(row.get("seed"), int))
+                             and isinstance(row.get("seed"), int)
+                             and all(isinstance(row.get(k), list) for k in ("phases", "poses", "statuses")))
         if last and (i > 0 or cut) and (not ok or (cut and not line.endswith(b"\n"))):
             warnings.warn(f"episodes: skipped the torn last line {i + 1} of {str(p)!r} (an interrupted recording)"
                           + ("; cut off the file" if cut else ""), ThrowmapWarning, stacklevel=2)
