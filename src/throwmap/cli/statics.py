@@ -49,8 +49,7 @@ def lean_cmd(
             from ..errors import InvalidStateError
 
             raise InvalidStateError("n", f"must be ≥ 1, got {n}")
-        check_finite(alpha_deg, "alpha_deg")
-        check_finite(mu, "mu")
+        _check_alpha_mu(alpha_deg, mu)
         fmt = figure_format(plot, "plot")
         part = tm.triangle_30_60_90()
         a, b, c = edge_frame_cm(part)
@@ -83,8 +82,7 @@ def partial_cmd(
     from ..statics.tables import partial_table
 
     with guard():
-        check_finite(alpha_deg, "alpha_deg")
-        check_finite(mu, "mu")
+        _check_alpha_mu(alpha_deg, mu)
         fmt = figure_format(plot, "plot")
         part = tm.triangle_30_60_90()
         typer.echo(f"partial assembly of two {part.name} at a frictionless wall, frictionless parts, "
@@ -101,6 +99,19 @@ def partial_cmd(
             data = partial_data(part, alpha=math.radians(alpha_deg), gamma_show=math.radians(-15), mu_show=mu)
             save_figure(partial_figure(data), plot, fmt, "plot")
             typer.echo(f"wrote {plot}")
+
+
+def _check_alpha_mu(alpha_deg: float, mu: float) -> None:
+    """α in (−90°, 90°) and μ ≥ 0 (∞ allowed: no slip), else one line naming the option."""
+    import math
+
+    from ..errors import InvalidStateError
+
+    check_finite(alpha_deg, "alpha_deg")
+    if not -90.0 < alpha_deg < 90.0:
+        raise InvalidStateError("alpha_deg", f"must be in (-90, 90) degrees, got {alpha_deg:g}")
+    if math.isnan(mu) or mu < 0:
+        raise InvalidStateError("mu", f"must be ≥ 0 (inf: no slip), got {mu:g}")
 
 
 def register(app: typer.Typer) -> None:

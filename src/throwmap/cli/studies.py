@@ -177,6 +177,8 @@ def validate_cmd(
     from ..studies.validation import validate
 
     with guard():
+        if seed < 0:
+            raise InvalidStateError("seed", f"must be a non-negative integer, got {seed}")
         eng, mods = _validate_settings(n, grid, engines, models, mu, realisations)
         limits = work_limits(max_memory, max_time, force)
         check_out_dir(out)
@@ -241,6 +243,8 @@ def validate_fixtures_cmd(
     with guard():
         if n < 1:
             raise InvalidStateError("n", f"must be a positive integer, got {n}")
+        if seed < 0:
+            raise InvalidStateError("seed", f"must be a non-negative integer, got {seed}")
         conds = None
         if conditions is not None:
             short = {"tilt-inf": "tilt, μ = ∞", "tilt": "tilt", "wall-0": "wall, μ_w = 0", "wall-mu": "wall, μ_w = μ"}
@@ -307,6 +311,8 @@ def validate_recoil_cmd(
             raise InvalidStateError("impact_law", f"must be 'routh' or 'velocity', got {impact_law!r}")
         if engine_refine < 1:
             raise InvalidStateError("engine_refine", f"must be a positive integer, got {engine_refine}")
+        if seed < 0:
+            raise InvalidStateError("seed", f"must be a non-negative integer, got {seed}")
         check_out_dir(out)
         report = validate_recoil(n=n, seed=seed, impact_law=impact_law, engine_refine=engine_refine)
         make_out_dir(out)

@@ -155,11 +155,13 @@ def _replay(name, config, seed, index: int, trials):
                                          f"runs); the tables are shown without --trial")
     if index < 0:
         raise InvalidStateError("trial", f"must be ≥ 0, got {index}")
-    ep = assembly_episode(config, index, int(seed), motion=True, experiment=name)
     stored = next((r for r in trials if r["index"] == index), None)
     if stored is None:
-        note = "not in the stored trials"
-    elif bool(stored["success"]) != ep.success or stored.get("failure") != ep.trial.failure:
+        have = sorted(r["index"] for r in trials)
+        span = f"{have[0]}…{have[-1]}" if have else "none"
+        raise InvalidStateError("trial", f"trial {index} is not in this run's stored trials (indices {span})")
+    ep = assembly_episode(config, index, int(seed), motion=True, experiment=name)
+    if bool(stored["success"]) != ep.success or stored.get("failure") != ep.trial.failure:
         note = f"differs from the stored trial: {stored.get('failure') or 'success'} stored"
     else:
         note = "as stored: " + ("success" if ep.success else ep.trial.failure)

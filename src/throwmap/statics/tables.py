@@ -46,15 +46,17 @@ class LeanTable:
 
     def lines(self) -> list[str]:
         n = self.n
-        return [f"random leans of the draft's triangle against a frictionless wall (n = {n}, seed {self.seed}; "
+        head = [f"random leans of the draft's triangle against a frictionless wall (n = {n}, seed {self.seed}; "
                 f"β ∈ (0.02, 1.5) rad, α ∈ [−30°, 10°], μ ∈ {{0.3, 0.6, 1, 2, ∞}}):",
-                f"  closed form (i)-(iii) = LP: {self.closed_vs_lp}/{n}",
-                f"  LP = engine (stays put 1 s, < 1 mm and < 0.01 rad): {self.lp_vs_engine}/{n - self.engine_refused}"
+                f"  closed form (i)-(iii) = LP: {self.closed_vs_lp}/{n}"]
+        tail = [f"  the draft's printed condition says 'cannot lean' where it can: {self.draft_wrong_no_lean}/{n}; "
+                f"it allows a lean that cannot rest (fall back or foot slides away): {self.draft_misses_fall}/{n}"]
+        if self.rows and all(r[8] == "skipped" for r in self.rows):
+            return head + ["  LP = engine: not checked (engine off)"] + tail
+        return head + [f"  LP = engine (stays put 1 s, < 1 mm and < 0.01 rad): {self.lp_vs_engine}/{n - self.engine_refused}"
                 f" (engine runs refused: {self.engine_refused}); cap-bound (the lean needs more friction than the "
                 f"engine's cap gives): {self.cap_bound}; LP = engine without them: {self.lp_vs_engine_free}/"
-                f"{n - self.engine_refused - self.cap_bound}",
-                f"  the draft's printed condition says 'cannot lean' where it can: {self.draft_wrong_no_lean}/{n}; "
-                f"it allows a lean that cannot rest (fall back or foot slides away): {self.draft_misses_fall}/{n}"]
+                f"{n - self.engine_refused - self.cap_bound}"] + tail
 
 
 def lean_table(part, *, n: int = 100, seed: int = 0, length: float = 0.3, engine: bool = True,
@@ -93,8 +95,13 @@ def lean_table(part, *, n: int = 100, seed: int = 0, length: float = 0.3, engine
 
 
 def _cap_bound(part, bodies, contacts, alpha) -> bool:
-    """Whether the friction the lean needs at its arm contact exceeds the engine's cap there."""
+    """Whether the friction the lean needs at its arm contact exceeds the engine's cap there — only where the engine
+    caps (``friction.EXACT`` off): with the exact high-friction solve (one part) no lean is cap-bound."""
+    from ..engine.pymunk import friction
     from ..engine.pymunk.friction import CAP
+
+    if friction.EXACT:
+        return False
 
     need = analyse_rest(bodies, contacts, alpha=alpha).mu_needed
     px, py = contacts[0].point
