@@ -34,7 +34,11 @@ def reproduce_cmd(
 
     with guard():
         check_out_dir(out)
-        keys = [k.strip() for k in only.split(",") if k.strip()] if only else None
+        keys = [k.strip() for k in only.split(",") if k.strip()] if only is not None else None
+        if keys == []:
+            from ..errors import InvalidStateError
+
+            raise InvalidStateError("only", "is empty: give figure/experiment keys (comma list) or leave it out")
         with progress_bar("reproduce") as bar:
             def say(msg, done=None, total=None):
                 if done is None:
