@@ -109,6 +109,9 @@ def test_inf_in_a_sweep_file(tmp_path):
     assert d.configs[1]["mu"] == float("inf") and d.configs[0]["length"] == float("inf")
     st = sweep_status(spec, tmp_path / "out")
     assert (st["n_points"], st["rows"], st["missing"]) == (2, 0, 2)
+    from throwmap.sweeps.run import _plan
+
+    _plan(spec, tmp_path / "out")  # a run's first step writes the manifest (--status does not)
     assert json.loads((tmp_path / "out" / "_manifest.json").read_text())["spec"]["config"]["length"] == "inf"
 
 
@@ -161,6 +164,10 @@ def test_cli_status_and_a_changed_sweep(tmp_path):
     st = json.loads(res.stdout)
     assert (st["n_points"], st["n_chunks"], st["rows"], st["missing"]) == (3, 2, 0, 3)
     assert st["out"] == str(tmp_path / "s.parquet")
+    assert not (tmp_path / "s.parquet").exists()  # --status computes and creates nothing
+    from throwmap.sweeps.run import _plan
+
+    _plan(read_sweep(f)[0], tmp_path / "s.parquet")  # what a run does first: the manifest
     f.write_text('kind = "grid"\ntarget = "throw"\nchunk = 3\n[parameters]\nx = [0.1, 0.2, 0.3]\n')
     res = _cli(f, "--status")
     assert res.exit_code == 2 and "first difference: chunk" in res.stderr and res.stderr.startswith("error: out: ")

@@ -10,7 +10,7 @@ A thin shell over :func:`throwmap.sweeps.run_sweep`. ``SWEEP.toml`` is validated
 ``--out`` (default: ``SWEEP.parquet/`` beside the file) are computed on a local Dask cluster of
 ``--workers`` processes (0: all cores) or on the cluster whose scheduler is at ``--scheduler``, one
 Parquet part per chunk of points. Run it again after an interruption: only the missing points are
-computed. ``--status`` prints what is stored and missing and computes nothing. The last line (or, with
+computed; Ctrl-C stops a run with one line ``interrupted: N rows stored …`` and exit 130. ``--status`` prints what is stored and missing and computes nothing. The last line (or, with
 ``--json``, one JSON object) gives the rows before, the points computed now and the rows after.
 Errors: one ``error: <field>: <reason>`` line on stderr, exit 2.
 """
@@ -23,7 +23,7 @@ from typing import Annotated
 
 import typer
 
-from .options import JsonOpt, guard, strict_int, to_json
+from .options import JsonOpt, guard, stderr_line, strict_int, to_json
 
 __all__ = ["register", "sweep_cmd"]
 
@@ -78,9 +78,19 @@ def sweep_cmd(
                            f"{st['n_chunks']} parts; rows stored {st['rows']}, missing {st['missing']} "
                            f"({st['chunks_missing']} parts)")
             return
-        with _bar(f"sweep {sweep.name}") as update:
-            run = run_sweep(spec, target, scheduler=scheduler, workers=workers, progress=update, stop_after=stop_after,
-                            connect_timeout=connect_timeout)
+        try:
+            with _bar(f"sweep {sweep.name}") as update:
+                run = run_sweep(spec, target, scheduler=scheduler, workers=workers, progress=update,
+                                stop_after=stop_after, connect_timeout=connect_timeout)
+        except KeyboardInterrupt:
+            from ..sweeps.store import count_rows
+
+            try:
+                rows = count_rows(target)
+            except Exception:  # noqa: BLE001 - a part being written at the moment: say nothing wrong
+                rows = "?"
+            stderr_line(f"interrupted: {rows} rows stored in {str(target)!r}, rerun to resume")
+            raise typer.Exit(130) from None
         typer.echo(to_json(run.to_dict()) if as_json else run.summary())
 
 

@@ -105,6 +105,29 @@ def _base_config(spec: SweepSpec):
         raise InvalidStateError(f"config.{loc}" if loc else "config", msg) from None
 
 
+def _check_refs(cfg: dict, names: tuple, values: tuple, seen: dict) -> None:
+    """A ``throw``/``limit_set`` point's ``model`` and ``part`` must exist (as an experiment's config is checked):
+    else one line naming the parameter that set it (``parameters.<key>``) or ``config.<field>``."""
+    from ..errors import ThrowmapError
+    from ..io.config import resolve_part
+    from ..models.registry import check_model
+
+    for field, check in (("model", check_model), ("part", resolve_part)):
+        value = cfg[field]
+        if (field, value) not in seen:
+            try:
+                check(value)
+                seen[(field, value)] = None
+            except ThrowmapError as err:
+                seen[(field, value)] = getattr(err, "reason", None) or str(err)
+        reason = seen[(field, value)]
+        if reason is not None:
+            key = next((k for k in names if field in k.split("+")), None)
+            if key is None:
+                raise InvalidStateError(f"config.{field}", reason)
+            raise InvalidStateError(f"parameters.{key}", f"value {shown(values[names.index(key)])}: {reason}")
+
+
 def make_design(spec: SweepSpec) -> Design:
     """Every design point of ``spec``, each one's full config validated by the target's config type (the first
     bad point is one :class:`~throwmap.errors.InvalidStateError` naming ``parameters.<key>`` and the value)."""
@@ -113,6 +136,17 @@ def make_design(spec: SweepSpec) -> Design:
     ctype, base = _base_config(spec)
     names = tuple(spec.parameters)
     if spec.kind == "grid":
+        sizes = []  # checked before any axis is built: a huge `num` must not allocate
+        for k in names:
+            v = spec.parameters[k]
+            size = v.num if isinstance(v, Range) else len(v)
+            if size > MAX_POINTS:
+                raise InvalidStateError(f"parameters.{k}.num" if isinstance(v, Range) else f"parameters.{k}",
+                                        f"{size} values (> {MAX_POINTS} grid points): fewer values")
+            sizes.append(size)
+        if math.prod(sizes) > MAX_POINTS:
+            raise InvalidStateError("parameters", f"the grid has {math.prod(sizes)} points (> {MAX_POINTS}): "
+                                                  f"fewer values")
         axes = [axis_values(k, spec.parameters[k], "grid") for k in names]
         total = math.prod(len(a) for a in axes)
         if total > MAX_POINTS:
@@ -124,6 +158,7 @@ def make_design(spec: SweepSpec) -> Design:
         points = list(zip(*cols))
     configs = []
     cache: dict = {}
+    refs: dict = {}
     for values in points:
         data = base
         for key, value in zip(names, values):
@@ -144,6 +179,8 @@ def make_design(spec: SweepSpec) -> Design:
                 raise InvalidStateError(f"parameters.{key}", f"value {shown(value)}: "
                                                              f"{first['msg'].removeprefix('Value error, ')}"
                                                              + (f" ({loc})" if loc and loc != key else "")) from None
+            if not spec.experiment:
+                _check_refs(cache[memo], names, values, refs)
         configs.append(cache[memo])
     if spec.experiment and not spec.common_random_numbers:
         seeds = tuple(point_seed(spec.seed, i) for i in range(len(points)))

@@ -24,7 +24,7 @@ from pathlib import Path
 from ..errors import InvalidStateError, shown
 from .design import make_design
 from .schema import SweepSpec, jsonable, spec_hash
-from .store import column_types, count_rows, finished_chunks, prepare_out, write_chunk
+from .store import MANIFEST, column_types, count_rows, finished_chunks, prepare_out, write_chunk
 from .targets import RESULT_COLUMNS
 
 __all__ = ["SweepRun", "run_sweep", "sweep_status"]
@@ -68,12 +68,15 @@ def _manifest(spec: SweepSpec, design, columns: dict) -> dict:
             "columns": columns, "spec": jsonable(spec.model_dump())}
 
 
-def _plan(spec: SweepSpec, out):
+def _plan(spec: SweepSpec, out, create: bool = True):
+    """``(design, columns, chunks done)``; ``create=False`` (``--status``): ``out`` is checked if it holds a
+    manifest, never created."""
     design = make_design(spec)
     columns = column_types(design.names, design.points, RESULT_COLUMNS[spec.target_kind])
-    manifest = prepare_out(out, _manifest(spec, design, columns))
+    if create or (Path(out) / MANIFEST).exists() or (Path(out).exists() and not Path(out).is_dir()):
+        columns = prepare_out(out, _manifest(spec, design, columns))["columns"]
     done = finished_chunks(out, design.n_chunks, lambda c: len(design.chunk_points(c)))
-    return design, manifest["columns"], done
+    return design, columns, done
 
 
 def _tasks(spec: SweepSpec, design, todo, digest: str) -> dict:
@@ -112,7 +115,7 @@ def _results(spec: SweepSpec, design, c: int, got: dict) -> list:
 def sweep_status(spec: SweepSpec, out) -> dict:
     """What is stored in ``out`` for ``spec`` without computing anything: ``n_points``, ``n_chunks``,
     ``rows`` stored, ``missing`` points, ``chunks_missing``."""
-    design, _, done = _plan(spec, out)
+    design, _, done = _plan(spec, out, create=False)
     rows = count_rows(out)
     return {"out": str(out), "sweep_sha256": spec_hash(spec), "n_points": design.n_points,
             "n_chunks": design.n_chunks, "rows": rows, "missing": design.n_points - rows,
@@ -122,18 +125,46 @@ def sweep_status(spec: SweepSpec, out) -> dict:
 def _client(scheduler, workers: int, timeout: float):
     """``(client, cluster or None)``: connect to ``scheduler``, or start a local cluster of worker processes."""
     import logging
+    import signal
+    import threading
 
     from distributed import Client, LocalCluster
 
     if scheduler is not None:
         try:
+            from distributed.comm import resolve_address
+
+            resolve_address(scheduler)  # a malformed address fails here, before a half-built Client to clean up
             return Client(scheduler, timeout=f"{timeout}s", set_as_default=False), None
         except (OSError, TimeoutError, ValueError) as err:
             raise InvalidStateError("scheduler", f"cannot connect to {shown(scheduler)}: {' '.join(str(err).split())}") from None
     n = (os.cpu_count() or 1) if workers == 0 else workers
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
-                           silence_logs=logging.CRITICAL)
+    # The worker processes start with SIGINT ignored (inherited): a Ctrl-C reaches only this process, which
+    # closes the cluster, instead of killing every worker mid-task with a traceback each.
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN) if threading.current_thread() is threading.main_thread() else None
+    try:
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
+                               silence_logs=logging.CRITICAL)
+    finally:
+        if old is not None:
+            signal.signal(signal.SIGINT, old)
     return Client(cluster, set_as_default=False), cluster
+
+
+def _quiet_close(client, cluster, own: bool) -> None:
+    """On an interruption: cancel what runs and close the client (and cluster) with Dask's loggers silenced, so
+    that the shutdown prints no worker tracebacks (the parts already written stay)."""
+    import logging
+
+    for name in ("distributed", "tornado", "asyncio"):
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+    for step in ((lambda: client.cancel(list(client.futures.values()), force=True)),
+                 (lambda: client.close(timeout=10) if own else None),
+                 (lambda: cluster.close(timeout=10) if cluster is not None else None)):
+        try:
+            step()
+        except BaseException:  # noqa: BLE001 - a second Ctrl-C or a dying cluster: still exit quietly
+            pass
 
 
 def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None, workers: int = 0,
@@ -214,6 +245,9 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
                     client.cancel(futures)
                     break
             n_workers = max(n_workers, len(client.scheduler_info().get("workers", {})))
+        except KeyboardInterrupt:
+            _quiet_close(client, cluster if own else None, own)
+            raise
         finally:
             if own:
                 client.close()

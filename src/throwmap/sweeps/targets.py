@@ -8,7 +8,8 @@ points' configs, seeds and indices, ``n``) and returns one dict per point; the c
   ``failures`` (JSON: count by kind), ``values`` (JSON: the per-trial value summary), via
   :func:`throwmap.experiments.runner.run_experiment` (``workers=1``: the worker is the process);
 * ``throw`` — ``landing_x`` (m), ``landing_side``, ``status`` (label), via :func:`throwmap.throw_batch`
-  (``on_invalid="status"``: an inadmissible start is a row with status ``invalid_start``);
+  (``on_invalid="status"``: an inadmissible start is a row with status ``invalid_start``); ``landing_x`` and
+  ``landing_side`` are null unless the status is ``ok`` (the part came to rest on the arm);
 * ``limit_set`` — ``kind``, ``n_attractors``, ``unique``, ``escapes`` (JSON: share by fate),
   ``attractors`` (JSON: :meth:`Attractor.to_dict` each), via :func:`throwmap.limit_set`.
 
@@ -168,8 +169,10 @@ def _throw_rows(configs: list) -> list:
         dt = (time.perf_counter() - t0) / len(idx)
         for j, i in enumerate(idx):
             st = int(out.status[j])
-            rows[i] = {"landing_x": None if not math.isfinite(out.x[j]) else float(out.x[j]),
-                       "landing_side": int(out.side[j]), "status": Status(st).label, "error": None, "elapsed_s": dt}
+            landed = st == Status.OK and math.isfinite(out.x[j])  # else the batch echoes the start: not a landing
+            rows[i] = {"landing_x": float(out.x[j]) if landed else None,
+                       "landing_side": int(out.side[j]) if landed else None, "status": Status(st).label,
+                       "error": None, "elapsed_s": dt}
     return rows
 
 

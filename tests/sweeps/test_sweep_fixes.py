@@ -1,0 +1,109 @@
+"""The tester's sweep bugs: a huge grid range, a bad throw config, non-landing throw rows, ``--status`` creating
+``--out``, a malformed ``--scheduler``, and Ctrl-C on a running sweep (slow: a local cluster)."""
+
+from __future__ import annotations
+
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from throwmap.errors import ThrowmapError
+from throwmap.sweeps import make_design, parse_sweep
+from throwmap.sweeps.targets import run_chunk
+
+BIN = Path(sys.executable).parent
+
+
+def _cli(*args):
+    from throwmap.cli import app
+
+    return CliRunner().invoke(app, ["sweep", *[str(a) for a in args]])
+
+
+def _one_line(res, field):
+    assert res.exit_code == 2 and res.stdout == "", (res.exit_code, res.stdout)
+    assert len(res.stderr.splitlines()) == 1 and res.stderr.startswith(f"error: {field}: "), res.stderr
+
+
+def test_a_huge_range_is_refused_before_it_is_built(tmp_path):
+    t0 = time.perf_counter()
+    with pytest.raises(ThrowmapError) as err:
+        make_design(parse_sweep({"kind": "grid", "target": "throw",
+                                 "parameters": {"mu": {"low": 0.1, "high": 0.5, "num": 100_000_000_000}}}))
+    assert err.value.field == "parameters.mu.num" and time.perf_counter() - t0 < 5
+    with pytest.raises(ThrowmapError) as err:  # each axis fine, the product not
+        make_design(parse_sweep({"kind": "grid", "target": "throw",
+                                 "parameters": {"mu": {"low": 0.1, "high": 0.5, "num": 2000},
+                                                "omega": {"low": 1.0, "high": 5.0, "num": 2000}}}))
+    assert err.value.field == "parameters"
+    f = tmp_path / "s.toml"
+    f.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nmu = { low = 0.1, high = 0.5, num = 100000000000 }\n')
+    _one_line(_cli(f, "--status"), "parameters.mu.num")
+
+
+@pytest.mark.parametrize("text, field", [
+    ('kind = "grid"\ntarget = "throw"\n[config]\nmodel = "nosuch"\n[parameters]\nomega = [4.0, 5.0]\n', "config.model"),
+    ('kind = "grid"\ntarget = "limit_set"\n[config]\npart = "nopart"\n[parameters]\nomega = [4.0]\n', "config.part"),
+    ('kind = "grid"\ntarget = "throw"\n[parameters]\nmodel = ["paper", "nosuch"]\n', "parameters.model"),
+])
+def test_a_bad_target_config_is_refused_before_running(tmp_path, text, field):
+    f = tmp_path / "s.toml"
+    f.write_text(text)
+    _one_line(_cli(f, "--out", tmp_path / "o"), field)
+    assert not (tmp_path / "o").exists()
+
+
+def test_throws_that_did_not_land_store_no_landing():
+    d = make_design(parse_sweep({"kind": "grid", "target": "throw", "parameters": {"x": [0.15, 0.001], "side": [0, 7]}}))
+    rows = run_chunk("throw", list(d.configs), list(d.seeds), None)
+    by = {(c["x"], c["side"]): r for c, r in zip(d.configs, rows)}
+    ok = by[(0.15, 0)]
+    assert ok["status"] == "ok" and math.isfinite(ok["landing_x"]) and ok["landing_side"] >= 0
+    for key in [(0.15, 7), (0.001, 0), (0.001, 7)]:
+        r = by[key]
+        assert r["status"] != "ok" and r["landing_x"] is None and r["landing_side"] is None, (key, r)
+
+
+def test_status_creates_nothing(tmp_path):
+    f = tmp_path / "s.toml"
+    f.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nx = [0.1, 0.2]\n')
+    res = _cli(f, "--status", "--out", tmp_path / "o")
+    assert res.exit_code == 0, res.stderr
+    assert "rows stored 0, missing 2" in res.stdout and not (tmp_path / "o").exists()
+
+
+def test_a_malformed_scheduler_is_one_line(tmp_path):
+    f = tmp_path / "s.toml"
+    f.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nx = [0.1, 0.2]\n')
+    res = subprocess.run([str(BIN / "throwmap"), "sweep", str(f), "--out", str(tmp_path / "o"), "--scheduler",
+                          "nonsense"], capture_output=True, text=True, timeout=60)
+    assert res.returncode == 2 and res.stderr.startswith("error: scheduler: cannot connect to 'nonsense'")
+    assert len(res.stderr.strip().splitlines()) == 1, res.stderr
+
+
+@pytest.mark.slow
+def test_ctrl_c_exits_quietly(tmp_path):
+    """SIGINT to the whole process group (a terminal's Ctrl-C): one ``interrupted:`` line, exit 130, no worker
+    tracebacks; the parts written stay."""
+    sweep = tmp_path / "s.toml"
+    sweep.write_text('kind = "grid"\ntarget = "experiment:settle"\nseed = 1\nn = 2000\n[parameters]\n'
+                     'mu = { low = 0.3, high = 0.9, num = 40 }\n')
+    out = tmp_path / "s.parquet"
+    proc = subprocess.Popen([str(BIN / "throwmap"), "sweep", str(sweep), "--workers", "2"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    t0 = time.monotonic()
+    while not list(out.glob("part-*.parquet")) and proc.poll() is None and time.monotonic() - t0 < 120:
+        time.sleep(0.2)
+    assert proc.poll() is None, "the sweep ended before it could be interrupted"
+    os.killpg(proc.pid, signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=90)
+    assert proc.returncode == 130, (proc.returncode, stderr)
+    lines = stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("interrupted: ") and "rerun to resume" in lines[0], stderr
