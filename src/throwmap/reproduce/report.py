@@ -46,7 +46,7 @@ def experiment_rows(rep) -> list[list[str]]:
 
 
 HEAD = ["experiment", "draft (hardware, Wilson 95 %)", "ours (engine, Wilson 95 %)", "goal", "failures by kind",
-        "throws median / p90"]
+        "throws median / p90 (feeding: to capture)"]
 
 
 def _numbers(d: dict) -> str:

@@ -107,7 +107,8 @@ def _experiment(spec, out: Path, size, workers: int, progress) -> dict:
         vals = res.value_summary()
         row["ours"] = {"successes": res.successes, "n": res.n, "success_rate": res.success_rate,
                        "ci95": list(res.ci95), "failures": dict(res.failures), "seed": res.seed,
-                       "throws": vals.get("throws"), "parameters": res.parameters, "resumed": res.resumed}
+                       "throws": vals.get("throws_to_capture") or vals.get("throws"),
+                       "parameters": res.parameters, "resumed": res.resumed}
     except (ThrowmapError, OSError, RuntimeError, ValueError) as err:
         row["error"] = _one_line(err)
     row["seconds"] = time.perf_counter() - t0
