@@ -86,6 +86,7 @@ def test_a_malformed_scheduler_is_one_line(tmp_path):
                           "nonsense"], capture_output=True, text=True, timeout=60)
     assert res.returncode == 2 and res.stderr.startswith("error: scheduler: cannot connect to 'nonsense'")
     assert len(res.stderr.strip().splitlines()) == 1, res.stderr
+    assert not (tmp_path / "o").exists()
 
 
 @pytest.mark.slow

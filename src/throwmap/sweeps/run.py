@@ -122,6 +122,16 @@ def sweep_status(spec: SweepSpec, out) -> dict:
             "chunks_missing": design.n_chunks - len(done)}
 
 
+def _check_address(scheduler: str) -> None:
+    """A malformed scheduler address (no port, unknown scheme, unknown host): one line on ``scheduler``."""
+    from distributed.comm import resolve_address
+
+    try:
+        resolve_address(scheduler)
+    except (OSError, ValueError) as err:
+        raise InvalidStateError("scheduler", f"cannot connect to {shown(scheduler)}: {' '.join(str(err).split())}") from None
+
+
 def _client(scheduler, workers: int, timeout: float):
     """``(client, cluster or None)``: connect to ``scheduler``, or start a local cluster of worker processes."""
     import logging
@@ -131,10 +141,8 @@ def _client(scheduler, workers: int, timeout: float):
     from distributed import Client, LocalCluster
 
     if scheduler is not None:
+        _check_address(scheduler)  # a malformed address fails here, before a half-built Client to clean up
         try:
-            from distributed.comm import resolve_address
-
-            resolve_address(scheduler)  # a malformed address fails here, before a half-built Client to clean up
             return Client(scheduler, timeout=f"{timeout}s", set_as_default=False), None
         except (OSError, TimeoutError, ValueError) as err:
             raise InvalidStateError("scheduler", f"cannot connect to {shown(scheduler)}: {' '.join(str(err).split())}") from None
@@ -187,6 +195,8 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
         raise InvalidStateError("stop_after", f"must be an integer ≥ 1, got {shown(stop_after)}")
     if isinstance(connect_timeout, bool) or not isinstance(connect_timeout, (int, float)) or not connect_timeout > 0:
         raise InvalidStateError("connect_timeout", f"must be a number of seconds > 0, got {shown(connect_timeout)}")
+    if scheduler is not None and client is None:
+        _check_address(scheduler)  # before ``out`` is created
     t0 = time.perf_counter()
     out = Path(out)
     design, columns, done = _plan(spec, out)
