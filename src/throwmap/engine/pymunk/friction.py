@@ -156,9 +156,11 @@ def install_friction_cap(world) -> FrictionCap | None:
         fast = _single_part_fixture_hook(world, mu_arm, mu_wall, FIXTURE)
         if fast is not None:
             return _with_exact(fast, world)
-    hook = FrictionCap(inv, mu_of)
     if world.n == 1 and mu_arm <= bound and mu_wall <= bound:
         return None
+    hook = _multi_part_hook(world, mu_arm, mu_wall, mu_pp) if world.n > 1 else None
+    if hook is None:
+        hook = FrictionCap(inv, mu_of)
     return _with_exact(hook, world)
 
 
@@ -336,6 +338,111 @@ def _single_part_fixture_hook(world, mu_arm: float, mu_fix: float, fix: int):
     except (ImportError, AttributeError):  # pragma: no cover - another pymunk
         return None
     return _SinglePartFixtureCap(lib, ffi, body, world.rho2[0], mu_arm, mu_fix, fix)
+
+
+class _MultiPartCap:
+    """:class:`FrictionCap` for several parts on Chipmunk's raw calls: the same arithmetic in the same order (so
+    the same friction bit for bit), without pymunk's wrappers (an :class:`pymunk.Arbiter`, two shapes, a contact
+    point set and two bodies' positions built per contact per step; two-part runs spent ¾ of their time in the
+    Python hook, now ~¼). ``inv`` maps a raw ``cpBody *`` (cffi pointers hash by address) to ``(1/m, 1/I)`` of a
+    dynamic body; a body absent from it (the arm, kinematic) adds nothing.
+
+    The pair's μ: two dynamic bodies are two parts (μ_pp); otherwise the arbiter's friction, which Chipmunk resets
+    every step to the product of its shapes' (part shape 1.0, arm or fixture shape the engine value of its μ),
+    names arm or fixture (``by_u``), or, where arm and fixture share an engine value but not a μ, the shapes'
+    collision types do. A pair of μ = 0 (the frictionless wall) can never be capped and is left as it is."""
+
+    __slots__ = ("n_capped", "callback", "exact", "raw")
+
+    def __init__(self, lib, ffi, inv: dict, mu_arm: float, mu_wall: float, mu_pp: float, part: int, fix: int):
+        from ..settings import engine_mu
+
+        self.n_capped = 0
+        self.callback = None
+        self.exact = None
+        sa, sb = ffi.new("cpShape *[1]"), ffi.new("cpShape *[1]")
+        ba, bb = ffi.new("cpBody *[1]"), ffi.new("cpBody *[1]")
+        get_shapes, get_type, get_bodies = lib.cpArbiterGetShapes, lib.cpShapeGetCollisionType, lib.cpArbiterGetBodies
+        get_points, get_position, set_u = lib.cpArbiterGetContactPointSet, lib.cpBodyGetPosition, lib.cpArbiterSetFriction
+        get_u = lib.cpArbiterGetFriction
+        inv_of, inf, hook = inv.get, math.inf, self
+        u_arm, u_fix = engine_mu(mu_arm), engine_mu(mu_wall)
+
+        def pair(mu):  # (μ, the friction set where the cap does not bind)
+            return mu, (mu if math.isfinite(mu) else 1.0e30)
+
+        by_u = None if (u_arm == u_fix and mu_arm != mu_wall) else {u_arm: pair(mu_arm), u_fix: pair(mu_wall)}.get
+        arm_pair, fix_pair, pp_pair = pair(mu_arm), pair(mu_wall), pair(mu_pp)
+
+        def raw(arb, space_=None, data=None):
+            get_bodies(arb, ba, bb)
+            body_a, body_b = ba[0], bb[0]
+            im_a, im_b = inv_of(body_a), inv_of(body_b)
+            if im_a is not None and im_b is not None:
+                mu, uncapped = pp_pair
+            else:
+                found = None if by_u is None else by_u(get_u(arb))
+                if found is None:
+                    get_shapes(arb, sa, sb)
+                    found = fix_pair if (get_type(sa[0]) == fix or get_type(sb[0]) == fix) else arm_pair
+                mu, uncapped = found
+                if mu == 0.0:  # never capped, and the arbiter already holds 0
+                    return
+            cps = get_points(arb)
+            n = cps.normal
+            nx, ny = n.x, n.y
+            qa = get_position(body_a) if im_a is not None else None
+            qb = get_position(body_b) if im_b is not None else None
+            cap = inf
+            pts = cps.points
+            for i in range(cps.count):
+                c = pts[i]
+                knn = knt = 0.0
+                if im_a is not None:
+                    p = c.pointA
+                    rx, ry = p.x - qa.x, p.y - qa.y
+                    rn = rx * ny - ry * nx
+                    rt = rx * nx + ry * ny
+                    knn += im_a[0] + rn * rn * im_a[1]
+                    knt += rn * rt * im_a[1]
+                if im_b is not None:
+                    p = c.pointB
+                    rx, ry = p.x - qb.x, p.y - qb.y
+                    rn = rx * ny - ry * nx
+                    rt = rx * nx + ry * ny
+                    knn += im_b[0] + rn * rn * im_b[1]
+                    knt += rn * rt * im_b[1]
+                if knt != 0.0:
+                    v = CAP * knn / abs(knt)
+                    if v < cap:
+                        cap = v
+            if cap < mu:
+                hook.n_capped += 1
+                set_u(arb, cap)
+            else:
+                set_u(arb, uncapped)
+
+        self.raw = raw
+
+    def __call__(self, arbiter, space_, data):
+        self.raw(arbiter._arbiter, None, None)
+
+
+def _multi_part_hook(world, mu_arm: float, mu_wall: float, mu_pp: float):
+    """The raw-call hook for several parts, or None where pymunk's cffi binding is missing (then
+    :class:`FrictionCap`, the same values through pymunk's API)."""
+    from .world import FIXTURE, PART
+
+    try:
+        from pymunk._chipmunk import ffi, lib
+
+        lib.cpArbiterGetShapes, lib.cpShapeGetCollisionType, lib.cpArbiterGetBodies  # noqa: B018
+        lib.cpArbiterGetContactPointSet, lib.cpBodyGetPosition, lib.cpArbiterSetFriction  # noqa: B018
+        lib.cpArbiterGetFriction  # noqa: B018
+        inv = {b._body: (1.0 / b.mass, 1.0 / b.moment) for b in world.bodies}
+    except (ImportError, AttributeError):  # pragma: no cover - another pymunk
+        return None
+    return _MultiPartCap(lib, ffi, inv, mu_arm, mu_wall, mu_pp, PART, FIXTURE)
 
 
 def attach_raw(space, hook) -> bool:
