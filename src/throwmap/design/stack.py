@@ -28,6 +28,8 @@ wedge reaches the wall corner while the triangle is off it (the triangle hops at
 throw rate breaks it (3.5, 4.56, 5.0, 5.5 rad/s: 3 of 3 traps unchanged after 3 throws each). Making the leg side
 unstable (the CM beyond the apex end of the leg side: lead in the top corner, top 4–6 cm) removes the trap's
 resting state but also the hold: 0 of 10 throws held in 3 of 3 runs (the CM 6–7 cm above the arm is thrown out).
+The experiments break it by feedback instead (:class:`throwmap.experiments.sequential.RecoverConfig`: a throw with
+the arm tilted 10° once a one-bit sensor sees the pair stuck in the pocket): 187/200 sequential, 96/100 serial.
 
 :func:`design_stack` builds the :class:`StackDesign` (the pocket design, both parts and their assembled poses);
 :meth:`StackDesign.assembled` is the predicate with pose tolerances; :meth:`StackDesign.checks` the geometry

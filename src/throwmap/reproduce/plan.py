@@ -87,7 +87,8 @@ EXPERIMENTS = (
                    note="the designed part captured on its target side and still there after 50 more throws"),
     ExperimentSpec("sequential", "Sequential assembly into a cavity", "Sec. V-D, Fig. 10", 11, 20,
                    "assemble-sequential", goal=0.80,
-                   note="a triangle and a four-sided part thrown open-loop into one cavity"),
+                   note="a triangle and a four-sided part thrown into one cavity (the draft: open loop; here a "
+                        "one-bit 'stuck' sensor switches in a tilted recovery throw)"),
     ExperimentSpec("self_assembly", "Sensor-switched self-assembly", "Sec. VI, Figs. 15–16", 14, 20, "assemble",
                    goal=0.95, note="two triangles, a one-bit vision sensor switches from high to low throws at "
                                    "α = −10° against a frictionless wall"),

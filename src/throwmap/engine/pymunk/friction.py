@@ -391,10 +391,31 @@ class _MultiPartCap:
             cps = get_points(arb)
             n = cps.normal
             nx, ny = n.x, n.y
-            qa = get_position(body_a) if im_a is not None else None
-            qb = get_position(body_b) if im_b is not None else None
             cap = inf
             pts = cps.points
+            if im_b is None or im_a is None:  # a part and the arm: one body's terms (0.0 + x is x: the same bits)
+                if im_b is None:
+                    q, m0, m1, on_a = get_position(body_a), im_a[0], im_a[1], True
+                else:
+                    q, m0, m1, on_a = get_position(body_b), im_b[0], im_b[1], False
+                qx, qy = q.x, q.y
+                for i in range(cps.count):
+                    p = pts[i].pointA if on_a else pts[i].pointB
+                    rx, ry = p.x - qx, p.y - qy
+                    rn = rx * ny - ry * nx
+                    knt = rn * (rx * nx + ry * ny) * m1
+                    if knt != 0.0:
+                        v = CAP * (m0 + rn * rn * m1) / abs(knt)
+                        if v < cap:
+                            cap = v
+                if cap < mu:
+                    hook.n_capped += 1
+                    set_u(arb, cap)
+                else:
+                    set_u(arb, uncapped)
+                return
+            qa = get_position(body_a)
+            qb = get_position(body_b)
             for i in range(cps.count):
                 c = pts[i]
                 knn = knt = 0.0

@@ -26,6 +26,21 @@ __all__ = ["CHECK_EVERY", "simulate"]
 CHECK_EVERY = 1e-3
 """s between penetration/clearance checks while stepping at ``dt``."""
 FLIP_TILT = 0.02
+CONFINED_MOVE = 5e-4
+"""m. Several parts: after the arm stopped, parts that stay within this of a reference position (CM, world frame) and
+within :data:`CONFINED_TURN` of its angle for :data:`CONFINED_HOLD` are at rest, whatever their speeds."""
+CONFINED_TURN = 5e-3
+"""rad (see :data:`CONFINED_MOVE`)."""
+CONFINED_HOLD = 1.0
+"""s (see :data:`CONFINED_MOVE`). Why: two parts leaning on each other and on a frictionless wall can keep rocking
+in Chipmunk (measured: a triangle against the wall turning ±1 mrad at ~0.1 rad/s, its CM within 0.2 mm, for the
+whole 10 s limit) — a limit cycle of the solver, not of the physics (zero restitution); such runs timed out and
+were refused. One part is unchanged (it settles by the speeds)."""
+BLOWUP_RISE = 0.1
+"""m. Without the half-step rerun (``verify`` off), a run whose parts gained more mechanical energy after the arm
+stopped than g × this (J/kg: rising 10 cm from nothing) blew up — a Chipmunk contact solve that threw a part away
+(seen: two parts, 2 × 10⁵ J/kg, a part 1.8 km away at the 10 s limit, reported as a timeout). It is rerun at half
+the step; where that gains as much it is refused (``unconverged``), else the rerun stands (its message says so)."""
 """A part in contact within this angle of a resting orientation lies on that side (rad; flip counting)."""
 
 
@@ -47,6 +62,8 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
     timeout; :mod:`.verify`) is rerun at half the step, and where the two
     disagree the run is refused with status ``unconverged`` (its message says
     how they differ); where they agree the first run is returned, ``verified``.
+    Without it, a run that blew up (an energy gain over g × :data:`BLOWUP_RISE`) is
+    rerun at half the step, and refused (``unconverged``) where that blows up too.
 
     An unbounded arm (``Arm.length`` None) is simulated as long as the throw
     needs (:mod:`throwmap.engine.reach`); a part that reaches the simulated end is
@@ -77,6 +94,9 @@ def _simulate(scene, realisation, settings, record, progress, run_for, t_max) ->
                 continue
             return _refuse_unbounded(run, L, tried)
         break
+    if not settings.verify and run_for is None and run.status != Status.PENETRATION \
+            and run.energy_gain > scene.arm.g * BLOWUP_RISE:
+        return _rerun_blowup(run, scene, realisation, settings, record, progress, L)
     if settings.verify and run_for is None and run.status != Status.PENETRATION:
         why = flags(run, settings)
         if why:
@@ -91,6 +111,30 @@ def _simulate(scene, realisation, settings, record, progress, run_for, t_max) ->
             else:
                 run = replace(run, verified=True)
     return run
+
+
+def _moved(ref, now) -> bool:
+    """Whether a part moved out of the confinement window (:data:`CONFINED_MOVE`) since ``ref`` (body states;
+    None: the part has left the arm)."""
+    for a, b in zip(ref, now):
+        if (a is None) != (b is None):
+            return True
+        if a is not None and (math.hypot(b[0] - a[0], b[1] - a[1]) > CONFINED_MOVE or abs(b[2] - a[2]) > CONFINED_TURN):
+            return True
+    return False
+
+
+def _rerun_blowup(run, scene, realisation, settings, record, progress, L) -> EngineRun:
+    """``run`` blew up (:data:`BLOWUP_RISE`): its rerun at half the step, or the refusal where that blows up too."""
+    half = replace(settings, dt=run.dt / 2, coarse_dt=max(settings.coarse_dt / 2, run.dt / 2))
+    again = _with_retries(scene, realisation, half, record, progress, None, L)
+    limit = scene.arm.g * BLOWUP_RISE
+    why = f"gained {run.energy_gain:.3g} J/kg at dt = {run.dt:g} s (a blow-up)"
+    if again.energy_gain > limit:
+        n = len(run.statuses)
+        return replace(run, status=UNCONVERGED, statuses=(UNCONVERGED,) * n,
+                       message=f"{why}, {again.energy_gain:.3g} J/kg at {again.dt:g} s; result refused")
+    return replace(again, message=(again.message + "; " if again.message else "") + f"rerun: {why}")
 
 
 def _with_retries(scene, realisation, settings, record, progress, run_for, L) -> EngineRun:
@@ -154,6 +198,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     t = 0.0
     next_check = next_flight_check = next_sample = next_progress = 0.0
     still_since = None
+    confined_ref, confined_since = None, 0.0  # several parts: poses and time the confinement window began
     landing_near = False  # a vertex not in contact may touch before the next check: no coarse steps
     e_low = [math.inf] * n_parts  # lowest energy of each part since the arm stopped, J/kg
     e_gain = 0.0  # largest energy gain over that, J/kg
@@ -300,6 +345,16 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                         done = True
                 else:
                     still_since = None
+                    if n_parts > 1 and run_for is None:  # at rest up to Chipmunk's jitter (CONFINED)?
+                        now = [states[i] if tracks[i].fell is None else None for i in range(n_parts)]
+                        if confined_ref is None or _moved(confined_ref, now):
+                            confined_ref, confined_since = now, t
+                        elif t - confined_since >= CONFINED_HOLD:
+                            still_since, done = confined_since, True
+                            message = (message + "; " if message else "") + (
+                                f"at rest from t = {confined_since:.3f} s by confinement (every part within "
+                                f"{CONFINED_MOVE * 1e3:g} mm and {CONFINED_TURN:g} rad for {CONFINED_HOLD:g} s, "
+                                "never below the settling speeds)")
     for tr, pen in zip(tracks, pen_part):
         if pen > tr.rec[C.PENETRATION_MAX]:
             tr.rec[C.PENETRATION_MAX] = pen
