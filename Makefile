@@ -19,7 +19,7 @@ test: $(STAMP)
 	@# the viewer's browser test needs Chromium; installed where we can (Debian, as root), never failing the target
 	@{ command -v chromium && command -v chromedriver; } >/dev/null || (command -v apt-get >/dev/null && [ "$$(id -u)" = 0 ] && \
 		(apt-get update -qq && apt-get install -y -qq chromium chromium-driver) >/dev/null 2>&1) || true
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q --durations=15
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_throw.py
