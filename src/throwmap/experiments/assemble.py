@@ -40,6 +40,7 @@ not assembled), ``pos_err_m``/``ang_err_rad`` at the end, ``mu``, ``drop_redraws
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Annotated
 
@@ -159,6 +160,10 @@ class AssembleConfig(BaseModel):
                                                               "of x: assembling throws at ω")
     alpha: Finite = Field(math.radians(-10.0), gt=-math.pi / 4, lt=0, description="assembly rest angle, rad")
     tilt_rate: Finite = Field(0.1, gt=0, description="rate the arm is lowered at, rad/s")
+    tilt_agreement: Finite = Field(0.002, gt=0, le=0.005, description="the tilt's half-step agreement, m (the low "
+                                   "throws keep the engine's 0.5 mm): a faster tilt jolts both parts into a slide "
+                                   "whose end moves ~1 mm with the step (0.3 rad/s: 10 of 25 tilts refused at "
+                                   "0.5 mm); 2 mm is well inside the 5 mm the assembled test allows")
     sensor: PairSensorConfig = Field(default_factory=PairSensorConfig)
     noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil"))
     height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
@@ -330,6 +335,7 @@ class Assemble:
         part, arm, wall = _setup(cfg)
         noise = cfg.noise.noise()
         high, low = _settings(cfg)
+        tilt_settings = dataclasses.replace(low, agreement=cfg.tilt_agreement)
         arm = noise.arm(arm, rng)
         sensor = PairSensor(cfg.sensor.false_positive, cfg.sensor.false_negative, cfg.a_min_x,
                             arm.h if cfg.rectangle else None)
@@ -409,7 +415,7 @@ class Assemble:
                 return done(False, "wrong_switch", run)
             # -- tilt to alpha
             v["phase"] = "tilt"
-            run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), low, "tilt")
+            run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), tilt_settings, "tilt")
             if int(run.status) != 0:
                 return done(False, _kind(run.status, run.message, v), run)
             if not ok(run) and not ready(run.poses):
@@ -430,7 +436,7 @@ class Assemble:
                 break
             if still >= cfg.stall_low and v["resets"] < cfg.resets and v["throws_high"] < cfg.max_high:
                 v["resets"] += 1
-                run = simulate(run.next_scene(), TiltTo(-run.alpha, cfg.tilt_rate), low, "reset")
+                run = simulate(run.next_scene(), TiltTo(-run.alpha, cfg.tilt_rate), tilt_settings, "reset")
                 if int(run.status) != 0:
                     return done(False, _kind(run.status, run.message, v), run)
                 continue
@@ -472,6 +478,7 @@ class Assemble:
                 "max_high": cfg.max_high, "max_low": cfg.max_low, "hold": cfg.hold,
                 "tolerance": {"pos_m": cfg.pos_tol, "ang_rad": cfg.ang_tol},
                 "engine": {"verify_high": cfg.verify_high, "exact_flight_high": cfg.exact_flight_high, "penetration_tol_high_m": cfg.penetration_tol_high,
+                           "tilt_agreement_m": cfg.tilt_agreement,
                            "overrides": cfg.settings or {}},
                 "success": "assembled (both parts within tolerance of assembled_pair) within max_high + max_low throws"}
 

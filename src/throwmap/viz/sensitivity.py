@@ -33,8 +33,12 @@ def plot_sensitivity(sens, ax=None, *, goal: float | None = None, title: str | N
     hi = [100 * r["ci95"][1] - y for y, r in zip(ys, rows)]
     ax.errorbar(xs, ys, yerr=[lo, hi], fmt="o-", color="C0", ecolor="C0", capsize=3, lw=1.2, ms=5,
                 label="success (Wilson 95 %)")
-    for x, y, r in zip(xs, ys, rows):
-        ax.annotate(f"{r['successes']}/{r['n']}", (x, y), textcoords="offset points", xytext=(0, -14), ha="center",
+    span = (max(xs) - min(xs)) or 1.0
+    for k, (x, y, r) in enumerate(zip(xs, ys, rows)):
+        # neighbours closer than 8 % of the axis: labels alternate left and right so they do not overprint
+        crowded = any(abs(x - xo) < 0.08 * span for j, xo in enumerate(xs) if j != k)
+        dx, ha = ((-4, "right") if k % 2 == 0 else (4, "left")) if crowded else (0, "center")
+        ax.annotate(f"{r['successes']}/{r['n']}", (x, y), textcoords="offset points", xytext=(dx, -14), ha=ha,
                     fontsize=7, color="0.3")
     if goal is not None:
         ax.axhline(100 * goal, color="0.4", ls="--", lw=0.9, label=f"goal {100 * goal:g} %")
