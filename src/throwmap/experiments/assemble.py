@@ -174,14 +174,14 @@ class AssembleConfig(BaseModel):
     hold: int = Field(5, ge=1, le=1000, description="low throws after assembly (retention)")
     pos_tol: Finite = Field(0.005, gt=0, description="assembled: CM within this of assembled_pair, m")
     ang_tol: Finite = Field(0.05, gt=0, description="assembled: angle within this of assembled_pair, rad")
-    rectangle: bool = Field(True, description="the sensor also reads 'ready' for a rectangle away from the wall")
+    rectangle: bool = Field(True, strict=True, description="the sensor also reads 'ready' for a rectangle away from the wall")
     a_min_x: Finite = Field(0.15, ge=0, description="ready: a's CM at least this from the joint, m")
     stall_low: int = Field(8, ge=1, le=1000, description="low throws moving no CM more than still_m: tilt back "
                                                          "and randomise again")
     still_m: Finite = Field(0.001, gt=0, description="a low throw moving no CM more than this is still, m")
     resets: int = Field(3, ge=0, le=100, description="tilts back to randomising allowed")
-    verify_high: bool = Field(False, description="half-step verification of the drop and the randomising throws")
-    exact_flight_high: bool = Field(False, description="exact-flight leaps in the drop and the randomising throws")
+    verify_high: bool = Field(False, strict=True, description="half-step verification of the drop and the randomising throws")
+    exact_flight_high: bool = Field(False, strict=True, description="exact-flight leaps in the drop and the randomising throws")
     settings: dict | None = Field(None, description="EngineSettings fields to override")
 
 

@@ -72,7 +72,7 @@ class CavityConfig(BaseModel):
     end_gap: Finite = Field(0.0, ge=0, description="floor ends this short of the end wall, in a ramp, m (0: flush)")
     end_angle: Finite = Field(math.radians(60.0), gt=0, le=math.pi / 2, description="end ramp angle, rad")
     wall_mu: Finite = Field(0.0, ge=0, description="end wall friction (0: a low-friction facing)")
-    lined: bool = Field(False, description="pocket floor faced with the end wall's material (its μ is wall_mu)")
+    lined: bool = Field(False, strict=True, description="pocket floor faced with the end wall's material (its μ is wall_mu)")
     wall_margin: Finite = Field(0.01, ge=0, description="end wall height above the energy bound, m")
     z_hold: Finite = Field(3.0, ge=0, description="σ of ω jitter up to which the target side is held")
     z_release: Finite = Field(1.0, ge=0, description="σ of ω jitter down to which the other sides leave")

@@ -56,7 +56,7 @@ class SensorConfig(BaseModel):
     hysteresis: Finite = Field(0.0, ge=0, description="position sensors' hysteresis, m")
     sigma: Finite = Field(0.0, ge=0, description="blur of the abscissa the position sensors threshold, m")
     confirm: int = Field(1, ge=1, le=100, description="consecutive readings needed for a mode change (extra looks)")
-    overshoot: bool = Field(True, description="a 'beyond x_f + eps' sensor sends the part back to high throws")
+    overshoot: bool = Field(True, strict=True, description="a 'beyond x_f + eps' sensor sends the part back to high throws")
 
 
 class InverseConfig(BaseModel):
