@@ -72,3 +72,13 @@ def test_cli_chain_errors_are_one_line(tmp_path):
 def test_cli_chain_position_without_a_run_is_one_line(tmp_path):
     r = CliRunner().invoke(app, ["chain", "position", str(tmp_path)])
     assert r.exit_code == 2 and "error: trials: no run.json" in r.output
+
+
+@pytest.mark.parametrize("args, field", [(["--cell", "1e-6"], "cell"), (["--samples", "100000000"], "samples"),
+                                         (["--mu-nodes", "0"], "mu_nodes"), (["--max-time", "1e-6"], "")])
+def test_cli_chain_position_sizes_are_guarded(mc, args, field):
+    """Oversized chains are refused before any work, one line naming the field (as ``chain throw``)."""
+    r = CliRunner().invoke(app, ["chain", "position", str(mc)] + args)
+    assert r.exit_code == 2, r.output
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"error: {field}") and "Traceback" not in r.output, r.output

@@ -215,18 +215,25 @@ def position_cmd(
     out: OutOpt = None,
     plot: PlotOpt = None,
     plot_stationary: StatOpt = None,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """The ``position`` experiment's closed loop as a chain against the run's trials (their ``throws``)."""
     import json
 
+    from ..budget import cli_limits
     from ..experiments.base import config_of, read_config
     from ..experiments.registry import get_experiment
     from ..stochastic import compare_curve
-    from ..stochastic.experiments import position_chain, position_hits, position_initial, read_trials
+    from ..stochastic.budget import count_cells, guard_chain
+    from ..stochastic.experiments import position_chain, position_hits, position_initial, position_step, read_trials
 
     with guard():
         _positive(cell, "cell")
         _positive(samples, "samples", True, 2, " (two halves)")
+        _positive(mu_nodes, "mu_nodes", True)
+        limits = cli_limits(max_memory, max_time, force)
         fmt = figure_format(plot, "plot")
         fmt_s = figure_format(plot_stationary, "plot_stationary")
         exp = get_experiment("position")
@@ -244,10 +251,13 @@ def position_cmd(
                 raise InvalidStateError("trials", f"{trials} is a run of {run.get('experiment')!r}, not 'position'")
             cfg = config_of(exp, run.get("config"))
         rows = read_trials(trials)
-        mix, builds = position_chain(cfg, cell=cell, samples=samples, n_mu=mu_nodes, rng=seed)
-        init = position_initial(mix.cells, read_trials(initial) if initial is not None else rows)
         hits = position_hits(rows)
         k_max = max(1, int(hits.max()))
+        part, arm, step, breaks = position_step(cfg)
+        guard_chain(n_cells=count_cells(part, arm, cell, breaks), n_labels=len(step.labels), samples=samples,
+                    n_mu=mu_nodes, k_max=k_max, trials=0, timer=lambda: _seconds_per_throw(step, part, arm), **limits)
+        mix, builds = position_chain(cfg, cell=cell, samples=samples, n_mu=mu_nodes, rng=seed)
+        init = position_initial(mix.cells, read_trials(initial) if initial is not None else rows)
         curve = mix.p_goal_by(k_max, "stop:goal", init)
         check = dict(mix.meta["check"],
                      curve_gap=max(b.curve_gap(k_max, "stop:goal", init) for b in builds))

@@ -20,7 +20,7 @@ from ..errors import InvalidStateError
 from .build import PolicyStep, build_mixture
 from .cells import Cells
 
-__all__ = ["position_chain", "position_initial", "position_hits", "read_trials"]
+__all__ = ["position_step", "position_chain", "position_initial", "position_hits", "read_trials"]
 
 
 def read_trials(path) -> list[dict]:
@@ -54,8 +54,9 @@ def position_initial(cells: Cells, trials) -> np.ndarray:
     return h / h.sum()
 
 
-def position_chain(cfg, *, cell: float = 0.005, samples: int = 64, n_mu: int = 5, rng=None, initial=None):
-    """The chain mixture of the ``position`` experiment's config ``cfg`` (module docstring) and its builds."""
+def position_step(cfg):
+    """``(part, arm, step, breaks)`` of the ``position`` experiment's config ``cfg``: the :class:`PolicyStep` the
+    chain throws with and the cell breaks (the goal band's edges, the approach and kick thresholds, m)."""
     from ..experiments.position import _setup
 
     if cfg.model == "engine":
@@ -63,8 +64,13 @@ def position_chain(cfg, *, cell: float = 0.005, samples: int = 64, n_mu: int = 5
     part, arm, ctl = _setup(cfg)
     g = ctl.goal
     breaks = [g.x - g.eps, g.x + g.eps] + [x for x, _ in cfg.approach] + [x for x, _ in cfg.kick]
+    return part, arm, PolicyStep(part, arm, ctl, cfg.model, cfg.noise.noise()), breaks
+
+
+def position_chain(cfg, *, cell: float = 0.005, samples: int = 64, n_mu: int = 5, rng=None, initial=None):
+    """The chain mixture of the ``position`` experiment's config ``cfg`` (module docstring) and its builds."""
+    part, arm, step, breaks = position_step(cfg)
     cells = Cells.on_arm(part, arm, cell, breaks=breaks)
-    step = PolicyStep(part, arm, ctl, cfg.model, cfg.noise.noise())
     mix, builds = build_mixture(cells, step, samples=samples, rng=rng, initial=initial, n_mu=n_mu,
                                 meta={"experiment": "position", "model": cfg.model})
     return mix, builds
