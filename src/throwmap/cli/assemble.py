@@ -189,6 +189,8 @@ def sensitivity_cmd(
             typer.echo(to_json(res.to_dict()))
         else:
             typer.echo(res.table())
+            if plot is not None:
+                typer.echo(f"wrote {plot}")
 
 
 def register(app: typer.Typer) -> None:

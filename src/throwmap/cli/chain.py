@@ -76,6 +76,10 @@ def _emit(result: dict, out: Path | None) -> None:
         typer.echo(f"wrote {out}")
 
 
+CURVE_GAP_WARN = 0.05
+"""A chain whose two independent halves' curves differ by more than this (probability) is reported as unconverged."""
+
+
 def _report(cmp, check: dict) -> None:
     s = cmp.summary()
     typer.echo(f"{s['label']}: {s['trials']} trials, k = 0…{s['k_max']}: chain inside the Wilson 95 % band at "
@@ -86,6 +90,11 @@ def _report(cmp, check: dict) -> None:
     typer.echo(f"  check: {check['n_cells']} cells ≤ {1000 * check['cell_m']:g} mm, {check['samples']} throws/cell "
                f"({check['throws']} throws); halves' rows TV max {check['tv_max']:.3f}, mean {check['tv_mean']:.3f}; "
                f"halves' curves differ by ≤ {100 * check.get('curve_gap', float('nan')):.2f} points")
+    gap = check.get("curve_gap", 0.0)
+    if gap > CURVE_GAP_WARN:
+        typer.echo(f"warning: the chain is not converged: its two halves' P(goal by k) differ by up to "
+                   f"{100 * gap:.1f} points (> {100 * CURVE_GAP_WARN:g}), so its agreement with the Monte Carlo is "
+                   f"not evidence; use more --samples or a larger --cell", err=True)
 
 
 @chain_app.command("throw")
@@ -277,8 +286,11 @@ def position_cmd(
         half = 1.96 * ok.std(ddof=1) / np.sqrt(ok.size) if ok.size > 1 else float("nan")
         typer.echo(f"  throws of a success: chain mean {mean_chain:.2f}, Monte Carlo mean {ok.mean():.2f} ± {half:.2f} "
                    f"(95 %); P(success) chain {100 * p_reach:.1f} %")
-        typer.echo("  chain's end states: " + ", ".join(f"{k} {100 * v:.1f} %" for k, v in ab.items() if v > 5e-4
-                                                       and not k.startswith("side ")))
+        on_arm = sum(v for k, v in ab.items() if k.startswith("side "))  # mass the chain never absorbs
+        typer.echo("  chain's end states: " + ", ".join([f"{k} {100 * v:.1f} %" for k, v in ab.items() if v > 5e-4
+                                                        and not k.startswith("side ")]
+                                                       + ([f"never absorbed (cycling on the arm) {100 * on_arm:.1f} %"]
+                                                          if on_arm > 5e-4 else [])))
         if plot is not None:
             save_figure(cmp.plot(), plot, fmt, "plot")
             typer.echo(f"wrote {plot}")

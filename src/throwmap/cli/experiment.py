@@ -27,7 +27,7 @@ import typer
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits
 from ..errors import InvalidStateError
 from .options import (ForceOpt, progress_bar, JsonOpt, MaxMemoryOpt, MaxTimeOpt, check_out_dir, figure_format, guard, save_figure,
-                      strict_int, to_json)
+                      stderr_line, strict_int, to_json)
 
 __all__ = ["register", "experiment_cmd"]
 
@@ -88,8 +88,9 @@ def experiment_cmd(
             if as_json:
                 typer.echo(to_json({k: get_experiment(k).summary for k in names}))
             else:
+                width = max(len(k) for k in names) + 2
                 for k in names:
-                    typer.echo(f"{k:<12}{get_experiment(k).summary}")
+                    typer.echo(f"{k:<{width}}{get_experiment(k).summary}")
             return
         if name is None:
             raise InvalidStateError("name", f"give an experiment (choose from {', '.join(experiment_names())}) or --list")
@@ -99,15 +100,31 @@ def experiment_cmd(
         if out is not None:
             check_out_dir(out)
         fmt = figure_format(plot, "plot")
-        with progress_bar(exp.name) as update:
-            result = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=out, resume=resume,
-                                    progress=update, **limits)
+        try:
+            with progress_bar(exp.name) as update:
+                result = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=out, resume=resume,
+                                        progress=update, **limits)
+        except KeyboardInterrupt:
+            stderr_line(_interrupted(out))
+            raise typer.Exit(130) from None
         if plot is not None:
             save_figure(result.plot(), plot, fmt, "plot")
         if as_json:
             typer.echo(to_json(result.to_json()))
         else:
             _table(result)
+
+
+def _interrupted(out: Path | None) -> str:
+    """The one line a Ctrl-C leaves: how many trials ``out`` keeps (its ``trials.jsonl`` lines), or that none are."""
+    if out is None:
+        return "interrupted: no --out DIR, so no trial was kept"
+    try:
+        with open(Path(out) / "trials.jsonl", encoding="utf-8") as f:
+            k = sum(1 for line in f if line.strip())
+    except OSError:
+        k = 0
+    return f"interrupted: {k} trial(s) stored in {str(out)!r}; the same command resumes from them"
 
 
 def register(app: typer.Typer) -> None:

@@ -166,17 +166,20 @@ def build_stack(cfg: SequentialConfig):
         raise InvalidStateError(f"config.wedge.{err.field.split('.')[-1]}", err.reason) from None
 
 
-def _check(cfg: SequentialConfig, arm) -> None:
+def _check(cfg: SequentialConfig, arm=None) -> None:
+    """The config's ranges; with the design's ``arm`` (None: before the design is built) also against its length."""
     for name in ("x_range", "x_range_second", "height"):
         lo, hi = getattr(cfg, name)
         if not lo < hi:
             raise InvalidStateError(f"config.{name}", f"must be (low, high) with low < high, got {[lo, hi]}")
-    for name in ("x_range", "x_range_second"):
-        lo, hi = getattr(cfg, name)
-        if hi <= 0 or lo >= arm.length:
-            raise InvalidStateError(f"config.{name}", f"must overlap the arm [0, {arm.length:g}] m, got {[lo, hi]}")
     if cfg.height[0] < 0:
         raise InvalidStateError("config.height", f"must be ≥ 0 m above the arm, got {list(cfg.height)}")
+    for name in ("x_range", "x_range_second"):
+        lo, hi = getattr(cfg, name)
+        if lo < 0 or (arm is not None and hi > arm.length):
+            where = "from x = 0 m (the joint) on" if arm is None else f"within [0, {arm.length:g}] m"
+            raise InvalidStateError(f"config.{name}", f"must lie on the arm, {where} (CM abscissae of the drops), "
+                                                      f"got {[lo, hi]}")
 
 
 def drop_parts(parts, arm, fixtures, rng, *, fixed=(), x_range=(0.0, 0.25), height=DEFAULT_HEIGHT, gap=0.005,
@@ -223,8 +226,10 @@ class SequentialAssembly:
     def __init__(self, variant: str):
         self.variant = variant
         self.name = "assemble-sequential" if variant == "sequential" else "assemble-serial"
-        self.summary = (("the designed triangle and a four-sided wedge dropped together and thrown open-loop at the "
-                         "feeder's rate until the wedge sits on the triangle in the pocket (Sec. V-D)")
+        self.summary = (("the designed triangle and a four-sided wedge dropped together and thrown at the feeder's "
+                         "rate until the wedge sits on the triangle in the pocket, a tilted recovery throw whenever "
+                         "a one-bit sensor sees the pair stuck (recover.enabled = false: open loop, as the draft; "
+                         "Sec. V-D)")
                         if variant == "sequential" else
                         ("the draft's serial variant of Sec. V-D: the triangle thrown alone until captured in the "
                          "pocket, then the wedge dropped and thrown until it sits on it"))
@@ -233,6 +238,7 @@ class SequentialAssembly:
         """``(design, omega, omega_second)``."""
         from .feed import FEED
 
+        _check(cfg)  # (before the design step: a bad range is refused at once)
         d = build_stack(cfg)
         _check(cfg, d.arm)
         w = FEED.example().omega if cfg.omega is None else cfg.omega

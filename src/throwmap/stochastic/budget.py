@@ -62,8 +62,8 @@ def guard_chain(*, n_cells: int, n_labels: int, samples: int, n_mu: int, k_max: 
     total = sum(mem.values())
     est = {"memory_bytes": total, "seconds": math.nan, "seconds_per_throw": math.nan}
     how = "raise --max-memory (GB) / --max-time (s), pass --force, or use "
-    sizes = (f"{n_cells:,} cells × {samples:,} throws × {n_mu:,} μ nodes, k ≤ {k_max:,}, {trials:,} Monte Carlo "
-             f"trials")
+    sizes = (f"{n_cells:,} cells × {samples:,} throws × {n_mu:,} μ nodes, k ≤ {k_max:,}"
+             + (f", {trials:,} Monte Carlo trials" if trials else ""))
     if force:
         return est
     if total > max_memory:

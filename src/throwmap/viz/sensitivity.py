@@ -35,11 +35,12 @@ def plot_sensitivity(sens, ax=None, *, goal: float | None = None, title: str | N
                 label="success (Wilson 95 %)")
     span = (max(xs) - min(xs)) or 1.0
     for k, (x, y, r) in enumerate(zip(xs, ys, rows)):
-        # neighbours closer than 8 % of the axis: labels alternate left and right so they do not overprint
-        crowded = any(abs(x - xo) < 0.08 * span for j, xo in enumerate(xs) if j != k)
-        dx, ha = ((-4, "right") if k % 2 == 0 else (4, "left")) if crowded else (0, "center")
-        ax.annotate(f"{r['successes']}/{r['n']}", (x, y), textcoords="offset points", xytext=(dx, -14), ha=ha,
-                    fontsize=7, color="0.3")
+        # beside the point (clear of its error bar); neighbours within 10 % of the axis alternate above and below
+        crowded = any(abs(x - xo) < 0.1 * span for j, xo in enumerate(xs) if j != k)
+        dy, va = (-4, "top") if crowded and k % 2 == 1 else (3, "bottom")
+        ax.annotate(f"{r['successes']}/{r['n']}", (x, y), textcoords="offset points", xytext=(5, dy), ha="left",
+                    va=va, fontsize=7, color="0.3")
+    ax.margins(x=0.1)
     if goal is not None:
         ax.axhline(100 * goal, color="0.4", ls="--", lw=0.9, label=f"goal {100 * goal:g} %")
     fields = d["fields"]
