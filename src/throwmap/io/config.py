@@ -159,7 +159,10 @@ def _config_error(err: ValidationError, prefix: str, source: Path | None = None)
     field = _dotted(prefix, loc) or "file"
     kind = first["type"]
     value = first.get("input")
-    if kind == "missing":
+    if kind == "missing" and loc and isinstance(loc[-1], int):  # a tuple field given too few entries
+        field = _dotted(prefix, loc[:-1]) or "file"
+        reason = f"has too few entries (entry {loc[-1]} is missing; a pair such as [low, high] is expected)"
+    elif kind == "missing":
         reason = "required key is missing"
     elif kind == "extra_forbidden":
         parent = prefix.split(".")[-1] if prefix else ""
@@ -183,6 +186,10 @@ def _config_error(err: ValidationError, prefix: str, source: Path | None = None)
         msg = first["msg"]
         if msg.startswith("Input should be"):
             msg = "must be" + msg[len("Input should be"):]
+        if kind == "int_from_float":  # pydantic: "... integer, got a number with a fractional part"
+            msg = "must be a whole number"
+        elif kind == "too_short" and loc and isinstance(value, (list, tuple)):
+            msg = "must have 2 entries (low, high)" if len(value) < 2 else msg
         reason = f"{msg[:1].lower()}{msg[1:]}, got {_short_repr(value)}"
     if len(errors) > 1:
         reason += f" (and {len(errors) - 1} more problem{'s' if len(errors) > 2 else ''})"
