@@ -33,7 +33,7 @@ import numpy as np
 import throwmap as tm
 from throwmap.engine import EngineSettings, engine_run
 from throwmap.system.fixtures import arm_solids
-from throwmap.throws.trajectory import pose_at_rest
+from throwmap.system.pose import pose_at_rest
 
 
 def cases(n: int, seed: int = 0):

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from throwmap.engine.realisation import FiniteThrow, ImpulseThrow, RecoilThrow, TiltTo, angle_function
+from throwmap.system.motion import FiniteThrow, ImpulseThrow, RecoilThrow, TiltTo, angle_function
 
 
 @pytest.mark.parametrize("omega", [2.0, 4.559824565181344, 7.3])

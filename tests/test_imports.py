@@ -23,7 +23,8 @@ from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = "throwmap"
-MAX_LINES = 500
+MAX_LINES = 700
+"""Past this many lines a module is doing two jobs (modules are split by concept, never by a line count)."""
 
 ENFORCED: tuple[str, ...] = (PACKAGE,)
 """Packages in which an import cycle fails the tests: the whole package."""
@@ -233,7 +234,7 @@ def test_only_the_cli_imports_the_cli():
     assert not {m: t for m, t in offenders.items() if t}
 
 
-def test_no_module_over_500_lines():
+def test_no_module_over_max_lines():
     long = {}
     for path in module_files().values():
         rel = path.relative_to(SRC).as_posix()

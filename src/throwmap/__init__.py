@@ -19,8 +19,9 @@ from .errors import (
     ThrowmapWarning,
 )
 from .analysis import ConfigSet, FunctionMap, ThrowMap, basins, critical_points, funnels, limit_set, push
-from .throws.orbit import Orbit, iterate
-from .throws.outcome import BatchOutcome, Status, ThrowOutcome
+from .records.orbit import Orbit
+from .throws.orbit import iterate
+from .records.outcome import BatchOutcome, Status, ThrowOutcome
 from .system.part import Part, Side
 from .system.catalogue import rectangle, regular_polygon, triangle_30_60_90
 from . import models
@@ -29,7 +30,7 @@ from .system.fixtures import Cavity, Wall
 from .system.system import System
 from .throws.throw import MODELS, throw, throw_batch
 
-__version__ = "0.1.0"
+from .version import __version__
 
 __all__ = [
     "Arm", "BatchOutcome", "Cavity", "DEFAULT_MODEL", "System", "Wall", "get_model", "model_names", "models", "register", "ConfigError", "ConfigSet", "FunctionMap", "ThrowMap", "basins", "critical_points",

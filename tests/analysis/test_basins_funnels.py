@@ -29,7 +29,7 @@ from throwmap.analysis import (
 )
 from throwmap.analysis.cellmap import map_to_attractors
 from throwmap.errors import InvalidStateError
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 OK, BEHIND, OFF_END = int(Status.OK), int(Status.BEHIND_JOINT), int(Status.OFF_END)
 

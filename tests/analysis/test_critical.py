@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 import throwmap as tm
 from throwmap.analysis import CriticalPoints, FunctionMap, critical_points, limit_set
 from throwmap.errors import InvalidStateError
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 OMEGA = 4.0  # rad/s: one band on all three sides of the canonical triangle
 MODELS = ["paper", "rigid_body"]

@@ -21,8 +21,8 @@ from throwmap.kernels import codes as C
 from throwmap.models import get_model, model_names
 from throwmap.models.base import BatchArrays, Features, NoOptions
 from throwmap.models.registry import register, unregister
-from throwmap.throws.outcome import ThrowOutcome
-from throwmap.throws.throw import start_interval
+from throwmap.records.outcome import ThrowOutcome
+from throwmap.system.starts import start_interval
 
 STEP = 0.02
 """The synthetic jog at ω = 1 rad/s and α = 0, m."""

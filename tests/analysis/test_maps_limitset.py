@@ -20,7 +20,7 @@ from throwmap.analysis import LABEL_ESCAPE, FunctionMap, LimitSet, ThrowMap, as_
 from throwmap.analysis.caps import DEFAULT_CAPS, check_caps
 from throwmap.analysis.recurrence import start_grid
 from throwmap.errors import InvalidStateError
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 OK, BEHIND, OFF_END = int(Status.OK), int(Status.BEHIND_JOINT), int(Status.OFF_END)
 

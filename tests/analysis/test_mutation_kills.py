@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from throwmap.analysis import Attractor, ConfigSet, FunctionMap, limit_set
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 OK, BEHIND, OFF_END = int(Status.OK), int(Status.BEHIND_JOINT), int(Status.OFF_END)
 

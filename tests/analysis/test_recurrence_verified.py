@@ -21,7 +21,7 @@ from throwmap.analysis.caps import DEFAULT_CAPS
 from throwmap.analysis.cycles import closing, cycle_residual
 from throwmap.analysis.recurrence import _periods
 from throwmap.errors import InvalidStateError
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 OK, BEHIND = int(Status.OK), int(Status.BEHIND_JOINT)
 TOL = DEFAULT_CAPS["tol"]

@@ -27,7 +27,7 @@ from throwmap.analysis import (
     push,
 )
 from throwmap.errors import InvalidStateError
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 OK, BEHIND, OFF_END = int(Status.OK), int(Status.BEHIND_JOINT), int(Status.OFF_END)
 

@@ -378,7 +378,7 @@ def test_back_option_reaches_the_analysed_domain(cmd, extra):
     doc = strict_json(ok(invoke(cmd, *RB, "--omega", "4", "--back", "0.05", *extra, "--json")).stdout)
     assert doc["arm"]["back"] == 0.05
     maps = doc["map"]["maps"] if cmd == "funnels" else [doc["limit_set"]["map"] if cmd == "limitset" else doc["map"]]
-    lo, _ = tm.throws.throw.start_interval(tm.triangle_30_60_90(), tm.Arm(h=-0.01, back=0.05), 1)
+    lo, _ = tm.system.starts.start_interval(tm.triangle_30_60_90(), tm.Arm(h=-0.01, back=0.05), 1)
     for m in maps:
         assert m["domain_m"]["1"][0] == lo < tm.triangle_30_60_90().x_min(1)
 

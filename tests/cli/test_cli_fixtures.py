@@ -21,7 +21,7 @@ from throwmap.errors import InvalidStateError
 from throwmap.kernels import codes as C
 from throwmap.models.base import BatchArrays, Features, NoOptions
 from throwmap.models.registry import register, unregister
-from throwmap.throws.throw import start_interval
+from throwmap.system.starts import start_interval
 
 runner = CliRunner()
 ARM = ["--part", "triangle", "--h", "-0.01", "--length", "0.3", "--mu", "1"]

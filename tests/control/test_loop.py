@@ -12,7 +12,7 @@ import throwmap.control.loop as L
 from throwmap.control import Episode, Goal, PaperController, WithinSensor, closed_loop
 from throwmap.errors import InvalidStateError
 from throwmap.experiments.noise import Noise
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 PART = tm.triangle_30_60_90(0.17)
 ARM = tm.Arm(h=-0.01, length=0.6, mu=1.0)

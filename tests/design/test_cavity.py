@@ -88,7 +88,7 @@ def test_too_narrow_cannot_enter(feeder):
 def test_energy_bound_holds_in_the_engine(feeder):
     # the CM of a part thrown from rest on the floor never rises more than ω²(x² + y²)/2g
     from throwmap.engine import ImpulseThrow, Placement, Scene, simulate
-    from throwmap.throws.trajectory import pose_at_rest
+    from throwmap.system.pose import pose_at_rest
 
     fd, d = feeder
     part, w = fd.part, d.numbers["omega_hi"]

@@ -10,7 +10,7 @@ import pytest
 
 from throwmap.design.passage import first_passage, recoil_table
 from throwmap.engine.api import engine_throw
-from throwmap.engine.realisation import RecoilThrow
+from throwmap.system.motion import RecoilThrow
 from throwmap.errors import InvalidStateError
 from throwmap.io.config import load_config
 

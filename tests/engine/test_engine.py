@@ -23,8 +23,8 @@ from throwmap.engine import (
 from throwmap.errors import InvalidStateError, ThrowmapError
 from throwmap.system.catalogue import rectangle, triangle_30_60_90
 from throwmap.system.fixtures import Cavity, Wall, arm_solids
-from throwmap.throws.outcome import Status
-from throwmap.throws.trajectory import pose_at_rest, world_vertices
+from throwmap.records.outcome import Status
+from throwmap.system.pose import pose_at_rest, world_vertices
 
 TRI = triangle_30_60_90()
 ARM = Arm(h=-0.01, mu=1.5)

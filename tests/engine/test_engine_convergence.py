@@ -14,7 +14,7 @@ from throwmap.engine import EngineSettings, engine_run
 from throwmap.engine.pymunk.verify import flags
 from throwmap.system.catalogue import triangle_30_60_90
 from throwmap.system.part import Part
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 TRI = triangle_30_60_90()
 # a random pentagon from the hardening scan: at dt it lands on side 4 at x = 0.409 m, at dt/2 on side 2 at 0.200 m

@@ -13,7 +13,7 @@ from throwmap import Arm, throw
 from throwmap.engine import engine_throw
 from throwmap.engine.pymunk.friction import CAP, cap_bound
 from throwmap.system.catalogue import rectangle, triangle_30_60_90
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 TRI = triangle_30_60_90()
 XS = np.linspace(0.3, 0.6, 8)

@@ -12,7 +12,7 @@ import pytest
 from throwmap import Arm
 from throwmap.engine import EngineSettings, ImpulseThrow, Placement, Scene, simulate
 from throwmap.system.catalogue import rectangle, triangle_30_60_90
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 TRI = triangle_30_60_90()
 

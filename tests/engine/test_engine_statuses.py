@@ -15,9 +15,9 @@ from throwmap import Arm, throw
 from throwmap.errors import InvalidStateError
 from throwmap.engine import Placement, Scene, engine_run, simulate
 from throwmap.system.catalogue import triangle_30_60_90
-from throwmap.throws.outcome import Status
-from throwmap.throws.throw import check_start, start_interval
-from throwmap.throws.trajectory import world_vertices
+from throwmap.records.outcome import Status
+from throwmap.system.starts import check_start, start_interval
+from throwmap.system.pose import world_vertices
 
 TRI = triangle_30_60_90()
 ARM = Arm(h=-0.01, mu=1.5)

@@ -11,8 +11,8 @@ import numpy as np
 
 import throwmap as tm
 from throwmap.engine.rest import EDGE_EPS, clamp_to_arm, edge_status, rest_status
-from throwmap.throws.throw import start_interval
-from throwmap.throws.trajectory import pose_at_rest
+from throwmap.system.starts import start_interval
+from throwmap.system.pose import pose_at_rest
 
 
 def test_edge_status_slack_only_where_asked():

@@ -20,7 +20,7 @@ from throwmap.engine.pymunk import exact as X
 from throwmap.engine.pymunk import friction as F
 from throwmap.engine.scene import Placement, Scene
 from throwmap.studies.tilt_wall import default_parts
-from throwmap.throws.trajectory import world_vertices
+from throwmap.system.pose import world_vertices
 
 PARTS = default_parts()
 

@@ -16,7 +16,7 @@ import pytest
 from throwmap import Arm, throw_batch
 from throwmap.system.catalogue import triangle_30_60_90
 from throwmap.testing.grids import side_grid
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 TRI = triangle_30_60_90()
 

@@ -13,8 +13,9 @@ import pytest
 import throwmap as tm
 from throwmap.errors import InvalidStateError, ThrowmapError
 from throwmap.kernels.impact import plastic_impact
-from throwmap.throws.outcome import Status
-from throwmap.throws.trajectory import Trajectory, pose_at_rest, world_vertices
+from throwmap.records.outcome import Status
+from throwmap.records.trajectory import Trajectory
+from throwmap.system.pose import pose_at_rest, world_vertices
 
 mujoco = pytest.importorskip("mujoco")
 

@@ -13,7 +13,7 @@ import throwmap as tm
 from throwmap.engine import EngineSettings, ImpulseThrow, Placement, Scene, engine_run
 from throwmap.engine.reach import GROWTH, flight_reach, lengths
 from throwmap.system.catalogue import builtin_part
-from throwmap.throws.outcome import Status, ThrowOutcome
+from throwmap.records.outcome import Status, ThrowOutcome
 
 TRI = builtin_part("triangle")
 
@@ -98,7 +98,7 @@ def test_flight_bound_holds_for_free_flights():
         x = float(rng.uniform(0.05, 3.0))
         om = float(rng.uniform(0.5, 12.0))
         alpha = float(rng.uniform(-0.3, 0.3))
-        px, py, phi = tm.throws.trajectory.pose_at_rest(TRI, h, x, side)
+        px, py, phi = tm.system.pose.pose_at_rest(TRI, h, x, side)
         vx, vy = -om * py, om * px  # ω × r in the arm frame (Sec. III-B)
         R = float(np.max(np.hypot(TRI.w[:, 0], TRI.w[:, 1])))
         far, vmax = flight_reach(px, py, vx, vy, g, h, R, alpha)

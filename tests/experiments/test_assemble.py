@@ -45,7 +45,7 @@ def test_a_refused_run_is_counted_never_dropped(monkeypatch):
     import throwmap.engine as engine
     from throwmap.experiments.assemble import Assemble, AssembleConfig
     from throwmap.experiments.base import trial_generator
-    from throwmap.throws.outcome import Status
+    from throwmap.records.outcome import Status
 
     real = engine.simulate
     calls = []
@@ -69,8 +69,8 @@ def test_parts_at_the_wall_are_not_read_off_the_end():
     """Two rests the first engine runs read as off_end: b propped on a's tip at the wall's foot (flat within
     FLAT_TILT, x + u_R past L but no vertex past it), and a part pressed 0.3 mm into the wall by the other."""
     from throwmap.engine.rest import rest_status
-    from throwmap.throws.outcome import Status
-    from throwmap.throws.trajectory import state_from_pose
+    from throwmap.records.outcome import Status
+    from throwmap.system.pose import state_from_pose
 
     propped = (0.4296, 0.0158, 3.6473)  # read off an engine run (the wall's foot vertex at x = 0.5000 m)
     x, k, tilt = state_from_pose(PART, propped)
@@ -173,7 +173,7 @@ def test_resumed_run(tmp_path):
 def test_a_ready_pair_assembles_and_stays():
     """Hand-placed ready pair: tilt to −10° at 0.1 rad/s, low throws at 2.4 rad/s: assembled, then held."""
     from throwmap.engine import RecoilThrow, TiltTo, simulate
-    from throwmap.throws.outcome import Status
+    from throwmap.records.outcome import Status
 
     scene = Scene(ARM, (Placement(PART, x=0.17, side=1), Placement(PART, x=0.40, side=0)), (Wall(0.7, mu=0.0),))
     run = simulate(scene, TiltTo(math.radians(-10), 0.1))
@@ -249,8 +249,8 @@ def test_a_vertex_in_the_walls_foot_is_not_off_the_end():
     """Read off trial 87 (seed 1) of a randomising run: a part landing with a vertex 0.2 mm into the wall and 0.5 mm
     into the arm at the wall's foot was refused as off_end (an ejection); with a wall it is on the arm."""
     from throwmap.engine.rest import rest_status
-    from throwmap.throws.outcome import Status
-    from throwmap.throws.trajectory import state_from_pose, world_vertices
+    from throwmap.records.outcome import Status
+    from throwmap.system.pose import state_from_pose, world_vertices
 
     pose = (0.4105744680510525, 0.038499723036507894, 6.064353778742166)
     V = world_vertices(PART, pose)

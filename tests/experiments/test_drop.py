@@ -10,7 +10,7 @@ from throwmap.engine import ImpulseThrow, simulate
 from throwmap.errors import InvalidStateError
 from throwmap.experiments.drop import drop_part
 from throwmap.system.fixtures import Cavity, Wall
-from throwmap.throws.trajectory import world_vertices
+from throwmap.system.pose import world_vertices
 
 ARM = Arm(h=-0.01, length=0.4, mu=0.8)
 

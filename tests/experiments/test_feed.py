@@ -95,7 +95,7 @@ def test_plain_end_wall_fixture_classifies_rest_poses():
     # flush against it is "target" only on the target side, one far from it is "outside"
     from throwmap.design import feeder_design
     from throwmap.experiments.feed import FeedConfig, build_wall
-    from throwmap.throws.trajectory import pose_at_rest
+    from throwmap.system.pose import pose_at_rest
 
     fd = feeder_design()
     d = build_wall(FeedConfig(fixture="wall"))

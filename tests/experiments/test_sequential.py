@@ -21,8 +21,8 @@ def design():
 
 
 def test_the_pair_fills_the_wedge_without_overlap(design):
-    from throwmap.statics.contacts import overlap_depth
-    from throwmap.throws.trajectory import world_vertices
+    from throwmap.system.geometry import overlap_depth
+    from throwmap.system.pose import world_vertices
 
     c = design.checks()
     assert -0.0015 < c["overlap_m"] < 0  # 1 mm apart along the leg, not inside each other

@@ -15,7 +15,7 @@ from throwmap.io.trajectory_file import (load_trajectory, save_trajectory, traje
 from throwmap.system.arm import Arm
 from throwmap.system.catalogue import triangle_30_60_90
 from throwmap.system.fixtures import Cavity, Wall
-from throwmap.throws.trajectory import Trajectory
+from throwmap.records.trajectory import Trajectory
 
 
 def _traj(**meta) -> Trajectory:

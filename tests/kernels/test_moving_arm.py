@@ -19,7 +19,7 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
 import throwmap
-from throwmap.engine.realisation import FiniteThrow, ImpulseThrow, RecoilThrow, SampledThrow, TiltTo
+from throwmap.system.motion import FiniteThrow, ImpulseThrow, RecoilThrow, SampledThrow, TiltTo
 from throwmap.errors import InvalidStateError
 from throwmap.kernels import codes as C
 from throwmap.kernels.flight import release_state

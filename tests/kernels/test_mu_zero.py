@@ -14,7 +14,7 @@ import pytest
 
 import throwmap as tm
 from throwmap.kernels import codes as C
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 ARM0 = tm.Arm(h=-0.01, mu=0.0)
 

@@ -11,8 +11,8 @@ import pytest
 import throwmap as tm
 from throwmap.errors import InvalidStateError
 from throwmap.kernels import codes as C
-from throwmap.throws.outcome import Status, ThrowOutcome
-from throwmap.throws.throw import start_interval
+from throwmap.records.outcome import Status, ThrowOutcome
+from throwmap.system.starts import start_interval
 
 PART = tm.triangle_30_60_90(0.17)
 ARM = tm.Arm(h=-0.01)

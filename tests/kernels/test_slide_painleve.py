@@ -13,7 +13,7 @@ import numpy as np
 from throwmap import Part, throw, throw_batch
 from throwmap.kernels.rigid_body.slide import slide_rhs
 from throwmap.system.arm import Arm
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 PART = Part.from_vertices(((0.14722431864335458, 0.0), (0.0, 0.085), (0.0, 0.0)), mass=0.04728127396271163,
                           point_masses=((0.03, (0.08687472106326836, 0.011300485154194025)),))

@@ -148,7 +148,7 @@ def test_bad_starts(triangle, arm, x, side, omega, field):
 
 def test_arm_length_gives_off_end(triangle):
     """Starts up to the last admissible x; a rest is ok only with the whole support side on the arm."""
-    from throwmap.throws.throw import start_interval
+    from throwmap.system.starts import start_interval
 
     arm = tm.Arm(h=-0.01, length=0.3)
     xs = np.linspace(0.11, start_interval(triangle, arm, 0)[1], 200)

@@ -23,7 +23,7 @@ from throwmap.kernels.rigid_body import tilt as T
 from throwmap.models import get_model
 from throwmap.system.catalogue import BUILTIN_PARTS
 from throwmap.system.system import System
-from throwmap.throws.throw import start_interval, tilted_rest_reason
+from throwmap.system.starts import start_interval, tilted_rest_reason
 
 PARTS = {name: BUILTIN_PARTS[name]() for name in ("triangle", "rectangle", "pentagon")}
 
@@ -166,7 +166,7 @@ def test_flight_energy_with_the_tilted_potential_is_conserved(model):
     assert np.max(np.abs(e - e_rel)) <= 1e-9 * max(1.0, abs(e_rel))
     # the last row (at rest) sits on the tilted arm: both support vertices on the line through R(α)(0, h)
     if out.ok:
-        v = tm.throws.trajectory.world_vertices(part, traj.poses[-1, 0])
+        v = tm.system.pose.world_vertices(part, traj.poses[-1, 0])
         dist = -sa * v[:, 0] + ca * v[:, 1] - arm.h
         assert np.sum(np.abs(dist) < 1e-9) >= 2
 

@@ -13,8 +13,8 @@ from throwmap.studies.tilt_wall import make_cases
 from throwmap.studies.validation import default_parts
 from throwmap.system.catalogue import rectangle
 from throwmap.system.fixtures import Cavity, Wall
-from throwmap.throws.outcome import Status
-from throwmap.throws.throw import start_interval
+from throwmap.records.outcome import Status
+from throwmap.system.starts import start_interval
 
 REFUSED = (Status.UNRESOLVED, Status.INCONSISTENT, Status.UNCONVERGED, Status.TIMEOUT, Status.PENETRATION)
 

@@ -375,7 +375,7 @@ def test_a_start_inside_the_wall_is_refused():
     with pytest.raises(tm.ThrowmapError, match=r"x\[1\].*into the wall"):
         tm.throw_batch(pent, arm, [0.2, 0.2515], 3, 4.86, fixtures=wall)
     # a square flush with the wall is a valid start (its outline touches the face, does not enter it)
-    from throwmap.throws.throw import start_interval
+    from throwmap.system.starts import start_interval
 
     sq = rectangle(0.06, 0.06)
     arm = tm.Arm(h=-0.01, mu=1.0, length=0.3)
@@ -383,7 +383,7 @@ def test_a_start_inside_the_wall_is_refused():
     o = tm.throw(sq, arm, flush, 0, 3.0, fixtures=(tm.Wall(0.05, mu=0.0),))
     assert o.status.label == "ok" and o.side == 0 and abs(o.x - flush) < 1e-5
     # a wall lower than the part's overhang: the part may reach beyond the face above the wall's top
-    from throwmap.throws.throw import wall_reach
+    from throwmap.system.starts import wall_reach
 
     assert wall_reach(pent, 3, 0.001) < wall_reach(pent, 3, 0.05)
 

@@ -20,7 +20,7 @@ from throwmap.models.rigid_body import RigidBodyOptions
 from throwmap.system.catalogue import triangle_30_60_90
 from throwmap.testing.grids import side_grid
 from throwmap.throws.orbit_trajectory import throw_trajectory
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 TRI = triangle_30_60_90()
 

@@ -24,7 +24,7 @@ def test_cells_cover_the_admissible_starts_and_are_cut_at_breaks(setup):
     assert np.all(right > left) and np.all(right - left <= 0.01 + 1e-12)
     for k in part.stable_sides:
         e = cells.edges[cells.sides.index(k)]
-        lo, hi = tm.throws.throw.start_interval(part, arm, k)
+        lo, hi = tm.system.starts.start_interval(part, arm, k)
         assert e[0] == lo and e[-1] == hi
         assert 0.47 in e and 0.49 in e
     x, s = cells.centres()

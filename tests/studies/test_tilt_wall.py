@@ -14,7 +14,7 @@ from throwmap.errors import InvalidStateError
 from throwmap.kernels import codes as C
 from throwmap.studies import tilt_wall as tw
 from throwmap.studies.validation import default_parts
-from throwmap.throws.throw import start_interval, tilted_rest_reason, wall_reach, wall_start_reason
+from throwmap.system.starts import start_interval, tilted_rest_reason, wall_reach, wall_start_reason
 
 PARTS = default_parts()
 

@@ -23,8 +23,8 @@ import throwmap as tm
 from throwmap.kernels import codes as C
 from throwmap.kernels.impact import plastic_impact
 from throwmap.kernels.roll import roll_to_rest
-from throwmap.throws.outcome import Status
-from throwmap.throws.throw import start_interval
+from throwmap.records.outcome import Status
+from throwmap.system.starts import start_interval
 from throwmap.testing.reference import impact_linear_system, reference_roll, reference_throw, rest_geometry
 
 X_TOL = 1e-6  # m

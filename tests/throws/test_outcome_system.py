@@ -9,8 +9,9 @@ import pytest
 import throwmap as tm
 from throwmap import Wall
 from throwmap.system.fixtures import Cavity, fixture_from_dict, fixture_to_dict
-from throwmap.throws.orbit import Orbit, iterate
-from throwmap.throws.outcome import BatchOutcome, ThrowOutcome
+from throwmap.records.orbit import Orbit
+from throwmap.throws.orbit import iterate
+from throwmap.records.outcome import BatchOutcome, ThrowOutcome
 
 SQUARE = tm.Part.from_vertices([(0, 0), (0.06, 0), (0.06, 0.06), (0, 0.06)], mass=0.05)
 ARM = tm.Arm(h=-0.01, mu=1.0, length=0.30)

@@ -7,7 +7,7 @@ import throwmap as tm
 from throwmap.kernels import codes as C
 from throwmap.kernels.rigid_body.wall_contact import WHY_MESSAGES
 from throwmap.studies.validation import default_parts
-from throwmap.throws.throw import start_interval
+from throwmap.system.starts import start_interval
 
 
 def test_a_walled_refusal_names_its_wall_reason():

@@ -9,7 +9,7 @@ import throwmap as tm
 from throwmap.io.config import resolve_part
 from throwmap.kernels import codes as C
 from throwmap.throws.orbit_trajectory import throw_trajectory
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 from throwmap.throws.samples import throw_map_samples
 
 SHORT = 200
@@ -73,7 +73,7 @@ def test_trajectory(part, arm):
     _, traj = throw_trajectory(part, arm, 0.2, 0, 4.0, model="paper")
     long_name = tm.Part.from_vertices(part.vertices, part.mass, name="x" * 500)
     assert_short(traj, "Trajectory(", "source='paper'", f"{traj.n_samples} samples", "t∈[")
-    assert_short(tm.throws.trajectory.Trajectory(traj.t, traj.arm_angle, traj.poses, (long_name,), traj.h,
+    assert_short(tm.records.trajectory.Trajectory(traj.t, traj.arm_angle, traj.poses, (long_name,), traj.h,
                                                  traj.length), "1 part")
 
 

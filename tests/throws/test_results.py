@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import throwmap as tm
-from throwmap.throws.outcome import Status
+from throwmap.records.outcome import Status
 
 TRI = tm.triangle_30_60_90(0.17)
 ARM = tm.Arm(h=-0.01, mu=1.5)

@@ -7,8 +7,8 @@ import pytest
 
 import throwmap as tm
 from throwmap.errors import InvalidStateError
-from throwmap.throws.outcome import Status
-from throwmap.throws.throw import check_start, start_interval
+from throwmap.records.outcome import Status
+from throwmap.system.starts import check_start, start_interval
 
 PART = tm.triangle_30_60_90(0.17)
 

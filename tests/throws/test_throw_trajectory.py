@@ -6,7 +6,7 @@ import pytest
 import throwmap as tm
 from throwmap.errors import InvalidStateError
 from throwmap.throws.orbit_trajectory import orbit_trajectory, throw_trajectory, trajectory_models
-from throwmap.throws.trajectory import state_from_pose
+from throwmap.system.pose import state_from_pose
 
 TRI = tm.triangle_30_60_90(0.17)
 ARM = tm.Arm(h=-0.01, mu=1.5)

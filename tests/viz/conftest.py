@@ -9,7 +9,8 @@ import pytest
 
 from throwmap.system.catalogue import triangle_30_60_90
 from throwmap.system.fixtures import Wall
-from throwmap.throws.trajectory import Trajectory, pose_at_rest
+from throwmap.records.trajectory import Trajectory
+from throwmap.system.pose import pose_at_rest
 
 
 def made_up_trajectory(throws: int = 6, per_throw: float = 1.0, rate: float = 240.0) -> Trajectory:

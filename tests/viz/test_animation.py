@@ -18,7 +18,7 @@ from throwmap.cli.animate import register
 from throwmap.errors import ThrowmapError
 from throwmap.throws.orbit_trajectory import orbit_trajectory, paper_throw_trajectory, paper_trajectory
 from throwmap.system.catalogue import builtin_part
-from throwmap.throws.trajectory import state_from_pose
+from throwmap.system.pose import state_from_pose
 
 PImage = pytest.importorskip("PIL.Image")
 

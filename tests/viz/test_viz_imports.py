@@ -14,7 +14,7 @@ import pytest
 VIZ = Path(__file__).resolve().parents[2] / "src" / "throwmap" / "viz"
 
 ALLOWED = ("throwmap.viz", "throwmap.errors", "throwmap.conventions", "throwmap.io",
-           "throwmap.throws.outcome", "throwmap.throws.trajectory", "throwmap.system.part",
+           "throwmap.records.outcome", "throwmap.records.trajectory", "throwmap.system.part",
            "throwmap.system.fixtures")
 """Package modules a figure module may import (each with its submodules); ``system.part``: the
 part's type and its descriptive name for titles (:func:`throwmap.system.part.default_name`), no throws;

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidStateError
-from ..throws.outcome import Status
+from ..records.outcome import Status
 
 __all__ = ["Attractor", "LABEL_ESCAPE", "FATE_UNRESOLVED", "fate_label", "fate_code", "merge_intervals",
            "escape_fractions", "attractor_table", "nan_to_none", "none_to_nan", "check_cycles", "domain_text",

@@ -2,7 +2,7 @@
 
 A *configuration map* takes arrays ``x`` (m) and ``side`` (int) and returns
 ``(x', side', status)``: where each configuration rests after one application of
-the map, and a :class:`~throwmap.throws.outcome.Status` code (``OK`` = 0 means it rests
+the map, and a :class:`~throwmap.records.outcome.Status` code (``OK`` = 0 means it rests
 on the arm; anything else means the orbit ends there — it left the arm, or the
 throw did not come to rest). This is Attractors.jl's ``mapper`` idea for the
 paper's configuration space ℝ⁺ × ℕ mod n (Sec. III-D).
@@ -17,7 +17,7 @@ Two kinds are provided:
 Both carry the domain on which "all initial configurations" are drawn: for every
 side in :attr:`sides` the interval ``(x_lo[side], x_hi[side]]``. For a throw map it is
 exactly the starts :func:`throwmap.throw` accepts on that side
-(:func:`throwmap.throws.throw.start_interval`, the start check's own rule:
+(:func:`throwmap.system.starts.start_interval`, the start check's own rule:
 the left support vertex ahead of the arm's edge behind the joint, ``x + u_L > −arm.back``,
 and the right one on the arm, ``x + u_R ≤ arm.length``), cut at ``x_max``.
 """
@@ -35,7 +35,8 @@ from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from ..models import DEFAULT_MODEL, check_model  # DEFAULT_MODEL re-exported here for the analysis modules
 from ..system.part import Part
-from ..throws.throw import prepare, start_interval, throw_batch
+from ..throws.throw import prepare, throw_batch
+from ..system.starts import start_interval
 
 __all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid",
            "fixtures_doc", "system_text"]
@@ -147,7 +148,7 @@ class ThrowMap(ConfigMap):
     :data:`throwmap.models.DEFAULT_MODEL`, ``"rigid_body"``); ``throw_options`` go
     to :func:`throwmap.throw_batch` (e.g. ``fixtures``, ``settings`` for the engine).
     The domain is every stable side with valid starts, from
-    :func:`throwmap.throws.throw.start_interval`
+    :func:`throwmap.system.starts.start_interval`
     (the starts ``throw()`` accepts, ``arm.back`` included): ``x_lo`` (exclusive) to
     ``min(x_max, arm.length − u_R)`` (``x_max`` default: the arm length, else
     :data:`DEFAULT_X_MAX`). With a :class:`~throwmap.Wall` at the arm's end the
@@ -243,7 +244,7 @@ class FunctionMap(ConfigMap):
 
     ``domain`` is ``{side: (x_lo, x_hi)}`` (m); ``f`` receives float and int64 arrays
     of equal length and must return three arrays of that length (``status`` 0 where
-    the image rests on the arm, a :class:`~throwmap.throws.outcome.Status` code otherwise).
+    the image rests on the arm, a :class:`~throwmap.records.outcome.Status` code otherwise).
     Used for synthetic maps with known attractors and for users' own models.
     """
 

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..throws.orbit import Orbit, iterate
+from ..records.orbit import Orbit
+from ..throws.orbit import iterate
 
 __all__ = ["orbit_on_attractor", "ORBIT_THROWS", "ORBIT_LEAD_MAX"]
 
@@ -25,7 +26,7 @@ def orbit_on_attractor(part, arm, omega: float, model: str, limit, n: int = ORBI
     Starts from the first of ``limit``'s starting configurations that ends on an
     attractor, throws it as many times as the recurrence test discarded (at most
     :data:`ORBIT_LEAD_MAX`), and returns the next ``n`` throws as an
-    :class:`~throwmap.throws.orbit.Orbit`. Where every start escapes, the orbit of the first
+    :class:`~throwmap.records.orbit.Orbit`. Where every start escapes, the orbit of the first
     start is returned (it ends with its escape). ``throw_kw`` (e.g. ``options=``) go to
     :func:`~throwmap.throws.orbit.iterate`.
     """

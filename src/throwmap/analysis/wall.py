@@ -17,7 +17,8 @@ from ..kernels import codes as C
 from ..system.arm import Arm
 from ..system.fixtures import Wall
 from ..system.part import Part
-from ..throws.throw import start_interval, throw_batch
+from ..system.starts import start_interval
+from ..throws.throw import throw_batch
 
 __all__ = ["wall_fixed_point"]
 

@@ -21,7 +21,7 @@ from typing import Annotated
 
 import typer
 
-from .. import __version__
+from ..version import __version__
 from ..analysis import ConfigSet, basins, critical_points, funnels, limit_set
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt

@@ -1,6 +1,6 @@
 """``throwmap animate``: draw one throw, or an orbit of throws, to a GIF or MP4.
 
-A thin shell: parse, build the part and arm, get a :class:`~throwmap.throws.trajectory.Trajectory`
+A thin shell: parse, build the part and arm, get a :class:`~throwmap.records.trajectory.Trajectory`
 from the chosen model (:func:`throwmap.throws.orbit_trajectory.orbit_trajectory`), draw it
 (:func:`throwmap.viz.animation.animate`) and say where the file went. Errors follow
 :mod:`throwmap.cli.options`: one ``error: <field>: <reason>`` line on stderr, exit 2.
@@ -40,7 +40,7 @@ def _trajectory(model, part, arm, x, side, omega, n, opts=None, limits=None):
 
 
 def _summary(traj) -> tuple[str, str]:
-    from ..throws.outcome import Status
+    from ..records.outcome import Status
 
     outcomes = traj.meta.get("outcomes", ())
     kinds = [o.kind for o in outcomes]

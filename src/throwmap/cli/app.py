@@ -25,7 +25,7 @@ from typing import Annotated
 
 import typer
 
-from .. import __version__
+from ..version import __version__
 from . import analysis, animate, assemble, chain, control, design, experiment, plan, reproduce, statics, studies, sweep, throws, view
 from .usage import ThrowmapGroup
 

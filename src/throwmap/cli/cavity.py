@@ -16,7 +16,7 @@ from typing import Annotated
 
 import typer
 
-from .. import __version__
+from ..version import __version__
 from ..errors import InvalidStateError
 from .options import JsonOpt, arm_dict, figure_format, guard, save_figure, to_json
 

@@ -56,7 +56,7 @@ def _seconds_per_throw(step, part, arm, n: int = 32) -> float:
 
     import numpy as np
 
-    from ..throws.throw import start_interval
+    from ..system.starts import start_interval
 
     k = part.stable_sides[0]
     lo, hi = start_interval(part, arm, k)

@@ -20,7 +20,7 @@ from typing import Annotated
 
 import typer
 
-from .. import __version__
+from ..version import __version__
 from ..errors import InvalidStateError
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, MuOpt, PartOpt, arm_dict, check_finite,
                       check_output, figure_format, guard, parse_floats, part_and_arm, save_figure, to_json, write_text)

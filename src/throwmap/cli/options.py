@@ -35,7 +35,8 @@ import typer
 from ..conventions import G
 from ..errors import ConfigError, InvalidArmError, InvalidStateError, ThrowmapError, ThrowmapWarning
 from ..io.config import resolve_part
-from ..io.files import atomic_write_bytes, atomic_write_text, json_ready
+from ..io.files import atomic_write_bytes, atomic_write_text
+from ..serial import json_ready
 from ..system.arm import Arm
 from ..throws.throw import DEFAULT_MODEL, MODELS
 

@@ -15,7 +15,7 @@ from typing import Annotated
 
 import typer
 
-from .. import __version__
+from ..version import __version__
 from ..models import DEFAULT_MODEL
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt, PartOpt, SideOpt,
                       XOpt, arm_dict, check_finite, guard, model_options, parse_floats, part_and_arm, strict_int,

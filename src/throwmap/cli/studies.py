@@ -16,7 +16,7 @@ from typing import Annotated, Any
 
 import typer
 
-from .. import __version__
+from ..version import __version__
 from ..errors import ConfigError, InvalidStateError
 from ..io.config import resolve_part
 from ..throws.throw import check_model

@@ -13,9 +13,10 @@ from typing import Annotated
 
 import typer
 
-from .. import __version__
+from ..version import __version__
 from ..errors import InvalidStateError
-from ..throws.orbit import Orbit, iterate
+from ..records.orbit import Orbit
+from ..throws.orbit import iterate
 from ..throws.throw import DEFAULT_MODEL, check_model, throw
 from .options import (AlphaOpt, BackOpt, CavityOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt,
                       OmegaOpt, PartOpt, SideOpt, WallMuOpt, WallOpt, XOpt, arm_dict, check_finite, figure_format,

@@ -47,12 +47,12 @@ def realisation_factory(realisation, *, recoil: float = math.radians(3.0), zeta:
     """``realisation`` as a callable ω → realisation object, or None (the model's impulse).
 
     ``None``/``"impulse"``: None (the model's own impulse at ω); ``"recoil"``: the draft's arm,
-    :meth:`~throwmap.engine.realisation.RecoilThrow.for_release_rate` (peak rate ω, recoil
+    :meth:`~throwmap.system.motion.RecoilThrow.for_release_rate` (peak rate ω, recoil
     ``recoil`` rad, damping ``zeta``); a callable is returned as is."""
     if realisation is None or realisation == "impulse":
         return None
     if realisation == "recoil":
-        from ..engine.realisation import RecoilThrow
+        from ..system.motion import RecoilThrow
 
         return lambda w: RecoilThrow.for_release_rate(float(w), recoil=recoil, zeta=zeta)
     if callable(realisation):

@@ -50,7 +50,8 @@ def check_inverse(part, arm, models=("paper", "small_angle", "small_angle2", "ri
                   seed: int = 0, x_hi: float = 0.45, tol: float = 1e-6, omega_max: float = 8.0, progress=None,
                   **throw_options) -> list[InverseCheckRow]:
     """The table's rows, one per model (see the module docstring); ``progress(done, total)`` after each problem."""
-    from ..throws.throw import start_interval, throw
+    from ..system.starts import start_interval
+    from ..throws.throw import throw
 
     rng = as_generator(seed)
     sides = np.flatnonzero(part.stable)

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 from ..rng import as_generator
-from ..throws.outcome import Status
+from ..records.outcome import Status
 
 __all__ = ["Step", "Episode", "closed_loop", "MAX_LOOKS_PER_THROW"]
 
@@ -118,7 +118,7 @@ class Episode:
 
 def _start_engine(part, arm, x0, side0, opts):
     from ..engine import Friction, Placement, Scene
-    from ..throws.trajectory import state_from_pose
+    from ..system.pose import state_from_pose
 
     scene = getattr(x0, "scene", x0)
     if hasattr(scene, "placements"):
@@ -126,7 +126,7 @@ def _start_engine(part, arm, x0, side0, opts):
             raise InvalidStateError("x0", "the engine Scene must hold this one part")
         x, k, tilt = state_from_pose(part, scene.placements[0].arm_pose(scene.arm.h))
         return scene, float(x), int(k), float(tilt)
-    from ..throws.throw import check_start
+    from ..system.starts import check_start
 
     x, k, _ = check_start(part, arm, x0, side0, 0.0)
     fr = opts.get("friction") or Friction()
@@ -177,7 +177,7 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
             # a dropped part: the analytic models start flat at its nearest rest
             drop = x0
             x0, side0 = float(getattr(drop, "x")), int(getattr(drop, "side"))
-        from ..throws.throw import check_start
+        from ..system.starts import check_start
 
         x, k, _ = check_start(part, arm, x0, side0, 0.0)
         x, k, tilt = float(x), int(k), 0.0

@@ -46,7 +46,7 @@ def pair_ready(part, poses, *, tilt: float = READY_TILT, side_a: int = LONG_LEG,
     *j* flat on ``side_b`` (every vertex of *i* at smaller x than every vertex of *j*) and *i*'s CM is at
     least ``a_min_x`` (m) from the joint, else None. ``poses``: the two arm-frame poses ``(x, y, φ)``
     (m, m, rad)."""
-    from ..throws.trajectory import state_from_pose, world_vertices
+    from ..system.pose import state_from_pose, world_vertices
 
     if len(poses) != 2:
         raise InvalidStateError("poses", f"a pair sensor looks at two parts, got {len(poses)}")

@@ -84,7 +84,7 @@ class Reachability:
 
 
 def _rest_check(part, arm, x_f: float, side_f: int) -> tuple[bool, str]:
-    from ..throws.throw import start_interval
+    from ..system.starts import start_interval
 
     lo, hi = start_interval(part, arm, side_f)
     if x_f <= lo:

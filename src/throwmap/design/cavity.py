@@ -72,7 +72,7 @@ CAPTURE_TILT = 0.05
 
 
 def _realisation(kind: str, omega: float, recoil: float, zeta: float):
-    from ..engine.realisation import ImpulseThrow, RecoilThrow
+    from ..system.motion import ImpulseThrow, RecoilThrow
 
     w = float(omega)
     return RecoilThrow.for_release_rate(w, recoil=recoil, zeta=zeta) if kind == "recoil" else ImpulseThrow(w)
@@ -112,7 +112,7 @@ def jog_map(part: Part, arm: Arm, omegas, *, realisation: str = "impulse", recoi
 
     from ..errors import RegimeWarning
     from ..models.engine import EngineOptions
-    from ..throws.outcome import Status
+    from ..records.outcome import Status
     from ..throws.throw import throw_batch
 
     plain = Arm(h=arm.h, g=arm.g, length=None, mu=arm.mu, back=arm.back)
@@ -207,7 +207,7 @@ class CavityDesign:
         """Where a part at rest at arm-frame ``pose`` (x, y, φ) is: ``"target"`` (in the cavity, flat
         on the target side within :data:`CAPTURE_TILT`), ``"other"`` (in the cavity otherwise) or
         ``"outside"`` (its CM short of the lip or its lowest vertex above half the cavity's depth)."""
-        from ..throws.trajectory import state_from_pose, world_vertices
+        from ..system.pose import state_from_pose, world_vertices
 
         V = world_vertices(self.part, pose)
         inside = pose[0] > self.lip_x and float(V[:, 1].min()) < self.arm.h - 0.5 * self.cavity.depth
@@ -423,8 +423,8 @@ def evaluate_cavity(design: CavityDesign, *, verify: bool = True, settings=None,
 
 def _engine_checks(d: CavityDesign, settings, n_hold: int, n_capture: int):
     from ..engine import Placement, Scene, simulate
-    from ..throws.outcome import Status
-    from ..throws.trajectory import pose_at_rest
+    from ..records.outcome import Status
+    from ..system.pose import pose_at_rest
 
     part, k, L = d.part, d.side, d.length
     real = d.realisation
@@ -487,7 +487,7 @@ def _engine_checks(d: CavityDesign, settings, n_hold: int, n_capture: int):
             out.append(Check(f"engine_release_{j}", True, 0.0, f"side {j} cannot lie on the floor", unit="throws"))
             continue
         run = throw(scene, d.numbers["omega_lo"])
-        from ..throws.trajectory import state_from_pose
+        from ..system.pose import state_from_pose
 
         stays = run.status == Status.OK and state_from_pose(part, run.poses[0])[1] == j
         out.append(Check(f"engine_release_{j}", not stays, 1.0, f"side {j} at the wall leaves side {j} in one throw "

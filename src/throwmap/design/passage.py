@@ -71,7 +71,7 @@ def recoil_table(part: Part, arm: Arm, omega: float, *, sigma: float = 0.03, ste
     Cost: 7 × (number of sides) × ``x_max/step`` engine throws (≈ 2,300 for the defaults, ≈ 10 s on 2 cores).
     """
     from ..engine.api import engine_batch
-    from ..engine.realisation import RecoilThrow
+    from ..system.motion import RecoilThrow
 
     for name, v in (("omega", omega), ("sigma", sigma), ("step", step), ("x_max", x_max), ("recoil", recoil),
                     ("zeta", zeta)):
@@ -141,7 +141,7 @@ class Passage:
 
 
 def _holds(part: Part, table: RecoilTable, target: int, X: float) -> bool:
-    from ..throws.outcome import Status
+    from ..records.outcome import Status
 
     step = float(table.x[1] - table.x[0])
     j = int(round((X - float(part.uR[target])) / step))
@@ -158,7 +158,7 @@ def first_passage(part: Part, table: RecoilTable, target: int, *, n: int = 3000,
                   x_range: tuple | None = None, X=None) -> Passage:
     """Markov chains on ``table`` from ``n`` random rests (side uniform, CM x uniform in ``x_range``, m;
     default from the joint to 0.35 m): see the module docstring."""
-    from ..throws.outcome import Status
+    from ..records.outcome import Status
 
     target = part.check_side(target, field="target")
     if isinstance(n, bool) or not (isinstance(n, int) and 1 <= n <= 1_000_000):

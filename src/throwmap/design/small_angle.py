@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from ..throws.throw import start_interval
+from ..system.starts import start_interval
 
 __all__ = ["energy_terms", "energy_critical_points"]
 
@@ -62,7 +62,7 @@ def _flips(R, *args):
 def energy_critical_points(part, arm, omega: float, *, x_max=None, n_grid: int = 512, xtol: float = 1e-9) -> dict:
     """r_i per stable side from the corrected energy test (m; nan if every R up to ``x_max`` jogs).
 
-    The domain of each side is :func:`~throwmap.throws.throw.start_interval` cut at ``x_max``
+    The domain of each side is :func:`~throwmap.system.starts.start_interval` cut at ``x_max``
     (default: the arm's length, else 0.6 m), sampled at ``n_grid`` points; the first flip
     above the first jog is refined by bisection to ``xtol``.
     """

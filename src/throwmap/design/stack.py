@@ -147,8 +147,8 @@ class StackDesign:
         wedge's outermost x), ``floor_gap_m`` (wedge's lowest y − the pocket floor), ``cm_over_tip_m`` (wedge CM
         x − its left side: > 0 the CM lies over the wedge), ``filled`` (area of the pair / area of the slot
         [apex x, L] × [floor, top] plus the triangle's part left of the apex: 1 − the clearances)."""
-        from ..statics.contacts import overlap_depth
-        from ..throws.trajectory import world_vertices
+        from ..system.geometry import overlap_depth
+        from ..system.pose import world_vertices
 
         T = world_vertices(self.triangle, self.triangle_pose)
         W = world_vertices(self.wedge, self.wedge_pose)
@@ -171,7 +171,7 @@ def design_stack(cavity, *, top: float = 0.02, clearance: float = 0.001, lead_ma
     """The :class:`StackDesign` on a pocket design ``cavity`` (:class:`~throwmap.design.cavity.CavityDesign`, its
     part the triangle): the triangle at rest at the end wall on the target side (0.1 mm off it), the wedge part
     of :func:`stack_part` on it."""
-    from ..throws.trajectory import pose_at_rest, world_vertices
+    from ..system.pose import pose_at_rest, world_vertices
 
     tri, k = cavity.part, cavity.side
     tpose = tuple(float(v) for v in pose_at_rest(tri, cavity.floor_y, cavity.length - float(tri.uR[k]) - 1e-4, k))

@@ -9,7 +9,7 @@ is the MuJoCo cross-check; the ``mujoco`` package is imported only when it runs.
 
 from .api import engine_batch, engine_run, engine_throw, engine_trajectory
 from .pymunk import EngineRun, simulate
-from .realisation import FiniteThrow, ImpulseThrow, RecoilThrow, TiltTo
+from ..system.motion import FiniteThrow, ImpulseThrow, RecoilThrow, TiltTo
 from .scene import Placement, Scene
 from .settings import EngineSettings, Friction
 

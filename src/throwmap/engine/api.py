@@ -13,10 +13,10 @@ import numpy as np
 from ..system.arm import Arm
 from ..errors import InvalidStateError
 from ..kernels import codes as C
-from ..throws.outcome import BatchOutcome, Status, ThrowOutcome
+from ..records.outcome import BatchOutcome, Status, ThrowOutcome
 from ..system.part import Part
 from .pymunk import EngineRun, simulate
-from .realisation import ImpulseThrow
+from ..system.motion import ImpulseThrow
 from .scene import Placement, Scene
 from .settings import EngineSettings, Friction
 

@@ -14,8 +14,8 @@ import math
 
 import numpy as np
 
-from ..throws.outcome import Status
-from ..throws.trajectory import world_vertices
+from ..records.outcome import Status
+from ..system.pose import world_vertices
 
 __all__ = ["EDGE_EPS", "FLAT_TILT", "WALL_SLACK", "UNCONVERGED", "clamp_to_arm", "edge_status", "rest_status", "tilted_message"]
 
@@ -82,7 +82,7 @@ def clamp_to_arm(part, x: float, k: int, L: float, back: float) -> float:
     """``x`` moved onto the starts :func:`throwmap.throw` accepts on side ``k`` (at most :data:`EDGE_EPS`
     away, see :func:`rest_status`): a part flat against a wall at the arm's end reads a collision
     slop past x = L − u_R and is reported at the last start, so the next throw starts from it."""
-    from ..throws.throw import _last_at_most  # the start rule's own rounding (throw.start_interval)
+    from ..system.starts import _last_at_most  # the start rule's own rounding (throw.start_interval)
 
     hi = _last_at_most(float(part.uR[k]), float(L))
     lo = _last_at_most(float(part.uL[k]), -float(back))

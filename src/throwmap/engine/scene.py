@@ -10,7 +10,7 @@ from ..errors import InvalidStateError, shown
 from ..system.arm import Arm
 from ..system.fixtures import Cavity, Wall
 from ..system.part import Part
-from ..throws.trajectory import pose_at_rest
+from ..system.pose import pose_at_rest
 from .settings import Friction
 
 __all__ = ["Placement", "Scene", "OVERLAP_TOL"]
@@ -23,9 +23,9 @@ as the engine refuses a run in which a vertex sinks deeper than its default ``pe
 
 def _check_overlap(placements, h: float) -> None:
     """Raise :class:`InvalidStateError` ``placements`` naming the first two placements that overlap by more
-    than :data:`OVERLAP_TOL` (separating axes, :func:`throwmap.statics.contacts.overlap_depth`)."""
-    from ..statics.contacts import overlap_depth
-    from ..throws.trajectory import world_vertices
+    than :data:`OVERLAP_TOL` (separating axes, :func:`throwmap.system.geometry.overlap_depth`)."""
+    from ..system.geometry import overlap_depth
+    from ..system.pose import world_vertices
 
     verts = [world_vertices(p.part, p.arm_pose(h)) for p in placements]
     for i in range(len(verts)):
@@ -39,7 +39,7 @@ def _check_overlap(placements, h: float) -> None:
 @dataclass(frozen=True, slots=True)
 class Placement:
     """A part on the arm: at rest on ``side`` with CM abscissa ``x`` (m, arm frame),
-    or at an explicit arm-frame ``pose`` ``(x, y, φ)`` (see :mod:`throwmap.throws.trajectory`)
+    or at an explicit arm-frame ``pose`` ``(x, y, φ)`` (see :mod:`throwmap.records.trajectory`)
     with arm-frame ``velocity`` ``(ẋ, ẏ, φ̇)`` (m/s, m/s, rad/s).
     """
 

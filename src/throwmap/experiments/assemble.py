@@ -247,8 +247,8 @@ def drop_pair(part, arm, wall, rng, *, alpha: float = 0.0, x_range=(0.12, 0.40),
     """Drop two copies of ``part`` from random poses at least ``gap`` (m) apart and let them settle together:
     ``(EngineRun, redraws)`` — the first run with both at rest on the arm, else the last one."""
     from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
-    from ..statics.contacts import overlap_depth
-    from ..throws.trajectory import world_vertices
+    from ..system.geometry import overlap_depth
+    from ..system.pose import world_vertices
 
     run = None
     for attempt in range(max_redraws + 1):
@@ -327,7 +327,7 @@ class Assemble:
         from ..control.pair_sensors import LONG_LEG, PairSensor, assembled_error, is_assembled
         from ..engine import TiltTo
         from ..engine import simulate as _simulate
-        from ..throws.trajectory import state_from_pose
+        from ..system.pose import state_from_pose
 
         def simulate(scene, real, settings, phase="high", omega=0.0):
             run = _simulate(scene, real, settings, record=observer is not None)

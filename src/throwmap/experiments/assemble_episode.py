@@ -64,7 +64,7 @@ class AssemblyEpisode:
     statuses : tuple of str
         The run's status label (``"ok"`` or why it was refused / where a part went).
     trajectories : tuple
-        The runs' :class:`~throwmap.throws.trajectory.Trajectory` (empty unless recorded with ``motion=True``).
+        The runs' :class:`~throwmap.records.trajectory.Trajectory` (empty unless recorded with ``motion=True``).
     """
 
     trial: Trial
@@ -166,7 +166,7 @@ class AssemblyEpisode:
                            for p in range(self.poses.shape[1])]} for i in range(self.n_runs)]
 
     def motion(self, *, start: str = "switch", throws_before: int = 2):
-        """The recorded runs joined into one :class:`~throwmap.throws.trajectory.Trajectory` for the animation:
+        """The recorded runs joined into one :class:`~throwmap.records.trajectory.Trajectory` for the animation:
         from ``throws_before`` randomising throws before the switch (``start="switch"``) or from the drop
         (``start="drop"``) to the end. Needs an episode recorded with ``motion=True``."""
         if not self.trajectories or any(tr is None for tr in self.trajectories):
@@ -213,7 +213,7 @@ def assembly_episode(config=None, index: int = 0, seed: int = 0, *, motion: bool
     """Rerun trial ``index`` of seed ``seed`` of ``experiment`` (an ``assemble``-like experiment whose ``trial`` takes
     an ``observer``) with ``config`` (its config type, a dict, or None: the built-in example) and record it;
     ``motion=True`` also keeps every run's sampled motion (for :meth:`AssemblyEpisode.motion`)."""
-    from ..throws.trajectory import state_from_pose
+    from ..system.pose import state_from_pose
     from .assemble import _setup
 
     if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or index < 0:

@@ -38,8 +38,8 @@ from ..rng import as_generator
 from ..system.arm import Arm
 from ..system.fixtures import Wall
 from ..system.part import Part
-from ..throws.outcome import Status
-from ..throws.trajectory import world_vertices
+from ..records.outcome import Status
+from ..system.pose import world_vertices
 
 __all__ = ["DropResult", "drop_part", "drop_kind", "MAX_REDRAWS", "DEFAULT_HEIGHT"]
 
@@ -76,7 +76,7 @@ class DropResult:
     ``scene``: the engine :class:`~throwmap.engine.Scene` after the fall (part at its
     settled ``pose`` (x, y, φ), the arm at rest angle ``alpha``); ``x`` (m), ``side``
     and ``tilt`` (rad) the nearest resting configuration
-    (:func:`throwmap.throws.trajectory.state_from_pose`); ``status`` the engine's
+    (:func:`throwmap.system.pose.state_from_pose`); ``status`` the engine's
     (``ok``: at rest on the arm — flat on a stable side, or held by a fixture);
     ``kind`` None when ok else the failure kind (:func:`drop_kind`); ``message`` the
     engine's message; ``start`` the accepted draw ``(x0, y0, φ0)`` (m, m, rad);

@@ -111,7 +111,7 @@ class EndWall:
         """``"target"`` (outermost vertex within ``zone`` of the wall, flat on the target side within
         :data:`~throwmap.design.cavity.CAPTURE_TILT`), ``"other"`` (at the wall otherwise) or ``"outside"``."""
         from ..design.cavity import CAPTURE_TILT
-        from ..throws.trajectory import state_from_pose, world_vertices
+        from ..system.pose import state_from_pose, world_vertices
 
         if float(world_vertices(self.part, pose)[:, 0].max()) < self.arm.length - self.zone:
             return "outside"
@@ -327,7 +327,7 @@ class Feed:
 
     def trial(self, cfg: FeedConfig, index: int, rng) -> Trial:
         from ..engine import simulate
-        from ..throws.outcome import Status
+        from ..records.outcome import Status
 
         part, arm, fixtures, omega, side, design = self.setup(cfg)
         noise = cfg.noise.noise()

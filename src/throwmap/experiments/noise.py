@@ -113,7 +113,7 @@ class Noise:
 
     def realisation_for(self, omega: float):
         """The arm motion of a throw at release rate ``omega`` (rad/s): ImpulseThrow or RecoilThrow."""
-        from ..engine.realisation import ImpulseThrow, RecoilThrow
+        from ..system.motion import ImpulseThrow, RecoilThrow
 
         if self.realisation == "recoil" and omega > 0:
             return RecoilThrow.for_release_rate(float(omega), recoil=self.recoil, zeta=self.zeta)

@@ -39,7 +39,7 @@ from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
 
-from .. import __version__
+from ..version import __version__
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work, human_seconds
 from ..errors import InvalidStateError, shown
 from .base import Trial, config_of, trial_generator, trial_seed

@@ -38,7 +38,7 @@ Values: ``throws``, ``recoveries`` (recovery throws, counted in ``throws``), ``t
 the triangle was captured / the wedge's CM past the lip, counted from the start of the trial), ``order``
 (``triangle_first``, ``wedge_first``, ``same_throw``, ``none``), ``held_1``, ``held_k``, ``hold_breaks``, the end's
 ``pos_err_m``/``ang_err_rad`` (the wedge from its assembled pose), each part's ``<part>_x``, ``_y``, ``_side``,
-``_tilt`` there (arm frame, m, rad; side as :func:`~throwmap.throws.trajectory.state_from_pose`), ``mu``, ``drop_redraws``, ``lost``; serial:
+``_tilt`` there (arm frame, m, rad; side as :func:`~throwmap.system.pose.state_from_pose`), ``mu``, ``drop_redraws``, ``lost``; serial:
 ``throws_first``, ``throws_second``.
 """
 
@@ -189,8 +189,8 @@ def drop_parts(parts, arm, fixtures, rng, *, fixed=(), x_range=(0.0, 0.25), heig
     let them settle with the fixed ones: ``(EngineRun, redraws)``, the first run at rest, else the last one. The
     placements are ordered fixed first, then ``parts``."""
     from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
-    from ..statics.contacts import overlap_depth
-    from ..throws.trajectory import world_vertices
+    from ..system.geometry import overlap_depth
+    from ..system.pose import world_vertices
 
     base = [world_vertices(p, q) for p, q in fixed]
     run = None
@@ -246,7 +246,7 @@ class SequentialAssembly:
 
     def trial(self, cfg: SequentialConfig, index: int, rng) -> Trial:
         from ..engine import TiltTo, simulate
-        from ..throws.trajectory import state_from_pose
+        from ..system.pose import state_from_pose
         from .feed import _settings
 
         d, omega, omega2 = self.setup(cfg)

@@ -414,7 +414,7 @@ def part_to_toml(part: Part, arm: Arm | None = None) -> str:
     sum). ``com`` and ``radius_of_gyration`` are written only when they were overrides
     (:func:`overrides`), so editing the file's vertices, mass or point masses moves them.
     """
-    from .. import __version__
+    from ..version import __version__
 
     given = overrides(part)
     lines = [

@@ -8,29 +8,12 @@ POSIX and Windows when both live on one file system).
 
 from __future__ import annotations
 
-import math
 import os
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
 
-__all__ = ["atomic_write_bytes", "atomic_write_text", "json_ready"]
-
-
-def json_ready(obj: Any) -> Any:
-    """JSON-ready copy: non-finite floats → None, tuples → lists, NumPy values and paths → Python/str."""
-    if isinstance(obj, dict):
-        return {str(k): json_ready(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [json_ready(v) for v in obj]
-    if isinstance(obj, Path):
-        return str(obj)
-    if hasattr(obj, "tolist") and not isinstance(obj, (str, bytes)):
-        return json_ready(obj.tolist())
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
+__all__ = ["atomic_write_bytes", "atomic_write_text"]
 
 
 def _new_file_mode() -> int:

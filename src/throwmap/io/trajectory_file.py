@@ -1,4 +1,4 @@
-"""Trajectory files: a :class:`~throwmap.throws.trajectory.Trajectory` saved to one ``.npz`` and read back.
+"""Trajectory files: a :class:`~throwmap.records.trajectory.Trajectory` saved to one ``.npz`` and read back.
 
 :func:`save_trajectory` writes, :func:`load_trajectory` reads (``throwmap view FILE.npz`` plays one; ``throwmap
 view … --save-trajectory FILE.npz`` writes one). The file is a NumPy ``.npz`` archive (compressed, read with
@@ -20,7 +20,7 @@ The header: ``{"format": "throwmap-trajectory", "version": 1, "parts": [{"vertic
 "radius_of_gyration", "point_masses", "name"}, …], "h", "length", "fixtures": [fixture_to_dict, …],
 "event_labels": [...], "source", "meta": {...}}``. ``meta`` keeps every JSON-ready value (numbers, strings,
 lists, dicts, arrays as lists; tuples come back as lists) and two objects by name: ``outcomes`` (a tuple of
-:class:`~throwmap.throws.outcome.ThrowOutcome`, stored with ``to_dict``) and ``arm`` (an
+:class:`~throwmap.records.outcome.ThrowOutcome`, stored with ``to_dict``) and ``arm`` (an
 :class:`~throwmap.system.arm.Arm`, stored as its fields); a dataclass value is stored as its fields (read back
 as a dict). Any other object is refused (:class:`~throwmap.errors.InvalidStateError` naming ``meta[key]``):
 nothing is dropped silently.
@@ -37,8 +37,9 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InvalidStateError, shown
-from ..throws.trajectory import Trajectory
-from .files import atomic_write_bytes, json_ready
+from ..records.trajectory import Trajectory
+from .files import atomic_write_bytes
+from ..serial import json_ready
 
 __all__ = ["FORMAT", "VERSION", "save_trajectory", "load_trajectory", "trajectory_to_arrays",
            "trajectory_from_arrays"]
@@ -95,7 +96,7 @@ def _meta_from_record(rec: dict) -> dict:
     out = {}
     for key, value in rec.items():
         if isinstance(value, dict) and value.get("__type__") == "ThrowOutcome":
-            from ..throws.outcome import ThrowOutcome
+            from ..records.outcome import ThrowOutcome
 
             out[key] = tuple(ThrowOutcome.from_dict(d) for d in value["items"])
         elif isinstance(value, dict) and value.get("__type__") == "Arm":

@@ -1,6 +1,6 @@
 """Status codes and the layout of the per-throw record the kernels fill.
 
-Integers so that batch kernels can return plain arrays; :class:`throwmap.throws.outcome.Status`
+Integers so that batch kernels can return plain arrays; :class:`throwmap.records.outcome.Status`
 gives them names.
 """
 

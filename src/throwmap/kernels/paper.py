@@ -13,7 +13,7 @@ twin :func:`throw_many_serial` for batches below :data:`PARALLEL_MIN`.
 
 Tilted arm (``alpha``, rad, CCW +, |α| < π/2; draft Sec. VI): the arm rests at α and
 the impulse throw gives the part ω × r with the arm itself not moving (as the engine's
-:class:`~throwmap.engine.realisation.ImpulseThrow`). In the arm frame this is the
+:class:`~throwmap.system.motion.ImpulseThrow`). In the arm frame this is the
 horizontal throw with gravity (−g sin α, −g cos α): the first-contact search sees the
 normal component g cos α, the CM's x gets −½ g sin α t², and the cascade runs in
 ψ = θ + α (:mod:`~throwmap.kernels.roll`). Energies use U = g cos α (y − h) + g sin α x.

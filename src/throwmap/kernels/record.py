@@ -1,7 +1,7 @@
 """Trajectory rows written by the analytic kernels (model "paper"): poses sampled in time.
 
 ``traj`` (M, 4) receives rows (t, x_cm, y_cm, φ) (s, m, m, rad): the world pose of
-:mod:`throwmap.throws.trajectory` (vertex_j = (x, y) + R(φ) w_j; φ continuous, not
+:mod:`throwmap.records.trajectory` (vertex_j = (x, y) + R(φ) w_j; φ continuous, not
 wrapped). ``tags`` (M,) says what touches the arm at each row: ``FLIGHT`` (−1)
 nothing, 0 ≤ j < n the pivot vertex w_j, n + k both support vertices of side k
 (at rest or at a landing). ``ts`` (:data:`NTS`,) carries the writer's state:

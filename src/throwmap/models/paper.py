@@ -18,8 +18,9 @@ from ..kernels import codes as C
 from ..kernels.paper import PARALLEL_MIN, throw_many, throw_many_serial, throw_one, throw_one_traj
 from ..kernels.record import FLIGHT
 from .rigid_body import stable_at
-from ..throws.outcome import Status, ThrowOutcome
-from ..throws.trajectory import NO_CONTACT, Trajectory, contact_points, drawn_length, world_vertices
+from ..records.outcome import Status, ThrowOutcome
+from ..records.trajectory import NO_CONTACT, Trajectory, contact_points, drawn_length
+from ..system.pose import world_vertices
 from ._checks import int_at_least, tolerance
 from .base import BatchArrays, Features
 from .registry import register

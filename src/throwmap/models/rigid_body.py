@@ -24,8 +24,9 @@ from ..errors import InvalidStateError, shown
 from ..kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY, count_samples, pick, throw_one_rigid_body
 from ..kernels.rigid_body.tilt import tilted_stable
 from ..system.fixtures import Cavity, Wall
-from ..throws.outcome import ThrowOutcome
-from ..throws.trajectory import Trajectory, world_vertices
+from ..records.outcome import ThrowOutcome
+from ..records.trajectory import Trajectory
+from ..system.pose import world_vertices
 from ._checks import int_at_least, tolerance
 from .base import BatchArrays, Features
 from .registry import register
@@ -57,7 +58,7 @@ class RigidBodyOptions:
     ``realisation``: how the arm moves (as model "engine"): None, the paper's impulse at the throw's ω
     (:class:`~throwmap.engine.ImpulseThrow` likewise, at its own ω); a
     :class:`~throwmap.engine.FiniteThrow`, :class:`~throwmap.engine.RecoilThrow` or
-    :class:`~throwmap.engine.realisation.SampledThrow`: the part rides the moving arm in the arm frame
+    :class:`~throwmap.system.motion.SampledThrow`: the part rides the moving arm in the arm frame
     (:mod:`throwmap.kernels.rigid_body.moving`), the static automaton takes over once the arm stops;
     or a callable ``omega -> realisation`` (one per throw, e.g. ``RecoilThrow.for_release_rate``).
     """
@@ -71,7 +72,7 @@ class RigidBodyOptions:
     def __post_init__(self):
         r = self.realisation
         if r is not None and not (callable(r) and not hasattr(r, "angle")):
-            from ..engine.realisation import TiltTo, check_realisation  # no pymunk import
+            from ..system.motion import TiltTo, check_realisation  # no pymunk import
 
             check_realisation(r)
             if isinstance(r, TiltTo):
@@ -179,10 +180,10 @@ def realisation_for(o: RigidBodyOptions, omega: float, system):
     if r is None:
         return None, omega
     if callable(r) and not hasattr(r, "angle"):  # a factory ω → realisation (as iterate's engine chain)
-        from ..engine.realisation import check_realisation
+        from ..system.motion import check_realisation
 
         r = check_realisation(r(float(omega)))
-    from ..engine.realisation import ImpulseThrow, TiltTo
+    from ..system.motion import ImpulseThrow, TiltTo
 
     if isinstance(r, ImpulseThrow):
         return None, r.omega

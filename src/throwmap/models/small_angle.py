@@ -48,6 +48,14 @@ class SmallAngleModel:
                out.records)
         return out
 
+    @property
+    def unresolved_reason(self) -> str:
+        """Why a throw is ``unresolved`` when its record gives no reason code."""
+        from ..records.outcome import spin_reason
+
+        second = ", or g ≤ d ω² (the second-order expansion has no contact)" if self.order == 2 else ""
+        return "the closed forms give no answer here: " + spin_reason() + second
+
     def assumptions(self, records, mu, status) -> str:
         """What this model assumes (validation table)."""
         return "small-angle flight and the paper's no-slip, no-lift contact"

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
 
-from .. import __version__
+from ..version import __version__
 from ..errors import InvalidStateError, ThrowmapError, shown
 from .plan import EXPERIMENTS, FIGURES, SIZES
 
@@ -119,7 +119,8 @@ def reproduce(out, *, size: str = "full", workers: int = 0, only=None, progress=
     """Make every figure and run every experiment of :mod:`throwmap.reproduce.plan` at ``size`` (``"full"``: ≥ 200
     trials per experiment; ``"quick"``: a smoke run) into ``out``; ``only`` (keys) limits the work;
     ``progress(message)`` is called before each piece. Returns the :class:`Reproduction` and writes the reports."""
-    from ..io.files import atomic_write_text, json_ready
+    from ..io.files import atomic_write_text
+    from ..serial import json_ready
     from .report import html_report, markdown_report
 
     if size not in SIZES:

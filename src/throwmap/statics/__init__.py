@@ -10,7 +10,8 @@ Importing this package loads neither SciPy's optimiser nor matplotlib until a fu
 
 from __future__ import annotations
 
-from .contacts import find_contacts, overlap_depth
+from .contacts import find_contacts
+from ..system.geometry import overlap_depth
 from .leaning import drafts_no_lean, edge_frame_cm, lean_free_beta, lean_possible, leaning_bodies
 from .rest import Body, Contact, RestAnalysis, analyse_rest, gravity_arm_frame
 

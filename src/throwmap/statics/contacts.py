@@ -17,21 +17,10 @@ import math
 import numpy as np
 
 from ..errors import InvalidStateError
-from .rest import Body, Contact
+from ..system.geometry import edges_outward as _edges, overlap_depth
+from .rest import Contact
 
-__all__ = ["find_contacts", "overlap_depth"]
-
-
-def _edges(v: np.ndarray):
-    """(start, end, outward unit normal) of a convex polygon's edges, either orientation."""
-    n = len(v)
-    area2 = sum(v[i, 0] * v[(i + 1) % n, 1] - v[(i + 1) % n, 0] * v[i, 1] for i in range(n))
-    sign = 1.0 if area2 > 0 else -1.0  # CCW: outward normal = (dy, −dx)
-    for i in range(n):
-        p, q = v[i], v[(i + 1) % n]
-        d = q - p
-        L = float(np.hypot(*d))
-        yield p, q, sign * np.array([d[1], -d[0]]) / L
+__all__ = ["find_contacts"]
 
 
 def _on_segment(pt, p, q, tol):
@@ -44,17 +33,6 @@ def _on_segment(pt, p, q, tol):
         return math.inf
     s = min(max(s, 0.0), 1.0)
     return float(np.hypot(*(pt - (p + s * d))))
-
-
-def overlap_depth(va: np.ndarray, vb: np.ndarray) -> float:
-    """Penetration depth (m) of two convex polygons by separating axes: > 0 when they overlap."""
-    best = math.inf
-    for poly in (va, vb):
-        for p, q, n in _edges(poly):
-            pa = va @ n
-            pb = vb @ n
-            best = min(best, min(pa.max(), pb.max()) - max(pa.min(), pb.min()))
-    return best
 
 
 def find_contacts(bodies, *, h: float, mu_arm: float, length=None, back: float = 0.0, wall=None,

@@ -45,7 +45,7 @@ def low_phase_sequences(episodes, part, *, length: float, h: float, bin: float =
     """Per episode with a tilt: the reduced states (labels) after the tilt and after each throw of its first low
     phase, ending in ``assembled`` or ``ended``. ``episodes``: dicts with ``phases``, ``poses``, ``statuses``."""
     from ..control.pair_sensors import LONG_LEG, READY_TILT, is_assembled, pair_ready
-    from ..throws.trajectory import state_from_pose
+    from ..system.pose import state_from_pose
 
     def label(poses, status) -> str:
         if status != "ok":

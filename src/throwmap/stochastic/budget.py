@@ -36,7 +36,7 @@ _HINTS = {"cell": "a larger --cell", "samples": "fewer --samples", "mu_nodes": "
 def count_cells(part, arm, size: float, breaks=()) -> int:
     """The number of cells :meth:`~throwmap.stochastic.cells.Cells.on_arm` will cut (at most; 0 where a side
     is unbounded: ``on_arm`` refuses that itself), without making them."""
-    from ..throws.throw import start_interval
+    from ..system.starts import start_interval
 
     n = 0
     for k in part.stable_sides:

@@ -63,7 +63,7 @@ def _jitter(omega, noise, rng, n):
 def _throw(part, arm, x, side, w, model, noise, options):
     """Throws on ``model`` with the noise's arm motion where the model takes one; (x, side, label)."""
     from ..models import get_model
-    from ..throws.outcome import Status
+    from ..records.outcome import Status
     from ..throws.throw import throw_batch
 
     kw = dict(options)

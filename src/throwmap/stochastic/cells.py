@@ -1,7 +1,7 @@
 """Cells on the arm: the finite state space of a stochastic throw map (issue 14, item 1).
 
 A part resting flat is ``(x, side)`` (m, stable side). :class:`Cells` cuts each stable side's
-admissible starts ``lo < x ≤ hi`` (:func:`throwmap.throws.throw.start_interval`, or a given span)
+admissible starts ``lo < x ≤ hi`` (:func:`throwmap.system.starts.start_interval`, or a given span)
 into intervals of length at most ``size`` (m), with extra cut points ``breaks`` (m) where a
 policy's sensors switch (the goal window x_f ± ε, approach rungs), so that a cell never straddles
 a sensor threshold. Transient state ``i`` of a chain is cell ``i``; cells are numbered side by side
@@ -61,7 +61,7 @@ class Cells:
     def on_arm(cls, part, arm, size: float, *, breaks=(), span=None, sides=None) -> "Cells":
         """Cells of at most ``size`` m over each stable side's admissible starts (or ``span`` = (lo, hi) m,
         clipped to them; needed on an unbounded arm), cut at ``breaks`` (m)."""
-        from ..throws.throw import start_interval
+        from ..system.starts import start_interval
 
         if isinstance(size, bool) or not isinstance(size, (int, float)) or not math.isfinite(size) or size <= 0:
             raise InvalidStateError("cell", f"must be a cell size > 0 (m), got {shown(size)}")

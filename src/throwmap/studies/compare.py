@@ -9,7 +9,7 @@ import numpy as np
 
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..system.arm import Arm
-from ..throws.outcome import Status
+from ..records.outcome import Status
 from ..system.part import Part
 from ..throws.throw import check_model, throw_batch
 

@@ -32,7 +32,8 @@ import numpy as np
 
 from ..system.arm import Arm
 from .compare import compare_models
-from ..io.files import atomic_write_text, json_ready
+from ..io.files import atomic_write_text
+from ..serial import json_ready
 from ..throws.orbit import iterate
 from ..system.catalogue import triangle_30_60_90
 from ..throws.throw import throw

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..kernels import codes as C
 from ..system.arm import Arm
-from ..throws.outcome import Status
+from ..records.outcome import Status
 from ..throws.throw import throw
 from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
 from .validation import default_parts
@@ -71,7 +71,7 @@ def validate_recoil(n: int = 200, seed: int = 0, parts=None, impact_law: str = "
     one-step law of time-stepping engines such as pymunk; "routh" differs from it at μ = 0.3). Returns a dict: ``cases``, per-throw ``results`` (``rb``,
     ``engine``, ``engine_default``, ``rb_impulse``, ``engine_impulse``: lists of (x, side, status,
     message)), ``summary`` (:func:`_summary`), ``seconds`` per model."""
-    from ..engine.realisation import RecoilThrow
+    from ..system.motion import RecoilThrow
     from ..engine.settings import EngineSettings
 
     base = EngineSettings()

@@ -37,8 +37,9 @@ from ..kernels import codes as C
 from ..system.arm import Arm
 from ..system.fixtures import Wall
 from ..system.part import Part
-from ..throws.outcome import Status
-from ..throws.throw import start_interval, throw, throw_batch, tilted_rest_reason, wall_reach
+from ..records.outcome import Status
+from ..system.starts import start_interval, tilted_rest_reason, wall_reach
+from ..throws.throw import throw, throw_batch
 from ..analysis.wall import wall_fixed_point
 from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
 from .tilt_wall_report import MU_BANDS, TiltWallReport, _band
@@ -126,7 +127,7 @@ def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Ge
                alpha_range=ALPHA_RANGE) -> TiltWallCases:
     """``n`` random throws of ``condition`` (a key of :data:`CONDITIONS`) drawn with ``rng``; α uniform
     over ``alpha_range`` (rad; ``(0, 0)``: the plain arm's baseline on the same draws). The side is
-    drawn among those the part rests on at that α (:func:`throwmap.throws.throw.tilted_rest_reason`:
+    drawn among those the part rests on at that α (:func:`throwmap.system.starts.tilted_rest_reason`:
     it neither tips nor slides); a draw where every side tips is drawn again."""
     spec = CONDITIONS[condition]
     names = list(parts)

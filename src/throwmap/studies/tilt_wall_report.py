@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..throws.outcome import Status
+from ..records.outcome import Status
 
 __all__ = ["MU_BANDS", "TiltWallReport"]
 
@@ -106,7 +106,7 @@ class TiltWallReport:
                 f"{_f(fp['free_slope'], '+.3g')}"] + ([f"  {ref['model']}: {imgs}"] if imgs else [])
 
     def to_dict(self) -> dict:
-        from ..io.files import json_ready
+        from ..serial import json_ready
 
         return json_ready({"rows": list(self.rows), "goals": self.goals, "fixed_point": self.fixed_point,
                            "settings": self.settings, "table_markdown": self.table()})

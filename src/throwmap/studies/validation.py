@@ -20,7 +20,7 @@ import numpy as np
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..system.arm import Arm
 from ..kernels import codes as C
-from ..throws.outcome import Status
+from ..records.outcome import Status
 from ..system.part import Part
 from ..system.catalogue import rectangle, regular_polygon, triangle_30_60_90
 from ..models import get_model
@@ -146,7 +146,7 @@ class ValidationReport:
                 for name, g in self.goals.items()]
 
     def to_dict(self) -> dict:
-        from ..io.files import json_ready
+        from ..serial import json_ready
 
         return json_ready({"reference": self.reference, "rows": list(self.rows), "goals": self.goals,
                            "settings": self.settings, "table_markdown": self.table(),

@@ -23,7 +23,7 @@ import os
 import re
 from pathlib import Path
 
-from .. import __version__
+from ..version import __version__
 from ..errors import InvalidStateError, shown
 from .schema import jsonable
 

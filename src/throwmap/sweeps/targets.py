@@ -26,7 +26,7 @@ import math
 import time
 import warnings
 
-from .. import __version__
+from ..version import __version__
 from ..errors import ThrowmapError
 
 __all__ = ["run_chunk", "run_trials", "summarise_trials", "RESULT_COLUMNS"]
@@ -145,7 +145,7 @@ def _throw_rows(configs: list) -> list:
     """Rows of a chunk of throws: one :func:`throw_batch` per distinct map (all but x, side, ω)."""
     import numpy as np
 
-    from ..throws.outcome import Status
+    from ..records.outcome import Status
     from ..throws.throw import throw_batch
 
     rows: list = [None] * len(configs)

@@ -21,6 +21,8 @@ __all__ = [
     "polygon_mass_properties",
     "point_in_convex_polygon",
     "side_table",
+    "edges_outward",
+    "overlap_depth",
 ]
 
 _REL_EPS = 1e-9  # relative tolerance for collinearity / degeneracy tests
@@ -170,3 +172,26 @@ def side_table(w: np.ndarray) -> dict[str, np.ndarray]:
         "stable": (uL < 0.0) & (uR > 0.0),
         "ell": np.hypot(w[:, 0], w[:, 1]),
     }
+
+
+def edges_outward(v: np.ndarray):
+    """(start, end, outward unit normal) of a convex polygon's edges, either orientation."""
+    n = len(v)
+    area2 = sum(v[i, 0] * v[(i + 1) % n, 1] - v[(i + 1) % n, 0] * v[i, 1] for i in range(n))
+    sign = 1.0 if area2 > 0 else -1.0  # CCW: outward normal = (dy, −dx)
+    for i in range(n):
+        p, q = v[i], v[(i + 1) % n]
+        d = q - p
+        L = float(np.hypot(*d))
+        yield p, q, sign * np.array([d[1], -d[0]]) / L
+
+
+def overlap_depth(va: np.ndarray, vb: np.ndarray) -> float:
+    """Penetration depth (m) of two convex polygons by separating axes: > 0 when they overlap."""
+    best = math.inf
+    for poly in (va, vb):
+        for p, q, n in edges_outward(poly):
+            pa = va @ n
+            pb = vb @ n
+            best = min(best, min(pa.max(), pb.max()) - max(pa.min(), pb.min()))
+    return best

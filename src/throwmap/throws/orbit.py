@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -12,7 +11,8 @@ import time
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..system.arm import Arm
 from ..errors import InvalidStateError, shown
-from .outcome import Status, ThrowOutcome
+from ..records.outcome import Status, ThrowOutcome
+from ..records.orbit import Orbit
 from ..system.part import Part
 from .throw import DEFAULT_MODEL, _invalid_outcome, throw
 
@@ -24,102 +24,6 @@ TIMED_THROWS = 8
 """Throws of an orbit timed (after :data:`WARM_THROWS` that warm the kernels) to estimate the whole orbit's time."""
 WARM_THROWS = 2
 """Throws at the start of a run not counted in its time estimate (first calls compile or warm caches)."""
-
-
-@dataclass(frozen=True, slots=True)
-class Orbit:
-    """An orbit (T^{ω_k} ∘ … ∘ T^{ω_1})(x_0, i_0).
-
-    ``x`` (m) and ``side`` hold the start and the state after each completed throw
-    (length ``n_throws + 1``); ``omegas`` the release rates used (rad/s);
-    ``outcomes`` each throw's :class:`ThrowOutcome`. ``status`` is OK if every throw
-    was, else the escape that ended the orbit early (its outcome is the last one).
-    ``poses`` (model ``"engine"`` only, else None): the part's arm-frame pose
-    ``(x, y, φ)`` (m, m, rad) at the start and after each completed throw — the pose
-    the next throw starts from, tilted where a fixture holds the part so. ``alpha`` (rad) and
-    ``fixtures`` are the system the orbit was thrown in.
-    """
-
-    x: np.ndarray
-    side: np.ndarray
-    omegas: np.ndarray
-    outcomes: tuple
-    status: Status
-    model: str
-    poses: tuple | None = None
-    alpha: float = 0.0
-    fixtures: tuple = ()
-
-    def __repr__(self) -> str:
-        om = np.asarray(self.omegas, dtype=float)
-        if om.size == 0:
-            omega = "no throw"
-        elif np.all(om == om[0]):
-            omega = f"omega={om[0]:g} rad/s"
-        else:
-            omega = f"omega∈[{om.min():g}, {om.max():g}] rad/s"
-        kinds = self.kinds
-        jogs, flips = kinds.count("jog"), kinds.count("flip")
-        sides = ", ".join(str(int(s)) for s in np.unique(self.side))
-        from .outcome import _system_text
-
-        return (f"Orbit(model={self.model!r}{_system_text(self)}, {omega}, {self.n_throws} throws ({jogs} jogs, {flips} flips), "
-                f"{self.status.label}, sides {sides}, x∈[{np.min(self.x):.4g}, {np.max(self.x):.4g}] m, "
-                f"final (x={self.x[-1]:.4g} m, side {int(self.side[-1])}))")
-
-    @property
-    def n_throws(self) -> int:
-        return len(self.outcomes)
-
-    @property
-    def escaped(self) -> bool:
-        return self.status != Status.OK
-
-    @property
-    def kinds(self) -> tuple[str, ...]:
-        return tuple(o.kind for o in self.outcomes)
-
-    def to_dict(self) -> dict:
-        from ..system.fixtures import fixture_to_dict
-
-        return {
-            "model": self.model,
-            "status": self.status.label,
-            "x": [float(v) for v in self.x],
-            "side": [int(v) for v in self.side],
-            "omegas": [float(v) for v in self.omegas],
-            "kinds": list(self.kinds),
-            "outcomes": [o.to_dict() for o in self.outcomes],
-            "alpha": float(self.alpha),
-            "fixtures": [fixture_to_dict(f) for f in self.fixtures],
-            **({} if self.poses is None else {"poses": [[float(c) for c in p] for p in self.poses]}),
-        }
-
-    @classmethod
-    def from_dict(cls, d: dict) -> "Orbit":
-        """Inverse of :meth:`to_dict`."""
-        from ..system.fixtures import fixture_from_dict
-
-        return cls(x=np.array(d["x"], dtype=float), side=np.array(d["side"], dtype=int),
-                   omegas=np.array(d["omegas"], dtype=float),
-                   outcomes=tuple(ThrowOutcome.from_dict(o) for o in d["outcomes"]),
-                   status=Status.from_label(d["status"]), model=d["model"],
-                   poses=None if d.get("poses") is None else tuple(tuple(float(c) for c in p) for p in d["poses"]),
-                   alpha=float(d.get("alpha", 0.0)), fixtures=tuple(fixture_from_dict(f) for f in d.get("fixtures", ())))
-
-    def table(self) -> str:
-        """One line per throw: ω, the start, the kind of throw and where it ended."""
-        lines = [f"orbit, model {self.model}: {self.n_throws} throws, {self.status.label}",
-                 f"{'#':>5}{'ω rad/s':>10}{'x m':>12}{'side':>6}  {'kind':<14}{'new x m':>12}{'side':>7}"]
-        for i, o in enumerate(self.outcomes):
-            lines.append(f"{i + 1:>5}{o.omega:>10.4g}{o.x0:>12.6f}{o.side0:>6d}  {o.kind:<14}{o.x:>12.6f}{o.side:>7d}")
-        return "\n".join(lines)
-
-    def plot(self, ax=None, **kwargs):
-        """x against throw number, side by colour (like paper Figs. 7, 16)."""
-        from ..viz.orbit import plot_orbit
-
-        return plot_orbit(self, ax=ax, **kwargs)
 
 
 def throw_rates(omegas, n=None, *, min_n: int = 0) -> np.ndarray:
@@ -185,7 +89,7 @@ class ThrowGuard:
 def _restart_reason(part: Part, arm: Arm, x: float, side: int, omega: float) -> str:
     """Why the rest ``(x, side)`` of the last throw is not a start of the next one (``""`` if it is): a part at
     rest leaning on a wall reports its CM's x and the nearest side, which may lie past the last flat start."""
-    from .throw import check_start
+    from ..system.starts import check_start
 
     try:
         check_start(part, arm, x, side, omega)
@@ -283,7 +187,8 @@ def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs, st
     """
     from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
     from ..system.arm import warn_if_outside_regime
-    from .throw import check_start, prepare
+    from ..system.starts import check_start
+    from .throw import prepare
 
     kw = dict(throw_kwargs)
     fixtures, alpha, options = kw.pop("fixtures", ()), kw.pop("alpha", 0.0), kw.pop("options", None)
@@ -292,7 +197,7 @@ def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs, st
     if factory is not None:
         kw["realisation"] = None
     if start_scene is not None:
-        from .trajectory import state_from_pose
+        from ..system.pose import state_from_pose
 
         if len(start_scene.placements) != 1 or start_scene.placements[0].part != part or start_scene.arm != arm:
             raise InvalidStateError("state", "the engine Scene must hold this one part on this arm")

@@ -19,9 +19,10 @@ from ..system.arm import Arm
 from ..system.part import Part
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
 from .orbit import ThrowGuard, planned_throws, throw_rates
-from .outcome import Status, ThrowOutcome
-from .throw import check_start, prepare, tilted_rest_reason
-from .trajectory import DEFAULT_DT, Trajectory, check_dt, drawn_length
+from ..records.outcome import Status, ThrowOutcome
+from ..system.starts import check_start, tilted_rest_reason
+from .throw import prepare
+from ..records.trajectory import DEFAULT_DT, Trajectory, check_dt, drawn_length
 
 __all__ = ["throw_trajectory", "paper_trajectory", "paper_throw_trajectory", "orbit_trajectory", "trajectory_models",
            "DEFAULT_DT", "TRAJECTORY_BYTES_PER_THROW"]
@@ -56,7 +57,7 @@ def throw_trajectory(part: Part, arm: Arm, x: float, side: int, omega: float, mo
     Returns ``(ThrowOutcome, Trajectory)``; the outcome equals :func:`throwmap.throw` with the
     same arguments. Keywords as :func:`throwmap.throw`; the engines sample at their own
     ``record_dt`` (:class:`throwmap.engine.EngineSettings`) instead of ``dt``. A start that is not
-    at rest on a tilted arm (:func:`~throwmap.throws.throw.tilted_rest_reason`) is refused naming ``side``.
+    at rest on a tilted arm (:func:`~throwmap.system.starts.tilted_rest_reason`) is refused naming ``side``.
     """
     m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     if not m.features.trajectory:

@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import InvalidStateError, shown
 from ..system.arm import Arm
 from ..system.part import Part
-from .outcome import Status
+from ..records.outcome import Status
 from ..models import DEFAULT_MODEL
 from .throw import throw_batch
 
@@ -51,7 +51,7 @@ class MapSamples:
     x_next, side_next : ndarray
         Their images (m, side index); meaningful where ``status == 0``.
     status : ndarray
-        :class:`~throwmap.throws.outcome.Status` code of each image (0 = rests on
+        :class:`~throwmap.records.outcome.Status` code of each image (0 = rests on
         the arm; otherwise the orbit ends there — off the arm, no rest, …).
     sides : tuple of int
         The sampled sides, in order; entries ``[i n, (i + 1) n)`` belong to ``sides[i]``.
@@ -197,7 +197,7 @@ def throw_map_samples(part: Part, arm: Arm, omega: float, *, model: str = DEFAUL
     x_lo = [part.x_min(s) for s in sides]
     x_hi = [x_max] * len(sides)
     if walled:  # stop each side where its outer vertex meets the wall (beyond, no rest exists)
-        from .throw import start_interval
+        from ..system.starts import start_interval
 
         x_hi = [min(x_max, start_interval(part, arm, s)[1]) for s in sides]
         x_hi = [hi if hi > lo else x_max for hi, lo in zip(x_hi, x_lo)]

@@ -1,4 +1,4 @@
-"""Animations of a :class:`~throwmap.throws.trajectory.Trajectory`: GIF (Pillow) or MP4 (ffmpeg).
+"""Animations of a :class:`~throwmap.records.trajectory.Trajectory`: GIF (Pillow) or MP4 (ffmpeg).
 
 matplotlib is imported on first use; ``import throwmap`` does not load it.
 
@@ -45,7 +45,7 @@ import numpy as np
 
 from ..errors import ThrowmapError
 from ..io.files import atomic_output
-from ..throws.trajectory import Trajectory
+from ..records.trajectory import Trajectory
 from .frames import Scene, frame_label, sample_frames, scale_bar_length
 
 __all__ = [

@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from ..throws.trajectory import world_vertices
+from ..system.pose import world_vertices
 from .style import _plt, scale
 
 __all__ = ["plot_assembly_episode", "plot_assembly_snapshots", "draw_pair"]

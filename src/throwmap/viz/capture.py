@@ -26,7 +26,7 @@ def plot_capture(design, ax=None, path=None, pose=None, title: str | None = None
     from matplotlib.patches import Polygon
 
     from ..system.fixtures import surface_profile
-    from ..throws.trajectory import pose_at_rest, world_vertices
+    from ..system.pose import pose_at_rest, world_vertices
     from .style import side_colors
 
     d, part, k = design, design.part, design.side

@@ -12,7 +12,8 @@ import math
 
 import numpy as np
 
-from ..throws.trajectory import Trajectory, world_vertices
+from ..records.trajectory import Trajectory
+from ..system.pose import world_vertices
 from .style import part_label
 
 __all__ = ["Scene", "frame_label", "sample_frames", "scale_bar_length"]

@@ -1,6 +1,6 @@
 """Orbit figure: x against throw number, side by colour (paper Figs. 7 and 16).
 
-Draws an :class:`~throwmap.throws.orbit.Orbit` that :func:`throwmap.iterate` has
+Draws an :class:`~throwmap.records.orbit.Orbit` that :func:`throwmap.iterate` has
 already computed; matplotlib is imported on first use.
 """
 
@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..throws.outcome import Status
+from ..records.outcome import Status
 from .style import _plt, describe_setting, side_colors
 
 __all__ = ["plot_orbit"]

@@ -1,7 +1,7 @@
 """The browser viewer: one self-contained HTML file that plays a recorded motion beside its orbit plot.
 
 ``throwmap view`` (:mod:`throwmap.cli.view`) computes or loads what is shown; this module only renders data it is
-given — a :class:`~throwmap.throws.trajectory.Trajectory` and plain dicts — into HTML. Nothing is fetched when the
+given — a :class:`~throwmap.records.trajectory.Trajectory` and plain dicts — into HTML. Nothing is fetched when the
 page is viewed: the script and the style (:file:`viewer_assets/viewer.js`, :file:`viewer.css`, package data) and
 the data (one ``<script type="application/json">`` block) are inlined.
 
@@ -45,9 +45,10 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InvalidStateError, shown
-from ..io.files import atomic_write_text, json_ready
+from ..io.files import atomic_write_text
+from ..serial import json_ready
 from ..system.fixtures import arm_solids
-from ..throws.trajectory import Trajectory
+from ..records.trajectory import Trajectory
 from .frames import frame_label, sample_frames
 
 __all__ = ["DEFAULT_FPS", "MAX_FRAMES", "MAX_TABLE_ROWS", "PART_COLORS", "QUANTUM", "orbit_steps", "player_data",

@@ -3,7 +3,7 @@
 Simulates the paper's impulse throw (Sec. III-B) — the part at rest on ``side``
 with CM at ``x`` gets the arm's velocity ω × r = ω(−(h + d_k), x) and spin ω at
 t = 0, the arm stays still — with MuJoCo's soft-contact solver, and reads the
-result back in throwmap's terms (:class:`~throwmap.throws.outcome.ThrowOutcome`).
+result back in throwmap's terms (:class:`~throwmap.records.outcome.ThrowOutcome`).
 
 ``mujoco`` is an optional extra (``pip install 'throwmap[mujoco]'``), imported
 only when a simulation runs; :func:`mujoco_model_xml` needs nothing beyond the
@@ -18,7 +18,7 @@ hinge about −y. A rotation by θ about +y takes +x toward −z (clockwise in t
 positive hinge angle is a CCW rotation in (x, y). With the body at the origin
 and the part's CM-centred vertices ``w`` as the body-frame geometry, the joint
 coordinates are exactly throwmap's pose: ``qpos = (x, y, φ)`` with
-``vertex_j = (x, y) + R(φ) w_j`` (:mod:`throwmap.throws.trajectory`), and ``qvel`` is
+``vertex_j = (x, y) + R(φ) w_j`` (:mod:`throwmap.records.trajectory`), and ``qvel`` is
 ``(ẋ, ẏ, φ̇)``. ``tests/engine/test_mujoco_backend.py`` checks this against MuJoCo's
 own world geometry.
 
@@ -99,7 +99,7 @@ part is ``OK`` only as :func:`throwmap.engine.rest.rest_status` reads it, the sa
 rule as the pymunk engine and the analytic models: flat on a stable side with
 both support vertices on the arm (else ``BEHIND_JOINT``/``OFF_END``, or
 ``UNCONVERGED`` tilted on the bare arm), with ``(x, side)`` from
-:func:`~throwmap.throws.trajectory.state_from_pose`.
+:func:`~throwmap.system.pose.state_from_pose`.
 
 Agreement with model "paper"
 ----------------------------

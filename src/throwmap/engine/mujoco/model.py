@@ -7,7 +7,7 @@ import math
 from ...errors import InvalidStateError
 from ...system.arm import Arm
 from ...system.part import Part
-from ...throws.trajectory import pose_at_rest
+from ...system.pose import pose_at_rest
 from .settings import ARM_DEPTH, NO_SLIP_MU, UNBOUNDED_EXTRA, MujocoSettings, finite
 
 __all__ = ["mujoco_model_xml", "arm_length"]

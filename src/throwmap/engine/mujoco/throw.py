@@ -11,11 +11,12 @@ from ...errors import InvalidStateError, ThrowmapError
 from ...kernels import codes as C
 from ...system.arm import Arm
 from ...system.part import Part
-from ...throws.outcome import Status, ThrowOutcome
-from ...throws.throw import check_start
-from ...throws.trajectory import Trajectory, pose_at_rest, state_from_pose
+from ...records.outcome import Status, ThrowOutcome
+from ...system.starts import check_start
+from ...records.trajectory import Trajectory
+from ...system.pose import pose_at_rest, state_from_pose
 from ..reach import lengths, unbounded_message
-from ..realisation import ImpulseThrow
+from ...system.motion import ImpulseThrow
 from ..rest import edge_status, rest_status, tilted_message
 from ..scene import Placement, Scene
 from .model import mujoco_model_xml
@@ -49,7 +50,7 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
                  settings: MujocoSettings = MujocoSettings(), *, record: bool = False):
     """The impulse throw of ``part`` resting at ``(x, side)`` with release rate ``omega`` (rad/s), in MuJoCo.
 
-    Returns a :class:`~throwmap.throws.outcome.ThrowOutcome` (model ``"engine:mujoco"``);
+    Returns a :class:`~throwmap.records.outcome.ThrowOutcome` (model ``"engine:mujoco"``);
     with ``record=True`` the pair ``(ThrowOutcome, Trajectory)``, sampled every
     step. Raises :class:`~throwmap.errors.InvalidStateError` for an inadmissible
     start (as :func:`throwmap.throws.throw` does) and :class:`~throwmap.errors.ThrowmapError`

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from ...throws.outcome import Status
+from ...records.outcome import Status
 from ..rest import EDGE_EPS
 from .world import BOX_TOL, World
 

@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from ...kernels import codes as C
-from ...throws.outcome import Status
+from ...records.outcome import Status
 from .friction import attach_raw, install_friction_cap
 from .world import World
 

@@ -8,8 +8,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...kernels import codes as C
-from ...throws.outcome import Status, ThrowOutcome
-from ...throws.trajectory import Trajectory, state_from_pose
+from ...records.outcome import Status, ThrowOutcome
+from ...records.trajectory import Trajectory
+from ...system.pose import state_from_pose
 from ..rest import FLAT_TILT, UNCONVERGED, clamp_to_arm, rest_status, tilted_message
 from ..scene import Placement, Scene
 from .contacts import Contacts
@@ -24,7 +25,7 @@ class EngineRun:
 
     ``status`` is the run's overall status (the first part's failure, else ok);
     ``statuses``/``states``/``poses`` are per part: ``states[i] = (x, side, tilt)``
-    read in the arm frame at the end (see :func:`throwmap.throws.trajectory.state_from_pose`),
+    read in the arm frame at the end (see :func:`throwmap.system.pose.state_from_pose`),
     ``poses[i]`` the arm-frame pose ``(x, y, φ)``. ``records`` is (P, NREC) per
     unit mass (see :mod:`throwmap.kernels.codes`; entries an engine cannot
     measure are nan). ``alpha`` is the arm's rest angle at the end.
@@ -86,7 +87,7 @@ class EngineRun:
 
 
 class Recorder:
-    """Samples of a run for its :class:`~throwmap.throws.trajectory.Trajectory`: time, arm angle, world poses, contact points."""
+    """Samples of a run for its :class:`~throwmap.records.trajectory.Trajectory`: time, arm angle, world poses, contact points."""
 
     __slots__ = ("world", "t", "arm", "poses", "contacts")
 

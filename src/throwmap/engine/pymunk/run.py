@@ -7,9 +7,9 @@ from dataclasses import replace
 
 from ...errors import InvalidStateError, shown
 from ...kernels import codes as C
-from ...throws.outcome import Status
+from ...records.outcome import Status
 from ..reach import lengths, unbounded_message
-from ..realisation import ImpulseThrow, angle_function, check_realisation
+from ...system.motion import ImpulseThrow, angle_function, check_realisation
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
@@ -51,7 +51,7 @@ def simulate(scene: Scene, realisation=None, settings: EngineSettings | None = N
     ``realisation``: :class:`~throwmap.engine.ImpulseThrow` (default ω = 0: just
     settle), :class:`~throwmap.engine.FiniteThrow`, :class:`~throwmap.engine.RecoilThrow`
     or :class:`~throwmap.engine.TiltTo`. With ``record=True`` the run's
-    :class:`~throwmap.throws.trajectory.Trajectory` is kept. ``progress(t, t_max)``
+    :class:`~throwmap.records.trajectory.Trajectory` is kept. ``progress(t, t_max)``
     is called every simulated 10 ms if given. ``run_for`` (s): simulate exactly
     this long instead of stopping once settled.
 

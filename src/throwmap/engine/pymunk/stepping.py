@@ -68,7 +68,7 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
     """Take ``n`` pymunk steps of ``step`` (s) from time ``t`` (s); return the new time.
 
     While t < ``arm_stop`` the arm follows α + θ(t) (``alpha``, rad; ``angle`` is θ, e.g.
-    :func:`throwmap.engine.realisation.angle_function`); after it, it is parked at ``end_alpha`` once.
+    :func:`throwmap.system.motion.angle_function`); after it, it is parked at ``end_alpha`` once.
     θ(t + step) of one step is reused as θ(t) of the next (the same float: t advances by ``t += step``).
     First impacts get their post-impact record after the step they happened in.
     """

@@ -17,7 +17,7 @@ the flagged ones.
 
 from __future__ import annotations
 
-from ...throws.outcome import Status
+from ...records.outcome import Status
 
 __all__ = ["flags", "disagreement", "PEN_FLAG", "FLIPS_FLAG"]
 

@@ -8,7 +8,7 @@ friction μ, Sec. III-C's "friction is high enough" is no longer imposed).
 Unit mass, inertia ρ² about the CM, gravity −g ŷ, arm line y = h for
 0 ≤ x ≤ length, plastic impacts (zero restitution).
 
-Pose convention (as :mod:`throwmap.throws.trajectory`): world vertex_j = (x, y) + R(φ) w_j;
+Pose convention (as :mod:`throwmap.records.trajectory`): world vertex_j = (x, y) + R(φ) w_j;
 flat on side k, φ = β_k (mod 2π) and y = h + d_k.
 
 Hybrid system

@@ -65,7 +65,7 @@ def arc_ok(th_from, E, lj, I, g, mu, towards_peak):
 def rest(x, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec):
     """Terminal mode REST flat on side k with the CM at x (m): status BEHIND_JOINT if the left support
     vertex is at x ≤ −back, OFF_END if the right one is beyond ``length`` (x + u_R > length), else OK
-    (the rest rule of :func:`throwmap.throws.throw.start_interval`)."""
+    (the rest rule of :func:`throwmap.system.starts.start_interval`)."""
     rec[C.E_FINAL] = g * d[k]
     rec[C.T_REST] = t
     m = round((phi - beta[k]) / TWO_PI)

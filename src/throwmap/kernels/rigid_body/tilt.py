@@ -5,7 +5,7 @@ Frame and gravity
 Every kernel works in the ARM frame: x along the arm from the joint, y normal to it,
 the arm line y = h. The arm rests at α (rad, counter-clockwise positive, |α| < π/2)
 and the impulse throw gives the part the velocity ω × r of the arm point under its
-CM while the arm itself stays put (as :class:`throwmap.engine.realisation.ImpulseThrow`),
+CM while the arm itself stays put (as :class:`throwmap.system.motion.ImpulseThrow`),
 so the release (Eq. 1) is unchanged and only gravity changes: in the arm frame it is
 
     g⃗ = (−g sin α, −g cos α) = (−g_t, −g_n),

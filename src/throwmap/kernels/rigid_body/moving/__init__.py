@@ -2,8 +2,8 @@
 
 The paper's release (Sec. III-B, Eq. 1) gives the resting part the arm point's velocity ω × r and
 spin ω at t = 0 and never moves the arm. Here the arm follows θ(t) of any realisation
-(:class:`~throwmap.engine.realisation.FiniteThrow`, :class:`~throwmap.engine.realisation.RecoilThrow`,
-:class:`~throwmap.engine.realisation.SampledThrow`): the part rides it (sticking or sliding, flat or on one
+(:class:`~throwmap.system.motion.FiniteThrow`, :class:`~throwmap.system.motion.RecoilThrow`,
+:class:`~throwmap.system.motion.SampledThrow`): the part rides it (sticking or sliding, flat or on one
 vertex), separates where its contact forces vanish, flies, and lands on the arm wherever the arm is.
 
 Architecture: everything is written in the ARM FRAME, where the arm is the fixed line y = h. Impacts

@@ -1,12 +1,12 @@
 """The arm's motion θ(t), θ̇(t), θ̈(t) of a throw realisation, with the times where it is not smooth.
 
 θ (rad, CCW +) is the arm's angle about its rest angle α, t (s) from the start of the
-run (:mod:`throwmap.engine.realisation`). The moving-arm phase (:mod:`.phase`) needs θ̈
+run (:mod:`throwmap.system.motion`). The moving-arm phase (:mod:`.phase`) needs θ̈
 (rad/s²) for the Euler force −m θ̈ × r; it takes it in closed form where the realisation
-is closed form (:class:`~throwmap.engine.realisation.RecoilThrow`: a half-cosine ramp, the
+is closed form (:class:`~throwmap.system.motion.RecoilThrow`: a half-cosine ramp, the
 underdamped PD step θ_s + a₀ e^{−ζω_nτ}(cos ω_dτ + ζ/√(1−ζ²) sin ω_dτ), a half-cosine return;
-:class:`~throwmap.engine.realisation.FiniteThrow`: constant rate), from the spline's own
-second derivative for :class:`~throwmap.engine.realisation.SampledThrow`, and by a central
+:class:`~throwmap.system.motion.FiniteThrow`: constant rate), from the spline's own
+second derivative for :class:`~throwmap.system.motion.SampledThrow`, and by a central
 difference (step 1e-5 s, error O(1e-10 θ'''')) for any other object with ``angle``/``rate``.
 
 :attr:`ArmMotion.breaks` lists the times at which θ̈ (or θ̇) jumps: the integrator steps onto
@@ -118,13 +118,9 @@ def _generic(r) -> ArmMotion:
 
 
 def arm_motion(r) -> ArmMotion:
-    """The :class:`ArmMotion` of realisation ``r`` (not an impulse: those need no moving phase)."""
-    from ....engine.realisation import FiniteThrow, RecoilThrow, SampledThrow
+    """The :class:`ArmMotion` of realisation ``r`` (not an impulse: those need no moving phase), by the
+    closed form its ``profile`` names (:mod:`throwmap.system.motion`; a central difference otherwise)."""
+    return _BY_PROFILE.get(getattr(r, "profile", "generic"), _generic)(r)
 
-    if isinstance(r, RecoilThrow):
-        return _recoil(r)
-    if isinstance(r, FiniteThrow):
-        return _finite(r)
-    if isinstance(r, SampledThrow):
-        return _sampled(r)
-    return _generic(r)
+
+_BY_PROFILE = {"recoil": _recoil, "finite": _finite, "sampled": _sampled}

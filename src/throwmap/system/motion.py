@@ -18,6 +18,10 @@ time, θ(t) (rad, CCW +), and its rate θ̇(t) (rad/s); t = 0 is the start of th
   cubic spline clamped at rest (θ̇ = 0) at both ends; the arm ends at its rest angle (θ = 0).
 * :class:`TiltTo` — no throw: the arm turns from its rest angle to a new one at a
   given rate (Sec. VI: lowering the arm to α < 0 before assembly).
+
+Each finite motion names its ``profile`` (``"finite"``, ``"recoil"``, ``"sampled"``, ``"generic"``):
+the closed form :mod:`throwmap.kernels.rigid_body.moving.profile` uses for θ̈ (any other object
+with ``angle``/``rate`` gets a central difference).
 """
 
 from __future__ import annotations
@@ -70,6 +74,7 @@ class FiniteThrow:
     duration: float = 0.01
 
     impulsive = False
+    profile = "finite"
 
     def __post_init__(self):
         object.__setattr__(self, "omega", _pos(self.omega, "omega", allow_zero=True))
@@ -105,6 +110,7 @@ class RecoilThrow:
     t_return: float = 0.05
 
     impulsive = False
+    profile = "recoil"
     start_angle = 0.0
 
     def __post_init__(self):
@@ -200,6 +206,7 @@ class SampledThrow:
     theta: tuple
 
     impulsive = False
+    profile = "sampled"
 
     def __post_init__(self):
         import numpy as np
@@ -275,6 +282,7 @@ class TiltTo:
     rate_: float = 0.5
 
     impulsive = False
+    profile = "generic"
     start_angle = 0.0
     omega = 0.0
 

@@ -22,7 +22,7 @@ class Status(enum.IntEnum):
     ``OK``: at rest on a stable side on the arm. ``BEHIND_JOINT``: a contact, or a
     resting support vertex, at x ≤ −arm.back (x ≤ 0 by default). ``OFF_END``: a
     contact beyond the arm's length, or a resting support vertex beyond it (x + u_R > length,
-    the rule of :func:`~throwmap.throws.throw.start_interval`). ``NO_REST``: the
+    the rule of :func:`~throwmap.system.starts.start_interval`). ``NO_REST``: the
     impact cap was reached, or (rigid_body, μ = 0 on an unbounded arm) the part slides
     outward for ever and never comes to rest.
     ``INVALID_START``: not thrown (batch with ``on_invalid="status"``).
@@ -80,9 +80,10 @@ class Status(enum.IntEnum):
 _STATUS = tuple(Status(c) for c in range(len(Status)))
 
 
-def _why(status: int, cap_hit: bool, model: str, why: float = math.nan) -> str:
-    """The analytic models' reason for an UNRESOLVED throw ("" for every other status); ``why``: the
-    record's reason code (:data:`throwmap.kernels.codes.WHY`), e.g. a walled throw rigid_body cannot follow."""
+def _why(status: int, cap_hit: bool, why: float = math.nan, reason: str = "") -> str:
+    """The reason for an UNRESOLVED throw ("" for every other status): the record's reason code
+    (:data:`throwmap.kernels.codes.WHY`, e.g. a walled throw rigid_body cannot follow), a search that used its
+    ``max_iter`` steps, else ``reason`` (the model's own text) or the spin-angle limit every exact flight has."""
     if status != C.UNRESOLVED:
         return ""
     if why == why and why > 0:
@@ -92,14 +93,16 @@ def _why(status: int, cap_hit: bool, model: str, why: float = math.nan) -> str:
     if cap_hit:
         return ("a contact search or integration used all its max_iter steps without an event: "
                 "not resolved (raise the model option max_iter)")
+    return reason or spin_reason()
+
+
+def spin_reason() -> str:
+    """The generic reason for an UNRESOLVED flight: the spin angle at first contact is beyond what double
+    precision resolves (:data:`throwmap.kernels.flight.MAX_SPIN_ANGLE`)."""
     from ..kernels.flight import MAX_SPIN_ANGLE
 
-    spin = (f"the spin angle ω t at first contact passes {MAX_SPIN_ANGLE:g} rad, beyond what double "
+    return (f"the spin angle ω t at first contact passes {MAX_SPIN_ANGLE:g} rad, beyond what double "
             "precision resolves")
-    if model.startswith("small_angle"):
-        return ("the closed forms give no answer here: " + spin
-                + (", or g ≤ d ω² (the second-order expansion has no contact)" if model == "small_angle2" else ""))
-    return spin
 
 
 def _why_code(message: str) -> float:
@@ -201,8 +204,11 @@ class ThrowOutcome:
         return not (self.lift_off or self.pull_impulse)
 
     @classmethod
-    def from_record(cls, part, x0, side0, omega, model, x, side, status, rec) -> "ThrowOutcome":
-        """Build from a kernel record (per unit mass) — the hot path of :func:`throwmap.throws.throw`."""
+    def from_record(cls, part, x0, side0, omega, model, x, side, status, rec, reason: str = "") -> "ThrowOutcome":
+        """Build from a kernel record (per unit mass) — the hot path of :func:`throwmap.throws.throw`.
+
+        ``reason``: the model's own text for an ``unresolved`` throw whose record carries no reason code
+        (e.g. the small-angle closed forms'); the spin-angle limit by default."""
         m = part.mass
         r = rec.tolist()
         cv = int(r[C.CONTACT_VERTEX]) if r[C.CONTACT_VERTEX] == r[C.CONTACT_VERTEX] else -1
@@ -236,7 +242,7 @@ class ThrowOutcome:
             r[C.T_REST],
             r[C.PENETRATION_MAX],
             r[C.CAP_HIT] == 1.0,
-            _why(int(status), r[C.CAP_HIT] == 1.0, model, r[C.WHY]),
+            _why(int(status), r[C.CAP_HIT] == 1.0, r[C.WHY], reason),
         )
 
     def to_record(self, part) -> np.ndarray:
@@ -263,7 +269,7 @@ class ThrowOutcome:
 
     def to_dict(self) -> dict:
         """JSON-ready dict (SI units; non-finite numbers become ``None``)."""
-        from ..io.files import json_ready
+        from ..serial import json_ready
 
         from ..system.fixtures import fixture_to_dict
 
@@ -357,7 +363,7 @@ class BatchOutcome:
 
     def to_dict(self) -> dict:
         """JSON-ready arrays (records as rows of the kernel layout, :mod:`throwmap.kernels.codes`)."""
-        from ..io.files import json_ready
+        from ..serial import json_ready
 
         from ..system.fixtures import fixture_to_dict
 
