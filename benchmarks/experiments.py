@@ -30,6 +30,7 @@ import time
 from pathlib import Path
 
 import throwmap as tm
+from throwmap.budget import Limits
 from throwmap.experiments import experiment_names, get_experiment
 from throwmap.experiments.base import trial_generator
 from throwmap.experiments.runner import run_experiment
@@ -71,7 +72,7 @@ def bench_experiment(name: str, n: int, workers: tuple[int, ...], ref_s: float, 
     out = {"experiment": name, "config": None if config is None else str(config), "n": n, "runs": []}
     for w in workers:
         t, c0 = time.perf_counter(), os.times()
-        r = run_experiment(name, cfg, n=n, seed=0, workers=w, force=True)
+        r = run_experiment(name, cfg, n=n, seed=0, workers=w, limits=Limits(force=True))
         wall, c1 = time.perf_counter() - t, os.times()
         # CPU of this process and of its finished worker processes: the trials' cost whatever the load
         cpu = sum(getattr(c1, k) - getattr(c0, k) for k in ("user", "system", "children_user", "children_system"))

@@ -14,6 +14,7 @@ import pytest
 from typer.testing import CliRunner
 
 import throwmap as tm
+from throwmap.budget import Limits
 from throwmap.budget import MAX_COUNT, check_count, guard_work
 from throwmap.cli.app import app
 from throwmap.errors import InvalidStateError
@@ -46,32 +47,32 @@ def test_iterate_refuses_huge_n_on_memory(n):
 @pytest.mark.parametrize("n", TOO_BIG)
 def test_iterate_refuses_counts_past_int64_even_forced(n):
     with pytest.raises(InvalidStateError) as info:
-        tm.iterate(PART, ARM, (0.12, 0), 4.0, n=n, force=True)
+        tm.iterate(PART, ARM, (0.12, 0), 4.0, n=n, limits=Limits(force=True))
     assert "2^63" in _one_line(info.value, "n")
 
 
 def test_iterate_time_guard_measures_throws():
     # a tiny time limit: refused after the few timed throws, on n, naming the time
     with pytest.raises(InvalidStateError) as info:
-        tm.iterate(PART, ARM, (0.12, 0), 4.0, n=10**6, max_seconds=1e-6)
+        tm.iterate(PART, ARM, (0.12, 0), 4.0, n=10**6, limits=Limits(max_seconds=1e-6))
     text = _one_line(info.value, "n")
     assert "measured now" in text and "max_seconds" in text
 
 
 def test_iterate_force_and_raised_limits_run():
-    o = tm.iterate(PART, ARM, (0.12, 0), 4.0, n=50, max_memory=1.0, max_seconds=1e-9, force=True)
+    o = tm.iterate(PART, ARM, (0.12, 0), 4.0, n=50, limits=Limits(max_memory=1.0, max_seconds=1e-9, force=True))
     assert o.n_throws == 50
-    o = tm.iterate(PART, ARM, (0.12, 0), 4.0, n=50, max_memory=1e6)  # 50 × 1.2 kB fits in 1 MB
+    o = tm.iterate(PART, ARM, (0.12, 0), 4.0, n=50, limits=Limits(max_memory=1e6))  # 50 × 1.2 kB fits in 1 MB
     assert o.n_throws == 50
     with pytest.raises(InvalidStateError) as info:  # … and 1000 throws do not
-        tm.iterate(PART, ARM, (0.12, 0), 4.0, n=1000, max_memory=1e6)
+        tm.iterate(PART, ARM, (0.12, 0), 4.0, n=1000, limits=Limits(max_memory=1e6))
     _one_line(info.value, "n")
 
 
 @pytest.mark.parametrize("bad", [0, -1.0, float("inf"), True, "1"])
 def test_iterate_bad_limits_named(bad):
     with pytest.raises(InvalidStateError) as info:
-        tm.iterate(PART, ARM, (0.12, 0), 4.0, n=2, max_memory=bad)
+        tm.iterate(PART, ARM, (0.12, 0), 4.0, n=2, limits=Limits(max_memory=bad))
     assert info.value.field == "max_memory"
 
 
@@ -80,8 +81,8 @@ def test_orbit_trajectory_guarded():
         orbit_trajectory(PART, ARM, 0.12, 0, 4.0, 2**31)
     assert "memory" in _one_line(info.value, "n")
     with pytest.raises(InvalidStateError):
-        orbit_trajectory(PART, ARM, 0.12, 0, 4.0, MAX_COUNT + 1, force=True)
-    traj = orbit_trajectory(PART, ARM, 0.12, 0, 4.0, 2, model="paper", max_memory=1.0, force=True)
+        orbit_trajectory(PART, ARM, 0.12, 0, 4.0, MAX_COUNT + 1, limits=Limits(force=True))
+    traj = orbit_trajectory(PART, ARM, 0.12, 0, 4.0, 2, model="paper", limits=Limits(max_memory=1.0, force=True))
     assert len(traj.meta["outcomes"]) == 2
 
 
@@ -122,15 +123,15 @@ def test_check_count_and_generic_guard():
     for bad in (-1, 1.5, True, MAX_COUNT + 1):
         with pytest.raises(InvalidStateError):
             check_count("n", bad)
-    est = guard_work("w", "n", 10, 8, 1e3, 1e3, False, throws_per_config=1.0, timer=lambda: 1e-3, unit="throws")
+    est = guard_work("w", "n", 10, 8, Limits(1e3, 1e3, False), throws_per_config=1.0, timer=lambda: 1e-3, unit="throws")
     assert est["memory_bytes"] == 80 and est["seconds"] == pytest.approx(1e-2)
     with pytest.raises(InvalidStateError):
-        guard_work("w", "n", 10, 8, 1e3, 1e-3, False, throws_per_config=1.0, timer=lambda: 1e-3)
+        guard_work("w", "n", 10, 8, Limits(1e3, 1e-3, False), throws_per_config=1.0, timer=lambda: 1e-3)
     # the analysis module re-exports the same guard (one guard, not two)
     from throwmap.analysis import budget as ab
     import throwmap.budget as gb
 
-    assert ab.check_limits is gb.check_limits and ab.DEFAULT_MAX_MEMORY == gb.DEFAULT_MAX_MEMORY
+    assert ab.Limits is gb.Limits and ab.DEFAULT_LIMITS is gb.DEFAULT_LIMITS
 
 
 # ------------------------------------------------------------------ command line

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import throwmap as tm
+from throwmap.budget import Limits
 from throwmap.analysis import FunctionMap, basins, critical_points, limit_set, push
 from throwmap.analysis import cellmap
 from throwmap.analysis.budget import guard_work
@@ -33,19 +34,19 @@ def test_a_huge_basin_grid_is_refused_before_it_is_built():
 def test_the_time_estimate_refuses_long_work_and_says_how_to_go_on():
     m = bistable()
     with pytest.raises(InvalidStateError) as err:
-        basins(m, grid=50_000, max_seconds=1e-6)
+        basins(m, grid=50_000, limits=Limits(max_seconds=1e-6))
     assert err.value.field == "grid" and "measured now" in str(err.value) and "max_seconds" in str(err.value)
     with pytest.raises(InvalidStateError) as err:
-        limit_set(m, n_starts=10_000, max_seconds=1e-6)
+        limit_set(m, n_starts=10_000, limits=Limits(max_seconds=1e-6))
     assert err.value.field == "n_starts"
     with pytest.raises(InvalidStateError) as err:
-        critical_points(m, n_grid=200_000, max_memory=1e6)
+        critical_points(m, n_grid=200_000, limits=Limits(max_memory=1e6))
     assert err.value.field == "n_grid"
     part, arm = tm.triangle_30_60_90(0.17), tm.Arm(h=-0.01)
     with pytest.raises(InvalidStateError) as err:
         push(part, arm, [4.0] * 10, "0:0.2-0.3", model="paper", n=10**8)
     assert err.value.field == "n" and "GB of memory" in str(err.value)
-    b = basins(m, grid=50, max_seconds=1e-9, max_memory=1.0, force=True)  # force: no estimate stops it
+    b = basins(m, grid=50, limits=Limits(max_seconds=1e-9, max_memory=1.0, force=True))  # force: no estimate stops it
     assert b.n_configs == 50
 
 
@@ -54,12 +55,12 @@ def test_the_time_estimate_refuses_long_work_and_says_how_to_go_on():
                                            ({"force": "yes"}, "force")])
 def test_bad_limits_are_refused(kwargs, field):
     with pytest.raises(InvalidStateError) as err:
-        basins(bistable(), grid=20, **kwargs)
+        basins(bistable(), grid=20, limits=Limits(**kwargs))
     assert err.value.field == field
 
 
 def test_guard_returns_its_estimate():
-    est = guard_work("x", "grid", 1000, 100, 1e9, 1e9, False, throws_per_config=2.0, cmap=bistable())
+    est = guard_work("x", "grid", 1000, 100, Limits(1e9, 1e9, False), throws_per_config=2.0, cmap=bistable())
     assert est["memory_bytes"] == 1e5 and est["seconds"] == pytest.approx(2000 * est["seconds_per_throw"])
 
 

@@ -15,6 +15,7 @@ import pyarrow.parquet as pq
 import pytest
 
 from throwmap.errors import ConfigError, InvalidStateError
+from throwmap.budget import Limits
 from throwmap.experiments import Trial, experiment_names, get_experiment, trial_seed
 from throwmap.experiments.runner import run_experiment
 from throwmap.experiments.stats import wilson_interval
@@ -161,12 +162,12 @@ def test_a_different_run_in_the_same_directory_is_refused(tmp_path):
 
 def test_work_guard_refuses_long_runs_and_keeps_the_trials(tmp_path):
     with pytest.raises(InvalidStateError, match=r"^n: experiment settle on [\d,]+ trials needs ≈ .* ms per trial .*--force.* kept in"):
-        run_experiment("settle", CFG, n=500, seed=1, workers=1, out=tmp_path, max_seconds=0.01)
+        run_experiment("settle", CFG, n=500, seed=1, workers=1, out=tmp_path, limits=Limits(max_seconds=0.01))
     kept = len((tmp_path / "trials.jsonl").read_text().splitlines())
     assert kept >= 4  # the trials timed before the refusal are kept for a resume
     with pytest.raises(InvalidStateError, match="memory"):
         run_experiment("settle", CFG, n=10**9, seed=1, workers=1)
-    r = run_experiment("settle", CFG, n=6, seed=1, workers=1, max_seconds=1e-6, force=True)
+    r = run_experiment("settle", CFG, n=6, seed=1, workers=1, limits=Limits(max_seconds=1e-6, force=True))
     assert r.n == 6
 
 

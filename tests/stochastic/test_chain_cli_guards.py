@@ -3,6 +3,8 @@
 import json
 
 import pytest
+
+from throwmap.budget import Limits
 from typer.testing import CliRunner
 
 from throwmap.cli.app import app
@@ -64,17 +66,16 @@ def test_samples_message_is_one_rule():
 
 
 def test_guard_chain_estimates_and_force():
-    est = guard_chain(n_cells=100, n_labels=4, samples=32, n_mu=5, k_max=60, trials=400, max_memory=2e9,
-                      max_seconds=1800, force=False, timer=lambda: 1e-5)
+    est = guard_chain(n_cells=100, n_labels=4, samples=32, n_mu=5, k_max=60, trials=400, limits=Limits(2e9, 1800),
+                      timer=lambda: 1e-5)
     assert 0 < est["memory_bytes"] < 2e9 and 0 < est["seconds"] < 1800
-    big = dict(n_cells=10**9, n_labels=4, samples=32, n_mu=5, k_max=60, trials=400, max_memory=2e9,
-               max_seconds=1800)
+    big = dict(n_cells=10**9, n_labels=4, samples=32, n_mu=5, k_max=60, trials=400, limits=Limits(2e9, 1800))
     with pytest.raises(InvalidStateError, match="^cell: "):
-        guard_chain(force=False, **big)
-    assert guard_chain(force=True, **big)["memory_bytes"] > 2e9
+        guard_chain(**big)
+    assert guard_chain(**dict(big, limits=Limits(2e9, 1800, True)))["memory_bytes"] > 2e9
     with pytest.raises(InvalidStateError, match="^trials: .*over the limit of 30 min"):
-        guard_chain(n_cells=10, n_labels=4, samples=4, n_mu=1, k_max=1000, trials=10**6, max_memory=1e12,
-                    max_seconds=1800, force=False, timer=lambda: 1e-3)
+        guard_chain(n_cells=10, n_labels=4, samples=4, n_mu=1, k_max=1000, trials=10**6, limits=Limits(1e12, 1800),
+                    timer=lambda: 1e-3)
 
 
 def test_small_throw_prints_no_dangling_comma():

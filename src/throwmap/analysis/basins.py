@@ -39,7 +39,7 @@ from ..rng import as_generator
 from .attractors import (LABEL_ESCAPE, Attractor, attractor_table, domain_of, domain_text, escape_fractions, map_short,
                          range_short)
 from .caps import RecurrenceCaps, check_int, check_length, resolve_caps, split_options
-from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_limits, guard_work
+from .budget import Limits, guard_work
 from .cellmap import basin_grid, cell_map, exact_with_discovery, grid_size, map_to_attractors, trap_excursion
 from .limitset import limit_set
 from .maps import DEFAULT_MODEL, ConfigMap, ThrowMap, as_map
@@ -289,8 +289,8 @@ def _check_cells(cmap, x, s, labels, throws, attractors, reach_tol, max_throws, 
 def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000, method: str = "auto", limit=None,
            n_seeds: int = 64, reach_tol: float = 1e-6, max_throws: int = 500, n_check: int = 1000,
            max_discover: int = 256, trap_samples: int = 400, trap_tol: float = 5e-4, rng=0, x_max=None,
-           caps: RecurrenceCaps = RecurrenceCaps(), progress=None, max_memory: float = DEFAULT_MAX_MEMORY,
-           max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False, **overrides) -> Basins:
+           caps: RecurrenceCaps = RecurrenceCaps(), progress=None, limits: Limits | None = None,
+           **overrides) -> Basins:
     """Label every configuration of a grid with the attractor its orbit reaches (paper Sec. III-D).
 
     Parameters
@@ -326,12 +326,12 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
         for the limit set and for attractors discovered later.
     progress
         ``progress(stage, done, total)``.
-    max_memory, max_seconds, force
-        Work guard (:mod:`throwmap.analysis.budget`): the grid's memory (≈ 160 bytes per
-        configuration) and time (one throw per configuration for cells, the mean throws
+    limits
+        Work guard (:class:`~throwmap.budget.Limits`; None: 2 GB, 1800 s): the grid's memory (≈ 160 bytes
+        per configuration) and time (one throw per configuration for cells, the mean throws
         to reach an attractor of a sample for orbits, at the time per throw measured
-        now) are estimated before the work; above ``max_memory`` bytes (2 GB) or
-        ``max_seconds`` (1800 s) the call is refused with one line, unless ``force``.
+        now) are estimated before the work; above the limits the call is refused with one
+        line, unless ``limits.force``.
     overrides
         Any cap by name (``transient=50``), merged into ``caps``; with a part, other
         keywords are throw options for :func:`throwmap.throw_batch`.
@@ -346,11 +346,11 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
         check_length(name, v)
     if method not in ("auto", "orbits", "cells"):
         raise InvalidStateError("method", f"must be 'auto', 'orbits' or 'cells', got {shown(method)}")
-    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
+    limits = Limits.of(limits)
     gen = as_generator(rng)
     n_planned = grid_size(cmap, grid)
     planned = "cells" if method == "cells" or (method == "auto" and n_planned > AUTO_CELLS_ABOVE) else "orbits"
-    guard_work(f"basins ({planned})", "grid", n_planned, BYTES_PER_CONFIG, max_memory, max_seconds, force,
+    guard_work(f"basins ({planned})", "grid", n_planned, BYTES_PER_CONFIG, limits,
                throws_per_config=1.0, cmap=cmap, hint="a coarser --grid")
     x, s, spacing = basin_grid(cmap, grid)
     method = planned
@@ -365,10 +365,10 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
         caps_record = dict(limit.caps)
     attractors = tuple(limit.attractors)
     check = {}
-    if method == "orbits" and not force and x.size > 64:
+    if method == "orbits" and not limits.force and x.size > 64:
         pick = np.linspace(0, x.size - 1, 64).astype(int)
         _, _, t_sample = map_to_attractors(cmap, x[pick], s[pick], attractors, reach_tol, max_throws)
-        guard_work("basins (orbits)", "grid", x.size, BYTES_PER_CONFIG, max_memory, max_seconds, force,
+        guard_work("basins (orbits)", "grid", x.size, BYTES_PER_CONFIG, limits,
                    throws_per_config=max(1.0, float(np.mean(t_sample))), cmap=cmap,
                    hint="a coarser --grid or --method cells")
     if method == "orbits":

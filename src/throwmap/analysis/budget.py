@@ -1,12 +1,12 @@
-"""Guarding large analyses: estimate memory and time up front, refuse above a limit (issue 10, item 2).
+"""Guarding large analyses: estimate memory and time up front, refuse above a limit.
 
 A user-given size (a basin grid, a number of limit-set starts, a critical-point grid)
 drives the cost of an analysis. Before the work starts, :func:`guard_work` estimates
 its memory from the arrays it will hold (bytes per configuration) and its time from
 a small sample of throws measured in the same run (:func:`seconds_per_throw`), and
 refuses with one line that says how big it is and how to go bigger: raise the
-limits (``max_memory`` in bytes, ``max_seconds``; on the command line
-``--max-memory`` in GB and ``--max-time`` in s) or pass ``force=True`` (``--force``).
+limits (:class:`~throwmap.budget.Limits`: ``max_memory`` in bytes, ``max_seconds``; on the command
+line ``--max-memory`` in GB and ``--max-time`` in s) or force it (``--force``).
 
 The generic guard lives in :mod:`throwmap.budget` (shared with ``iterate`` and the
 studies); this module re-exports it and adds the map-specific timer.
@@ -19,11 +19,11 @@ import time
 import numpy as np
 
 from .. import budget as _budget
-from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, human_bytes, human_seconds
+from ..budget import DEFAULT_LIMITS, Limits, check_count, human_bytes, human_seconds
 from .maps import ConfigMap
 
-__all__ = ["DEFAULT_MAX_MEMORY", "DEFAULT_MAX_SECONDS", "seconds_per_throw", "guard_work", "check_limits",
-           "check_count", "human_bytes", "human_seconds"]
+__all__ = ["DEFAULT_LIMITS", "Limits", "seconds_per_throw", "guard_work", "check_count", "human_bytes",
+           "human_seconds"]
 
 SAMPLE = 256
 """Configurations thrown once to measure the time per throw."""
@@ -46,17 +46,16 @@ def seconds_per_throw(cmap: ConfigMap, n: int = SAMPLE) -> float:
     return (time.perf_counter() - t0) / x.size
 
 
-def guard_work(what: str, field: str, n_configs: int, bytes_per_config: float, max_memory: float,
-               max_seconds: float, force: bool, *, throws_per_config: float = 0.0, cmap: ConfigMap | None = None,
-               hint: str = "a coarser grid") -> dict:
+def guard_work(what: str, field: str, n_configs: int, bytes_per_config: float, limits: Limits | None = None, *,
+               throws_per_config: float = 0.0, cmap: ConfigMap | None = None, hint: str = "a coarser grid") -> dict:
     """Refuse work whose estimate exceeds the limits; return the estimate.
 
     :func:`throwmap.budget.guard_work` with the time per throw measured on ``cmap``
     (:func:`seconds_per_throw`) when it is given. Memory: ``n_configs × bytes_per_config``;
     time: ``n_configs × throws_per_config ×`` the measured time per throw. Raises
-    :class:`~throwmap.errors.InvalidStateError` on ``field`` unless ``force``. Returns
+    :class:`~throwmap.errors.InvalidStateError` on ``field`` unless ``limits.force``. Returns
     ``{"n_configs", "memory_bytes", "seconds", "seconds_per_throw"}``.
     """
     timer = None if cmap is None else (lambda: seconds_per_throw(cmap))
-    return _budget.guard_work(what, field, n_configs, bytes_per_config, max_memory, max_seconds, force,
+    return _budget.guard_work(what, field, n_configs, bytes_per_config, limits,
                               throws_per_config=throws_per_config, timer=timer, hint=hint)

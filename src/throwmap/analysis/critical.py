@@ -40,7 +40,7 @@ import numpy as np
 
 from ..kernels import codes as C
 from .attractors import fate_label, map_short, nan_to_none, none_to_nan
-from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_limits, guard_work
+from .budget import Limits, guard_work
 from .caps import check_int, check_length
 from .maps import DEFAULT_MODEL, ConfigMap, as_map
 
@@ -321,8 +321,7 @@ def _l_hull(T, cmap, m, max_iter, xtol, r):
 
 def critical_points(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, x_max=None, n_grid: int = 128,
                     n_split: int = 15, xtol: float = 1e-6, hull_samples: int = 64, hull_max_iter: int = 200,
-                    limit=None, max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
-                    force: bool = False, **throw_options) -> CriticalPoints:
+                    limit=None, limits: Limits | None = None, **throw_options) -> CriticalPoints:
     """r_i and l_i of every stable side (paper Sec. III-D), r_i to ``xtol``.
 
     Parameters
@@ -343,18 +342,18 @@ def critical_points(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, x
         Points per interval and iteration cap of the hull iteration for l_i.
     limit
         A :class:`~throwmap.analysis.limitset.LimitSet` to take l_i from instead.
-    max_memory, max_seconds, force
-        Work guard (:mod:`throwmap.analysis.budget`) on the bracketing grid (``n_grid``
-        per side, ≈ 100 bytes and one throw each): refused above the limits unless ``force``.
+    limits
+        Work guard (:class:`~throwmap.budget.Limits`) on the bracketing grid (``n_grid``
+        per side, ≈ 100 bytes and one throw each): refused above the limits unless ``limits.force``.
     """
     cmap: ConfigMap = as_map(part, arm, omega, model, x_max=x_max, **throw_options)
     for name, v, lo in (("n_grid", n_grid, 2), ("n_split", n_split, 1), ("hull_samples", hull_samples, 2),
                         ("hull_max_iter", hull_max_iter, 1)):
         check_int(name, v, lo)
     check_length("xtol", xtol)
-    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
+    limits = Limits.of(limits)
     n_planned = int(n_grid) * len(cmap.sides)
-    guard_work("critical points", "n_grid", n_planned, 100, max_memory, max_seconds, force, throws_per_config=1.0,
+    guard_work("critical points", "n_grid", n_planned, 100, limits, throws_per_config=1.0,
                cmap=cmap if n_planned > 10**5 else None, hint="a smaller n_grid")
     T = _Counter(cmap)
     r, jog_start, bracket, nxt, flips_beyond, non_flips = _r_points(T, cmap, int(n_grid), int(n_split), float(xtol))

@@ -26,7 +26,7 @@ import numpy as np
 from ..errors import InvalidStateError
 from .attractors import (Attractor, attractor_counts, attractor_table, check_cycles, domain_of, domain_text,
                          escape_fractions, map_short, range_short)
-from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_limits, guard_work
+from .budget import Limits, guard_work
 from .caps import DEFAULT_CAPS, RecurrenceCaps, check_caps, resolve_caps, split_options
 from .maps import DEFAULT_MODEL, ConfigMap, as_map
 from .recurrence import check_starts, find_attractors, start_grid
@@ -220,8 +220,8 @@ def dom_hi(map_info: dict, side: int) -> float:
 
 
 def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: RecurrenceCaps = RecurrenceCaps(),
-              starts=None, n_starts: int = 64, rng=0, x_max=None, progress=None, max_memory: float = DEFAULT_MAX_MEMORY,
-              max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False, **overrides) -> LimitSet:
+              starts=None, n_starts: int = 64, rng=0, x_max=None, progress=None, limits: Limits | None = None,
+              **overrides) -> LimitSet:
     """Find and describe every forward limit set reached from many initial configurations.
 
     Parameters
@@ -246,11 +246,11 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
         Outer end of the domain, m (default: the arm length, else 0.6 m).
     progress
         ``progress(done, total)`` after each iteration of the batch.
-    max_memory, max_seconds, force
-        Work guard (:mod:`throwmap.analysis.budget`): the recorded tails (16 bytes per
+    limits
+        Work guard (:class:`~throwmap.budget.Limits`): the recorded tails (16 bytes per
         start and recorded throw) and ``transient + n_record`` throws per start are
-        estimated first; above ``max_memory`` bytes or ``max_seconds`` the call is
-        refused with one line, unless ``force``.
+        estimated first; above the limits the call is refused with one line, unless
+        ``limits.force``.
     overrides
         Any cap by name (``transient=50``; ``None`` keeps ``caps``' value), merged into
         ``caps``; with a part, other keywords are throw options for
@@ -262,7 +262,7 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
     cap_overrides, throw_options = split_options(overrides, not isinstance(part, ConfigMap))
     cmap = as_map(part, arm, omega, model, x_max=x_max, **throw_options)
     rc = resolve_caps(caps, cap_overrides)
-    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
+    limits = Limits.of(limits)
     if starts is None:
         valid = isinstance(n_starts, (int, np.integer)) and not isinstance(n_starts, bool) and n_starts >= 1
         n_planned = int(n_starts) * len(cmap.sides) if valid else 0  # start_grid refuses the rest
@@ -274,7 +274,7 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
     ratios = {field: per_side / 64, "n_record": rc.n_record / DEFAULT_CAPS["n_record"],
               "transient": rc.transient / max(1, DEFAULT_CAPS["transient"])}
     field = max(ratios, key=lambda k: ratios[k])
-    guard_work("limit set", field, n_planned, 16 * rc.n_record + 64, max_memory, max_seconds, force,
+    guard_work("limit set", field, n_planned, 16 * rc.n_record + 64, limits,
                throws_per_config=rc.transient + rc.n_record, cmap=cmap if n_planned * (rc.transient + rc.n_record)
                > 10**6 else None, hint="fewer starts or a shorter record")
     if starts is None:

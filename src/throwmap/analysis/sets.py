@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
 from .attractors import Attractor, fate_label, merge_intervals
-from .budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_limits, guard_work
+from .budget import Limits, guard_work
 from .maps import DEFAULT_MODEL, ConfigMap, ThrowMap, as_map
 from .recurrence import check_starts
 
@@ -202,17 +202,16 @@ class SetImage:
 
 
 def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, *, n: int = 200, gap: float = 2e-3,
-         x_max=None, max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
-         force: bool = False, **throw_options) -> SetImage:
+         x_max=None, limits: Limits | None = None, **throw_options) -> SetImage:
     """Apply a sequence of throws Π T^{ω_j} (ω_1 first) to a set of configurations.
 
     ``configs`` is a :class:`ConfigSet` (sampled with ``n`` points per interval) or
     ``(x, side)`` arrays. With a :class:`ThrowMap` as ``part``, its part, arm and
     model are used and ``omegas`` gives the sequence. The work guard
-    (:mod:`throwmap.analysis.budget`) refuses above ``max_memory`` bytes (24 bytes per
-    configuration and throw are kept) or ``max_seconds``, unless ``force``.
+    (:class:`~throwmap.budget.Limits`) refuses above ``limits.max_memory`` bytes (24 bytes per
+    configuration and throw are kept) or ``limits.max_seconds``, unless ``limits.force``.
     """
-    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
+    limits = Limits.of(limits)
     if isinstance(part, ThrowMap):
         base = part
     elif isinstance(part, ConfigMap):
@@ -230,7 +229,7 @@ def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, 
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
             raise InvalidStateError("n", f"must be an integer ≥ 2 (samples per interval), got {shown(n)}")
         n_planned = int(n) * max(1, len(configs.intervals))
-        guard_work("push", "n", n_planned, 24 * (oms.size + 1), max_memory, max_seconds, force,
+        guard_work("push", "n", n_planned, 24 * (oms.size + 1), limits,
                    throws_per_config=float(oms.size), cmap=base if n_planned * oms.size > 10**6 else None,
                    hint="fewer samples per interval")
         configs = configs.sample(n)

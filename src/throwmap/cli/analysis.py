@@ -158,9 +158,9 @@ def limitset_cmd(
         check_out_dir(out)
         limits = work_limits(max_memory, max_time, force)
         cmap = ThrowMap(the_part, arm, omega, model, x_max, {**opts, **sysk})  # refuses what the model lacks
-        crit = critical_points(the_part, arm, omega, model, x_max=x_max, **limits, **opts, **sysk)
+        crit = critical_points(the_part, arm, omega, model, x_max=x_max, limits=limits, **opts, **sysk)
         with _option_names(), _progress() as bar:
-            limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, **limits, **opts, **sysk,
+            limit = limit_set(the_part, arm, omega, model, n_starts=starts, rng=seed, x_max=x_max, limits=limits, **opts, **sysk,
                               transient=transient, max_transient=max_transient, n_record=record, tol=tol, max_period=max_period,
                               progress=lambda done, total: bar("iterating", done, total))
         if plot is not None:
@@ -245,7 +245,7 @@ def basins_cmd(
         check_out_dir(out)
         limits = work_limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
-            result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, **limits, **opts, **sysk,
+            result = basins(the_part, arm, omega, model, grid=grid, method=method, rng=seed, limits=limits, **opts, **sysk,
                             max_throws=max_throws, n_check=check, n_seeds=starts, transient=transient,
                             max_transient=max_transient, n_record=record, x_max=x_max, progress=bar)
         if plot is not None:
@@ -331,7 +331,7 @@ def funnels_cmd(
         check_out_dir(out)
         limits = work_limits(max_memory, max_time, force)
         with _option_names(), _progress() as bar:
-            graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment, **limits, **opts,
+            graph = funnels(the_part, arm, omegas, model, goal=target, grid=grid, containment=containment, limits=limits, **opts,
                             **sysk,
                             rng=seed, x_max=x_max, method=method, n_seeds=starts, progress=bar)
         if plot is not None:

@@ -36,7 +36,7 @@ PROGRESS_FRAMES = 60
 def _trajectory(model, part, arm, x, side, omega, n, opts=None, limits=None):
     """The trajectory of ``n`` throws (:func:`~throwmap.throws.orbit_trajectory.orbit_trajectory`); raises
     :class:`ImportError` where the model's module is not installed."""
-    return orbit_trajectory(part, arm, x, side, omega, n, model=model, **(opts or {}), **(limits or {}))
+    return orbit_trajectory(part, arm, x, side, omega, n, model=model, **(opts or {}), limits=limits)
 
 
 def _summary(traj) -> tuple[str, str]:

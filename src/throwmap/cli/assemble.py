@@ -181,7 +181,7 @@ def sensitivity_cmd(
         limits = cli_limits(max_memory, max_time, force)
         with progress_bar(f"{exp.name} × {len(vals)}") as update:
             res = sensitivity(exp, cfg, fields=tuple(param), values=vals, n=n, seed=seed, workers=workers, out=out,
-                              progress=update, **limits)
+                              progress=update, limits=limits)
         if plot is not None:
             os.environ.setdefault("MPLBACKEND", "Agg")
             save_figure(res.plot(goal=goal), plot, fmt, "plot")

@@ -168,7 +168,7 @@ def throw_cmd(
         n_cells = count_cells(p, arm, cell, gs.breaks)
         n_mu = 1 if noise.mu_range is None and (noise.mu_rel == 0 or math.isinf(arm.mu)) else mu_nodes
         guard_chain(n_cells=n_cells, n_labels=len(step.labels), samples=samples, n_mu=n_mu, k_max=k_max,
-                    trials=trials, timer=lambda: _seconds_per_throw(step, p, arm), **limits)
+                    trials=trials, timer=lambda: _seconds_per_throw(step, p, arm), limits=limits)
         cells = Cells.on_arm(p, arm, cell, breaks=gs.breaks)
         init = np.ones(cells.n)
         mix, builds = build_mixture(cells, step, samples=samples, rng=seed, n_mu=mu_nodes, initial=init,
@@ -264,7 +264,7 @@ def position_cmd(
         k_max = max(1, int(hits.max()))
         part, arm, step, breaks = position_step(cfg)
         guard_chain(n_cells=count_cells(part, arm, cell, breaks), n_labels=len(step.labels), samples=samples,
-                    n_mu=mu_nodes, k_max=k_max, trials=0, timer=lambda: _seconds_per_throw(step, part, arm), **limits)
+                    n_mu=mu_nodes, k_max=k_max, trials=0, timer=lambda: _seconds_per_throw(step, part, arm), limits=limits)
         mix, builds = position_chain(cfg, cell=cell, samples=samples, n_mu=mu_nodes, rng=seed)
         init = position_initial(mix.cells, read_trials(initial) if initial is not None else rows)
         curve = mix.p_goal_by(k_max, "stop:goal", init)

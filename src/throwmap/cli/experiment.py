@@ -103,7 +103,7 @@ def experiment_cmd(
         try:
             with progress_bar(exp.name) as update:
                 result = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=out, resume=resume,
-                                        progress=update, **limits)
+                                        progress=update, limits=limits)
         except KeyboardInterrupt:
             stderr_line(_interrupted(out))
             raise typer.Exit(130) from None

@@ -109,7 +109,7 @@ def compare_cmd(
         limits = work_limits(max_memory, max_time, force)
         if out is not None:
             check_output(out, "out")
-        result = compare.compare_models(the_part, arm, **kwargs, **limits)
+        result = compare.compare_models(the_part, arm, **kwargs, **_limit_keywords(limits))
         doc = {**result.to_dict(), "arm": arm_dict(arm), "version": __version__}
         if out is not None:
             write_text(out, to_json(doc) + "\n" if out.suffix.lower() == ".json" else result.table() + "\n", "out")
@@ -196,7 +196,7 @@ def validate_cmd(
             task = bar.add_task("engine", total=None)
             report = validate(parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, workers=workers,
                               progress=lambda done, total: bar.update(task, completed=done, total=total),
-                              n_realisations=realisations, **limits)
+                              n_realisations=realisations, **_limit_keywords(limits))
         make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "validation.json", to_json(doc) + "\n", "out")
@@ -270,7 +270,7 @@ def validate_fixtures_cmd(
             report = validate_tilt_wall(parts, n=n, seed=seed, conditions=conds, rigid_body_options=rb,
                                         fixed_point=fixed_point,
                                         progress=lambda done, total: bar.update(task, completed=done, total=total),
-                                        **limits)
+                                        **_limit_keywords(limits))
         make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "tilt_wall.json", to_json(doc) + "\n", "out")
@@ -335,3 +335,8 @@ def register(app: typer.Typer) -> None:
     app.command("validate")(validate_cmd)
     app.command("validate-fixtures")(validate_fixtures_cmd)
     app.command("validate-recoil")(validate_recoil_cmd)
+
+
+def _limit_keywords(limits) -> dict:
+    """The studies' work-guard keywords from a :class:`~throwmap.budget.Limits`."""
+    return {"max_memory": limits.max_memory, "max_seconds": limits.max_seconds, "force": limits.force}

@@ -191,9 +191,9 @@ def iterate_cmd(
             prepare(model, arm, sysk.get("fixtures", ()), sysk.get("alpha", 0.0), opts.get("options"), {})
         if planned > PROGRESS_THRESHOLD:
             orbit = _iterate_with_progress(the_part, arm, (x, side), omegas, n_lib, planned, model,
-                                           {**opts, **sysk, **limits})
+                                           {**opts, **sysk, "limits": limits})
         else:
-            orbit = iterate(the_part, arm, (x, side), omegas, n_lib, model=model, **opts, **sysk, **limits)
+            orbit = iterate(the_part, arm, (x, side), omegas, n_lib, model=model, **opts, **sysk, limits=limits)
         summary = _orbit_summary(orbit, planned)
         if plot is not None:
             save_figure(orbit.plot(part=the_part, arm=arm), plot, fmt, "plot")

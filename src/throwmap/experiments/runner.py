@@ -40,7 +40,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..version import __version__
-from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work, human_seconds
+from ..budget import Limits, check_count, guard_work, human_seconds
 from ..errors import InvalidStateError, shown
 from .base import Trial, config_of, trial_generator, trial_seed
 from .registry import get_experiment
@@ -261,8 +261,7 @@ def load_result(directory) -> dict:
 
 # ------------------------------------------------------------------- runner
 def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int = 0, out=None, resume: bool = True,
-                   progress=None, max_seconds=None, max_memory=None, force: bool = False,
-                   stop_after: int | None = None) -> ExperimentResult:
+                   progress=None, limits: Limits | None = None, stop_after: int | None = None) -> ExperimentResult:
     """Run trials ``0 … n−1`` of ``experiment`` (a registered name or object) and summarise them.
 
     ``config``: an instance of the experiment's ``config_type``, a dict validated by it,
@@ -270,9 +269,8 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     ``default_rng(SeedSequence(seed).spawn(n)[i])``. ``workers``: processes (0: all
     cores, 1: this process). ``out``: a directory keeping the trials (module docstring);
     ``resume``: reuse the trials stored there. ``progress(done, total)`` is called after
-    each trial (stored trials count as done at the start). ``max_seconds`` (s) and
-    ``max_memory`` (bytes) bound the estimated work (None: :data:`~throwmap.budget.DEFAULT_MAX_SECONDS`,
-    :data:`~throwmap.budget.DEFAULT_MAX_MEMORY`); ``force`` runs anyway. ``stop_after``: run at most this
+    each trial (stored trials count as done at the start). ``limits`` (a :class:`~throwmap.budget.Limits`;
+    None: 2 GB, 30 min) bound the estimated work; ``limits.force`` runs anyway. ``stop_after``: run at most this
     many new trials, then return the (incomplete) result — an interruption on purpose.
 
     Raises :class:`~throwmap.errors.InvalidStateError` on bad input, on a stored run that
@@ -287,9 +285,9 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
         raise InvalidStateError("workers", f"must be an integer ≥ 0 (0: all cores), got {shown(workers)}")
     if stop_after is not None:
         stop_after = check_count("stop_after", stop_after)
-    max_memory, max_seconds, force = check_limits(DEFAULT_MAX_MEMORY if max_memory is None else max_memory,
-                                                  DEFAULT_MAX_SECONDS if max_seconds is None else max_seconds, force)
-    guard_work(f"experiment {exp.name}", "n", n, BYTES_PER_TRIAL, max_memory, max_seconds, force,
+    limits = Limits.of(limits)
+    max_seconds, force = limits.max_seconds, limits.force
+    guard_work(f"experiment {exp.name}", "n", n, BYTES_PER_TRIAL, limits,
                hint="fewer trials (--n)", unit="trials")
     n_workers = (os.cpu_count() or 1) if workers == 0 else workers
     if n_workers > 1:
@@ -349,8 +347,9 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
                 raise InvalidStateError(
                     "n", f"experiment {exp.name} on {left_total:,} trials needs ≈ {human_seconds(secs)} "
                          f"({1e3 * per * n_workers:.3g} ms per trial on each of {n_workers} worker(s), measured on the "
-                         f"first {k}), over the limit of {human_seconds(max_seconds)}: raise max_seconds (CLI --max-time s), "
-                         f"pass force=True (--force), or use fewer trials (--n); the {len(done)} finished trials are kept"
+                         f"first {k}), over the limit of {human_seconds(max_seconds)}: raise the limits, "
+                         f"limits=Limits(max_seconds=…) (CLI --max-time s), pass limits=Limits(force=True) (--force), "
+                         f"or use fewer trials (--n); the {len(done)} finished trials are kept"
                          + (f" in {str(directory)!r} for a resume" if directory is not None else ""))
 
     try:

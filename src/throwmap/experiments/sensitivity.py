@@ -105,13 +105,12 @@ def _copy(d):
 
 
 def sensitivity(experiment, config=None, *, fields, values, n: int, seed: int, workers: int = 0, out=None,
-                progress=None, **limits) -> Sensitivity:
+                progress=None, limits=None) -> Sensitivity:
     """Run ``experiment`` (a registered name or object) with each of ``values`` set into every dotted config path
     of ``fields`` (a string or a sequence; e.g. ``("sensor.false_positive", "sensor.false_negative")``), ``n``
     trials each with seed ``seed``; ``progress(done, total)`` is called after every trial of every run (totals
     over all runs). ``out``: a directory; run *k* keeps its trials in ``out/<first field>=<value>``. ``limits``
-    go to :func:`~throwmap.experiments.runner.run_experiment` (``max_seconds``, ``max_memory``, ``force``) and
-    guard each run."""
+    (a :class:`~throwmap.budget.Limits`) go to :func:`~throwmap.experiments.runner.run_experiment` and guard each run."""
     from .runner import run_experiment
 
     exp = get_experiment(experiment)
@@ -144,7 +143,7 @@ def sensitivity(experiment, config=None, *, fields, values, n: int, seed: int, w
             if progress is not None:
                 progress(_base + done, total)
 
-        res = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=sub, progress=update, **limits)
+        res = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=sub, progress=update, limits=limits)
         done0 += n
         rows.append(SensitivityRow(v, res.n, res.successes, res.success_rate, tuple(res.ci95), dict(res.failures),
                                    res.elapsed_s, res.value_summary()))

@@ -8,9 +8,13 @@ ones. Every model is one module of :mod:`throwmap.models` holding
   ``throw(..., **options)`` accepts for that model and no others;
 * a :class:`Features` value: which parts of a System and which extras it supports;
 * ``throw_one`` / ``throw_batch`` (kernel calls on validated, flat inputs) and,
-  where it can, ``trajectory`` (the sampled motion of one throw).
+  where it can, ``trajectory`` (the sampled motion of one throw);
+* where its state between throws is more than a rest ``(x, side)`` (the engine keeps every part's
+  pose), ``session(parts, system, states, options)``: a :class:`ThrowSession`. The analytic models
+  get the dispatcher's session on ``(x, side)`` (:mod:`throwmap.throws.session`).
 
-It registers itself once with :func:`throwmap.models.registry.register`.
+It registers itself once with :func:`throwmap.models.registry.register`. Callers never branch on a
+model's name: they ask its :class:`Features`.
 """
 
 from __future__ import annotations
@@ -24,7 +28,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["Features", "ThrowModel", "BatchArrays", "NoOptions", "build_options"]
+__all__ = ["Features", "ThrowModel", "ThrowSession", "BatchArrays", "NoOptions", "build_options"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -32,9 +36,13 @@ class Features:
     """What a model supports beyond a part on the paper's plain arm.
 
     ``fixtures`` (walls, cavities), ``tilt`` (an arm rest angle α ≠ 0),
-    ``realisation`` (finite arm motions instead of the impulse), ``trajectory``
-    (sampled motion for animation), ``friction`` (uses ``Arm.mu``),
-    ``parallel`` (batches run on all cores).
+    ``realisation`` (finite arm motions instead of the impulse: its option ``realisation``),
+    ``trajectory`` (sampled motion for animation), ``friction`` (uses ``Arm.mu``),
+    ``parallel`` (batches run on all cores). Sessions (:class:`ThrowSession`): ``pose`` (a part keeps
+    its whole pose between throws — held tilted by a fixture it stays so; without it a session keeps
+    the rest ``(x, side)``), ``parts`` (the most parts one scene may hold; 0: any number), ``moves``
+    (the arm may turn to a new rest angle between throws, :class:`~throwmap.system.motion.TiltTo`),
+    ``ensemble`` (many independent scenes thrown together in one batch call).
     """
 
     fixtures: bool = False
@@ -43,6 +51,10 @@ class Features:
     trajectory: bool = False
     friction: bool = False
     parallel: bool = True
+    pose: bool = False
+    parts: int = 1
+    moves: bool = False
+    ensemble: bool = True
 
     def supported(self) -> tuple[str, ...]:
         return tuple(f.name for f in dataclasses.fields(self) if getattr(self, f.name))
@@ -85,6 +97,39 @@ class ThrowModel(Protocol):
     def throw_batch(self, part, system, x, side, omega, valid, options, progress=None) -> BatchArrays: ...
 
     def trajectory(self, part, system, x: float, side: int, omega: float, options, dt: float) -> Any: ...
+
+
+@runtime_checkable
+class ThrowSession(Protocol):
+    """A scene thrown again and again, keeping its state (STYLE §14; like Gymnasium's ``Env.step``).
+
+    Made once by :func:`throwmap.throws.session.open_session`, which validates the model, the
+    :class:`~throwmap.system.system.System`, the options and the start; each step then only throws.
+    ``parts``, ``system`` (its α follows the arm's moves), ``options`` (the model's, validated),
+    ``features`` (the model's :class:`Features`), ``states`` (one
+    :class:`~throwmap.records.session.PartState` per part), ``status`` (``ok`` while every part rests
+    on the arm; the session has ended otherwise), ``n_throws``.
+
+    ``throw(omega, motion=None, *, options=None, record=False)``: one throw at release rate ``omega``
+    (rad/s) — the paper's impulse, or the arm's ``motion`` where the model follows one
+    (``features.realisation``); ``options`` replaces the session's options for this throw (a value of
+    the model's options type); ``record`` keeps the step's motion where the model can
+    (``features.trajectory``): True, or the sample interval in s (the engines sample at their own). ``move(motion)``: the arm turns without a throw (``features.moves``).
+    Both return a :class:`~throwmap.records.session.SessionStep`; after a step that did not end at
+    rest the session has ended and refuses further steps.
+    """
+
+    parts: tuple
+    system: Any
+    options: Any
+    features: Features
+    states: tuple
+    status: Any
+    n_throws: int
+
+    def throw(self, omega: float, motion=None, *, options=None, record: bool = False) -> Any: ...
+
+    def move(self, motion, *, options=None, record: bool = False) -> Any: ...
 
 
 @functools.lru_cache(maxsize=None)

@@ -65,7 +65,8 @@ class EngineModel:
                "rest angle α that may change at a rate (TiltTo), and throw realisations (ImpulseThrow, FiniteThrow, "
                "RecoilThrow)")
     options_type = EngineOptions
-    features = Features(fixtures=True, tilt=True, realisation=True, trajectory=True, friction=True, parallel=True)
+    features = Features(fixtures=True, tilt=True, realisation=True, trajectory=True, friction=True, parallel=True,
+                        pose=True, parts=0, moves=True, ensemble=False)
 
     @staticmethod
     def _keywords(system, o: EngineOptions) -> dict:
@@ -89,6 +90,20 @@ class EngineModel:
         res = engine_batch(part, system.arm, x, side, omega, valid=valid, workers=o.workers, progress=progress,
                            **self._keywords(system, o))
         return BatchArrays(res.x, res.side, res.status, res.records)
+
+    def session(self, parts, system, states, o: EngineOptions):
+        """An :class:`~throwmap.engine.session.EngineSession`: ``states`` are rests ``(x, side)`` (one per part) or
+        an engine :class:`~throwmap.engine.Scene` on this system (parts, arm, fixtures and α as given)."""
+        from ..engine import Friction, Placement, Scene
+        from ..engine.session import EngineSession
+
+        if isinstance(states, Scene):
+            scene = states
+        else:
+            friction = Friction() if o.friction is None else o.friction
+            scene = Scene(system.arm, tuple(Placement(p, x=x, side=k) for p, (x, k) in zip(parts, states)),
+                          system.fixtures, system.alpha, friction)
+        return EngineSession(scene, o.settings, features=self.features, options=o, model=self.name)
 
     def assumptions(self, records, mu, status) -> str:
         """Runs that did not finish: timeouts and refused penetrations (validation table)."""

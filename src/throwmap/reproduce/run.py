@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
 
+from ..budget import Limits
 from ..version import __version__
 from ..errors import InvalidStateError, ThrowmapError, shown
 from .plan import EXPERIMENTS, FIGURES, SIZES
@@ -103,7 +104,7 @@ def _experiment(spec, out: Path, size, workers: int, progress) -> dict:
             raise InvalidStateError("experiment", f"{spec.experiment!r} is not registered in this version")
         exp = get_experiment(spec.experiment)
         res = run_experiment(exp, spec.config, n=size.n, seed=0, workers=workers, out=out / "experiments" / spec.key,
-                             progress=progress, force=True)
+                             progress=progress, limits=Limits(force=True))
         vals = res.value_summary()
         row["ours"] = {"successes": res.successes, "n": res.n, "success_rate": res.success_rate,
                        "ci95": list(res.ci95), "failures": dict(res.failures), "seed": res.seed,

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 
-from ..budget import human_bytes, human_seconds
+from ..budget import Limits, human_bytes, human_seconds
 from ..errors import InvalidStateError
 
 __all__ = ["BYTES_PER_THROW", "BYTES_PER_TRIAL", "count_cells", "guard_chain"]
@@ -48,10 +48,13 @@ def count_cells(part, arm, size: float, breaks=()) -> int:
 
 
 def guard_chain(*, n_cells: int, n_labels: int, samples: int, n_mu: int, k_max: int, trials: int,
-                max_memory: float, max_seconds: float, force: bool, timer=None) -> dict:
-    """Refuse the chain's work above ``max_memory`` (bytes) or ``max_seconds`` (s) unless ``force`` (module
+                limits=None, timer=None) -> dict:
+    """Refuse the chain's work above ``limits`` (:class:`~throwmap.budget.Limits`: memory in bytes, time in s)
+    unless ``limits.force`` (module
     docstring); ``timer()``: seconds per throw, measured only when the memory fits. Returns the estimate
     ``{"memory_bytes", "seconds", "seconds_per_throw"}``."""
+    limits = Limits.of(limits)
+    max_memory, max_seconds, force = limits.max_memory, limits.max_seconds, limits.force
     N = n_cells + n_labels
     per_node = 3 * N * N * 8.0
     mats = n_mu * per_node + N * N * 8.0

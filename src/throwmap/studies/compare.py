@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..budget import Limits, DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..system.arm import Arm
 from ..records.outcome import Status
 from ..system.part import Part
@@ -155,7 +155,7 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
             total += time.perf_counter() - t0
         return total / (xt.size * (1 + len(models)))
 
-    guard_work(f"compare (n_x = {n_x:,} per stable side)", "n_x", n_starts, BYTES_PER_START, max_memory, max_seconds, force,
+    guard_work(f"compare (n_x = {n_x:,} per stable side)", "n_x", n_starts, BYTES_PER_START, Limits(max_memory, max_seconds, force),
                throws_per_config=len(omegas) * (1 + len(models)), timer=seconds_per_throw,
                hint="a smaller n_x (--n-x)", unit="starts")
     xs, ss = [], []

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..budget import Limits, DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..errors import InvalidStateError, ThrowmapError
 from ..kernels import codes as C
 from ..system.arm import Arm
@@ -338,7 +338,7 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
     n = check_count("n", n, minimum=1)
     max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
     n_engine = n * sum(2 + bool(CONDITIONS[c]["wall"]) + bool(baseline) for c in conditions)  # (+ the relaxed cap)
-    guard_work("validate-fixtures", "n", n_engine, 400.0, max_memory, max_seconds, force, throws_per_config=1.0,
+    guard_work("validate-fixtures", "n", n_engine, 400.0, Limits(max_memory, max_seconds, force), throws_per_config=1.0,
                timer=lambda: _timer(parts), hint="fewer throws per condition (--n)", unit="engine throws")
     rb = dict(rigid_body_options or {})
     if models is not None:

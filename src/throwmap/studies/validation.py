@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..budget import Limits, DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
 from ..system.arm import Arm
 from ..kernels import codes as C
 from ..records.outcome import Status
@@ -247,7 +247,7 @@ def _guard_validation(parts, n, grid, models, engines, mu, hs, omega_range, work
                     **kw)
         return (time.perf_counter() - t0) / max(k - 1, 1)
 
-    return guard_work("validate", "n", n_cases, BYTES_PER_CASE_MODEL * n_models, max_memory, max_seconds, force,
+    return guard_work("validate", "n", n_cases, BYTES_PER_CASE_MODEL * n_models, Limits(max_memory, max_seconds, force),
                       throws_per_config=engine_per_case, timer=seconds_per_engine_throw,
                       hint="fewer random throws (--n)", unit="cases")
 
@@ -283,7 +283,7 @@ def validate(parts: dict[str, Part] | None = None, *, n: int = 400, seed: int = 
 
             raise ThrowmapError("engines", f"unknown engine {e!r} (choose from pymunk, mujoco)")
     _guard_validation(parts, check_count("n", n), grid, models, engines, mu, hs, omega_range, workers,
-                      engine_settings, n_realisations, mu_rows, *check_limits(max_memory, max_seconds, force))
+                      engine_settings, n_realisations, mu_rows, max_memory, max_seconds, force)
     cases = make_cases(parts, n, seed, grid=grid, hs=hs, omega_range=omega_range)
     total = sum(c.x.size for c in cases) * (1 + ("mujoco" in engines))
     done = [0]

@@ -26,6 +26,7 @@ import math
 import time
 import warnings
 
+from ..budget import Limits
 from ..version import __version__
 from ..errors import ThrowmapError
 
@@ -83,7 +84,7 @@ def _error_row(err: Exception) -> dict:
 def _experiment_point(name: str, cfg: dict, seed: int, n: int) -> dict:
     from ..experiments.runner import run_experiment
 
-    res = run_experiment(name, cfg, n=n, seed=seed, workers=1, force=True)
+    res = run_experiment(name, cfg, n=n, seed=seed, workers=1, limits=Limits(force=True))
     return {"n": res.n, "successes": res.successes,
             "success_rate": None if math.isnan(res.success_rate) else res.success_rate,
             "ci95_low": float(res.ci95[0]), "ci95_high": float(res.ci95[1]),
@@ -135,7 +136,7 @@ def _limit_set_point(cfg: dict, seed: int) -> dict:
 
     ls = limit_set(_part(cfg["part"]), _arm(cfg), cfg["omega"], cfg["model"], n_starts=cfg["n_starts"],
                    rng=seed, x_max=cfg["x_max"], transient=cfg["transient"], n_record=cfg["n_record"],
-                   force=True, **({"fixtures": _fixtures(cfg)} if cfg.get("wall_height") is not None else {}),
+                   limits=Limits(force=True), **({"fixtures": _fixtures(cfg)} if cfg.get("wall_height") is not None else {}),
                    **({"alpha": cfg["alpha"]} if cfg["alpha"] else {}))
     return {"kind": ls.kind, "n_attractors": len(ls.attractors), "unique": bool(ls.unique),
             "escapes": _json(dict(ls.escapes)), "attractors": _json(_clean([a.to_dict() for a in ls.attractors]))}

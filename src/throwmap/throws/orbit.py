@@ -2,19 +2,17 @@
 
 from __future__ import annotations
 
-import dataclasses
 
 import numpy as np
 
 import time
 
-from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..budget import Limits, check_count, guard_work
 from ..system.arm import Arm
 from ..errors import InvalidStateError, shown
-from ..records.outcome import Status, ThrowOutcome
 from ..records.orbit import Orbit
 from ..system.part import Part
-from .throw import DEFAULT_MODEL, _invalid_outcome, throw
+from .throw import DEFAULT_MODEL
 
 __all__ = ["Orbit", "iterate", "BYTES_PER_THROW", "TIMED_THROWS", "ThrowGuard", "planned_throws", "throw_rates"]
 
@@ -69,9 +67,9 @@ class ThrowGuard:
     :data:`WARM_THROWS`, which warm the kernels, are not counted) it checks the time of the whole run.
     """
 
-    def __init__(self, what: str, field: str, n_planned: int, bytes_per_throw: float, max_memory, max_seconds,
-                 force, hint: str):
-        self.args = (what, field, n_planned, bytes_per_throw, *check_limits(max_memory, max_seconds, force))
+    def __init__(self, what: str, field: str, n_planned: int, bytes_per_throw: float, limits: Limits | None,
+                 hint: str):
+        self.args = (what, field, n_planned, bytes_per_throw, Limits.of(limits))
         self.hint = hint
         self.done = 0
         self.t0 = None
@@ -86,160 +84,62 @@ class ThrowGuard:
             guard_work(*self.args, throws_per_config=1.0, timer=lambda: per, hint=self.hint, unit="throws")
 
 
-def _restart_reason(part: Part, arm: Arm, x: float, side: int, omega: float) -> str:
-    """Why the rest ``(x, side)`` of the last throw is not a start of the next one (``""`` if it is): a part at
-    rest leaning on a wall reports its CM's x and the nearest side, which may lie past the last flat start."""
-    from ..system.starts import check_start
-
-    try:
-        check_start(part, arm, x, side, omega)
-    except InvalidStateError as err:
-        return f"the last throw's rest is not a start of the map ({err.reason}): the part leans, e.g. on a wall"
-    return ""
-
-
 def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: str = DEFAULT_MODEL, *, progress=None,
-            max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False,
-            **throw_kwargs) -> Orbit:
-    """Throw repeatedly from ``state = (x, side)``.
+            limits: Limits | None = None, **throw_kwargs) -> Orbit:
+    """Throw repeatedly from ``state = (x, side)`` (paper Sec. III-D): an orbit of the throw map.
 
     ``omegas`` is one release rate (then ``n`` throws) or a sequence, one per throw
     (then ``n`` may be omitted, or must equal its length). Stops early, with the
     escape's status, if a throw leaves the arm or does not come to rest.
     ``progress``, if given, is called with the number of throws done after each throw.
 
-    Work guard (:mod:`throwmap.budget`): the orbit's memory (:data:`BYTES_PER_THROW`
-    per throw) is checked before any throw, its time from the first throws
-    (:data:`TIMED_THROWS`, timed now); above ``max_memory`` (bytes) or ``max_seconds``
-    (s) it is refused with one line on ``n``, unless ``force``.
+    The throws run on one throwing session (:func:`~throwmap.throws.session.open_session`): model,
+    system, options and start are validated once. A model that keeps poses (``features.pose``, the
+    engine) starts each throw from the pose the previous one left the part in (not from a flat rest at
+    the reported ``(x, side)``), so a part held tilted by a fixture stays so, and :attr:`Orbit.poses`
+    lists those poses; its ``state`` may also be an engine :class:`~throwmap.engine.Scene` (or a
+    :class:`~throwmap.experiments.drop.DropResult`) holding this one part, which brings its fixtures and α.
+    A model that follows arm motions (``features.realisation``) may take ``realisation`` as a callable
+    ``omega -> realisation`` (one realisation per throw).
 
-    Model ``"engine"``: ``state`` may also be an engine :class:`~throwmap.engine.Scene` (or a
-    :class:`~throwmap.experiments.drop.DropResult`, whose ``scene`` is used) holding this one part, e.g.
-    a part dropped onto the arm: the first throw starts from its pose, with its fixtures and α.
-    Each throw starts from the pose the previous one left the part in
-    (not from a flat rest at the reported ``(x, side)``), so a part held tilted by a
-    fixture stays so; :attr:`Orbit.poses` lists those poses. Its ``realisation`` keyword
-    may also be a callable ``omega -> realisation`` (one realisation per throw).
+    Work guard (:mod:`throwmap.budget`, ``limits``): the orbit's memory (:data:`BYTES_PER_THROW` per
+    throw) is checked before any throw, its time from the first throws (:data:`TIMED_THROWS`, timed now);
+    above the limits it is refused with one line on ``n``, unless ``limits.force``.
     """
-    scene = getattr(state, "scene", state)  # a DropResult carries its engine scene
-    if hasattr(scene, "placements"):  # an engine Scene: the part already at rest in the engine
-        if not _is_engine(model):
-            raise InvalidStateError("state", f"an engine Scene is a start for model 'engine' only (model is {model!r})")
-        x0 = s0 = None
-    else:
-        scene = None
-        try:
-            x0, s0 = state
-        except (TypeError, ValueError):
-            raise InvalidStateError("state", f"must be a pair (x, side), got {shown(state)}") from None
-    gd = ThrowGuard("iterate", "n", planned_throws(omegas, n), BYTES_PER_THROW, max_memory, max_seconds, force,
-                      hint="fewer throws (-n)")
-    om = throw_rates(omegas, n)
-    if _is_engine(model):
-        return _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs, scene)
-    xs = [float(x0)]
-    ss = [part.check_side(s0)]
-    outs = []
-    status = Status.OK
-    for i, w in enumerate(om):
-        if i > 0:  # a rest the next throw cannot start from (leaning on a wall past the last start): the orbit ends
-            reason = _restart_reason(part, arm, xs[-1], ss[-1], float(w))
-            if reason:
-                outs.append(_invalid_outcome(part, xs[-1], ss[-1], float(w), model, reason))
-                status = Status.INVALID_START
-                break
-        o: ThrowOutcome = throw(part, arm, xs[-1], ss[-1], float(w), model=model, **throw_kwargs)
-        outs.append(o)
-        gd.tick()
-        if progress is not None:
-            progress(len(outs))
-        if o.status != Status.OK:
-            status = o.status
-            break
-        xs.append(o.x)
-        ss.append(o.side)
-    first = outs[0] if outs else None
-    return Orbit(
-        x=np.array(xs),
-        side=np.array(ss, dtype=int),
-        omegas=om[: len(outs)].copy(),
-        outcomes=tuple(outs),
-        status=status,
-        model=model,
-        alpha=first.alpha if first is not None else float(throw_kwargs.get("alpha", 0.0) or 0.0),
-        fixtures=first.fixtures if first is not None else tuple(throw_kwargs.get("fixtures", ()) or ()),
-    )
-
-
-def _is_engine(model) -> bool:
-    """Whether ``model`` is the pymunk engine (the model whose runs hand their end scene to the next throw)."""
-    from ..models import get_model
-
-    return getattr(get_model(model), "name", None) == "engine"
-
-
-def _iterate_engine(part, arm, x0, s0, om, model, gd, progress, throw_kwargs, start_scene=None) -> Orbit:
-    """:func:`iterate` for model ``"engine"``: a chain of engine runs, each starting from the scene the
-    previous one ended in (:meth:`throwmap.engine.EngineRun.next_scene`), so a part keeps its settled
-    pose — tilted against a wall or in a cavity — from throw to throw. Only the first start is the
-    flat rest at ``(x0, s0)``. ``realisation`` may be a realisation (every throw), None (the impulse at
-    each throw's ω) or a callable ``omega -> realisation`` (e.g. :meth:`throwmap.experiments.noise.Noise.realisation_for`).
-    """
-    from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
-    from ..system.arm import warn_if_outside_regime
-    from ..system.starts import check_start
-    from .throw import prepare
+    from .session import open_session
 
     kw = dict(throw_kwargs)
-    fixtures, alpha, options = kw.pop("fixtures", ()), kw.pop("alpha", 0.0), kw.pop("options", None)
     real = kw.get("realisation")
     factory = real if callable(real) and not hasattr(real, "angle") else None
     if factory is not None:
         kw["realisation"] = None
-    if start_scene is not None:
-        from ..system.pose import state_from_pose
-
-        if len(start_scene.placements) != 1 or start_scene.placements[0].part != part or start_scene.arm != arm:
-            raise InvalidStateError("state", "the engine Scene must hold this one part on this arm")
-        if fixtures not in ((), None) or alpha != 0.0:
-            raise InvalidStateError("fixtures", "a start Scene brings its own fixtures and alpha: do not pass them")
-        fixtures, alpha = start_scene.fixtures, start_scene.alpha
-        if kw.get("friction") is None:
-            kw["friction"] = start_scene.friction
-    _, system, opts = prepare(model, arm, fixtures, alpha, options, kw)
-    warn_if_outside_regime(part, arm)
-    if start_scene is None:
-        x, k, _ = check_start(part, arm, x0, s0, float(om[0]) if om.size else 0.0)
-        friction = Friction() if opts.friction is None else opts.friction
-        scene = Scene(arm, (Placement(part, x=x, side=k),), system.fixtures, system.alpha, friction)
-    else:
-        scene = start_scene
-        x, k, _ = state_from_pose(part, scene.placements[0].arm_pose(arm.h))
-    xs, ss = [float(x)], [int(k)]
-    poses = [tuple(float(c) for c in scene.placements[0].arm_pose(arm.h))]
+    gd = ThrowGuard("iterate", "n", planned_throws(omegas, n), BYTES_PER_THROW, limits, hint="fewer throws (-n)")
+    om = throw_rates(omegas, n)
+    if not hasattr(getattr(state, "scene", state), "placements"):
+        try:
+            _, _ = state
+        except (TypeError, ValueError):
+            raise InvalidStateError("state", f"must be a pair (x, side), got {shown(state)}") from None
+    session = open_session(part, arm, state, model, **kw)
+    s0 = session.states[0]
+    poses = [s0.pose] if session.features.pose else None
+    xs, ss = [s0.x], [s0.side]
     outs = []
-    status = Status.OK
     for w in om:
-        w = float(w)
-        if w < 0 or not np.isfinite(w):
-            raise InvalidStateError("omegas", f"must be finite and ≥ 0, got {shown(w)}")
-        realisation = factory(w) if factory is not None else (ImpulseThrow(w) if opts.realisation is None
-                                                               else opts.realisation)
-        run = simulate(scene, realisation, opts.settings)
-        o = run.outcome(0, x0=xs[-1], side0=ss[-1], omega=w)
-        if system.alpha != 0.0 or system.fixtures:
-            o = dataclasses.replace(o, alpha=float(system.alpha), fixtures=tuple(system.fixtures))
-        outs.append(o)
+        step = session.throw(float(w), factory(float(w)) if factory is not None else None)
+        outs.append(step.outcome)
         gd.tick()
         if progress is not None:
             progress(len(outs))
-        if o.status != Status.OK:
-            status = o.status
+        if not step.ok:
             break
-        xs.append(o.x)
-        ss.append(o.side)
-        poses.append(tuple(float(c) for c in run.poses[0]))
-        scene = run.next_scene()
+        s = step.states[0]
+        xs.append(s.x)
+        ss.append(s.side)
+        if poses is not None:
+            poses.append(s.pose)
+    system = session.system
     return Orbit(x=np.array(xs), side=np.array(ss, dtype=int), omegas=om[: len(outs)].copy(), outcomes=tuple(outs),
-                 status=status, model="engine", poses=tuple(poses), alpha=float(system.alpha),
+                 status=session.status, model=session.model.name if hasattr(session.model, "name") else str(model),
+                 poses=None if poses is None else tuple(poses), alpha=float(system.alpha),
                  fixtures=tuple(system.fixtures))

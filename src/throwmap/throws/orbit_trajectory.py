@@ -17,9 +17,9 @@ from ..errors import InvalidStateError, shown
 from ..models import DEFAULT_MODEL, model_names
 from ..system.arm import Arm
 from ..system.part import Part
-from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
+from ..budget import Limits
 from .orbit import ThrowGuard, planned_throws, throw_rates
-from ..records.outcome import Status, ThrowOutcome
+from ..records.outcome import ThrowOutcome
 from ..system.starts import check_start, tilted_rest_reason
 from .throw import prepare
 from ..records.trajectory import DEFAULT_DT, Trajectory, check_dt, drawn_length
@@ -124,8 +124,7 @@ def _dedupe(traj: Trajectory) -> Trajectory:
 
 def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int | None = None,
                      model: str = DEFAULT_MODEL, pause: float = 0.3, *, dt: float = DEFAULT_DT, progress=None,
-                     max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
-                     force: bool = False, **throw_kw) -> Trajectory:
+                     limits: Limits | None = None, **throw_kw) -> Trajectory:
     """Successive throws from ``(x, side)`` as one trajectory, with a still ``pause`` (s) between throws.
 
     ``omegas`` is one release rate (then ``n`` throws) or one per throw (as
@@ -138,27 +137,44 @@ def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int |
 
     Work guard (:mod:`throwmap.budget`, as :func:`throwmap.iterate`): the memory
     (:data:`TRAJECTORY_BYTES_PER_THROW` per throw at the default ``dt``) is checked
-    before any throw, the time from the first throws; above ``max_memory`` (bytes) or
-    ``max_seconds`` (s) it is refused with one line on ``n``, unless ``force``.
+    before any throw, the time from the first throws; above ``limits`` (:class:`~throwmap.budget.Limits`)
+    it is refused with one line on ``n``, unless ``limits.force``.
     """
     planned = planned_throws(omegas, n, min_n=1)
     per_throw = TRAJECTORY_BYTES_PER_THROW * max(1.0, DEFAULT_DT / float(dt)) if isinstance(dt, (int, float)) \
         and math.isfinite(dt) and dt > 0 else TRAJECTORY_BYTES_PER_THROW
-    gd = ThrowGuard("orbit trajectory", "n", planned, per_throw, max_memory, max_seconds, force,
+    gd = ThrowGuard("orbit trajectory", "n", planned, per_throw, limits,
                     hint="fewer throws (-n)")
     om = throw_rates(omegas, n, min_n=1)
     pause = float(pause)
     if not (math.isfinite(pause) and pause >= 0):
         raise InvalidStateError("pause", f"must be a finite time ≥ 0 (s), got {shown(pause)}")
     dt = check_dt(dt)
+    from .session import open_session
+
+    m, _, _ = prepare(model, arm, throw_kw.get("fixtures", ()), throw_kw.get("alpha", 0.0), throw_kw.get("options"),
+                      {k: v for k, v in throw_kw.items() if k not in ("fixtures", "alpha", "options")})
+    if not m.features.trajectory:
+        raise InvalidStateError("model", f"model {m.name!r} records no trajectory "
+                                         f"(choose from {', '.join(trajectory_models())})")
+    session = open_session(part, arm, (x, side), model, **throw_kw)
+    alpha = session.system.alpha
+    if alpha != 0.0:  # a throw from there is INVALID_START; a trajectory has nothing to show
+        reason = tilted_rest_reason(part, arm, session.states[0].side, alpha, m.features.friction)
+        if reason:
+            raise InvalidStateError("side", f"not at rest on the tilted arm: {reason}")
     traj = None
     outcomes = []
     starts = []
-    xs, ss = float(x), side
     for w in om:
-        out, piece = throw_trajectory(part, arm, xs, ss, float(w), model, dt=dt, **throw_kw)
-        outcomes.append(out)
+        step = session.throw(float(w), record=dt)
+        outcomes.append(step.outcome)
         gd.tick()
+        piece = step.trajectory
+        if piece is None:  # the rest left by the last throw is no start (it leans on a wall): nothing to draw
+            if traj is None:
+                raise InvalidStateError("x", step.message or "the start is not a rest of the map")
+            break
         if traj is None:
             starts.append(0.0)
             traj = piece
@@ -169,9 +185,8 @@ def orbit_trajectory(part: Part, arm: Arm, x: float, side: int, omegas, n: int |
             traj = traj.concat(piece)
         if progress is not None:
             progress(len(outcomes))
-        if out.status != Status.OK:
+        if not step.ok:
             break
-        xs, ss = out.x, out.side
     traj = _dedupe(traj)
     length = traj.length
     if arm.length is None and not traj.fixtures:  # an unbounded arm: draw it just past the part's reach

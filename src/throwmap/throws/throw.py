@@ -167,6 +167,13 @@ def throw_batch(
     with that reason (``"raise"``) or marked INVALID_START (``"status"``).
     """
     m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
+    return run_batch(m, system, opts, part, x, side, omega, on_invalid=on_invalid, progress=progress)
+
+
+def run_batch(m, system, opts, part: Part, x, side, omega, *, on_invalid: str = "raise", progress=None) -> BatchOutcome:
+    """:func:`throw_batch` on an already validated model ``m``, :class:`System` and options value (see
+    :func:`prepare`): checks the starts and throws them (sessions call this once per step)."""
+    arm = system.arm
     if on_invalid not in ("raise", "status"):
         raise InvalidStateError("on_invalid", f"must be 'raise' or 'status', got {on_invalid!r}")
     if not isinstance(part, Part):
