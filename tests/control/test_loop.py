@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 import throwmap as tm
-import throwmap.control.loop as L
 from throwmap.control import Episode, Goal, PaperController, WithinSensor, closed_loop
 from throwmap.errors import InvalidStateError
 from throwmap.experiments.noise import Noise
@@ -54,13 +53,17 @@ def test_max_throws_ends_not_stopped():
 
 
 def test_a_refused_throw_is_a_refusal(monkeypatch):
-    real = L.m_throw
+    from throwmap.throws import session as S
 
-    def refusing(*args):
-        o = real(*args)
-        return dataclasses.replace(o, status=Status.UNRESOLVED)
+    real = S.MapSession.throw
 
-    monkeypatch.setattr(L, "m_throw", refusing)
+    def refusing(self, *args, **kw):  # the model refuses the throw it made
+        step = real(self, *args, **kw)
+        self.status = Status.UNRESOLVED
+        return dataclasses.replace(step, status=Status.UNRESOLVED,
+                                   outcomes=(dataclasses.replace(step.outcome, status=Status.UNRESOLVED),))
+
+    monkeypatch.setattr(S.MapSession, "throw", refusing)
     ep = closed_loop(PART, ARM, CTL, 0.15, 0, model="paper")
     assert (ep.success, ep.failure, ep.refused, ep.status, ep.throws) == (False, "refused:unresolved", True,
                                                                          "unresolved", 1)

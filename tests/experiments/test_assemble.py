@@ -59,7 +59,10 @@ def test_a_refused_run_is_counted_never_dropped(monkeypatch):
                                        message="part 0: a vertex sank 3 mm; result refused")
         return run
 
-    monkeypatch.setattr(engine, "simulate", fake)
+    import throwmap.engine.session as engine_session
+
+    monkeypatch.setattr(engine, "simulate", fake)  # the drop
+    monkeypatch.setattr(engine_session, "simulate", fake)  # the session's runs
     cfg = AssembleConfig(max_high=3, sensor={"false_negative": 0.99})  # the sensor (almost) never fires
     tr = Assemble().trial(cfg, 0, trial_generator(1, 0))
     assert not tr.success and tr.failure == "refused:penetration" and tr.values["throws_high"] == 1

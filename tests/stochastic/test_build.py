@@ -91,17 +91,17 @@ def test_open_loop_chain_lies_in_the_monte_carlo_band(setup):
 def test_the_noise_realisation_reaches_models_that_take_one(setup, monkeypatch):
     """rigid_body rides the noise's recoil arm (a callable ω → realisation, as closed_loop does); 'paper' never
     gets one; the impulse is passed as no realisation (the batched kernel)."""
-    import throwmap.throws.throw as T
+    import throwmap.throws.session as S
 
     part, arm = setup
     seen = []
-    real = T.throw_batch
+    real = S.MapEnsemble.throw
 
-    def spy(*a, **kw):
-        seen.append((a[5] if len(a) > 5 else "rigid_body", kw.get("realisation")))
-        return real(*a, **{k: v for k, v in kw.items() if k != "realisation"})
+    def spy(self, omega, motion=None, **kw):  # the motion the step was given; thrown as the impulse (quicker)
+        seen.append((self.model.name, motion))
+        return real(self, omega, None, **kw)
 
-    monkeypatch.setattr(T, "throw_batch", spy)
+    monkeypatch.setattr(S.MapEnsemble, "throw", spy)
     x, s = np.array([0.3]), np.array([1])
     rng = np.random.default_rng(0)
     recoil = Noise(realisation="recoil")

@@ -166,6 +166,8 @@ class PaperController:
     kick: tuple = ()
 
     kind = "paper"
+    rest_policy = True
+    """Its decisions depend on the sensors' readings at the rest alone (with ``confirm = 1`` and no hysteresis)."""
 
     def __post_init__(self):
         if not isinstance(self.goal, Goal):
@@ -266,6 +268,8 @@ class InverseJogController:
     kick: tuple = ()
 
     kind = "inverse"
+    rest_policy = True
+    """Its decisions depend on the sensors' readings at the rest alone (with ``confirm = 1`` and no hysteresis)."""
 
     def __post_init__(self):
         if not isinstance(self.goal, Goal):

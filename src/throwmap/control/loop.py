@@ -1,15 +1,15 @@
 """The closed loop: a controller throwing a part on any throw model (paper Sec. IV-A).
 
 :func:`closed_loop` reads the controller's sensors at the part's true rest, asks it for a decision
-(:class:`~throwmap.control.controllers.Decision`: throw at ω, look again, or stop) and throws —
-through :func:`throwmap.throw` for the analytic models (the next throw starts flat at the reported
-``(x, side)``) or through the pymunk engine for ``model="engine"``, where every run starts from the
-pose the previous run ended in (:meth:`throwmap.engine.EngineRun.next_scene`, as
-:func:`throwmap.iterate` does), so a start may also be a dropped part
-(:class:`~throwmap.experiments.drop.DropResult`). Noise (:class:`~throwmap.experiments.noise.Noise`):
-each throw's ω is jittered, and in the engine the arm moves by the noise's realisation (``recoil``:
-the Flatland arm) built for that ω; the analytic models always throw the paper's impulse. The arm's
-μ is the caller's (draw a trial's μ with ``noise.arm(arm, rng)`` first; a dropped start carries its own).
+(:class:`~throwmap.control.controllers.Decision`: throw at ω, look again, or stop) and throws, on one
+throwing session of the chosen model (:func:`~throwmap.throws.session.open_session`): a model of rests
+starts each throw flat at the reported ``(x, side)``; a model that keeps poses (the engine) starts each
+run from the pose the previous one ended in, as :func:`throwmap.iterate` does, so a start may also be a
+dropped part (:class:`~throwmap.experiments.drop.DropResult`). Noise
+(:class:`~throwmap.experiments.noise.Noise`): each throw's ω is jittered, and where the model follows arm
+motions (``features.realisation``) the arm moves by the noise's realisation (``recoil``: the Flatland arm)
+built for that ω; the others throw the paper's impulse. The arm's μ is the caller's (draw a trial's μ with
+``noise.arm(arm, rng)`` first; a dropped start carries its own).
 
 The result is an :class:`Episode` (frozen): every decision with the readings it was made on,
 the rests after every throw, and how it ended. ``success`` needs the controller to have stopped
@@ -116,25 +116,6 @@ class Episode:
         return plot_episode(self, ax=ax, **kwargs)
 
 
-def _start_engine(part, arm, x0, side0, opts):
-    from ..engine import Friction, Placement, Scene
-    from ..system.pose import state_from_pose
-
-    scene = getattr(x0, "scene", x0)
-    if hasattr(scene, "placements"):
-        if len(scene.placements) != 1 or scene.placements[0].part != part:
-            raise InvalidStateError("x0", "the engine Scene must hold this one part")
-        x, k, tilt = state_from_pose(part, scene.placements[0].arm_pose(scene.arm.h))
-        return scene, float(x), int(k), float(tilt)
-    from ..system.starts import check_start
-
-    x, k, _ = check_start(part, arm, x0, side0, 0.0)
-    fr = opts.get("friction") or Friction()
-    scene = Scene(arm, (Placement(part, x=x, side=k),), tuple(opts.get("fixtures", ()) or ()),
-                  float(opts.get("alpha", 0.0) or 0.0), fr)
-    return scene, float(x), int(k), 0.0
-
-
 def _read(sensors: dict, x: float, side: int, rng, last: dict) -> dict:
     out = {}
     for name in sorted(sensors):
@@ -147,15 +128,18 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
     """Run ``controller`` on ``part`` resting at ``(x0, side0)`` on ``arm`` until it stops or ``max_throws``.
 
     ``x0`` may instead be an engine :class:`~throwmap.engine.Scene` or a
-    :class:`~throwmap.experiments.drop.DropResult` (model ``"engine"`` only; ``side0`` then unused).
-    ``model``: any registered throw model (``"engine"``: chained engine runs). ``noise``: a
+    :class:`~throwmap.experiments.drop.DropResult`: a model that keeps poses (``features.pose``, the engine)
+    starts from it; the others start flat at the drop's nearest rest (``side0`` then unused).
+    ``model``: any registered throw model; the throws run on one throwing session
+    (:func:`~throwmap.throws.session.open_session`). ``noise``: a
     :class:`~throwmap.experiments.noise.Noise` (ω jitter per throw, and the arm's realisation for every model
-    that takes one: the engine, and rigid_body, which rides the recoil arm exactly) or None (exact ω; the
-    impulse). ``rng``: generator or seed, used for the sensors and the jitter.
+    that follows one, ``features.realisation``: the engine, and rigid_body, which rides the recoil arm exactly)
+    or None (exact ω; the impulse). ``rng``: generator or seed, used for the sensors and the jitter.
     ``throw_options``: keywords of the throw (``fixtures``, ``alpha``, ``settings``, ``friction``, model
     options). See the module docstring for what the result says.
     """
     from ..models import get_model
+    from ..throws.session import open_session
 
     if isinstance(max_throws, bool) or not isinstance(max_throws, (int, np.integer)) or max_throws < 0:
         raise InvalidStateError("max_throws", f"must be an integer ≥ 0, got {shown(max_throws)}")
@@ -163,24 +147,22 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
         if not hasattr(controller, name):
             raise InvalidStateError("controller", f"must be a controller (with .{name}), got {type(controller).__name__}")
     rng = as_generator(rng)
-    m = get_model(model)
-    engine = getattr(m, "name", None) == "engine"
-    moving = bool(getattr(getattr(m, "features", None), "realisation", False))  # rigid_body rides the recoil arm
-    goal = controller.goal
-    if engine:
-        from ..engine import ImpulseThrow, simulate
-
-        scene, x, k, tilt = _start_engine(part, arm, x0, side0, throw_options)
-        settings = throw_options.get("settings")
+    start = getattr(x0, "scene", x0)
+    if hasattr(start, "placements"):
+        if get_model(model).features.pose:
+            if len(start.placements) != 1 or start.placements[0].part != part:
+                raise InvalidStateError("x0", "the engine Scene must hold this one part")
+            arm = start.arm
+            state = x0
+        else:  # a dropped part: a model of rests starts flat at its nearest rest
+            state = (float(getattr(x0, "x")), int(getattr(x0, "side")))
     else:
-        if hasattr(getattr(x0, "scene", x0), "placements"):
-            # a dropped part: the analytic models start flat at its nearest rest
-            drop = x0
-            x0, side0 = float(getattr(drop, "x")), int(getattr(drop, "side"))
-        from ..system.starts import check_start
-
-        x, k, _ = check_start(part, arm, x0, side0, 0.0)
-        x, k, tilt = float(x), int(k), 0.0
+        state = (x0, side0)
+    session = open_session(part, arm, state, model, **throw_options)
+    moving = session.features.realisation and noise is not None and "realisation" not in throw_options
+    goal = controller.goal
+    s0 = session.states[0]
+    x, k, tilt = s0.x, s0.side, s0.tilt
     sensors = controller.sensors()
     state = controller.initial()
     xs, ss, steps = [x], [k], []
@@ -216,32 +198,19 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
         w = noise.omega(w_nom, rng) if noise is not None else w_nom
         steps.append(Step(throws, x, k, tilt, readings, "throw", w_nom, w, d.mode, d.switched, d.reason))
         throws += 1
-        if engine:
-            real = noise.realisation_for(w) if noise is not None else ImpulseThrow(w)
-            run = simulate(scene, real, settings)
-            st = Status(run.statuses[0])
-            x, k, tilt = (float(run.states[0][0]), int(run.states[0][1]), float(run.states[0][2]))
-            if st == Status.OK:
-                scene = run.next_scene()
-        else:
-            opts = {kk: v for kk, v in throw_options.items()}
-            if moving and noise is not None and "realisation" not in opts:
-                opts["realisation"] = noise.realisation_for(w)  # the arm's motion, where the model takes one
-            try:
-                o = m_throw(part, arm, x, k, w, model, opts)
-            except InvalidStateError as err:
-                status, failure = "invalid_start", f"refused:invalid_start"
-                break
-            st = Status(o.status)
-            x, k, tilt = float(o.x), int(o.side), 0.0
+        step = session.throw(w, noise.realisation_for(w) if moving else None)
+        st = step.status
         status = st.label
-        if st != Status.OK:
-            failure = st.label if st in (Status.OFF_END, Status.BEHIND_JOINT) else f"refused:{st.label}"
-            xs.append(x)
-            ss.append(k)
+        if st == Status.INVALID_START:  # the rest the last throw left is not a start of the map
+            failure = f"refused:{st.label}"
             break
+        after = step.states[0]
+        x, k, tilt = after.x, after.side, after.tilt
         xs.append(x)
         ss.append(k)
+        if st != Status.OK:
+            failure = st.label if st in (Status.OFF_END, Status.BEHIND_JOINT) else f"refused:{st.label}"
+            break
         if first_on_side is None and k == goal.side:
             first_on_side = throws
     success = False
@@ -255,10 +224,3 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
     ctl = controller.to_dict() if hasattr(controller, "to_dict") else {"kind": type(controller).__name__}
     return Episode(getattr(part, "name", str(part)), str(model), goal, ctl, tuple(xs), tuple(ss), tuple(steps),
                    status, stopped, success, None if success else failure, throws, looks, switches, first_on_side)
-
-
-def m_throw(part, arm, x, side, omega, model, opts):
-    """One analytic throw (:func:`throwmap.throw`)."""
-    from ..throws.throw import throw
-
-    return throw(part, arm, x, side, omega, model=model, **opts)

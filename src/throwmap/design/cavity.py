@@ -422,20 +422,24 @@ def evaluate_cavity(design: CavityDesign, *, verify: bool = True, settings=None,
 
 
 def _engine_checks(d: CavityDesign, settings, n_hold: int, n_capture: int):
-    from ..engine import Placement, Scene, simulate
-    from ..records.outcome import Status
+    from ..engine import Placement, Scene
     from ..system.pose import pose_at_rest
+    from ..throws.session import open_session
 
     part, k, L = d.part, d.side, d.length
     real = d.realisation
 
-    def throw(scene, w):
-        return simulate(scene, _realisation(real["kind"], w, real["recoil"], real["zeta"]), settings)
+    def session(placement):
+        """The part thrown again and again in the engine from ``placement`` in the cavity's scene."""
+        return open_session(part, d.arm, Scene(d.arm, (placement,), d.fixtures), ENGINE, settings=settings)
+
+    def throw(sess, w):
+        return sess.throw(w, _realisation(real["kind"], w, real["recoil"], real["zeta"]))
 
     def at_wall(j):
         x = L - d.numbers.get("end_gap_m", 0.0) - float(part.uR[j]) - 1e-4
         if x + float(part.uL[j]) > d.lip_x:  # lies on the floor
-            return Scene(d.arm, (Placement(part, pose=pose_at_rest(part, d.floor_y, x, j)),), d.fixtures)
+            return Placement(part, pose=pose_at_rest(part, d.floor_y, x, j))
         return None
 
     out, pose = [], None
@@ -450,47 +454,48 @@ def _engine_checks(d: CavityDesign, settings, n_hold: int, n_capture: int):
         start = Placement(part, pose=pose_at_rest(part, d.floor_y, x0, k))
     where, n_throws = "outside", 0
     if x0 + float(part.uR[k]) < L:
-        scene = Scene(d.arm, (start,), d.fixtures)
+        sess = session(start)
         for n_throws in range(1, n_capture + 1):
-            run = throw(scene, d.omega)
-            if run.status != Status.OK:
-                where = f"{run.status.label}"
+            step = throw(sess, d.omega)
+            if not step.ok:
+                where = f"{step.status.label}"
                 break
-            where = d.where(run.poses[0])
+            where = d.where(step.poses[0])
             if where == "target":
-                pose = tuple(run.poses[0])
+                pose = tuple(step.poses[0])
                 break
-            scene = run.next_scene()
     out.append(Check("engine_capture", where == "target", float(n_throws),
                      f"side {k} thrown at ω from short of the lip (or the cavity's joint end) ends flat on "
                      f"side {k} in the cavity within {n_capture} throws (throws used; ended: {where})", unit="throws"))
     # hold: at the wall on side k, n_hold throws at ω_hi
-    scene, held, why = at_wall(k), 0, "does not fit on the floor"
-    if scene is not None:
+    placement, held, why = at_wall(k), 0, "does not fit on the floor"
+    if placement is not None:
         why = "held"
+        sess = session(placement)
         for _ in range(n_hold):
-            run = throw(scene, d.numbers["omega_hi"])
-            w = d.where(run.poses[0]) if run.status == Status.OK else run.status.label
+            step = throw(sess, d.numbers["omega_hi"])
+            w = d.where(step.poses[0]) if step.ok else step.status.label
             if w != "target":
                 why = w
                 break
             held += 1
-            scene = run.next_scene()
     out.append(Check("engine_hold", held == n_hold, float(held),
                      f"side {k} at the wall stays flat on side {k} in the cavity through {n_hold} throws at ω_hi "
                      f"(ended: {why})", unit="throws"))
     for j in part.stable_sides:
         if j == k:
             continue
-        scene = at_wall(j)
-        if scene is None:
+        placement = at_wall(j)
+        if placement is None:
             out.append(Check(f"engine_release_{j}", True, 0.0, f"side {j} cannot lie on the floor", unit="throws"))
             continue
-        run = throw(scene, d.numbers["omega_lo"])
-        from ..system.pose import state_from_pose
-
-        stays = run.status == Status.OK and state_from_pose(part, run.poses[0])[1] == j
+        step = throw(session(placement), d.numbers["omega_lo"])
+        stays = step.ok and step.states[0].side == j
         out.append(Check(f"engine_release_{j}", not stays, 1.0, f"side {j} at the wall leaves side {j} in one throw "
-                                                                  f"at ω_lo ({'stayed' if stays else run.status.label})",
+                                                                  f"at ω_lo ({'stayed' if stays else step.status.label})",
                          unit="throws"))
     return out, pose
+
+
+ENGINE = "engine"
+"""The model of the cavity's checks in full physics: the part keeps its pose from throw to throw."""

@@ -298,15 +298,14 @@ def _stuck_at_wall(cfg: AssembleConfig, run) -> bool:
     return any(k == 2 and abs(t) < 0.02 and x >= cfg.wall_x for x, k, t in run.states)
 
 
-def _throw_low(cfg: AssembleConfig, run, noise, rng, simulate, settings, phase: str):
-    """One assembling throw at ``omega_low`` or an ``approach`` rung's rate."""
+def _throw_low(cfg: AssembleConfig, run, noise, rng, advance, settings, phase: str):
+    """One assembling throw at ``omega_low`` or an ``approach`` rung's rate, from where ``run`` ended."""
     x_left, nominal = min(s[0] for s in run.states), cfg.omega_low
     for x, w in cfg.approach:
         if x_left < x:
             nominal = w
             break
-    _, real = noise.throw(nominal, rng)
-    return simulate(run.next_scene(), real, settings, phase, nominal)
+    return advance(noise.throw(nominal, rng), settings, phase, nominal)
 
 class Assemble:
     """Drop two triangles, randomise until the pair sensor fires, tilt, assemble at the wall with low throws."""
@@ -325,15 +324,22 @@ class Assemble:
         again), ``"hold"``; ``omega`` the nominal rate (rad/s; 0 for the drop and the tilts); with an observer the
         runs record their trajectories (``run.trajectory``)."""
         from ..control.pair_sensors import LONG_LEG, PairSensor, assembled_error, is_assembled
-        from ..engine import TiltTo
-        from ..engine import simulate as _simulate
+        from ..system.motion import TiltTo
         from ..system.pose import state_from_pose
+        from ..throws.session import open_session
 
-        def simulate(scene, real, settings, phase="high", omega=0.0):
-            run = _simulate(scene, real, settings, record=observer is not None)
+        session = None
+
+        def advance(throw, settings, phase="high", omega=0.0):
+            """The session's next engine run: ``throw`` = ``(ω, motion)`` of a throw, or a :class:`TiltTo`."""
+            record = observer is not None
+            if isinstance(throw, TiltTo):
+                step = session.move(throw, settings=settings, record=record)
+            else:
+                step = session.throw(throw[0], throw[1], settings=settings, record=record)
             if observer is not None:
-                observer(phase, run, omega)
-            return run
+                observer(phase, step.run, omega)
+            return step.run
 
         part, arm, wall = _setup(cfg)
         noise = cfg.noise.noise()
@@ -365,6 +371,7 @@ class Assemble:
             observer("drop", run, 0.0)
         if int(run.status) != 0:
             return done(False, "refused:drop")
+        session = open_session((part, part), arm, run, ENGINE)  # each run starts where the last one ended
         while True:
             # -- randomise until the sensor says "ready" confirm times in a row (or the pair is assembled already)
             v["phase"] = "high"
@@ -387,7 +394,7 @@ class Assemble:
                 if cfg.slide_x > 0 and min(x for x, _, _ in run.states) < cfg.slide_x:
                     # near the joint no throw moves the parts out (they creep in): slide them to the wall
                     for turn in (-cfg.slide_alpha, cfg.slide_alpha):
-                        run = simulate(run.next_scene(), TiltTo(turn, cfg.slide_rate), high, "slide")
+                        run = advance(TiltTo(turn, cfg.slide_rate), high, "slide")
                         if int(run.status) != 0:
                             return done(False, _kind(run.status, run.message, v))
                     v["slides"] += 1
@@ -395,7 +402,7 @@ class Assemble:
                     continue
                 if _stuck_at_wall(cfg, run) and _coarse(run) == key:
                     # escape: tilt up, throw, tilt back (at alpha = 0 no rate moves a part standing at the wall)
-                    run = simulate(run.next_scene(), TiltTo(cfg.escape_alpha, cfg.tilt_rate * 10), high, "escape")
+                    run = advance(TiltTo(cfg.escape_alpha, cfg.tilt_rate * 10), high, "escape")
                     if int(run.status) != 0:
                         return done(False, _kind(run.status, run.message, v))
                     nominal = cfg.escape_omega
@@ -403,13 +410,12 @@ class Assemble:
                 else:
                     nominal = _uniform_rate(cfg, run, rng)
                 key = _coarse(run)
-                _, real = noise.throw(nominal, rng)
-                run = simulate(run.next_scene(), real, high, "high", nominal)
+                run = advance(noise.throw(nominal, rng), high, "high", nominal)
                 v["throws_high"] += 1
                 if int(run.status) != 0:
                     return done(False, _kind(run.status, run.message, v))
                 if run.alpha != 0.0:
-                    run = simulate(run.next_scene(), TiltTo(-run.alpha, cfg.tilt_rate * 10), high, "escape")
+                    run = advance(TiltTo(-run.alpha, cfg.tilt_rate * 10), high, "escape")
                     if int(run.status) != 0:
                         return done(False, _kind(run.status, run.message, v))
             if not switched:
@@ -418,7 +424,7 @@ class Assemble:
                 return done(False, "wrong_switch", run)
             # -- tilt to alpha
             v["phase"] = "tilt"
-            run = simulate(run.next_scene(), TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), tilt_settings, "tilt")
+            run = advance(TiltTo(cfg.alpha - run.alpha, cfg.tilt_rate), tilt_settings, "tilt")
             if int(run.status) != 0:
                 return done(False, _kind(run.status, run.message, v), run)
             if not ok(run) and not ready(run.poses):
@@ -428,7 +434,7 @@ class Assemble:
             assembled, still = ok(run), 0
             while not assembled and v["throws_low"] < cfg.max_low and still < cfg.stall_low:
                 before = run.poses
-                run = _throw_low(cfg, run, noise, rng, simulate, low, "low")
+                run = _throw_low(cfg, run, noise, rng, advance, low, "low")
                 v["throws_low"] += 1
                 if int(run.status) != 0:
                     return done(False, _kind(run.status, run.message, v), run)
@@ -439,7 +445,7 @@ class Assemble:
                 break
             if still >= cfg.stall_low and v["resets"] < cfg.resets and v["throws_high"] < cfg.max_high:
                 v["resets"] += 1
-                run = simulate(run.next_scene(), TiltTo(-run.alpha, cfg.tilt_rate), tilt_settings, "reset")
+                run = advance(TiltTo(-run.alpha, cfg.tilt_rate), tilt_settings, "reset")
                 if int(run.status) != 0:
                     return done(False, _kind(run.status, run.message, v), run)
                 continue
@@ -451,7 +457,7 @@ class Assemble:
         v["phase"] = "hold"
         end, held = run, []
         for _ in range(cfg.hold):
-            r = _throw_low(cfg, end, noise, rng, simulate, low, "hold")
+            r = _throw_low(cfg, end, noise, rng, advance, low, "hold")
             good = int(r.status) == 0 and ok(r)
             held.append(good)
             if int(r.status) != 0:
@@ -487,3 +493,7 @@ class Assemble:
 
 
 ASSEMBLE = register_experiment(Assemble())
+
+
+ENGINE = "engine"
+"""The model of the assembly trials: two parts leaning on each other and the wall keep their poses (engine runs)."""

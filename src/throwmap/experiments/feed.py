@@ -60,6 +60,9 @@ __all__ = ["FEED", "CavityConfig", "EndWall", "Feed", "FeedConfig", "WallConfig"
 
 Finite = Annotated[float, Field(allow_inf_nan=False)]
 
+ENGINE = "engine"
+"""The model every feeding trial runs on: the drop and the throws are engine runs (the part keeps its pose)."""
+
 
 class CavityConfig(BaseModel):
     """The cavity's design inputs (:func:`throwmap.design.cavity.design_cavity`; SI units, rad)."""
@@ -326,8 +329,8 @@ class Feed:
         return out
 
     def trial(self, cfg: FeedConfig, index: int, rng) -> Trial:
-        from ..engine import simulate
         from ..records.outcome import Status
+        from ..throws.session import open_session
 
         part, arm, fixtures, omega, side, design = self.setup(cfg)
         noise = cfg.noise.noise()
@@ -339,8 +342,8 @@ class Feed:
                   "omega_min": math.nan, "omega_max": math.nan}
         if not drop.ok:
             return self._end(index, rng, "refused:drop", values, drop.pose, drop.x, drop.side, drop.tilt, "dropped")
-        scene, state = drop.scene, (drop.x, drop.side, drop.tilt)
-        pose = drop.pose
+        session = open_session(part, arm, drop, ENGINE, settings=settings)  # each throw from where the last ended
+        state, pose = (drop.x, drop.side, drop.tilt), drop.pose
         w_min, w_max = math.inf, -math.inf
         captured_at = None
         total = cfg.max_throws + (cfg.hold_throws if cfg.variant == "closed" else 0)
@@ -349,10 +352,11 @@ class Feed:
             w, real = noise.throw(omega * cfg.clear_factor if clearing else omega, rng)
             w_min, w_max = min(w_min, w), max(w_max, w)
             values.update(throws=t, omega_min=w_min, omega_max=w_max)
-            run = simulate(scene, real, settings)
-            st = Status(run.statuses[0])
+            step = session.throw(w, real)
+            st = step.status
             before = state
-            pose, state = tuple(run.poses[0]), run.states[0]
+            after = step.states[0]
+            pose, state = after.pose, (after.x, after.side, after.tilt)
             if cfg.variant == "open":
                 if st == Status.OFF_END:
                     values.update(side_before=int(before[1]), side_exit=int(state[1]))
@@ -362,7 +366,6 @@ class Feed:
                     return self._end(index, rng, "behind_joint", values, pose, *state, "behind_joint")
                 if st != Status.OK:
                     return self._end(index, rng, f"refused:{st.label}", values, pose, *state, st.label)
-                scene = run.next_scene()
                 continue
             if st in (Status.OFF_END, Status.BEHIND_JOINT):
                 kind = "off_arm" if captured_at is None else "ejected"
@@ -383,7 +386,6 @@ class Feed:
             if captured_at is not None and t - captured_at >= cfg.hold_throws:
                 kind = None if where == "target" else (self._other(state, side) if where == "other" else "ejected")
                 return self._end(index, rng, kind, values, pose, *state, where)
-            scene = run.next_scene()
         if cfg.variant == "open":
             return self._end(index, rng, "not_fed", values, pose, *state, "on_arm")
         raise AssertionError("unreachable: the closed loop ends by its caps")  # pragma: no cover

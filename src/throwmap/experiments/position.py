@@ -28,13 +28,13 @@ throw after which it rested on ``side``; 0 if dropped there, nan if never), fina
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
 from ..errors import InvalidStateError, ThrowmapError
+from ..models import options_taken
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, drop_part
 from .noise import NoiseConfig
@@ -110,7 +110,7 @@ class PositionConfig(BaseModel):
 
 def _setup(cfg: PositionConfig):
     """``(part, arm, controller)`` of a config."""
-    from ..control import Goal, InverseJogController, PaperController, PositionSensor
+    from ..control import Goal
     from ..io.config import resolve_part
     from ..models import get_model
     from ..system.arm import Arm
@@ -133,21 +133,36 @@ def _setup(cfg: PositionConfig):
     if cfg.x_range is not None and not cfg.x_range[0] < cfg.x_range[1]:
         raise InvalidStateError("config.x_range", f"must be (low, high) with low < high, got {list(cfg.x_range)}")
     goal = Goal(cfg.x_f, side, cfg.eps)
+    return part, arm, CONTROLLERS[cfg.controller](cfg, part, arm, goal)
+
+
+def _paper_controller(cfg: PositionConfig, part, arm, goal):
+    """The draft's two-rate controller with one-bit sensors (:class:`~throwmap.control.PaperController`)."""
+    from ..control import PaperController
+
     s = cfg.sensors
-    if cfg.controller == "paper":
-        ctl = PaperController(goal, cfg.omega_high, cfg.omega_low, tuple(tuple(r) for r in cfg.approach),
-                              s.false_positive, s.false_negative, s.hysteresis, s.sigma, s.confirm, s.overshoot,
-                              tuple(tuple(r) for r in cfg.kick))
-    else:
-        iv = cfg.inverse
-        if iv.omega_min > iv.omega_max:
-            raise InvalidStateError("config.inverse.omega_min", f"must be ≤ omega_max = {iv.omega_max:g} rad/s")
-        sensor = PositionSensor(iv.sigma, iv.side_error, part.n_sides if hasattr(part, "n_sides") else 3)
-        ctl = InverseJogController(goal, part, Arm(h=arm.h, length=arm.length, mu=arm.mu), cfg.omega_high,
-                                   iv.omega_min, iv.omega_max, sensor, iv.gain, iv.model, s.confirm,
-                                   margin=min(2.0 * iv.sigma if iv.margin is None else iv.margin, 0.5 * cfg.eps),
-                                   kick=tuple(tuple(r) for r in cfg.kick))
-    return part, arm, ctl
+    return PaperController(goal, cfg.omega_high, cfg.omega_low, tuple(tuple(r) for r in cfg.approach),
+                           s.false_positive, s.false_negative, s.hysteresis, s.sigma, s.confirm, s.overshoot,
+                           tuple(tuple(r) for r in cfg.kick))
+
+
+def _inverse_controller(cfg: PositionConfig, part, arm, goal):
+    """Inverse jogs read off a position sensor (:class:`~throwmap.control.InverseJogController`)."""
+    from ..control import InverseJogController, PositionSensor
+    from ..system.arm import Arm
+
+    iv = cfg.inverse
+    if iv.omega_min > iv.omega_max:
+        raise InvalidStateError("config.inverse.omega_min", f"must be ≤ omega_max = {iv.omega_max:g} rad/s")
+    sensor = PositionSensor(iv.sigma, iv.side_error, part.n_sides if hasattr(part, "n_sides") else 3)
+    return InverseJogController(goal, part, Arm(h=arm.h, length=arm.length, mu=arm.mu), cfg.omega_high,
+                                iv.omega_min, iv.omega_max, sensor, iv.gain, iv.model, cfg.sensors.confirm,
+                                margin=min(2.0 * iv.sigma if iv.margin is None else iv.margin, 0.5 * cfg.eps),
+                                kick=tuple(tuple(r) for r in cfg.kick))
+
+
+CONTROLLERS = {"paper": _paper_controller, "inverse": _inverse_controller}
+"""The ``controller`` kinds of a config and how each is built."""
 
 
 def _settings(cfg: PositionConfig):
@@ -215,7 +230,7 @@ class Position:
                   "omega_min": math.nan, "omega_max": math.nan}
         if not drop.ok:
             return Trial(index, seed_of(rng), False, "refused:drop", values)
-        opts = {"settings": settings} if cfg.model == "engine" and settings is not None else {}
+        opts = options_taken(cfg.model, settings=settings)
         ep = closed_loop(part, arm, ctl, drop, model=cfg.model, noise=noise, max_throws=cfg.max_throws, rng=rng,
                          **opts)
         oms = [s.omega for s in ep.steps if s.action == "throw"]
@@ -239,7 +254,7 @@ class Position:
         drop = drop_part(part, arm, rng, x_range=cfg.x_range, height=cfg.height, settings=settings)
         if not drop.ok:
             return None
-        opts = {"settings": settings} if cfg.model == "engine" and settings is not None else {}
+        opts = options_taken(cfg.model, settings=settings)
         return closed_loop(part, arm, ctl, drop, model=cfg.model, noise=noise, max_throws=cfg.max_throws, rng=rng,
                            **opts)
 

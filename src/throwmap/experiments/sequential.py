@@ -245,8 +245,9 @@ class SequentialAssembly:
         return d, float(w), float(w if cfg.omega_second is None else cfg.omega_second)
 
     def trial(self, cfg: SequentialConfig, index: int, rng) -> Trial:
-        from ..engine import TiltTo, simulate
+        from ..system.motion import TiltTo
         from ..system.pose import state_from_pose
+        from ..throws.session import open_session
         from .feed import _settings
 
         d, omega, omega2 = self.setup(cfg)
@@ -278,9 +279,18 @@ class SequentialAssembly:
                 return "ejected"
             return f"refused:{run.status.label}"
 
+        sessions = []
+
+        def start(run):
+            """Throw the parts of ``run`` again and again from where it ended (one engine session)."""
+            sessions.append(open_session(run.scene.parts, arm, run, ENGINE, settings=settings))
+            return run
+
         def throw(run, w_nominal):
-            _, real = noise.throw(w_nominal, rng)
-            return simulate(run.next_scene(), real, settings)
+            return sessions[-1].throw(*noise.throw(w_nominal, rng)).run
+
+        def tilt(motion):
+            return sessions[-1].move(motion).run
 
         def note(run):
             t = v["throws"]
@@ -302,12 +312,14 @@ class SequentialAssembly:
                                                 settings=settings)
             if int(run.status) != 0:
                 return done("refused:drop")
+            start(run)
             cap, w_assemble = cfg.max_throws, omega
         else:
             run, v["drop_redraws"] = drop_parts((tri,), arm, d.fixtures, rng, x_range=cfg.x_range, height=cfg.height,
                                                 gap=cfg.gap, mu_parts=cfg.mu_parts, settings=settings)
             if int(run.status) != 0:
                 return done("refused:drop")
+            start(run)
             while not d.triangle_captured(run.poses[0]):
                 if v["throws"] >= cfg.max_first:
                     return done(at_cap(run), run)
@@ -323,6 +335,7 @@ class SequentialAssembly:
             v["drop_redraws"] += r2
             if int(run.status) != 0:
                 return done("refused:drop")
+            start(run)
             cap, w_assemble = cfg.max_second, omega2
         n0 = v["throws"]
         rec, seen, before = cfg.recover, 0, None
@@ -335,11 +348,11 @@ class SequentialAssembly:
             if seen >= rec.confirm:  # tilt, throw there, tilt back (one throw)
                 seen, before = 0, None
                 v["recoveries"] += 1
-                run = simulate(run.next_scene(), TiltTo(rec.alpha, rec.rate), settings)
+                run = tilt(TiltTo(rec.alpha, rec.rate))
                 if int(run.status) == 0:
                     run = throw(run, rec.omega)
                 if int(run.status) == 0:
-                    run = simulate(run.next_scene(), TiltTo(-run.alpha, rec.rate), settings)
+                    run = tilt(TiltTo(-run.alpha, rec.rate))
             else:
                 run = throw(run, w_assemble)
             v["throws"] += 1
@@ -404,3 +417,7 @@ def _order(a: float, b: float) -> str:
 
 SEQUENTIAL = register_experiment(SequentialAssembly("sequential"))
 SERIAL = register_experiment(SequentialAssembly("serial"))
+
+
+ENGINE = "engine"
+"""The model of the sequential trials: the pair in the pocket keeps its poses from throw to throw (engine runs)."""

@@ -19,8 +19,8 @@ of :func:`register` on an instance; see README, "Models".
 """
 
 from .base import BatchArrays, Features, NoOptions, ThrowModel, build_options
-from .registry import DEFAULT_MODEL, check_model, get_model, model_names, register, unregister
+from .registry import DEFAULT_MODEL, check_model, get_model, model_names, options_taken, register, unregister
 
 __all__ = ["BatchArrays", "DEFAULT_MODEL", "Features", "NoOptions", "ThrowModel", "build_options",
-           "check_model", "get_model", "model_names", "register",
+           "check_model", "get_model", "model_names", "options_taken", "register",
            "unregister"]

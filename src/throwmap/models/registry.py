@@ -11,7 +11,7 @@ from ..discovery import import_submodules
 from ..errors import InvalidStateError
 from .base import ThrowModel
 
-__all__ = ["DEFAULT_MODEL", "DISPLAY_ORDER", "register", "get_model", "model_names", "check_model"]
+__all__ = ["DEFAULT_MODEL", "DISPLAY_ORDER", "register", "get_model", "model_names", "check_model", "options_taken"]
 
 DEFAULT_MODEL = "rigid_body"
 """The default everywhere (``throw``, ``iterate``, analysis, the CLI): the most faithful
@@ -70,3 +70,12 @@ def get_model(name) -> ThrowModel:
     if not isinstance(name, str) and isinstance(name, ThrowModel):
         return name
     return _REGISTRY[check_model(name)]
+
+
+def options_taken(name, **keywords) -> dict:
+    """Those of ``keywords`` that model ``name``'s options take, leaving out None values (a keyword such as
+    ``settings`` goes to the models that have it, whichever they are, never by a model's name)."""
+    import dataclasses
+
+    own = {f.name for f in dataclasses.fields(get_model(name).options_type)}
+    return {k: v for k, v in keywords.items() if k in own and v is not None}

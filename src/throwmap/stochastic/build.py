@@ -61,16 +61,15 @@ def _jitter(omega, noise, rng, n):
 
 
 def _throw(part, arm, x, side, w, model, noise, options):
-    """Throws on ``model`` with the noise's arm motion where the model takes one; (x, side, label)."""
-    from ..models import get_model
+    """One throw of each start on an ensemble of ``model`` (:func:`~throwmap.throws.session.open_ensemble`), with the
+    noise's arm motion where the model follows one (``features.realisation``); ``(x, side, label)``."""
     from ..records.outcome import Status
-    from ..throws.throw import throw_batch
+    from ..throws.session import open_ensemble
 
     kw = dict(options)
-    moving = bool(get_model(model).features.realisation)
-    if moving and noise is not None and noise.realisation != "impulse" and "realisation" not in kw:
-        kw["realisation"] = noise.realisation_for
-    b = throw_batch(part, arm, x, side, w, model, on_invalid="status", **kw)
+    ens = open_ensemble(part, arm, x, side, model, **kw)
+    moving = ens.features.realisation and noise is not None and noise.realisation != "impulse" and "realisation" not in kw
+    b = ens.throw(w, noise.realisation_for if moving else None)
     st = np.asarray(b.status)
     label = np.full(st.shape, "", dtype=object)
     label[st == int(Status.OFF_END)] = "off_end"
@@ -107,7 +106,7 @@ class ThrowStep:
 
 
 def _memoryless(controller) -> None:
-    if getattr(controller, "kind", None) not in ("paper", "inverse"):
+    if not getattr(controller, "rest_policy", False):
         raise InvalidStateError("controller", f"the chain needs a policy of the rest alone: a 'paper' or 'inverse' "
                                               f"controller, got {type(controller).__name__}")
     if getattr(controller, "confirm", 1) != 1:

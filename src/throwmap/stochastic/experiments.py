@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InvalidStateError
+from ..models import get_model
 from .build import PolicyStep, build_mixture
 from .cells import Cells
 
@@ -59,8 +60,9 @@ def position_step(cfg):
     chain throws with and the cell breaks (the goal band's edges, the approach and kick thresholds, m)."""
     from ..experiments.position import _setup
 
-    if cfg.model == "engine":
-        raise InvalidStateError("config.model", "the position chain runs on an analytic model (e.g. 'rigid_body')")
+    if not get_model(cfg.model).features.ensemble:
+        raise InvalidStateError("config.model", "the position chain throws batches of independent starts: it runs on "
+                                                "a model that throws ensembles (features.ensemble, e.g. 'rigid_body')")
     part, arm, ctl = _setup(cfg)
     g = ctl.goal
     breaks = [g.x - g.eps, g.x + g.eps] + [x for x, _ in cfg.approach] + [x for x, _ in cfg.kick]

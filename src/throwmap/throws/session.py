@@ -75,12 +75,14 @@ def open_session(part, arm: Arm, state, model: str = DEFAULT_MODEL, *, fixtures=
 
     ``state``: the rest ``(x, side)`` (m; one pair per part for several parts), or — for a model that keeps
     poses (``features.pose``, the engine) — an engine :class:`~throwmap.engine.Scene` holding these parts on this
-    arm (or an object with a ``scene``, e.g. a :class:`~throwmap.experiments.drop.DropResult`), whose fixtures
-    and α it brings. ``model``, ``fixtures``, ``alpha`` (rad), ``options`` and further keywords (the model's
+    arm (or an object with a ``scene``, e.g. a :class:`~throwmap.experiments.drop.DropResult`, or an
+    :class:`~throwmap.engine.EngineRun`, from whose end it goes on), whose fixtures and α it brings. ``model``, ``fixtures``, ``alpha`` (rad), ``options`` and further keywords (the model's
     options) as :func:`throwmap.throw`; all are validated here, once. Raises
     :class:`~throwmap.errors.InvalidStateError` naming the field for an inadmissible start.
     """
     parts = _parts(part)
+    if hasattr(state, "next_scene"):  # an engine run: the session goes on from where it ended
+        state = state.next_scene()
     scene = getattr(state, "scene", state)
     if hasattr(scene, "placements"):  # an engine Scene: fixtures and alpha come with it
         m = get_model(model)
@@ -99,8 +101,6 @@ def open_session(part, arm: Arm, state, model: str = DEFAULT_MODEL, *, fixtures=
     if most and len(parts) > most:
         raise InvalidStateError("part", f"model {m.name!r} throws {most} part{'s' if most > 1 else ''} at a time, "
                                         f"got {len(parts)} (models taking several: those with features.parts = 0)")
-    for p in parts:
-        warn_if_outside_regime(p, arm)
     if hasattr(scene, "placements"):
         if scene.parts != parts or scene.arm != arm:
             n = len(parts)
@@ -108,6 +108,8 @@ def open_session(part, arm: Arm, state, model: str = DEFAULT_MODEL, *, fixtures=
                                              f"on this arm")
         return m.session(parts, system, scene, opts)
     rests = tuple(check_start(p, arm, x, k, 0.0)[:2] for p, (x, k) in zip(parts, _rests(state, len(parts))))
+    for p in parts:  # the paper's guarantees (jogs outward, flips inward) a start from rest relies on
+        warn_if_outside_regime(p, arm)
     factory = getattr(m, "session", None)
     if factory is not None:
         return factory(parts, system, rests, opts)
