@@ -10,7 +10,7 @@ import pytest
 import throwmap as tm
 from throwmap.control import Episode, Goal, PaperController, WithinSensor, closed_loop
 from throwmap.errors import InvalidStateError
-from throwmap.experiments.noise import Noise
+from throwmap.system.noise import Noise
 from throwmap.records.outcome import Status
 
 PART = tm.triangle_30_60_90(0.17)

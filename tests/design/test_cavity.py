@@ -13,9 +13,10 @@ import numpy as np
 import pytest
 
 from throwmap import Arm
-from throwmap.design.cavity import design_cavity, evaluate_cavity, jog_map, outward_sweep
+from throwmap.design.cavity import Pocket, design_cavity, evaluate_cavity, jog_map, outward_sweep
 from throwmap.design.examples import feeder_design
 from throwmap.errors import InvalidStateError
+from throwmap.system.noise import Noise
 from throwmap.system.fixtures import Cavity, Wall
 
 ANALYTIC = ("window", "hold", "release_1", "release_2", "fits", "wall_energy")
@@ -35,7 +36,8 @@ def test_feeder_cavity_checks_pass(feeder):
     # the hold at ω_hi: on the exact engine (true μ) the unlined pocket's hold throw leaves side 0 leaning on the end
     # wall after 1 of 3 throws (a lean rests at μ ≥ 0.45); with the floor and wall lined (μ 0.2,
     # tests/design/test_cavity_lined.py) it is held through all 3
-    lined = design_cavity(fd.part, Arm(h=fd.arm.h, mu=1.0), fd.omega, fd.target_side, wall_mu=0.2, lined=True)
+    lined = design_cavity(fd.part, Arm(h=fd.arm.h, mu=1.0), fd.omega, fd.target_side,
+                          pocket=Pocket(wall_mu=0.2, lined=True))
     assert lined.cavity.lined and lined.check("engine_hold").passed, str(lined.check("engine_hold"))
     for key in ("L_lo_m", "L_hi_m"):  # the window from the jog map on the lined floor (μ 0.2) is the same
         assert lined.numbers[key] == d.numbers[key]
@@ -112,11 +114,13 @@ def test_bad_inputs_name_the_field():
     fd = feeder_design()
     arm = Arm(h=fd.arm.h)
     with pytest.raises(InvalidStateError, match="depth"):
-        design_cavity(fd.part, arm, fd.omega, 0, depth=-0.01)
+        design_cavity(fd.part, arm, fd.omega, 0, pocket=Pocket(depth=-0.01))
     with pytest.raises(InvalidStateError, match="realisation"):
-        design_cavity(fd.part, arm, fd.omega, 0, realisation="catapult")
+        design_cavity(fd.part, arm, fd.omega, 0, noise=Noise(realisation="catapult"))
     with pytest.raises(InvalidStateError, match="end_gap"):
-        design_cavity(fd.part, arm, fd.omega, 0, end_gap=0.5)
+        design_cavity(fd.part, arm, fd.omega, 0, pocket=Pocket(end_gap=0.5))
+    with pytest.raises(InvalidStateError, match="pocket"):
+        design_cavity(fd.part, arm, fd.omega, 0, pocket={"depth": 0.01})
 
 
 def test_check_text_says_one_throw_and_given_length():

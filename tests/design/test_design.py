@@ -10,6 +10,7 @@ import pytest
 import throwmap as tm
 from throwmap.design import (DesignResult, SMALL_ANGLE_F, Separation, Target, design, design_critical_points,
                              energy_critical_points, inset_polygon)
+from throwmap.design.api import SolveOptions
 from throwmap.design.examples import exact_r, plexiglas_triangle
 from throwmap.errors import InvalidStateError
 
@@ -58,7 +59,7 @@ def test_weight_stays_inside_the_plate_at_every_iterate():
     """The draft's targets as printed (r_2 largest) push the weight to the plate's edge: every iterate, and
     every point the Jacobian is taken at, stays margin inside."""
     res = design(PLATE, ARM, 5.6, {0: 0.10, 1: 0.10, 2: 0.20}, weight_mass=0.115, weight_at=(0.008, 0.0378),
-                 max_iter=8)
+                 solve=SolveOptions(max_iter=8))
     ins = inset_polygon(PLATE.vertices, res.margin)
     assert not res.success
     assert "bound" in res.message
@@ -68,14 +69,14 @@ def test_weight_stays_inside_the_plate_at_every_iterate():
 
 
 def test_too_few_parameters_is_rank_deficient_and_fails():
-    res = design(PLATE, ARM, 5.0, TARGET, weight_mass=0.03, weight_at=(0.03, 0.03), vary=("weight_x",), max_iter=6)
+    res = design(PLATE, ARM, 5.0, TARGET, weight_mass=0.03, weight_at=(0.03, 0.03), vary=("weight_x",), solve=SolveOptions(max_iter=6))
     assert not res.success
     assert res.jacobian_rank == 1
     assert "rank deficient" in res.message
 
 
 def test_unreachable_target_says_why():
-    res = design(PLATE, ARM, 5.0, {1: 0.01}, weight_mass=0.03, weight_at=(0.03, 0.03), max_iter=10)
+    res = design(PLATE, ARM, 5.0, {1: 0.01}, weight_mass=0.03, weight_at=(0.03, 0.03), solve=SolveOptions(max_iter=10))
     assert not res.success
     assert res.message and not res.message.startswith("reached")
 
@@ -123,7 +124,7 @@ def test_separation_target_on_the_limit_set():
     assert not sep.holds({0: 0.36, 1: 0.29, 2: 0.26})
     assert sep.residual({0: 0.36, 1: 0.31, 2: 0.26}) == pytest.approx({"sep_0": 0.01, "sep_1": 0.01, "sep_2": 0.0})
     res = design(PLATE, ARM, 4.9, [Target("r", 0, 0.32), sep], weight_mass=0.05, weight_at=(0.0125, 0.0285),
-                 vary=("omega",), max_iter=5, limit_options={"n_starts": 12})
+                 vary=("omega",), solve=SolveOptions(max_iter=5, limit_options={"n_starts": 12}))
     assert res.success, res.message
     assert sep.holds({int(k.split("_")[1]): v for k, v in res.features.items() if k.startswith("top_")})
 
@@ -164,7 +165,7 @@ def test_band_top_target():
     """A band top of the limit set (from limit_set) as the target, ω varied: reached, with full rank
     (the default difference steps grow tenfold for limit-set features)."""
     res = design(PLATE, ARM, 4.9, [Target("top", 0, 0.41)], weight_mass=0.05, weight_at=(0.0125, 0.0285),
-                 vary=("omega",), limit_options={"n_starts": 8}, max_iter=6)
+                 vary=("omega",), solve=SolveOptions(limit_options={"n_starts": 8}, max_iter=6))
     assert res.success, res.message
     assert abs(res.features["top_0"] - 0.41) <= 1e-4
     assert res.jacobian_rank == 1

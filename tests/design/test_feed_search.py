@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from throwmap.design.examples import plexiglas_triangle
-from throwmap.design.feed_search import search_feeders
+from throwmap.design.feed_search import FeederSpace, search_feeders
 from throwmap.design.plate import inset_polygon
 from throwmap.errors import InvalidStateError
 
@@ -13,7 +13,8 @@ from throwmap.errors import InvalidStateError
 @pytest.mark.slow
 def test_candidates_are_in_bounds_seeded_and_consistent():
     plate = plexiglas_triangle()
-    kw = dict(n=2, seed=4, chains=200, throws=20, step=0.05, workers=1, omega_range=(4.0, 5.0), h_range=(-0.03, -0.01))
+    kw = dict(n=2, seed=4, chains=200, throws=20, step=0.05, workers=1,
+              space=FeederSpace(omega_range=(4.0, 5.0), h_range=(-0.03, -0.01)))
     a = list(search_feeders(plate, **kw))
     b = list(search_feeders(plate, **kw))
     inset = inset_polygon(plate.vertices, 0.008)
@@ -32,4 +33,4 @@ def test_bad_ranges_are_refused():
     with pytest.raises(InvalidStateError, match="n"):
         next(search_feeders(plexiglas_triangle(), n=0))
     with pytest.raises(InvalidStateError, match="omega_range"):
-        next(search_feeders(plexiglas_triangle(), omega_range=(5.0, 4.0)))
+        next(search_feeders(plexiglas_triangle(), space=FeederSpace(omega_range=(5.0, 4.0))))

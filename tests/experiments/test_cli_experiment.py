@@ -43,7 +43,7 @@ def test_table_and_list():
 
 def test_config_file_and_out_dir(tmp_path):
     cfg = tmp_path / "settle.toml"
-    cfg.write_text("length = 0.5\nheight = [0.03, 0.05]\n[noise]\nmu_range = [0.5, 1.0]\n")
+    cfg.write_text("height = [0.03, 0.05]\n[arm]\nlength = 0.5\n[noise]\nmu_range = [0.5, 1.0]\n")
     out = tmp_path / "run"
     r = invoke("experiment", "settle", cfg, "--n", 5, "--seed", 4, "--workers", 1, "--json", "--out", out)
     doc = json.loads(r.stdout)
@@ -64,8 +64,11 @@ def test_errors_are_one_line():
 
 def test_bad_config_names_the_field(tmp_path):
     bad = tmp_path / "bad.toml"
-    bad.write_text("lenght = 0.5\n")
-    assert "did you mean 'length'" in one_error(invoke("experiment", "settle", bad, "--n", 2), "config.lenght")
+    bad.write_text("[arm]\nlenght = 0.5\n")
+    assert "did you mean 'length'" in one_error(invoke("experiment", "settle", bad, "--n", 2), "config.arm.lenght")
+    flat = tmp_path / "flat.toml"  # an arm key outside the [arm] table: said so
+    flat.write_text("length = 0.5\n")
+    assert "[arm] table" in one_error(invoke("experiment", "settle", flat, "--n", 2), "config.length")
     worse = tmp_path / "worse.json"
     worse.write_text('{"noise": {"omega_rel": "a lot"}}')
     one_error(invoke("experiment", "settle", worse, "--n", 2), "config.noise.omega_rel")

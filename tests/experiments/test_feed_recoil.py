@@ -31,7 +31,7 @@ def test_config_reads_from_any_directory(tmp_path, monkeypatch):
 
 def test_config_part_missing_is_named(tmp_path):
     bad = tmp_path / "feed.toml"
-    bad.write_text('part = "nowhere.toml"\nside = 0\nomega = 4.5\nh = -0.02\n')
+    bad.write_text('part = "nowhere.toml"\nside = 0\nomega = 4.5\n[arm]\nh = -0.02\n')
     from throwmap.errors import ThrowmapError
 
     cfg = read_config(FEED, bad)
@@ -78,7 +78,7 @@ def test_missing_part_file_names_config_part(tmp_path):
     from throwmap.errors import ThrowmapError
 
     cfg = tmp_path / "feed.toml"
-    cfg.write_text('part = "nowhere.toml"\nside = 0\nomega = 4.5\nh = -0.02\n')
+    cfg.write_text('part = "nowhere.toml"\nside = 0\nomega = 4.5\n[arm]\nh = -0.02\n')
     with pytest.raises(ThrowmapError) as err:
         FEED.setup(read_config(FEED, cfg))
     assert err.value.field == "config.part" and "next to the config file" in err.value.reason

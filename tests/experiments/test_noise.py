@@ -8,7 +8,8 @@ import pytest
 from throwmap import Arm
 from throwmap.engine import ImpulseThrow, RecoilThrow
 from throwmap.errors import InvalidStateError
-from throwmap.experiments.noise import Noise, NoiseConfig
+from throwmap.system.noise import Noise
+from throwmap.io.spec import NoiseSpec
 
 
 def test_omega_jitter_is_relative_gaussian():
@@ -60,6 +61,6 @@ def test_bad_noise_is_refused(kw, field):
 
 
 def test_config_builds_the_noise():
-    cfg = NoiseConfig(omega_rel=0.03, realisation="recoil", mu_range=(0.5, 1.0))
+    cfg = NoiseSpec(omega_rel=0.03, realisation="recoil", mu_range=(0.5, 1.0))
     assert cfg.noise() == Noise(0.03, 0.0, (0.5, 1.0), "recoil")
     assert cfg.noise().to_dict()["omega_rel"] == 0.03

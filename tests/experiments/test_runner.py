@@ -20,7 +20,7 @@ from throwmap.experiments import Trial, experiment_names, get_experiment, trial_
 from throwmap.experiments.runner import run_experiment
 from throwmap.experiments.stats import wilson_interval
 
-CFG = {"length": 0.4}
+CFG = {"arm": {"length": 0.4}}
 
 
 @pytest.fixture(scope="module")
@@ -154,9 +154,9 @@ def test_a_different_run_in_the_same_directory_is_refused(tmp_path):
     run_experiment("settle", CFG, n=3, seed=7, workers=1, out=tmp_path)
     with pytest.raises(InvalidStateError, match=r"^seed: differs from the run stored in .*stored 7, given 8"):
         run_experiment("settle", CFG, n=3, seed=8, workers=1, out=tmp_path)
-    with pytest.raises(InvalidStateError, match=r"^config\.length: differs"):
-        run_experiment("settle", {"length": 0.5}, n=3, seed=7, workers=1, out=tmp_path)
-    fresh = run_experiment("settle", {"length": 0.5}, n=3, seed=8, workers=1, out=tmp_path, resume=False)
+    with pytest.raises(InvalidStateError, match=r"^config\.arm\.length: differs"):
+        run_experiment("settle", {"arm": {"length": 0.5}}, n=3, seed=7, workers=1, out=tmp_path)
+    fresh = run_experiment("settle", {"arm": {"length": 0.5}}, n=3, seed=8, workers=1, out=tmp_path, resume=False)
     assert fresh.resumed == 0 and len((tmp_path / "trials.jsonl").read_text().splitlines()) == 3
 
 
@@ -178,8 +178,8 @@ def test_bad_inputs_are_one_line_errors():
         run_experiment("settle", n=-2, seed=0)
     with pytest.raises(InvalidStateError, match="^workers:"):
         run_experiment("settle", n=2, seed=0, workers=-1)
-    with pytest.raises(ConfigError, match=r"^config\.lenght: unknown key 'lenght' \(did you mean 'length'"):
-        run_experiment("settle", {"lenght": 0.4}, n=2, seed=0)
+    with pytest.raises(ConfigError, match=r"^config\.arm\.lenght: unknown key 'lenght' \(did you mean 'length'"):
+        run_experiment("settle", {"arm": {"lenght": 0.4}}, n=2, seed=0)
     with pytest.raises(ConfigError, match=r"^config\.noise\.omega_rel:"):
         run_experiment("settle", {"noise": {"omega_rel": -1}}, n=2, seed=0)
 

@@ -94,10 +94,10 @@ def test_contract_json_keys():
 def test_the_assembled_pair_rests_and_stays_after_throws(design):
     from throwmap.engine import Friction, ImpulseThrow, Placement, Scene, simulate
     from throwmap.experiments.feed import _settings
-    from throwmap.experiments.noise import NoiseConfig
+    from throwmap.io.spec import NoiseSpec
 
     cfg = SequentialConfig()
-    noise = NoiseConfig(omega_rel=0.03, realisation="recoil", zeta=0.2).noise()
+    noise = NoiseSpec(omega_rel=0.03, realisation="recoil", zeta=0.2).noise()
     scene = Scene(design.arm, tuple(Placement(p, pose=q) for p, q in zip(design.parts, design.poses)),
                   design.fixtures, 0.0, Friction(part_part=cfg.mu_parts))
     run = simulate(scene, ImpulseThrow(0.0), _settings(cfg))

@@ -9,6 +9,8 @@ import math
 import numpy as np
 import pytest
 
+from throwmap.errors import RegimeWarning
+
 from throwmap.errors import InvalidStateError
 from throwmap.io.trajectory_file import (load_trajectory, save_trajectory, trajectory_from_arrays,
                                          trajectory_to_arrays)
@@ -46,7 +48,8 @@ def test_outcomes_and_the_arm_come_back_as_objects(tmp_path):
     from throwmap.throws.orbit_trajectory import orbit_trajectory
 
     arm = Arm(0.02)
-    tr = orbit_trajectory(triangle_30_60_90(), arm, 0.1, 0, 3.0, 2, model="paper")
+    with pytest.warns(RegimeWarning, match="jogs are no longer guaranteed"):  # h ≥ 0: as every throw warns
+        tr = orbit_trajectory(triangle_30_60_90(), arm, 0.1, 0, 3.0, 2, model="paper")
     back = load_trajectory(save_trajectory(tr, tmp_path / "orbit.npz"))
     assert back.meta["arm"] == arm and math.isinf(back.meta["arm"].mu)
     assert [o.x for o in back.meta["outcomes"]] == [o.x for o in tr.meta["outcomes"]]

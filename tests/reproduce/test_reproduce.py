@@ -57,7 +57,7 @@ def tiny(monkeypatch):
     monkeypatch.setitem(MAKERS, "funnels", broken)
     monkeypatch.setattr(run_mod, "FIGURES", FIGURES[:2])
     monkeypatch.setattr(run_mod, "EXPERIMENTS", (
-        ExperimentSpec("settling", "Settling", "Sec. III", 20, 20, "settle", config={"length": 0.4}, goal=0.9),
+        ExperimentSpec("settling", "Settling", "Sec. III", 20, 20, "settle", config={"arm": {"length": 0.4}}, goal=0.9),
         ExperimentSpec("missing", "Not built", "Sec. IX", 3, 20, "no-such-experiment")))
 
 

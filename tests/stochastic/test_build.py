@@ -5,7 +5,7 @@ import pytest
 
 import throwmap as tm
 from throwmap.errors import InvalidStateError
-from throwmap.experiments.noise import Noise
+from throwmap.system.noise import Noise
 from throwmap.stochastic import (Cells, GoalSet, ThrowStep, build_chain, build_mixture, compare_curve, mu_nodes,
                                  open_loop_trials)
 

@@ -27,7 +27,7 @@ distributed = pytest.importorskip("distributed")
 BIN = Path(sys.executable).parent
 
 SETTLE = {"kind": "grid", "target": "experiment:settle", "n": 4, "seed": 5,
-          "parameters": {"mu": [0.3, 0.8], "noise.mu_rel": [0.0, 0.2]}}
+          "parameters": {"arm.mu": [0.3, 0.8], "noise.mu_rel": [0.0, 0.2]}}
 
 
 @pytest.fixture(scope="module")
@@ -49,7 +49,7 @@ def test_experiment_sweep_rows_are_the_runner_s(client, tmp_path):
     assert {r["version"] for r in t} == {tm.__version__} and {r["seed"] for r in t} == {5}
     for r, cfg in zip(t, make_design(spec).configs):
         ref = run_experiment("settle", cfg, n=4, seed=5, workers=1)
-        assert (r["mu"], r["noise.mu_rel"]) == (cfg["mu"], cfg["noise"]["mu_rel"])
+        assert (r["arm.mu"], r["noise.mu_rel"]) == (cfg["arm"]["mu"], cfg["noise"]["mu_rel"])
         assert (r["n"], r["successes"], r["ci95_low"], r["ci95_high"]) == (4, ref.successes, *ref.ci95)
         assert json.loads(r["failures"]) == ref.failures and r["error"] is None and r["elapsed_s"] > 0
     again = run_sweep(spec, tmp_path / "s", client=client)  # nothing missing: nothing computed
@@ -73,7 +73,7 @@ def test_throw_sweep_matches_throw_batch(client, tmp_path):
 
 def test_limit_set_sweep(client, tmp_path):
     doc = {"kind": "random", "target": "limit_set", "samples": 3, "seed": 2,
-           "config": {"length": float("inf"), "n_starts": 4, "transient": 50, "n_record": 100},
+           "config": {"arm": {"length": float("inf")}, "n_starts": 4, "transient": 50, "n_record": 100},
            "parameters": {"omega": {"low": 2.0, "high": 4.0}}}
     spec = parse_sweep(doc)
     run_sweep(spec, tmp_path / "l", client=client)
@@ -87,7 +87,7 @@ def test_limit_set_sweep(client, tmp_path):
 
 
 def test_stopped_sweep_resumes_only_the_missing_points(client, tmp_path):
-    spec = parse_sweep({**SETTLE, "parameters": {"mu": [0.2, 0.4, 0.6, 0.8, 1.0, 1.2]}})
+    spec = parse_sweep({**SETTLE, "parameters": {"arm.mu": [0.2, 0.4, 0.6, 0.8, 1.0, 1.2]}})
     first = run_sweep(spec, tmp_path / "r", client=client, stop_after=2)
     assert (first.rows_before, first.computed, first.rows_after, first.complete) == (0, 2, 2, False)
     stored = {p.name: p.stat().st_mtime_ns for p in (tmp_path / "r").glob("part-*.parquet")}
@@ -101,7 +101,7 @@ def test_a_worker_killed_mid_sweep(tmp_path):
     """SIGKILL a worker process while its tasks run: every point is stored once, with the values a clean run gives."""
     import logging
 
-    spec = parse_sweep({**SETTLE, "n": 15, "parameters": {"mu": [0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6]}})
+    spec = parse_sweep({**SETTLE, "n": 15, "parameters": {"arm.mu": [0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6]}})
     killed = []
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
                                   silence_logs=logging.CRITICAL) as cluster, distributed.Client(cluster) as c:
@@ -149,7 +149,7 @@ def test_cli_on_an_existing_scheduler(tmp_path):
                                        "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
         sweep = tmp_path / "s.toml"
         sweep.write_text('kind = "grid"\ntarget = "experiment:settle"\nn = 2\nchunk = 4\n[parameters]\n'
-                         'mu = [0.3, 0.5, 0.7, 0.9, 1.1, 1.3]\n')
+                         '"arm.mu" = [0.3, 0.5, 0.7, 0.9, 1.1, 1.3]\n')
         done = subprocess.run([str(BIN / "throwmap"), "sweep", str(sweep), "--scheduler", address, "--json"],
                               capture_output=True, text=True, timeout=120)
         assert done.returncode == 0, done.stderr
@@ -174,7 +174,7 @@ def test_cli_sweep_killed_and_restarted(tmp_path):
 
     sweep = tmp_path / "s.toml"
     sweep.write_text('kind = "grid"\ntarget = "experiment:settle"\nseed = 1\nn = 15\n[parameters]\n'
-                     'mu = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3]\n')
+                     '"arm.mu" = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3]\n')
     out = tmp_path / "s.parquet"
     proc = subprocess.Popen([str(BIN / "throwmap"), "sweep", str(sweep), "--workers", "1"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
@@ -209,4 +209,4 @@ def test_trials_split_across_tasks_give_the_same_rows(client, tmp_path):
     bad = run_sweep(parse_sweep({**SETTLE, "n": 2, "trials_per_task": 1, "parameters": {"part": ["triangle", "nosuch"]}}),
                     tmp_path / "c", client=client)
     rows = read_table(tmp_path / "c").to_pylist()
-    assert rows[0]["error"] is None and rows[1]["error"].startswith("part") and rows[1]["n"] is None
+    assert rows[0]["error"] is None and rows[1]["error"].startswith("config.part") and rows[1]["n"] is None

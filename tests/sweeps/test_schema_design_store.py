@@ -16,7 +16,7 @@ from throwmap.sweeps.run import sweep_status
 from throwmap.sweeps.store import column_types, finished_chunks, part_path, prepare_out, read_table, write_chunk
 
 SETTLE = {"kind": "grid", "target": "experiment:settle", "n": 5, "seed": 3,
-          "parameters": {"mu": [0.4, 0.8], "h": {"low": -0.02, "high": 0.0, "num": 3}}}
+          "parameters": {"arm.mu": [0.4, 0.8], "arm.h": {"low": -0.02, "high": 0.0, "num": 3}}}
 
 
 def test_import_throwmap_loads_no_dask():
@@ -27,16 +27,16 @@ def test_import_throwmap_loads_no_dask():
 
 def test_grid_is_every_combination_last_fastest():
     d = make_design(parse_sweep(SETTLE))
-    assert d.n_points == 6 and d.names == ("mu", "h")
+    assert d.n_points == 6 and d.names == ("arm.mu", "arm.h")
     assert d.points[:3] == ((0.4, -0.02), (0.4, -0.01), (0.4, 0.0))
-    assert d.configs[4]["mu"] == 0.8 and d.configs[4]["h"] == -0.01
+    assert d.configs[4]["arm"]["mu"] == 0.8 and d.configs[4]["arm"]["h"] == -0.01
     assert set(d.seeds) == {3}  # common random numbers by default
     assert d.chunk == 1 and d.n_chunks == 6
 
 
 def test_random_design_is_seeded_and_within_ranges():
     doc = {"kind": "random", "target": "throw", "samples": 50, "seed": 11,
-           "parameters": {"omega": {"low": 2.0, "high": 8.0}, "mu": {"low": 0.1, "high": 10.0, "log": True},
+           "parameters": {"omega": {"low": 2.0, "high": 8.0}, "arm.mu": {"low": 0.1, "high": 10.0, "log": True},
                           "side": [0, 1, 2]}}
     a, b = make_design(parse_sweep(doc)), make_design(parse_sweep(doc))
     assert a.points == b.points and a.n_points == 50
@@ -64,13 +64,13 @@ def test_plus_key_sets_several_fields():
     ({**SETTLE, "target": "experiment:nosuch"}, "target"),
     ({**SETTLE, "target": "throws"}, "target"),
     ({k: v for k, v in SETTLE.items() if k != "n"}, "n"),
-    ({**SETTLE, "parameters": {"mu": [0.4, -1.0]}}, "parameters.mu"),
+    ({**SETTLE, "parameters": {"arm.mu": [0.4, -1.0]}}, "parameters.arm.mu"),
     ({**SETTLE, "parameters": {"muu": [0.4]}}, "parameters.muu"),
-    ({**SETTLE, "parameters": {"mu": 3}}, "parameters.mu"),
-    ({**SETTLE, "parameters": {"mu": []}}, "parameters"),
-    ({**SETTLE, "parameters": {"h": {"low": 0.0, "high": 1.0}}}, "parameters.h.num"),
-    ({**SETTLE, "parameters": {"h": {"low": 1.0, "high": 0.0, "num": 2}}}, "parameters.h.high"),
-    ({**SETTLE, "parameters": {"h": {"low": 0.0, "high": 1.0, "num": 2, "step": 1}}}, "parameters.h.step"),
+    ({**SETTLE, "parameters": {"arm.mu": 3}}, "parameters.arm.mu"),
+    ({**SETTLE, "parameters": {"arm.mu": []}}, "parameters"),
+    ({**SETTLE, "parameters": {"arm.h": {"low": 0.0, "high": 1.0}}}, "parameters.arm.h.num"),
+    ({**SETTLE, "parameters": {"arm.h": {"low": 1.0, "high": 0.0, "num": 2}}}, "parameters.arm.h.high"),
+    ({**SETTLE, "parameters": {"arm.h": {"low": 0.0, "high": 1.0, "num": 2, "step": 1}}}, "parameters.arm.h.step"),
     ({**SETTLE, "kind": "random"}, "samples"),
     ({**SETTLE, "config": {"muu": 1}}, "config.muu"),
     ({"kind": "grid", "target": "throw", "n": 3, "parameters": {"x": [0.1]}}, "n"),
@@ -103,16 +103,16 @@ def test_hash_ignores_layout_and_comments(tmp_path):
 
 def test_inf_in_a_sweep_file(tmp_path):
     f = tmp_path / "s.toml"
-    f.write_text('kind = "grid"\ntarget = "limit_set"\n[config]\nlength = inf\n[parameters]\nmu = [0.5, inf]\n')
+    f.write_text('kind = "grid"\ntarget = "limit_set"\n[config.arm]\nlength = inf\n[parameters]\n"arm.mu" = [0.5, inf]\n')
     spec, _ = read_sweep(f)
     d = make_design(spec)
-    assert d.configs[1]["mu"] == float("inf") and d.configs[0]["length"] == float("inf")
+    assert d.configs[1]["arm"]["mu"] == float("inf") and d.configs[0]["arm"]["length"] is None  # unbounded
     st = sweep_status(spec, tmp_path / "out")
     assert (st["n_points"], st["rows"], st["missing"]) == (2, 0, 2)
     from throwmap.sweeps.run import _plan
 
     _plan(spec, tmp_path / "out")  # a run's first step writes the manifest (--status does not)
-    assert json.loads((tmp_path / "out" / "_manifest.json").read_text())["spec"]["config"]["length"] == "inf"
+    assert json.loads((tmp_path / "out" / "_manifest.json").read_text())["spec"]["config"]["arm"]["length"] == "inf"
 
 
 def test_store_parts_are_atomic_and_a_changed_sweep_is_refused(tmp_path):
@@ -145,7 +145,7 @@ def _cli(*args):
 
 @pytest.mark.parametrize("text, field", [
     ('kind = "grid"\ntarget = "throw"\n[parameters]\nx = {low = 0.1, high = 0.2}\n', "parameters.x.num"),
-    ('kind = "grid"\ntarget = "experiment:settle"\nn = 2\n[parameters]\nmu = [0.5, -1.0]\n', "parameters.mu"),
+    ('kind = "grid"\ntarget = "experiment:settle"\nn = 2\n[parameters]\n"arm.mu" = [0.5, -1.0]\n', "parameters.arm.mu"),
     ('kind = "grid"\ntarget = "throw"\n[parameters\n', "sweep"),
 ])
 def test_cli_errors_are_one_line(tmp_path, text, field):

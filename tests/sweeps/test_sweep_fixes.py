@@ -36,16 +36,16 @@ def test_a_huge_range_is_refused_before_it_is_built(tmp_path):
     t0 = time.perf_counter()
     with pytest.raises(ThrowmapError) as err:
         make_design(parse_sweep({"kind": "grid", "target": "throw",
-                                 "parameters": {"mu": {"low": 0.1, "high": 0.5, "num": 100_000_000_000}}}))
-    assert err.value.field == "parameters.mu.num" and time.perf_counter() - t0 < 5
+                                 "parameters": {"arm.mu": {"low": 0.1, "high": 0.5, "num": 100_000_000_000}}}))
+    assert err.value.field == "parameters.arm.mu.num" and time.perf_counter() - t0 < 5
     with pytest.raises(ThrowmapError) as err:  # each axis fine, the product not
         make_design(parse_sweep({"kind": "grid", "target": "throw",
-                                 "parameters": {"mu": {"low": 0.1, "high": 0.5, "num": 2000},
+                                 "parameters": {"arm.mu": {"low": 0.1, "high": 0.5, "num": 2000},
                                                 "omega": {"low": 1.0, "high": 5.0, "num": 2000}}}))
     assert err.value.field == "parameters"
     f = tmp_path / "s.toml"
-    f.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nmu = { low = 0.1, high = 0.5, num = 100000000000 }\n')
-    _one_line(_cli(f, "--status"), "parameters.mu.num")
+    f.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\n"arm.mu" = { low = 0.1, high = 0.5, num = 100000000000 }\n')
+    _one_line(_cli(f, "--status"), "parameters.arm.mu.num")
 
 
 @pytest.mark.parametrize("text, field", [
@@ -95,7 +95,7 @@ def test_ctrl_c_exits_quietly(tmp_path):
     tracebacks; the parts written stay."""
     sweep = tmp_path / "s.toml"
     sweep.write_text('kind = "grid"\ntarget = "experiment:settle"\nseed = 1\nn = 2000\n[parameters]\n'
-                     'mu = { low = 0.3, high = 0.9, num = 40 }\n')
+                     '"arm.mu" = { low = 0.3, high = 0.9, num = 40 }\n')
     out = tmp_path / "s.parquet"
     proc = subprocess.Popen([str(BIN / "throwmap"), "sweep", str(sweep), "--workers", "2"], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)

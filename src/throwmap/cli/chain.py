@@ -132,7 +132,7 @@ def throw_cmd(
 
     from ..budget import cli_limits
     from ..errors import InvalidStateError
-    from ..experiments.noise import Noise
+    from ..system.noise import Noise
     from ..stochastic.budget import count_cells, guard_chain
     from ..stochastic import Cells, GoalSet, ThrowStep, build_mixture, compare_curve, open_loop_trials
     from .options import part_and_arm

@@ -103,6 +103,7 @@ def points_cmd(
     Exit status 0 when the targets are reached, 1 when the solver stops short (its message says
     why), 2 on bad input."""
     from ..design import design
+    from ..design.api import SolveOptions, SpaceOptions
 
     with guard():
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
@@ -112,7 +113,7 @@ def points_cmd(
         names = tuple(v.strip() for v in vary.split(",") if v.strip())
         fmt = figure_format(plot, "plot")
         res = design(the_part, arm, omega, targets, weight_mass=weight_mass, weight_at=at, vary=names, model=model,
-                     alpha=alpha, margin=margin, tol=tol)
+                     alpha=alpha, space=SpaceOptions(margin=margin), solve=SolveOptions(tol=tol))
         if plot is not None:
             save_figure(res.plot(), plot, fmt, "plot")
         if as_json:

@@ -6,7 +6,7 @@ throwing session of the chosen model (:func:`~throwmap.throws.session.open_sessi
 starts each throw flat at the reported ``(x, side)``; a model that keeps poses (the engine) starts each
 run from the pose the previous one ended in, as :func:`throwmap.iterate` does, so a start may also be a
 dropped part (:class:`~throwmap.experiments.drop.DropResult`). Noise
-(:class:`~throwmap.experiments.noise.Noise`): each throw's ω is jittered, and where the model follows arm
+(:class:`~throwmap.system.noise.Noise`): each throw's ω is jittered, and where the model follows arm
 motions (``features.realisation``) the arm moves by the noise's realisation (``recoil``: the Flatland arm)
 built for that ω; the others throw the paper's impulse. The arm's μ is the caller's (draw a trial's μ with
 ``noise.arm(arm, rng)`` first; a dropped start carries its own).
@@ -132,7 +132,7 @@ def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_bo
     starts from it; the others start flat at the drop's nearest rest (``side0`` then unused).
     ``model``: any registered throw model; the throws run on one throwing session
     (:func:`~throwmap.throws.session.open_session`). ``noise``: a
-    :class:`~throwmap.experiments.noise.Noise` (ω jitter per throw, and the arm's realisation for every model
+    :class:`~throwmap.system.noise.Noise` (ω jitter per throw, and the arm's realisation for every model
     that follows one, ``features.realisation``: the engine, and rigid_body, which rides the recoil arm exactly)
     or None (exact ω; the impulse). ``rng``: generator or seed, used for the sensors and the jitter.
     ``throw_options``: keywords of the throw (``fixtures``, ``alpha``, ``settings``, ``friction``, model

@@ -187,8 +187,6 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
     with ``reachable=False`` and the reasons, without throwing. ``realisation`` (None/"impulse",
     "recoil" or a callable ω → realisation, for models that take one) applies to every throw.
     """
-    from ..throws.throw import throw
-
     side0 = part.check_side(side0, field="side0")
     side_f = part.check_side(side_f, field="side_f")
     for value, name in ((x0, "x0"), (x_f, "x_f"), (tol, "tol"), (jog_omega_max, "jog_omega_max")):
@@ -207,9 +205,9 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
     ok, why = _rest_check(part, arm, float(x_f), side_f)
     if not ok:
         return done([], False, why)
+    goal = _Goal(part, arm, float(x_f), side_f, model, max_throws, tol, jog_omega_max, throw_options, realisation)
     if side0 == side_f:  # Prop. 4.3 is sufficient, not necessary: jogs alone may already get there
-        steps, why = _attempt(part, arm, float(x0), side0, float(x_f), side_f, None, model, max_throws, tol,
-                              jog_omega_max, throw, throw_options, realisation)
+        steps, why = _attempt(goal, float(x0), side0, None)
         if why is None:
             return done(steps, True, "jogs only (Lemma 4.2): already on side_f, no high throw needed")
     if check_reachability:
@@ -219,8 +217,7 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
         omegas = r.usable
     reasons = []
     for w_high in omegas:
-        steps, why = _attempt(part, arm, float(x0), side0, float(x_f), side_f, w_high, model, max_throws, tol,
-                              jog_omega_max, throw, throw_options, realisation)
+        steps, why = _attempt(goal, float(x0), side0, w_high)
         if why is None:
             n_round = sum(s.phase == "round" for s in steps)
             how = (f"round the limit set at ω = {w_high:g} rad/s ({n_round} throws, Lemma 4.1), then jogs (Lemma 4.2)"
@@ -230,17 +227,39 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
     return done(steps, False, "; ".join(reasons))
 
 
-def _attempt(part, arm, x, k, x_f, side_f, w_high, model, max_throws, tol, jog_max, throw_fn, opts, realisation):
-    """One plan with high rate ``w_high`` (None: jogs only): ``(steps, None)`` or ``(steps, reason)``."""
-    factory = realisation_factory(realisation)
+@dataclass(frozen=True)
+class _Goal:
+    """What every attempt of one plan shares: the part on the arm, the goal ``(x_f, side_f)`` (m), the model and
+    its throw options, the caps (``max_throws``, ``tol`` m, ``jog_max`` rad/s) and the arm's ``realisation``."""
 
-    def throw(part, arm, x, k, w, model, **o):
-        return throw_fn(part, arm, x, k, w, model, **o, **({} if factory is None else {"realisation": factory(w)}))
+    part: object
+    arm: object
+    x_f: float
+    side_f: int
+    model: str
+    max_throws: int
+    tol: float
+    jog_max: float
+    opts: dict
+    realisation: object
 
-    opts_inv = dict(opts, realisation=realisation)
+
+def _attempt(g: _Goal, x: float, k: int, w_high):
+    """One plan from ``(x, k)`` with high rate ``w_high`` (None: jogs only), its throws on one throwing session
+    (:func:`~throwmap.throws.session.open_session`): ``(steps, None)`` or ``(steps, reason)``."""
+    from ..throws.session import open_session
+
+    part, arm, x_f, side_f, model, tol, jog_max = g.part, g.arm, g.x_f, g.side_f, g.model, g.tol, g.jog_max
+    factory = realisation_factory(g.realisation)
+    session = open_session(part, arm, (x, k), model, **g.opts)
+
+    def throw(w):
+        return session.throw(w, None if factory is None else factory(w)).outcome
+
+    opts_inv = dict(g.opts, realisation=g.realisation)
     steps = []
     stuck = 0
-    while len(steps) < max_throws:
+    while len(steps) < g.max_throws:
         if k == side_f and abs(x - x_f) <= tol:
             return steps, None
         if k == side_f and stuck < 2:
@@ -252,7 +271,7 @@ def _attempt(part, arm, x, k, x_f, side_f, w_high, model, max_throws, tol, jog_m
                     return steps, f"the jog map is discontinuous at x_f ({err.reason})"
                 w = _partial_jog(part, arm, x, k, x_f, model, jog_max, tol, opts_inv)
             if w is not None:
-                out = throw(part, arm, x, k, w, model, **opts)
+                out = throw(w)
                 st = str(out.status)
                 steps.append(PlanStep(w, x, k, float(out.x), int(out.side), "jog", st))
                 if st != "ok":
@@ -263,14 +282,14 @@ def _attempt(part, arm, x, k, x_f, side_f, w_high, model, max_throws, tol, jog_m
                 continue
         if w_high is None:  # jogs only: no progress left
             return steps, f"jogs alone stop at x = {x:.4f} m on side {k}"
-        out = throw(part, arm, x, k, w_high, model, **opts)
+        out = throw(w_high)
         st = str(out.status)
         steps.append(PlanStep(w_high, x, k, float(out.x), int(out.side), "round", st))
         if st != "ok":
             kind = "escapes" if st in ESCAPES else "is refused"
             return steps, f"the orbit {kind} ({st}) after {len(steps)} throws"
         x, k, stuck = float(out.x), int(out.side), 0
-    return steps, (f"not reached within {max_throws} throws (last at x = {x:.4f} m on side {k}; jogs make no "
+    return steps, (f"not reached within {g.max_throws} throws (last at x = {x:.4f} m on side {k}; jogs make no "
                    f"progress there or the orbit never rests on side {side_f} short of x_f)")
 
 

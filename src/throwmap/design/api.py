@@ -12,6 +12,7 @@ solver is :func:`throwmap.design.solver.damped_lm`.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -21,11 +22,11 @@ from ..system.arm import Arm
 from ..system.part import Part
 from .result import DesignResult, DesignStep
 from .small_angle import energy_critical_points
-from .solver import damped_lm
+from .solver import LMSettings, damped_lm
 from .space import DEFAULT_STEPS, DesignSpace
 from .targets import Evaluation, Separation, Target, WallWindow, as_targets, evaluate
 
-__all__ = ["design", "design_critical_points", "SMALL_ANGLE_F", "DEFAULT_MARGIN", "DEFAULT_TOL"]
+__all__ = ["design", "design_critical_points", "SpaceOptions", "SolveOptions", "SMALL_ANGLE_F", "DEFAULT_MARGIN", "DEFAULT_TOL"]
 
 SMALL_ANGLE_F = "small_angle_F"
 """``model`` name of the corrected first-order energy test F = K + U − U_crit (r-targets only)."""
@@ -66,10 +67,40 @@ def _weight_at(plate: Part, weight_at):
     return _check_float("weight_at", x), _check_float("weight_at", y)
 
 
+@dataclass(frozen=True)
+class SpaceOptions:
+    """The design space around the varied parameters (:class:`~throwmap.design.space.DesignSpace`): ``bounds``
+    (name → (lo, hi), over :data:`~throwmap.design.space.DEFAULT_BOUNDS`), ``margin`` (the weight stays this far
+    inside every edge of the plate, m; default 8 mm), ``scales`` and ``steps`` (name → typical size and
+    finite-difference half-step; steps × :data:`LIMIT_SET_STEP_FACTOR` by default when a target needs the limit set),
+    ``com`` (the start CM (x, y), m, for the draft's ``com_x``/``com_y``; default the plate's)."""
+
+    bounds: dict | None = None
+    margin: float = DEFAULT_MARGIN
+    scales: dict | None = None
+    steps: dict | None = None
+    com: tuple | None = None
+
+
+@dataclass(frozen=True)
+class SolveOptions:
+    """How the targets are solved for: success when every feature is within ``tol`` of its target (m; default
+    0.1 mm); r_i found to ``xtol`` (m; default 0.1 µm, ≪ every FD step × |∂r/∂p|); ``n_grid`` and ``x_max``
+    passed to :func:`~throwmap.analysis.critical_points` (grid per side; searched domain, m); ``max_iter`` outer
+    Levenberg–Marquardt iterations (:class:`~throwmap.design.solver.LMSettings`); ``limit_options`` passed to
+    :func:`~throwmap.analysis.limit_set` for top/bottom/separation targets (default 32 starts per side, seed 0)."""
+
+    tol: float = DEFAULT_TOL
+    xtol: float = 1e-7
+    n_grid: int = 128
+    x_max: float | None = None
+    max_iter: int = 40
+    limit_options: dict | None = None
+
+
 def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 0.0, weight_at=None,
-           vary=("weight_x", "weight_y", "omega"), model: str = "rigid_body", alpha=None, com=None, bounds=None,
-           margin: float = DEFAULT_MARGIN, scales=None, steps=None, tol: float = DEFAULT_TOL, xtol: float = 1e-7,
-           n_grid: int = 128, x_max=None, max_iter: int = 40, limit_options=None) -> DesignResult:
+           vary=("weight_x", "weight_y", "omega"), model: str = "rigid_body", alpha=None,
+           space: SpaceOptions = SpaceOptions(), solve: SolveOptions = SolveOptions()) -> DesignResult:
     """Choose the varied parameters so that the limit set's features hit ``target`` (paper Sec. V).
 
     Parameters
@@ -95,26 +126,11 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         A registered model (default ``"rigid_body"``) or :data:`SMALL_ANGLE_F`.
     alpha : float, optional
         Arm rest angle, rad (start value if varied); passed to the model as ``alpha=``.
-    com : (x, y), optional
-        Start CM for ``com_x``/``com_y`` (default the plate's).
-    bounds : dict, optional
-        name → (lo, hi), over :data:`~throwmap.design.space.DEFAULT_BOUNDS`.
-    margin : float
-        The weight stays this far inside every edge of the plate, m (default 8 mm).
-    scales, steps : dict, optional
-        Typical sizes and finite-difference half-steps (:mod:`throwmap.design.space`; steps ×
-        :data:`LIMIT_SET_STEP_FACTOR` by default when a target needs the limit set).
-    tol : float
-        Success when every feature is within ``tol`` of its target, m (default 0.1 mm).
-    xtol : float
-        r_i found to this width, m (default 0.1 µm; ≪ every FD step × |∂r/∂p|).
-    n_grid, x_max
-        Passed to :func:`~throwmap.analysis.critical_points` (grid per side; searched domain, m).
-    max_iter : int
-        Outer Levenberg–Marquardt iterations.
-    limit_options : dict, optional
-        Passed to :func:`~throwmap.analysis.limit_set` for top/bottom/separation targets
-        (default 32 starts per side, seed 0).
+    space : SpaceOptions
+        Bounds, the weight's margin, scales, difference steps, the start CM (:class:`SpaceOptions`).
+    solve : SolveOptions
+        Tolerances, the critical points' grid and range, iterations, the limit set's options
+        (:class:`SolveOptions`).
 
     Returns a :class:`~throwmap.design.result.DesignResult`; ``success`` False with a
     ``message`` when the targets are not reached. Raises only on invalid input.
@@ -123,6 +139,12 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         raise InvalidStateError("part", f"must be a Part, got {type(plate).__name__}")
     if not isinstance(arm, Arm):
         raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
+    for name, value, kind in (("space", space, SpaceOptions), ("solve", solve, SolveOptions)):
+        if not isinstance(value, kind):
+            raise InvalidStateError(name, f"must be a {kind.__name__}, got {type(value).__name__}")
+    com, bounds, margin, scales, steps = space.com, space.bounds, space.margin, space.scales, space.steps
+    tol, xtol, n_grid, x_max, max_iter = solve.tol, solve.xtol, solve.n_grid, solve.x_max, solve.max_iter
+    limit_options = solve.limit_options
     if model != SMALL_ANGLE_F:
         try:
             check_model(model)
@@ -186,7 +208,7 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         return cache[key]
 
     rep = damped_lm(features, space.p0, project=space.project, scale=space.scale, step=space.step, tol=tol,
-                    noise=noise, labels=labels, inequality=inequality, max_iter=max_iter)
+                    noise=noise, labels=labels, inequality=inequality, settings=LMSettings(max_iter=max_iter))
     hist = []
     for itr in rep.iterates:
         st, ev = itr.info

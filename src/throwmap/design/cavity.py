@@ -53,12 +53,14 @@ import numpy as np
 from ..errors import InvalidStateError, shown
 from ..system.arm import Arm
 from ..system.fixtures import Cavity, Wall
+from ..system.noise import Noise
 from ..system.part import Part
 from .checks import Check
 
 __all__ = [
     "CAPTURE_TILT",
     "CavityDesign",
+    "Pocket",
     "Check",
     "JogMap",
     "design_cavity",
@@ -274,47 +276,78 @@ def _num(v, name: str, *, lo=None, hi=None, positive=False) -> float:
     return float(v)
 
 
-def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float = 0.03, z_hold: float = 3.0,
-                  z_release: float = 1.0, realisation: str = "impulse", recoil: float = math.radians(3.0),
-                  zeta: float = 0.5, depth: float = 0.02, clearance: float = 0.005, ramp_angle: float = math.radians(60.0),
-                  end_gap: float = 0.0, end_angle: float = math.radians(60.0), wall_mu: float = 0.0,
-                  lined: bool = False, wall_margin: float = 0.01, place: float = 0.5, length: float | None = None, verify: bool = True,
+@dataclass(frozen=True, slots=True)
+class Pocket:
+    """The pocket's design inputs (m, rad): ``depth`` below the arm surface, ``clearance`` (floor beyond the target
+    side's length), ``ramp_angle`` (the lip), ``end_gap`` (0: the floor runs to the wall; > 0: it ends that short of
+    it in a ramp at ``end_angle``), ``wall_mu`` (the end wall's μ), ``lined`` (the floor faced with the wall's
+    material: its μ is ``wall_mu``, :attr:`Cavity.lined <throwmap.system.fixtures.Cavity.lined>`), ``wall_margin``
+    (wall top above the energy bound), ``place`` (where in the widest window the arm's end L goes, 0: its low end)
+    or ``length`` (L itself, m; None: designed)."""
+
+    depth: float = 0.02
+    clearance: float = 0.005
+    ramp_angle: float = math.radians(60.0)
+    end_gap: float = 0.0
+    end_angle: float = math.radians(60.0)
+    wall_mu: float = 0.0
+    lined: bool = False
+    wall_margin: float = 0.01
+    place: float = 0.5
+    length: float | None = None
+
+    def __post_init__(self):
+        depth = _num(self.depth, "depth", positive=True)
+        end_angle = _num(self.end_angle, "end_angle", lo=1e-6, hi=math.pi / 2)
+        checked = {"depth": depth, "clearance": _num(self.clearance, "clearance", lo=0.0),
+                   "ramp_angle": _num(self.ramp_angle, "ramp_angle", lo=1e-6, hi=math.pi / 2), "end_angle": end_angle,
+                   "end_gap": _num(self.end_gap, "end_gap", lo=0.0, hi=depth / math.tan(end_angle) + 1e-12),
+                   "wall_mu": _num(self.wall_mu, "wall_mu", lo=0.0), "wall_margin": _num(self.wall_margin, "wall_margin", lo=0.0),
+                   "place": _num(self.place, "place", lo=0.0, hi=1.0), "lined": bool(self.lined),
+                   "length": None if self.length is None else _num(self.length, "length", positive=True)}
+        for name, value in checked.items():
+            object.__setattr__(self, name, value)
+
+
+DEFAULT_NOISE = Noise(omega_rel=0.03)
+"""The throw-to-throw jitter a pocket is designed for by default: 3 % of ω, the paper's impulse."""
+
+
+def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, pocket: Pocket | None = None,
+                  noise: Noise = DEFAULT_NOISE, z_hold: float = 3.0, z_release: float = 1.0, verify: bool = True,
                   settings=None) -> CavityDesign:
     """Design the cavity at the arm's end that holds ``part`` on ``side`` (see the module docstring).
 
-    ``arm`` gives h, μ, g (its length becomes the designed L); ``omega`` rad/s; ``sigma`` the
-    relative ω jitter: side k must jog at the wall for ω from ω(1 − ``z_release`` σ) to
-    ω(1 + ``z_hold`` σ) and the other sides flip there; L goes ``place`` of the way through the
-    widest window (or is ``length``, m). ``realisation`` ``"impulse"`` or ``"recoil"`` (``recoil``
-    rad, ``zeta``): the arm's motion in the experiment. Geometry (m, rad): ``depth``, ``clearance``
-    (floor beyond side k's length), ``ramp_angle`` (lip), ``end_gap`` (0: the floor runs to the
-    wall; > 0: it ends that short of it in a ramp at ``end_angle``), ``wall_mu``, ``lined`` (the floor faced with
-    the wall's material: its μ is ``wall_mu``, :attr:`Cavity.lined <throwmap.system.fixtures.Cavity.lined>`), ``wall_margin``
-    (wall top above the energy bound). ``verify``: engine checks. Returns a :class:`CavityDesign`
+    ``arm`` gives h, μ, g (its length becomes the designed L); ``omega`` rad/s; ``noise`` the arm the
+    experiment throws with (:class:`~throwmap.system.noise.Noise`: its ``omega_rel`` σ is the relative ω jitter,
+    its ``realisation`` ``"impulse"`` or ``"recoil"`` with ``recoil`` rad and ``zeta``): side k must jog at the
+    wall for ω from ω(1 − ``z_release`` σ) to ω(1 + ``z_hold`` σ) and the other sides flip there; L goes
+    ``pocket.place`` of the way through the widest window (or is ``pocket.length``, m). ``pocket``: the geometry
+    (:class:`Pocket`; None: its defaults). ``verify``: engine checks. Returns a :class:`CavityDesign`
     (``success`` False, naming the failed checks, when there is no window or a check fails).
     """
     if not isinstance(part, Part) or not isinstance(arm, Arm):
         bad = "part" if not isinstance(part, Part) else "arm"
         raise InvalidStateError(bad, f"must be a {bad.title()}, got {type(part if bad == 'part' else arm).__name__}")
-    if realisation not in ("impulse", "recoil"):
-        raise InvalidStateError("realisation", f"must be 'impulse' or 'recoil', got {shown(realisation)}")
+    pocket = Pocket() if pocket is None else pocket
+    for name, value, kind in (("pocket", pocket, Pocket), ("noise", noise, Noise)):
+        if not isinstance(value, kind):
+            raise InvalidStateError(name, f"must be a {kind.__name__}, got {type(value).__name__}")
+    sigma, realisation, recoil, zeta = noise.omega_rel, noise.realisation, noise.recoil, noise.zeta
+    depth, clearance, ramp_angle, end_gap, end_angle = (pocket.depth, pocket.clearance, pocket.ramp_angle,
+                                                        pocket.end_gap, pocket.end_angle)
+    wall_mu, lined, wall_margin, place, length = (pocket.wall_mu, pocket.lined, pocket.wall_margin, pocket.place,
+                                                  pocket.length)
     omega, side = _num(omega, "omega", positive=True), part.check_side(side)
-    sigma, depth = _num(sigma, "sigma", lo=0.0), _num(depth, "depth", positive=True)
-    clearance = _num(clearance, "clearance", lo=0.0)
-    ramp_angle = _num(ramp_angle, "ramp_angle", lo=1e-6, hi=math.pi / 2)
-    end_angle = _num(end_angle, "end_angle", lo=1e-6, hi=math.pi / 2)
-    end_gap = _num(end_gap, "end_gap", lo=0.0, hi=depth / math.tan(end_angle) + 1e-12)
-    place = _num(place, "place", lo=0.0, hi=1.0)
     w_hi = omega * (1.0 + _num(z_hold, "z_hold", lo=0.0) * sigma)
     w_lo = omega * max(0.05, 1.0 - _num(z_release, "z_release", lo=0.0) * sigma)
-    wall_mu = _num(wall_mu, "wall_mu", lo=0.0)
     floor_arm = Arm(h=arm.h - depth, g=arm.g, mu=wall_mu if lined else arm.mu, back=arm.back)
     jm = jog_map(part, floor_arm, (w_lo, omega, w_hi), realisation=realisation, recoil=recoil, zeta=zeta)
     uR = {j: float(part.uR[j]) for j in part.stable_sides}
     runs = _windows(jm, part, side, end_gap)
     L_lo, L_hi = max(runs, key=lambda r: r[1] - r[0]) if runs else (math.nan, math.nan)
     if length is not None:
-        L = _num(length, "length", positive=True)
+        L = length
     elif runs:
         L = L_lo + place * (L_hi - L_lo)
     else:  # no window: the largest L at which side k still jogs at every ω; the release checks fail
@@ -329,7 +362,7 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, sigma: float
     cavity = Cavity(prof + ((0.0, top),) if end_gap > 0 else prof, lined=bool(lined))
     x_c, y_c = L - end_gap - uR[side], arm.h - depth + float(part.d[side])
     rise = w_hi**2 * (x_c**2 + y_c**2) / (2.0 * arm.g)
-    H = float(part.d[side]) - depth + rise + _num(wall_margin, "wall_margin", lo=0.0)
+    H = float(part.d[side]) - depth + rise + wall_margin
     wall = Wall(height=H, mu=wall_mu)
     sweep = outward_sweep(part, side, x_c, y_c, w_hi, arm.g)
     numbers = {"L_m": L, "L_lo_m": L_lo, "L_hi_m": L_hi, "n_windows": len(runs), "omega_lo": w_lo, "omega_hi": w_hi,

@@ -29,7 +29,7 @@ from ..system.part import Part
 from .passage import Passage, first_passage, recoil_table
 from .plate import inset_polygon
 
-__all__ = ["FeedCandidate", "search_feeders"]
+__all__ = ["FeedCandidate", "FeederSpace", "search_feeders"]
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -59,19 +59,35 @@ class FeedCandidate:
                 "best_side": self.best}
 
 
-def search_feeders(plate: Part, *, n: int = 10, seed: int = 0, masses=(0.03, 0.05, 0.08),
-                   omega_range=(3.5, 6.5), h_range=(-0.05, 0.0), margin: float = 0.008, mu: float = 1.0,
+@dataclass(frozen=True, slots=True)
+class FeederSpace:
+    """Where the candidates are drawn: a lead weight of one of ``masses`` (kg) anywhere on the plate at least
+    ``margin`` (m) inside its edges, ω uniform over ``omega_range`` (rad/s), h uniform over ``h_range`` (m), on an arm
+    of friction ``mu``."""
+
+    masses: tuple = (0.03, 0.05, 0.08)
+    omega_range: tuple = (3.5, 6.5)
+    h_range: tuple = (-0.05, 0.0)
+    margin: float = 0.008
+    mu: float = 1.0
+
+    def __post_init__(self):
+        for name in ("omega_range", "h_range"):
+            lo, hi = getattr(self, name)
+            if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+                raise InvalidStateError(name, f"must be (low, high) with low ≤ high, got {(lo, hi)!r}")
+
+
+def search_feeders(plate: Part, *, n: int = 10, seed: int = 0, space: FeederSpace = FeederSpace(),
                    sigma: float = 0.03, purity: float = 0.99, chains: int = 1500, throws: int = 60,
                    step: float = 0.005, workers: int | None = None, progress=None):
-    """Yield ``n`` :class:`FeedCandidate` (see the module docstring; ``step`` the table's grid, m);
-    ``progress(i, n)`` after each."""
+    """Yield ``n`` :class:`FeedCandidate` drawn over ``space`` (:class:`FeederSpace`; see the module docstring;
+    ``step`` the table's grid, m); ``progress(i, n)`` after each."""
     if isinstance(n, bool) or not (isinstance(n, int) and 1 <= n <= 10_000):
         raise InvalidStateError("n", f"must be an integer in [1, 10000], got {n!r}")
     if isinstance(seed, bool) or not (isinstance(seed, int) and seed >= 0):
         raise InvalidStateError("seed", f"must be an integer ≥ 0, got {seed!r}")
-    for name, (lo, hi) in (("omega_range", omega_range), ("h_range", h_range)):
-        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
-            raise InvalidStateError(name, f"must be (low, high) with low ≤ high, got {(lo, hi)!r}")
+    masses, omega_range, h_range, margin, mu = space.masses, space.omega_range, space.h_range, space.margin, space.mu
     inset = inset_polygon(plate.vertices, margin)
     V = np.asarray(plate.vertices, dtype=float)
     (x0, y0), (x1, y1) = V.min(axis=0), V.max(axis=0)

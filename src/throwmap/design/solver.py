@@ -30,7 +30,9 @@ from typing import Any, Callable
 
 import numpy as np
 
-__all__ = ["Iterate", "Jacobian", "LMReport", "damped_lm", "fd_jacobian", "jacobian_summary"]
+from ..errors import InvalidStateError, shown
+
+__all__ = ["Iterate", "Jacobian", "LMReport", "LMSettings", "damped_lm", "fd_jacobian", "jacobian_summary"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -116,10 +118,31 @@ def fd_jacobian(fun, p, f0, step, project) -> tuple[np.ndarray, int]:
     return J, n_ev
 
 
+@dataclass(frozen=True, slots=True)
+class LMSettings:
+    """How long the damped Levenberg–Marquardt iteration runs: ``max_iter`` outer iterations, ``lam0`` initial
+    damping, ``max_tries`` damping increases tried per iteration; it stops ("residual stalled") when
+    ``stall_window`` accepted steps reduce |residual| by less than the fraction ``stall_rtol``."""
+
+    max_iter: int = 40
+    lam0: float = 1e-3
+    max_tries: int = 10
+    stall_window: int = 5
+    stall_rtol: float = 0.01
+
+    def __post_init__(self):
+        for name in ("max_iter", "max_tries", "stall_window"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+                raise InvalidStateError(name, f"must be an integer ≥ 1, got {shown(v)}")
+        for name in ("lam0", "stall_rtol"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
+                raise InvalidStateError(name, f"must be a positive finite number, got {shown(v)}")
+
+
 def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, noise: float, labels=None,
-              inequality=None,
-              max_iter: int = 40, lam0: float = 1e-3, max_tries: int = 10, stall_window: int = 5,
-              stall_rtol: float = 0.01) -> LMReport:
+              inequality=None, settings: LMSettings = LMSettings()) -> LMReport:
     """Solve ``fun(p)[0] = 0`` (residual rows, m) by damped Levenberg–Marquardt within bounds.
 
     Parameters
@@ -140,11 +163,8 @@ def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, 
         Per row, whether it is a hinge max(0, …) of an inequality; a satisfied one (zero) is
         inactive and does not count among the targets the rank is compared with (the
         implicit-function test concerns the active rows only).
-    max_iter, lam0, max_tries
-        Outer iterations, initial damping, damping increases tried per iteration.
-    stall_window, stall_rtol
-        Stop ("residual stalled") when ``stall_window`` accepted steps reduce |residual| by
-        less than the fraction ``stall_rtol``.
+    settings
+        The iteration's caps and its stall test (:class:`LMSettings`).
 
     Returns an :class:`LMReport`; never raises on non-convergence: ``success`` False and
     ``message`` says why (features undefined, rank deficient, a bound, a stalled residual,
@@ -152,6 +172,8 @@ def damped_lm(fun: Callable, p0, *, project: Callable, scale, step, tol: float, 
     """
     scale = np.asarray(scale, dtype=float)
     step = np.asarray(step, dtype=float)
+    max_iter, lam0, max_tries = settings.max_iter, settings.lam0, settings.max_tries
+    stall_window, stall_rtol = settings.stall_window, settings.stall_rtol
     p, hits = project(np.asarray(p0, dtype=float))
     f, info = fun(p)
     n_ev = 1

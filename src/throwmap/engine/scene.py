@@ -11,6 +11,7 @@ from ..system.arm import Arm
 from ..system.fixtures import Cavity, Wall
 from ..system.part import Part
 from ..system.pose import pose_at_rest
+from ..system.system import check_alpha
 from .settings import Friction
 
 __all__ = ["Placement", "Scene", "OVERLAP_TOL"]
@@ -107,10 +108,7 @@ class Scene:
         if fx and self.arm.length is None:
             raise InvalidStateError("arm.length", "fixtures sit at the arm's end: give the arm a length")
         object.__setattr__(self, "fixtures", fx)
-        a = self.alpha
-        if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a) or abs(a) >= math.pi / 2:
-            raise InvalidStateError("alpha", f"must be a finite angle with |α| < π/2 rad, got {shown(a)}")
-        object.__setattr__(self, "alpha", float(a))
+        object.__setattr__(self, "alpha", check_alpha(self.alpha))
         if not isinstance(self.friction, Friction):
             raise InvalidStateError(
                 "friction", f"must be a throwmap.engine.Friction, got {type(self.friction).__name__}")

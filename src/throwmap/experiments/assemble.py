@@ -48,8 +48,8 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from ..errors import InvalidStateError, ThrowmapError
 from .base import Trial, seed_of
-from .drop import DEFAULT_HEIGHT, drop_kind
-from .noise import NoiseConfig
+from .drop import DEFAULT_HEIGHT, Spread, drop_kind, drop_parts
+from ..io.spec import ArmSpec, NoiseSpec, Spec, WallSpec
 from .registry import register_experiment
 
 __all__ = ["ASSEMBLE", "Assemble", "AssembleConfig", "PairSensorConfig", "drop_pair", "lean_bound"]
@@ -68,7 +68,7 @@ class PairSensorConfig(BaseModel):
     confirm: int = Field(1, ge=1, le=100, description="readings 'ready' in a row needed to switch (extra looks)")
 
 
-class AssembleConfig(BaseModel):
+class AssembleConfig(Spec):
     """Config of ``assemble`` (SI units, rad). The defaults are the built-in example, with the values the draft
     leaves blank chosen as follows:
 
@@ -133,12 +133,10 @@ class AssembleConfig(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
     part: str = Field("triangle", description="a built-in part name or a .toml/.json part file (a right triangle)")
-    h: Finite = Field(-0.01, description="arm surface height, m")
-    length: Finite = Field(0.50, gt=0, description="arm length = wall face, m")
-    mu: Finite = Field(1.0, ge=0, description="nominal arm–part friction")
+    arm: ArmSpec = Field(default_factory=lambda: ArmSpec(h=-0.01, length=0.50, mu=1.0),
+                         description="the arm (its length is the wall's face), nominal μ")
     mu_parts: Finite = Field(0.5, ge=0, description="part–part friction")
-    wall_height: Finite = Field(0.80, gt=0, description="wall height above the arm surface, m")
-    wall_mu: Finite = Field(0.0, ge=0, description="wall–part friction")
+    wall: WallSpec = Field(default_factory=lambda: WallSpec(height=0.80, mu=0.0), description="the end wall")
     omega_high: tuple[Finite, Finite] = Field((3.0, 6.0), description="randomising release rate, uniform over "
                                                                        "(low, high) per throw, rad/s")
     near_x: Finite = Field(0.22, ge=0, description="a part's CM within this of the joint: randomise below near_cap, m")
@@ -168,7 +166,7 @@ class AssembleConfig(BaseModel):
                                    "whose end moves ~1 mm with the step (0.3 rad/s: 10 of 25 tilts refused at "
                                    "0.5 mm); 2 mm is well inside the 5 mm the assembled test allows")
     sensor: PairSensorConfig = Field(default_factory=PairSensorConfig)
-    noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil"))
+    noise: NoiseSpec = Field(default_factory=lambda: NoiseSpec(omega_rel=0.03, mu_rel=0.1, realisation="recoil"))
     height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
     x_range: tuple[Finite, Finite] = Field((0.12, 0.40), description="CM abscissa range of the drop, m")
     gap: Finite = Field(0.005, ge=0, description="least clearance between the dropped parts at release, m")
@@ -208,19 +206,19 @@ def lean_bound(part, *, alpha: float, mu: float, length: float, h: float = 0.0) 
 def _setup(cfg: AssembleConfig):
     from ..io.config import resolve_part
     from ..statics.assembly import legs
-    from ..system.arm import Arm
-    from ..system.fixtures import Wall
 
     try:
         part = resolve_part(cfg.part).part
         legs(part)
     except ThrowmapError as err:
         raise InvalidStateError("config.part", err.reason) from None
+    arm = cfg.arm.arm(field="config.arm.h")
+    if arm.length is None:
+        raise InvalidStateError("config.arm.length", "required: the wall stands at the arm's end")
     lo, hi = cfg.x_range
-    if not (lo < hi and hi > 0 and lo < cfg.length):
-        raise InvalidStateError("config.x_range", f"must be (low, high), low < high, on the arm [0, {cfg.length:g}] m")
-    arm = Arm(h=cfg.h, length=cfg.length, mu=cfg.mu)
-    return part, arm, Wall(height=cfg.wall_height, mu=cfg.wall_mu)
+    if not (lo < hi and hi > 0 and lo < arm.length):
+        raise InvalidStateError("config.x_range", f"must be (low, high), low < high, on the arm [0, {arm.length:g}] m")
+    return part, arm, cfg.wall.wall()
 
 
 def _settings(cfg: AssembleConfig):
@@ -240,35 +238,6 @@ def _kind(status, message: str = "", values=None) -> str:
         values["lost"] = status.label
     return "ejected" if status.label in ("off_end", "behind_joint") else (drop_kind(status, 0.0, message)
                                                                           or f"refused:{status.label}")
-
-
-def drop_pair(part, arm, wall, rng, *, alpha: float = 0.0, x_range=(0.12, 0.40), height=DEFAULT_HEIGHT, gap=0.005,
-              mu_parts: float = 0.5, settings=None, max_redraws: int = 20, record: bool = False):
-    """Drop two copies of ``part`` from random poses at least ``gap`` (m) apart and let them settle together:
-    ``(EngineRun, redraws)`` — the first run with both at rest on the arm, else the last one."""
-    from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
-    from ..system.geometry import overlap_depth
-    from ..system.pose import world_vertices
-
-    run = None
-    for attempt in range(max_redraws + 1):
-        poses, verts = [], []
-        while len(poses) < 2:
-            phi = float(rng.uniform(0.0, 2.0 * math.pi))
-            x0 = float(rng.uniform(*x_range))
-            V = world_vertices(part, (x0, 0.0, phi))
-            y0 = arm.h - float(V[:, 1].min()) + float(rng.uniform(*height))
-            V = world_vertices(part, (x0, y0, phi))
-            if float(V[:, 0].max()) >= arm.length or (verts and overlap_depth(verts[0], V) > -gap):
-                continue  # inside the wall or the other part: draw this part again
-            poses.append((x0, y0, phi))
-            verts.append(V)
-        scene = Scene(arm, tuple(Placement(part, pose=q) for q in poses), (wall,), alpha,
-                      Friction(part_part=mu_parts))
-        run = simulate(scene, ImpulseThrow(0.0), settings, record=record)
-        if int(run.status) == 0:
-            return run, attempt
-    return run, max_redraws
 
 
 def _coarse(run) -> tuple:
@@ -365,8 +334,9 @@ class Assemble:
         def ready(poses):
             return sensor.truth(part, poses)
 
-        run, v["drop_redraws"] = drop_pair(part, arm, wall, rng, x_range=cfg.x_range, height=cfg.height, gap=cfg.gap,
-                                           mu_parts=cfg.mu_parts, settings=high, record=observer is not None)
+        run, v["drop_redraws"] = drop_parts((part, part), arm, rng, spread=Spread(cfg.x_range, cfg.height, cfg.gap),
+                                            fixtures=(wall,), mu_parts=cfg.mu_parts, settings=high,
+                                            record=observer is not None)
         if observer is not None:
             observer("drop", run, 0.0)
         if int(run.status) != 0:

@@ -179,8 +179,23 @@ def config_of(experiment: Any, config=None, source=None):
             key = str(first["loc"][-1])
             close = difflib.get_close_matches(key, list(model.model_fields), n=1)
             hint = f"did you mean {close[0]!r}? " if close else ""
-            e = ConfigError(e.field, f"unknown key {key!r} ({hint}allowed: {', '.join(model.model_fields)})")
+            e = ConfigError(e.field, f"unknown key {key!r} ({table_hint(key, model) or hint}allowed: "
+                                     f"{', '.join(model.model_fields)})")
         raise e from None
+
+
+def table_hint(key: str, model) -> str:
+    """``"an arm key goes in the [arm] table (arm.length); "`` where ``key`` belongs to a table ``model`` has
+    (an arm, a wall), else ``""``."""
+    from ..io.spec import ArmSpec, WallSpec
+
+    fields = getattr(model, "model_fields", {})
+    for table, spec in (("arm", ArmSpec), ("wall", WallSpec)):
+        if table in fields and key in spec.model_fields:
+            return f"{'an' if table == 'arm' else 'a'} {table} key goes in the [{table}] table ({table}.{key}); "
+        if table in fields and key.startswith(table + "_") and key[len(table) + 1:] in spec.model_fields:
+            return f"the {table}'s keys go in the [{table}] table ({table}.{key[len(table) + 1:]}); "
+    return ""
 
 
 def read_config(experiment: Any, path):

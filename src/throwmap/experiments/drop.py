@@ -41,7 +41,7 @@ from ..system.part import Part
 from ..records.outcome import Status
 from ..system.pose import world_vertices
 
-__all__ = ["DropResult", "drop_part", "drop_kind", "MAX_REDRAWS", "DEFAULT_HEIGHT"]
+__all__ = ["Spread", "drop_parts", "DropResult", "drop_part", "drop_kind", "MAX_REDRAWS", "DEFAULT_HEIGHT"]
 
 MAX_REDRAWS = 20
 """Default re-draws of a drop that does not end at rest on the arm."""
@@ -166,3 +166,65 @@ def drop_part(part: Part, arm: Arm, rng=None, *, fixtures=(), alpha: float = 0.0
             return last
         rejected[kind] += 1
     return last
+
+
+@dataclass(frozen=True, slots=True)
+class Spread:
+    """Where several parts are dropped from (m): each CM abscissa uniform over ``x_range``, each lowest vertex
+    uniform over ``height`` above the arm surface, every pair at least ``gap`` apart at release."""
+
+    x_range: tuple = (0.0, 0.25)
+    height: tuple = DEFAULT_HEIGHT
+    gap: float = 0.005
+
+    def __post_init__(self):
+        object.__setattr__(self, "x_range", _range(self.x_range, "x_range", None))
+        object.__setattr__(self, "height", _range(self.height, "height", None))
+        if self.height[0] < 0:
+            raise InvalidStateError("height", f"must be ≥ 0 m above the arm, got {shown(self.height)}")
+        g = self.gap
+        if isinstance(g, bool) or not isinstance(g, (int, float)) or not math.isfinite(g) or g < 0:
+            raise InvalidStateError("gap", f"must be a finite number ≥ 0 (m), got {shown(g)}")
+
+
+MAX_DRAWS = 1000
+"""Poses drawn for one drop of several parts before the spread is refused as too tight."""
+
+
+def drop_parts(parts, arm: Arm, rng, *, spread: Spread = Spread(), fixtures=(), alpha: float = 0.0, fixed=(),
+               mu_parts: float = 0.5, settings=None, max_redraws: int = MAX_REDRAWS, record: bool = False):
+    """Drop ``parts`` together from random poses (φ uniform; CM and height over ``spread``, each at least
+    ``spread.gap`` from the others and from the ``fixed`` ``(part, pose)`` already on the arm, none past its end) and
+    let them settle with the fixed ones in the engine: ``(EngineRun, redraws)`` — the first run with every part at
+    rest on the arm, else the last one. Placements are ordered fixed first, then ``parts``; ``fixtures``, ``alpha``
+    (rad) as :class:`~throwmap.engine.Scene`; ``mu_parts`` the part–part friction; ``record`` keeps the run's
+    trajectory."""
+    from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
+    from ..system.geometry import overlap_depth
+
+    rng = as_generator(rng)
+    base = [world_vertices(p, q) for p, q in fixed]
+    run = None
+    for attempt in range(max_redraws + 1):
+        poses, verts = [], list(base)
+        tries = 0
+        while len(poses) < len(parts) and tries < MAX_DRAWS:
+            tries += 1
+            part = parts[len(poses)]
+            phi = float(rng.uniform(0.0, 2.0 * math.pi))
+            x0 = float(rng.uniform(*spread.x_range))
+            V = world_vertices(part, (x0, 0.0, phi))
+            y0 = arm.h - float(V[:, 1].min()) + float(rng.uniform(*spread.height))
+            V = world_vertices(part, (x0, y0, phi))
+            if float(V[:, 0].max()) >= arm.length or any(overlap_depth(U, V) > -spread.gap for U in verts):
+                continue  # past the end (the wall) or too near another part: draw this part again
+            poses.append((x0, y0, phi))
+            verts.append(V)
+        if len(poses) < len(parts):
+            raise InvalidStateError("config.x_range", f"no room to drop the parts apart there ({MAX_DRAWS} draws)")
+        pl = tuple(Placement(p, pose=q) for p, q in fixed) + tuple(Placement(p, pose=q) for p, q in zip(parts, poses))
+        run = simulate(Scene(arm, pl, tuple(fixtures), alpha, Friction(part_part=mu_parts)), ImpulseThrow(0.0),
+                       settings, record=record)
+        if int(run.status) == 0:
+            return run, attempt
+    return run, max_redraws

@@ -6,7 +6,7 @@ cavity at the arm's end on side 2: 19/20 = 95 %. Here one trial is:
 1. **drop** the part onto the arm from a random pose and height (:func:`~throwmap.experiments.drop.drop_part`,
    with the cavity and its end wall in place; the trial's arm μ drawn by the noise model);
 2. **throw** it again and again from where it settled, each throw with its own jittered ω and
-   the chosen arm motion (:class:`~throwmap.experiments.noise.Noise`: 3 % ω jitter and the
+   the chosen arm motion (:class:`~throwmap.system.noise.Noise`: 3 % ω jitter and the
    Flatland recoil by default), every engine run starting from the previous run's end
    (:meth:`throwmap.engine.EngineRun.next_scene`: the part is never restarted flat);
 3. variant ``"closed"`` (the cavity of :func:`throwmap.design.cavity.design_cavity`): **captured**
@@ -52,7 +52,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from ..errors import InvalidStateError, ThrowmapError
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, drop_part
-from .noise import NoiseConfig
+from ..io.spec import ArmSpec, NoiseSpec, Spec
 from .registry import register_experiment
 
 __all__ = ["FEED", "CavityConfig", "EndWall", "Feed", "FeedConfig", "WallConfig", "build_design", "build_wall",
@@ -126,7 +126,7 @@ class EndWall:
                 "zone_m": self.zone, **{k: v for k, v in self.numbers.items()}}
 
 
-class FeedConfig(BaseModel):
+class FeedConfig(Spec):
     """Config of ``feed`` (SI units). The field defaults (the built-in example is :meth:`Feed.example` instead)
     are the feeder design of
     :func:`throwmap.design.examples.feeder_design` (17 cm plexiglas triangle + 50 g lead, side 0),
@@ -138,8 +138,8 @@ class FeedConfig(BaseModel):
     part: str = Field("feeder", description="'feeder' (the feeder design) or a built-in part name / part file")
     side: int | None = Field(None, ge=0, strict=True, description="target side (None: the feeder design's)")
     omega: Finite | None = Field(None, gt=0, description="nominal release rate, rad/s (None: the feeder design's)")
-    h: Finite | None = Field(None, description="arm surface height, m (None: the feeder design's)")
-    mu: float | None = Field(1.0, ge=0, description="nominal arm–part friction (None: ∞, no slip)")
+    arm: ArmSpec = Field(default_factory=lambda: ArmSpec(mu=1.0), description="the arm: h (None: the feeder "
+                                                                               "design's), nominal μ")
     variant: Literal["closed", "open"] = Field("closed", description="'closed': held at the end; 'open': thrown off it")
     fixture: Literal["cavity", "wall"] = Field("cavity", description="closed variant: the designed cavity or a plain "
                                                                      "end wall")
@@ -147,7 +147,7 @@ class FeedConfig(BaseModel):
     wall: WallConfig = Field(default_factory=WallConfig)
     open_length: Finite | None = Field(None, gt=0, description="arm length of the open variant, m (None: from the "
                                                                     "feeder design's limit set)")
-    noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
+    noise: NoiseSpec = Field(default_factory=lambda: NoiseSpec(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
                                                                    zeta=0.2))
     height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
     x_range: tuple[Finite, Finite] | None = Field(None, description="CM abscissa range of the drop, m (None: the arm)")
@@ -161,7 +161,6 @@ class FeedConfig(BaseModel):
 
 def _base(cfg: FeedConfig):
     """``(part, arm without length, omega, side, feeder or None)``."""
-    from ..system.arm import Arm
 
     fd = None
     if cfg.part == "feeder":
@@ -169,7 +168,7 @@ def _base(cfg: FeedConfig):
 
         fd = feeder_design()
         part = fd.part
-        h = fd.arm.h if cfg.h is None else cfg.h
+        h = fd.arm.h
         omega = fd.omega if cfg.omega is None else cfg.omega
         side = fd.target_side if cfg.side is None else cfg.side
     else:
@@ -183,25 +182,27 @@ def _base(cfg: FeedConfig):
             if err.field in ("file", "part"):
                 raise type(err)("config.part", err.reason + where) from None
             raise type(err)(err.field, f"{err.reason} (in config.part = {cfg.part!r})") from None
-        for name in ("h", "omega", "side"):
+        for name in ("omega", "side"):
             if getattr(cfg, name) is None:
                 raise InvalidStateError(f"config.{name}", f"must be given for part {cfg.part!r} (only 'feeder' has defaults)")
-        h, omega, side = cfg.h, cfg.omega, cfg.side
-    arm = Arm(h=h, mu=math.inf if cfg.mu is None else cfg.mu)
+        h, omega, side = None, cfg.omega, cfg.side
+    if cfg.arm.length is not None:
+        raise InvalidStateError("config.arm.length", "the feeder's arm ends where its cavity or wall is designed "
+                                                     "([cavity] length, [wall] length)")
+    arm = cfg.arm.arm(field="config.arm.h", h=h)
     return part, arm, float(omega), part.check_side(side, field="config.side"), fd
 
 
 @functools.lru_cache(maxsize=8)
 def _design_cached(key: str):
     cfg = FeedConfig.model_validate_json(key)
-    from ..design.cavity import design_cavity
+    from ..design.cavity import Pocket, design_cavity
 
     part, arm, omega, side, _ = _base(cfg)
     c, nz = cfg.cavity, cfg.noise
-    d = design_cavity(part, arm, omega, side, sigma=nz.omega_rel, z_hold=c.z_hold, z_release=c.z_release,
-                      realisation=nz.realisation, recoil=nz.recoil, zeta=nz.zeta, depth=c.depth, clearance=c.clearance,
-                      ramp_angle=c.ramp_angle, end_gap=c.end_gap, end_angle=c.end_angle, wall_mu=c.wall_mu,
-                      lined=c.lined, wall_margin=c.wall_margin, place=c.place, length=c.length, verify=False)
+    pocket = Pocket(**c.model_dump(exclude={"z_hold", "z_release"}))
+    d = design_cavity(part, arm, omega, side, pocket=pocket, noise=nz.noise(), z_hold=c.z_hold, z_release=c.z_release,
+                      verify=False)
     return _clearing_wall(d, cfg)
 
 
@@ -220,7 +221,7 @@ def _clearing_wall(d, cfg: FeedConfig):
 
 def build_design(cfg: FeedConfig):
     """The :class:`~throwmap.design.cavity.CavityDesign` a config uses (computed once per process)."""
-    keep = {"part", "side", "omega", "h", "mu", "cavity", "noise", "clear_every", "clear_factor"}
+    keep = {"part", "side", "omega", "arm", "cavity", "noise", "clear_every", "clear_factor"}
     return _design_cached(FeedConfig(**{k: getattr(cfg, k) for k in keep}).model_dump_json())
 
 

@@ -37,13 +37,13 @@ from ..errors import InvalidStateError, ThrowmapError
 from ..models import options_taken
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, drop_part
-from .noise import NoiseConfig
+from ..io.spec import ArmSpec, NoiseSpec, Number, Point, Rate, SystemSpec
 from .registry import register_experiment
 
 __all__ = ["POSITION", "Position", "PositionConfig", "SensorConfig", "InverseConfig", "throws_summary", "low_rate"]
 
-Finite = Annotated[float, Field(allow_inf_nan=False)]
-Rate = Annotated[float, Field(ge=0, lt=1, allow_inf_nan=False)]
+Finite = Number
+Probability = Annotated[float, Field(ge=0, lt=1, allow_inf_nan=False)]
 
 
 class SensorConfig(BaseModel):
@@ -51,8 +51,8 @@ class SensorConfig(BaseModel):
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
-    false_positive: Rate = Field(0.0, description="P(reads 1 | truth 0) per read")
-    false_negative: Rate = Field(0.0, description="P(reads 0 | truth 1) per read")
+    false_positive: Probability = Field(0.0, description="P(reads 1 | truth 0) per read")
+    false_negative: Probability = Field(0.0, description="P(reads 0 | truth 1) per read")
     hysteresis: Finite = Field(0.0, ge=0, description="position sensors' hysteresis, m")
     sigma: Finite = Field(0.0, ge=0, description="blur of the abscissa the position sensors threshold, m")
     confirm: int = Field(1, ge=1, le=100, description="consecutive readings needed for a mode change (extra looks)")
@@ -69,28 +69,26 @@ class InverseConfig(BaseModel):
     gain: Finite = Field(0.7, gt=0, le=2, description="aim at x + gain·(x_f − x)")
     model: str = Field("rigid_body", description="the model the inverse jog is computed on")
     sigma: Finite = Field(0.0005, ge=0, description="position estimate's σ, m")
-    side_error: Rate = Field(0.0, description="P(the side is read wrong)")
+    side_error: Probability = Field(0.0, description="P(the side is read wrong)")
     margin: Finite | None = Field(None, ge=0, description="stop within eps − margin of x_f, m (None: 2·sigma)")
 
 
-class PositionConfig(BaseModel):
-    """Config of ``position`` (SI units). The defaults are the built-in example: the draft's 17 cm triangle
-    on a 60 cm arm (h = −1 cm, μ = 1 ± 10 %), goal 48 cm on side 1 within 1 cm, ω_high = 5 rad/s,
-    approach rungs (20 cm, 4.5 rad/s) and (43 cm, 3 rad/s), ω_low = 1.8 rad/s, 3 % ω jitter, the recoil
-    arm (3°, ζ = 0.5), kick rung (13 cm, 6 rad/s) off side 1 near the joint, drops over [0.18, 0.30] m;
-    the engine."""
+class PositionConfig(SystemSpec):
+    """Config of ``position`` (SI units): the system (:class:`~throwmap.io.spec.SystemSpec`: ``part``, ``[arm]``,
+    ``alpha``, ``[wall]``, ``[noise]``), the goal, the controller and the drop. The defaults are the built-in
+    example: the draft's 17 cm triangle on a 60 cm arm (h = −1 cm, μ = 1 ± 10 %), goal 48 cm on side 1 within
+    1 cm, ω_high = 5 rad/s, approach rungs (20 cm, 4.5 rad/s) and (43 cm, 3 rad/s), ω_low = 1.8 rad/s, 3 % ω
+    jitter, the recoil arm (3°, ζ = 0.5), kick rung (13 cm, 6 rad/s) off side 1 near the joint, drops over
+    [0.18, 0.30] m; the engine."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
-    part: str = Field("triangle", description="a built-in part name or a .toml/.json part file")
-    h: Finite = Field(-0.01, description="arm surface height, m")
-    length: Finite = Field(0.60, gt=0, description="arm length, m")
-    mu: float | None = Field(1.0, ge=0, description="nominal arm–part friction (None: ∞)")
+    arm: ArmSpec = Field(default_factory=lambda: ArmSpec(h=-0.01, length=0.60, mu=1.0))
     side: int = Field(1, ge=0, strict=True, description="goal side")
     x_f: Finite = Field(0.48, gt=0, description="goal CM abscissa, m")
     eps: Finite = Field(0.01, gt=0, description="goal radius ε, m")
-    omega_high: Finite = Field(5.0, gt=0, description="high release rate (reaches the goal side), rad/s")
-    omega_low: Finite = Field(1.8, gt=0, description="low release rate (jogs by less than ε near x_f), rad/s")
+    omega_high: Rate = Field(5.0, description="high release rate (reaches the goal side), rad/s")
+    omega_low: Rate = Field(1.8, description="low release rate (jogs by less than ε near x_f), rad/s")
     approach: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.20, 4.5), (0.43, 3.0)],
                                                   description="rungs (x m, ω rad/s): on side, short of x, throw ω")
     kick: list[tuple[Finite, Finite]] = Field(default_factory=lambda: [(0.13, 6.0)],
@@ -100,10 +98,9 @@ class PositionConfig(BaseModel):
     sensors: SensorConfig = Field(default_factory=SensorConfig)
     inverse: InverseConfig = Field(default_factory=InverseConfig)
     model: str = Field("engine", description="'engine' (pymunk, chained runs) or an analytic model name")
-    noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil"))
-    height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
-    x_range: tuple[Finite, Finite] | None = Field((0.18, 0.30), description="CM abscissa range of the drop, m "
-                                                                           "(None: the whole arm)")
+    noise: NoiseSpec = Field(default_factory=lambda: NoiseSpec(omega_rel=0.03, mu_rel=0.1, realisation="recoil"))
+    height: Point = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
+    x_range: Point | None = Field((0.18, 0.30), description="CM abscissa range of the drop, m (None: the whole arm)")
     max_throws: int = Field(300, ge=1, le=100_000, description="throws allowed")
     settings: dict | None = Field(None, description="EngineSettings fields to override")
 
@@ -111,22 +108,17 @@ class PositionConfig(BaseModel):
 def _setup(cfg: PositionConfig):
     """``(part, arm, controller)`` of a config."""
     from ..control import Goal
-    from ..io.config import resolve_part
     from ..models import get_model
-    from ..system.arm import Arm
 
-    try:
-        part = resolve_part(cfg.part).part
-    except ThrowmapError as err:
-        if err.field in ("file", "part"):
-            raise type(err)("config.part", err.reason) from None
-        raise
+    part = cfg.build_part()
     try:
         get_model(cfg.model)
     except ThrowmapError as err:
         raise InvalidStateError("config.model", err.reason) from None
     side = part.check_side(cfg.side, field="config.side")
-    arm = Arm(h=cfg.h, length=cfg.length, mu=math.inf if cfg.mu is None else cfg.mu)
+    arm = cfg.build_arm()
+    if arm.length is None:
+        raise InvalidStateError("config.arm.length", "required: the goal and the drop lie on a bounded arm")
     if cfg.x_f + float(part.uR[side]) >= arm.length:
         raise InvalidStateError("config.x_f", f"the part on side {side} at x_f = {cfg.x_f:g} m reaches past the arm's "
                                               f"end ({arm.length:g} m)")
@@ -217,22 +209,13 @@ class Position:
     config_type = PositionConfig
 
     def trial(self, cfg: PositionConfig, index: int, rng) -> Trial:
-        from ..control import closed_loop
-
-        part, arm, ctl = _setup(cfg)
-        noise = cfg.noise.noise()
-        settings = _settings(cfg)
-        arm = noise.arm(arm, rng)
-        drop = drop_part(part, arm, rng, x_range=cfg.x_range, height=cfg.height, settings=settings)
+        drop, arm, ep = self._run(cfg, rng)
         values = {"mu": arm.mu if math.isfinite(arm.mu) else None, "drop_x": drop.x, "drop_side": drop.side,
                   "drop_redraws": drop.redraws, "throws": 0, "looks": 0, "switches": 0, "throws_to_side": math.nan,
                   "x": drop.x, "side": drop.side, "error_m": math.nan, "stopped": False,
                   "omega_min": math.nan, "omega_max": math.nan}
-        if not drop.ok:
+        if ep is None:
             return Trial(index, seed_of(rng), False, "refused:drop", values)
-        opts = options_taken(cfg.model, settings=settings)
-        ep = closed_loop(part, arm, ctl, drop, model=cfg.model, noise=noise, max_throws=cfg.max_throws, rng=rng,
-                         **opts)
         oms = [s.omega for s in ep.steps if s.action == "throw"]
         values.update(throws=ep.throws, looks=ep.looks, switches=ep.switches,
                       throws_to_side=math.nan if ep.first_on_side is None else ep.first_on_side,
@@ -242,21 +225,32 @@ class Position:
 
     def episode(self, cfg: PositionConfig, index: int, seed: int):
         """Trial ``index`` of a run seeded ``seed`` as its full :class:`~throwmap.control.Episode` (for figures):
-        the same draws as :meth:`trial`."""
-        from ..control import closed_loop
+        the same draws as :meth:`trial`; None where the drop was refused."""
         from .base import trial_generator
 
-        rng = trial_generator(seed, index)
+        return self._run(cfg, trial_generator(seed, index))[2]
+
+    @staticmethod
+    def _run(cfg: PositionConfig, rng):
+        """One trial's draws: ``(drop, the trial's arm, Episode or None when the drop was refused)``. The drop
+        brings the system's wall and α to a model that keeps poses; the others are given them."""
+        from ..control import closed_loop
+        from ..models import get_model
+
         part, arm, ctl = _setup(cfg)
         noise = cfg.noise.noise()
         settings = _settings(cfg)
         arm = noise.arm(arm, rng)
-        drop = drop_part(part, arm, rng, x_range=cfg.x_range, height=cfg.height, settings=settings)
+        fixtures = cfg.fixtures()
+        drop = drop_part(part, arm, rng, fixtures=fixtures, alpha=cfg.alpha, x_range=cfg.x_range, height=cfg.height,
+                         settings=settings)
         if not drop.ok:
-            return None
+            return drop, arm, None
         opts = options_taken(cfg.model, settings=settings)
-        return closed_loop(part, arm, ctl, drop, model=cfg.model, noise=noise, max_throws=cfg.max_throws, rng=rng,
-                           **opts)
+        if not get_model(cfg.model).features.pose and (fixtures or cfg.alpha):
+            opts.update(fixtures=fixtures, alpha=cfg.alpha)
+        return drop, arm, closed_loop(part, arm, ctl, drop, model=cfg.model, noise=noise, max_throws=cfg.max_throws,
+                                      rng=rng, **opts)
 
     def parameters(self, cfg: PositionConfig) -> dict:
         part, arm, ctl = _setup(cfg)

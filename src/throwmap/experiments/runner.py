@@ -239,15 +239,23 @@ def _header(name: str, config_json: str, seed: int) -> dict:
     return {"experiment": name, "version": __version__, "config": json.loads(config_json), "seed": int(seed)}
 
 
+def _first_difference(a, b, path: tuple = ()) -> tuple:
+    """``(dotted path, a's value, b's value)`` of the first place two configs differ (nested tables followed)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        for k in sorted(set(a) | set(b)):
+            if a.get(k) != b.get(k):
+                return _first_difference(a.get(k), b.get(k), path + (str(k),))
+    return path, a, b
+
+
 def _check_header(stored: dict, want: dict, directory: Path) -> None:
     for key in ("experiment", "seed", "config"):
         if stored.get(key) != want[key]:
             field = "config" if key == "config" else key
             if key == "config":
-                a, b = stored.get("config") or {}, want["config"]
-                diff = sorted(k for k in set(a) | set(b) if a.get(k) != b.get(k))
-                field = f"config.{diff[0]}" if diff else "config"
-                detail = f"stored {shown(a.get(diff[0]) if diff else a, 60)}, given {shown(b.get(diff[0]) if diff else b, 60)}"
+                path, a, b = _first_difference(stored.get("config") or {}, want["config"])
+                field = ".".join(("config",) + path)
+                detail = f"stored {shown(a, 60)}, given {shown(b, 60)}"
             else:
                 detail = f"stored {shown(stored.get(key))}, given {shown(want[key])}"
             raise InvalidStateError(field, f"differs from the run stored in {str(directory)!r} ({detail}): "

@@ -52,8 +52,8 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from ..errors import InvalidStateError
 from .base import Trial, seed_of
-from .drop import DEFAULT_HEIGHT
-from .noise import NoiseConfig
+from .drop import DEFAULT_HEIGHT, Spread, drop_parts
+from ..io.spec import Friction, NoiseSpec
 from .registry import register_experiment
 
 __all__ = ["SEQUENTIAL", "SERIAL", "RecoverConfig", "SequentialAssembly", "SequentialConfig", "WedgeConfig", "build_stack",
@@ -125,9 +125,10 @@ class SequentialConfig(BaseModel):
     omega: Finite | None = Field(None, gt=0, description="release rate, rad/s (None: the feeder's 4.56)")
     omega_second: Finite | None = Field(None, gt=0, description="serial: rate once the triangle is captured, "
                                                                  "rad/s (None: omega)")
-    mu: Finite = Field(1.0, ge=0, description="nominal arm–part friction")
+    mu: Friction = Field(1.0, description="nominal arm–part friction of the pocket's arm (its h and length are the "
+                                          "design's)")
     mu_parts: Finite = Field(0.5, ge=0, description="part–part friction")
-    noise: NoiseConfig = Field(default_factory=lambda: NoiseConfig(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
+    noise: NoiseSpec = Field(default_factory=lambda: NoiseSpec(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
                                                                    zeta=0.2))
     height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
     x_range: tuple[Finite, Finite] = Field((0.10, 0.25), description="CM abscissa range of the drops, m")
@@ -180,42 +181,6 @@ def _check(cfg: SequentialConfig, arm=None) -> None:
             where = "from x = 0 m (the joint) on" if arm is None else f"within [0, {arm.length:g}] m"
             raise InvalidStateError(f"config.{name}", f"must lie on the arm, {where} (CM abscissae of the drops), "
                                                       f"got {[lo, hi]}")
-
-
-def drop_parts(parts, arm, fixtures, rng, *, fixed=(), x_range=(0.0, 0.25), height=DEFAULT_HEIGHT, gap=0.005,
-               mu_parts=0.5, settings=None, max_redraws: int = 20):
-    """Drop ``parts`` from random poses (φ uniform, CM x uniform over ``x_range``, lowest vertex ``height`` above
-    the arm, each at least ``gap`` from the others and from the ``fixed`` ``(part, pose)`` already on the arm) and
-    let them settle with the fixed ones: ``(EngineRun, redraws)``, the first run at rest, else the last one. The
-    placements are ordered fixed first, then ``parts``."""
-    from ..engine import Friction, ImpulseThrow, Placement, Scene, simulate
-    from ..system.geometry import overlap_depth
-    from ..system.pose import world_vertices
-
-    base = [world_vertices(p, q) for p, q in fixed]
-    run = None
-    for attempt in range(max_redraws + 1):
-        poses, verts = [], list(base)
-        tries = 0
-        while len(poses) < len(parts) and tries < 1000:
-            tries += 1
-            part = parts[len(poses)]
-            phi = float(rng.uniform(0.0, 2.0 * math.pi))
-            x0 = float(rng.uniform(*x_range))
-            V = world_vertices(part, (x0, 0.0, phi))
-            y0 = arm.h - float(V[:, 1].min()) + float(rng.uniform(*height))
-            V = world_vertices(part, (x0, y0, phi))
-            if float(V[:, 0].max()) >= arm.length or any(overlap_depth(U, V) > -gap for U in verts):
-                continue
-            poses.append((x0, y0, phi))
-            verts.append(V)
-        if len(poses) < len(parts):
-            raise InvalidStateError("config.x_range", "no room to drop the parts apart there (1000 draws)")
-        pl = tuple(Placement(p, pose=q) for p, q in fixed) + tuple(Placement(p, pose=q) for p, q in zip(parts, poses))
-        run = simulate(Scene(arm, pl, fixtures, 0.0, Friction(part_part=mu_parts)), ImpulseThrow(0.0), settings)
-        if int(run.status) == 0:
-            return run, attempt
-    return run, max_redraws
 
 
 class SequentialAssembly:
@@ -281,6 +246,9 @@ class SequentialAssembly:
 
         sessions = []
 
+        def spread(x_range):
+            return Spread(x_range, cfg.height, cfg.gap)
+
         def start(run):
             """Throw the parts of ``run`` again and again from where it ended (one engine session)."""
             sessions.append(open_session(run.scene.parts, arm, run, ENGINE, settings=settings))
@@ -307,16 +275,15 @@ class SequentialAssembly:
             return "not_assembled"
 
         if self.variant == "sequential":
-            run, v["drop_redraws"] = drop_parts((tri, wedge), arm, d.fixtures, rng, x_range=cfg.x_range,
-                                                height=cfg.height, gap=cfg.gap, mu_parts=cfg.mu_parts,
-                                                settings=settings)
+            run, v["drop_redraws"] = drop_parts((tri, wedge), arm, rng, spread=spread(cfg.x_range),
+                                                fixtures=d.fixtures, mu_parts=cfg.mu_parts, settings=settings)
             if int(run.status) != 0:
                 return done("refused:drop")
             start(run)
             cap, w_assemble = cfg.max_throws, omega
         else:
-            run, v["drop_redraws"] = drop_parts((tri,), arm, d.fixtures, rng, x_range=cfg.x_range, height=cfg.height,
-                                                gap=cfg.gap, mu_parts=cfg.mu_parts, settings=settings)
+            run, v["drop_redraws"] = drop_parts((tri,), arm, rng, spread=spread(cfg.x_range), fixtures=d.fixtures,
+                                                mu_parts=cfg.mu_parts, settings=settings)
             if int(run.status) != 0:
                 return done("refused:drop")
             start(run)
@@ -329,9 +296,8 @@ class SequentialAssembly:
                 if int(run.status) != 0:
                     return done(lost(run), run)
                 note(run)
-            run, r2 = drop_parts((wedge,), arm, d.fixtures, rng, fixed=((tri, tuple(run.poses[0])),),
-                                 x_range=cfg.x_range_second, height=cfg.height, gap=cfg.gap, mu_parts=cfg.mu_parts,
-                                 settings=settings)
+            run, r2 = drop_parts((wedge,), arm, rng, spread=spread(cfg.x_range_second), fixtures=d.fixtures,
+                                 fixed=((tri, tuple(run.poses[0])),), mu_parts=cfg.mu_parts, settings=settings)
             v["drop_redraws"] += r2
             if int(run.status) != 0:
                 return done("refused:drop")

@@ -15,38 +15,29 @@ experiments start from: the resting ``x`` (m), ``side`` and ``tilt`` (rad), the 
 from __future__ import annotations
 
 import math
-from typing import Annotated
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import Field
 
-from ..system.arm import Arm
-from ..system.fixtures import Cavity, Wall
+from ..errors import InvalidStateError
+from ..io.spec import ArmSpec, NoiseSpec, Point, SystemSpec
+from ..system.fixtures import Cavity
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, drop_part
-from .noise import NoiseConfig
 from .registry import register_experiment
 
 __all__ = ["SettleConfig", "Settle", "SETTLE"]
 
-Finite = Annotated[float, Field(allow_inf_nan=False)]
 
-
-class SettleConfig(BaseModel):
-    """Config of ``settle`` (SI units). The defaults are the built-in example: the draft's 17 cm
+class SettleConfig(SystemSpec):
+    """Config of ``settle`` (SI units): the system (:class:`~throwmap.io.spec.SystemSpec`: ``part``, ``[arm]``,
+    ``alpha``, ``[wall]``, ``[noise]``) and the drop. The defaults are the built-in example: the draft's 17 cm
     30-60-90 plexiglas triangle dropped 2–10 cm onto a 40 cm arm (h = −1 cm, μ = 0.8)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-    part: str = Field("triangle", description="a built-in part name or a .toml/.json part file")
-    h: Finite = Field(-0.01, description="arm surface height, m")
-    length: Finite = Field(0.40, gt=0, description="arm length, m")
-    mu: float | None = Field(0.8, ge=0, description="arm–part friction (None: ∞, no slip)")
-    alpha: Finite = Field(0.0, gt=-math.pi / 2, lt=math.pi / 2, description="arm rest angle, rad")
-    x_range: tuple[Finite, Finite] | None = Field(None, description="CM abscissa range of the drop, m (None: the arm)")
-    height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="lowest vertex above the arm at release, m")
-    cavity: list[tuple[Finite, Finite]] | None = Field(None, description="Cavity profile (s, y) at the arm's end, m")
-    wall_height: Finite | None = Field(None, gt=0, description="a Wall at the arm's end this high, m (None: no wall)")
-    noise: NoiseConfig = Field(default_factory=NoiseConfig, description="per-trial μ spread (ω unused here)")
+    arm: ArmSpec = Field(default_factory=lambda: ArmSpec(h=-0.01, length=0.40, mu=0.8))
+    noise: NoiseSpec = Field(default_factory=NoiseSpec, description="per-trial μ spread (ω unused here)")
+    x_range: Point | None = Field(None, description="CM abscissa range of the drop, m (None: the arm)")
+    height: Point = Field(DEFAULT_HEIGHT, description="lowest vertex above the arm at release, m")
+    cavity: list[Point] | None = Field(None, description="Cavity profile (s, y) at the arm's end, m")
 
 
 class Settle:
@@ -59,16 +50,12 @@ class Settle:
     @staticmethod
     def build(cfg: SettleConfig):
         """``(part, arm, fixtures)`` of a config."""
-        from ..io.config import resolve_part
-
-        part = resolve_part(cfg.part).part
-        arm = Arm(h=cfg.h, length=cfg.length, mu=math.inf if cfg.mu is None else cfg.mu)
-        fixtures = []
-        if cfg.cavity is not None:
-            fixtures.append(Cavity(tuple(cfg.cavity)))
-        if cfg.wall_height is not None:
-            fixtures.append(Wall(height=cfg.wall_height))
-        return part, arm, tuple(fixtures)
+        part = cfg.build_part()
+        arm = cfg.build_arm()
+        if arm.length is None:
+            raise InvalidStateError("config.arm.length", "required: the part is dropped over a bounded arm")
+        cavity = () if cfg.cavity is None else (Cavity(tuple(cfg.cavity)),)
+        return part, arm, cavity + cfg.fixtures()
 
     def trial(self, cfg: SettleConfig, index: int, rng) -> Trial:
         from ..engine.rest import FLAT_TILT

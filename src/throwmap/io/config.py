@@ -46,12 +46,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from ..system.arm import Arm
-from ..conventions import G
 from ..errors import ConfigError, InvalidPartError
 from .files import atomic_write_text
+from .spec import ArmSpec
 from ..system.part import Part
 from ..system.catalogue import BUILTIN_PARTS, builtin_part, lead_name
 
@@ -100,36 +100,25 @@ class PartSpec(_Spec):
     point_masses: list[PointMassSpec] = []
 
 
-class ArmSpec(_Spec):
-    """The ``[arm]`` table; see :class:`throwmap.Arm`."""
+class FileArmSpec(ArmSpec):
+    """The ``[arm]`` table of a part file (:class:`throwmap.io.spec.ArmSpec`, the one schema of an arm), where
+    ``h`` is required."""
 
     h: FiniteFloat
-    g: FiniteFloat = G
-    length: FiniteFloat | None = None
-    mu: Annotated[float, Field(strict=True)] | None = None
-    back: FiniteFloat = 0.0
-
-    @field_validator("mu", mode="before")
-    @classmethod
-    def _mu_inf_text(cls, value):
-        """JSON has no infinity: ``null`` (as ``--json`` writes it) or the text ``"inf"`` is μ = ∞."""
-        if isinstance(value, str) and value.strip().lower() in ("inf", "+inf", "infinity"):
-            return math.inf
-        return value
 
 
 class FileSpec(_Spec):
     """A whole part/arm file."""
 
     part: PartSpec
-    arm: ArmSpec | None = None
+    arm: FileArmSpec | None = None
 
 
 _KEYS_BY_TABLE = {
     "": FileSpec,
     "part": PartSpec,
     "point_masses": PointMassSpec,
-    "arm": ArmSpec,
+    "arm": FileArmSpec,
 }
 
 
@@ -180,6 +169,8 @@ def _config_error(err: ValidationError, prefix: str, source: Path | None = None)
         reason = f"must be a finite number, got {_short_repr(value)}"
     elif kind in ("float_type", "float_parsing"):
         reason = f"must be a number, got {_short_repr(value)}"
+    elif kind == "value_error":  # one of the library's rules (io.spec): its reason names the value
+        reason = first["msg"].removeprefix("Value error, ")
     elif kind in ("model_type", "dict_type") or (not loc and isinstance(value, (list, str, int, float))):
         reason = f"must be a table of keys, got {_short_repr(value)}"
     else:
@@ -225,10 +216,7 @@ def _build_part(spec: PartSpec, default_name: str | None = None) -> Part:
 
 def _build_arm(spec: ArmSpec) -> Arm:
     """Every key of the ``[arm]`` table is the :class:`Arm` field of that name (``mu`` left out: ∞)."""
-    values = spec.model_dump()
-    if values["mu"] is None:
-        values["mu"] = math.inf
-    return Arm(**values)
+    return spec.arm()
 
 
 def part_from_spec(spec: dict) -> Part:
@@ -249,7 +237,7 @@ def arm_from_spec(spec: dict) -> Arm:
     Raises :class:`ConfigError` (fields ``arm.…``) for schema problems and
     :class:`InvalidArmError` for an invalid arm.
     """
-    return _build_arm(_validate(ArmSpec, spec, "arm"))
+    return _build_arm(_validate(FileArmSpec, spec, "arm"))
 
 
 @dataclass(frozen=True, slots=True)

@@ -10,7 +10,7 @@ A **step** is a callable ``step(x, side, rng) -> (x_new, side_new, label)`` over
 for a rest on the arm). Two are given:
 
 * :class:`ThrowStep` — open loop: a fixed nominal ω, every throw jittered (ω(1 + σ_ω N(0, 1)), clipped at
-  0, :class:`~throwmap.experiments.noise.Noise`), the arm's motion by the noise's realisation where the
+  0, :class:`~throwmap.system.noise.Noise`), the arm's motion by the noise's realisation where the
   model takes one (rigid_body rides the recoil arm; "paper" always throws the impulse).
 * :class:`PolicyStep` — a feedback policy that is a function of the rest: the controller's sensors are
   read at the sampled rest (their errors drawn per sample) and ``decide`` is asked from its initial

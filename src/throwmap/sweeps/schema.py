@@ -36,6 +36,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 from ..errors import ConfigError, InvalidStateError
+from ..io.spec import ArmSpec, Omega, SystemSpec
 
 __all__ = ["Range", "SweepSpec", "ThrowConfig", "LimitSetConfig", "read_sweep", "parse_sweep", "spec_hash",
            "MAX_POINTS", "DEFAULT_CHUNK", "jsonable"]
@@ -165,45 +166,27 @@ class SweepSpec(BaseModel):
         return self
 
 
-class ThrowConfig(BaseModel):
-    """One throw (target ``throw``): the part (built-in name or part file) resting at ``(x, side)`` on the arm,
-    thrown at ``omega`` by ``model``. Arm: ``h`` (m), ``length`` (m; ``inf``: unbounded), ``mu`` (``inf``: no slip),
-    ``g`` (m/s²), ``back`` (m); ``alpha`` the arm's rest angle (rad); ``wall_height`` a wall at the arm's end
-    (m; None: none)."""
+class ThrowConfig(SystemSpec):
+    """One throw (target ``throw``): the system (:class:`~throwmap.io.spec.SystemSpec`: ``part``, ``[arm]``
+    (``arm.h``, ``arm.length`` — ``inf``: unbounded —, ``arm.mu`` — ``inf``: no slip —, ``arm.g``, ``arm.back``),
+    ``alpha`` (rad), ``[wall]`` (``wall.height``, ``wall.mu``)), the rest ``(x, side)`` it starts from, thrown at
+    ``omega`` by ``model``."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-    part: str = "triangle"
+    arm: ArmSpec = Field(default_factory=lambda: ArmSpec(h=-0.01, length=0.40, mu=0.8))
     model: str = "rigid_body"
     x: Finite = Field(0.15, description="CM abscissa at rest, m")
     side: int = Field(0, ge=0, description="the side it rests on")
-    omega: Finite = Field(5.0, ge=0, description="release rate, rad/s")
-    h: Finite = Field(-0.01, description="arm surface height, m")
-    length: float | None = Field(0.40, gt=0, description="arm length, m (inf or None: unbounded)")
-    mu: float | None = Field(0.8, ge=0, description="arm–part friction (inf or None: no slip)")
-    g: Finite = Field(9.81, gt=0, description="gravity, m/s²")
-    back: Finite = Field(0.0, ge=0, description="arm behind the joint, m")
-    alpha: Finite = Field(0.0, gt=-math.pi / 2, lt=math.pi / 2, description="arm rest angle, rad")
-    wall_height: Finite | None = Field(None, gt=0, description="a wall at the arm's end this high, m")
+    omega: Omega = Field(5.0, description="release rate, rad/s")
 
 
-class LimitSetConfig(BaseModel):
+class LimitSetConfig(SystemSpec):
     """One limit set (target ``limit_set``): the map of :class:`ThrowConfig` (without ``x``, ``side``), from
     ``n_starts`` starts per stable side, with the recurrence caps ``transient`` and ``n_record`` and the
     domain's end ``x_max`` (m; None: the arm length, else 0.6 m)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-    part: str = "triangle"
+    arm: ArmSpec = Field(default_factory=lambda: ArmSpec(h=-0.01, length=0.40, mu=0.8))
     model: str = "rigid_body"
-    omega: Finite = Field(5.0, ge=0, description="release rate, rad/s")
-    h: Finite = Field(-0.01, description="arm surface height, m")
-    length: float | None = Field(0.40, gt=0, description="arm length, m (inf or None: unbounded)")
-    mu: float | None = Field(0.8, ge=0, description="arm–part friction (inf or None: no slip)")
-    g: Finite = Field(9.81, gt=0, description="gravity, m/s²")
-    back: Finite = Field(0.0, ge=0, description="arm behind the joint, m")
-    alpha: Finite = Field(0.0, gt=-math.pi / 2, lt=math.pi / 2, description="arm rest angle, rad")
-    wall_height: Finite | None = Field(None, gt=0, description="a wall at the arm's end this high, m")
+    omega: Omega = Field(5.0, description="release rate, rad/s")
     n_starts: int = Field(16, ge=1, description="starts per stable side")
     transient: int = Field(200, ge=0, description="throws discarded")
     n_record: int = Field(400, ge=1, description="throws recorded")

@@ -63,18 +63,9 @@ def _part(name: str):
     return resolve_part(name).part
 
 
-def _arm(cfg: dict):
-    from ..system.arm import Arm
-
-    length = None if cfg["length"] is None or math.isinf(cfg["length"]) else cfg["length"]
-    return Arm(h=cfg["h"], g=cfg["g"], length=length, mu=math.inf if cfg["mu"] is None else cfg["mu"],
-               back=cfg["back"])
-
-
-def _fixtures(cfg: dict) -> tuple:
-    from ..system.fixtures import Wall
-
-    return () if cfg.get("wall_height") is None else (Wall(height=cfg["wall_height"]),)
+def _spec(cfg: dict, kind):
+    """A design point's config as its :class:`~throwmap.io.spec.SystemSpec` (validated once per distinct map)."""
+    return kind.model_validate(cfg)
 
 
 def _error_row(err: Exception) -> dict:
@@ -133,11 +124,12 @@ def summarise_trials(name: str, cfg: dict, seed: int, n: int, blocks: list) -> d
 
 def _limit_set_point(cfg: dict, seed: int) -> dict:
     from ..analysis.limitset import limit_set
+    from .schema import LimitSetConfig
 
-    ls = limit_set(_part(cfg["part"]), _arm(cfg), cfg["omega"], cfg["model"], n_starts=cfg["n_starts"],
-                   rng=seed, x_max=cfg["x_max"], transient=cfg["transient"], n_record=cfg["n_record"],
-                   limits=Limits(force=True), **({"fixtures": _fixtures(cfg)} if cfg.get("wall_height") is not None else {}),
-                   **({"alpha": cfg["alpha"]} if cfg["alpha"] else {}))
+    c = _spec(cfg, LimitSetConfig)
+    ls = limit_set(_part(c.part), c.build_arm(), c.omega, c.model, n_starts=c.n_starts, rng=seed, x_max=c.x_max,
+                   transient=c.transient, n_record=c.n_record, limits=Limits(force=True),
+                   **({"fixtures": c.fixtures()} if c.wall is not None else {}), **({"alpha": c.alpha} if c.alpha else {}))
     return {"kind": ls.kind, "n_attractors": len(ls.attractors), "unique": bool(ls.unique),
             "escapes": _json(dict(ls.escapes)), "attractors": _json(_clean([a.to_dict() for a in ls.attractors]))}
 
@@ -148,6 +140,7 @@ def _throw_rows(configs: list) -> list:
 
     from ..records.outcome import Status
     from ..throws.throw import throw_batch
+    from .schema import ThrowConfig
 
     rows: list = [None] * len(configs)
     groups: dict = {}
@@ -156,12 +149,12 @@ def _throw_rows(configs: list) -> list:
         groups.setdefault(key, []).append(i)
     for key, idx in groups.items():
         t0 = time.perf_counter()
-        cfg = configs[idx[0]]
         try:
-            out = throw_batch(_part(cfg["part"]), _arm(cfg), np.array([configs[i]["x"] for i in idx], dtype=float),
+            c = _spec(configs[idx[0]], ThrowConfig)
+            out = throw_batch(_part(c.part), c.build_arm(), np.array([configs[i]["x"] for i in idx], dtype=float),
                               np.array([configs[i]["side"] for i in idx], dtype=np.int64),
-                              np.array([configs[i]["omega"] for i in idx], dtype=float), cfg["model"],
-                              on_invalid="status", fixtures=_fixtures(cfg), alpha=cfg["alpha"])
+                              np.array([configs[i]["omega"] for i in idx], dtype=float), c.model,
+                              on_invalid="status", fixtures=c.fixtures(), alpha=c.alpha)
         except ThrowmapError as err:
             dt = (time.perf_counter() - t0) / len(idx)
             for i in idx:

@@ -12,12 +12,50 @@ import numpy as np
 from ..conventions import G
 from ..errors import InvalidArmError, RegimeWarning, shown
 
-__all__ = ["Arm", "regime_problems", "warn_if_outside_regime"]
+__all__ = ["Arm", "check_back", "check_g", "check_length", "check_mu", "regime_problems", "warn_if_outside_regime"]
 
 
 def _is_real(value) -> bool:
     """A real number (Python or NumPy, e.g. ``np.int64``, ``np.float32``), not a bool."""
     return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+
+
+def check_mu(value, field: str = "arm.mu") -> float:
+    """Coulomb friction μ as a float: a number ≥ 0, ``inf`` for a contact that never slips (the one rule for μ
+    everywhere: the Arm, walls, configs); else :class:`~throwmap.errors.InvalidArmError` on ``field``."""
+    if not _is_real(value) or math.isnan(value) or value < 0:
+        raise InvalidArmError(field, f"must be a number ≥ 0 (inf: no slip), got {shown(value)}")
+    return float(value)
+
+
+def check_g(value, field: str = "arm.g") -> float:
+    """Gravitational acceleration (m/s², along −y) as a float: a positive finite number."""
+    if not _is_real(value):
+        raise InvalidArmError(field, f"must be a number, got {shown(value)}")
+    if not math.isfinite(value):
+        raise InvalidArmError(field, f"must be finite, got {value}")
+    if value <= 0:
+        raise InvalidArmError(field, f"must be positive (gravity acts along -y), got {value}")
+    return float(value)
+
+
+def check_back(value, field: str = "arm.back") -> float:
+    """The arm's surface behind the joint (m) as a float: a finite number ≥ 0."""
+    if not _is_real(value):
+        raise InvalidArmError(field, f"must be a number, got {shown(value)}")
+    if not math.isfinite(value) or value < 0:
+        raise InvalidArmError(field, f"must be a finite number ≥ 0, got {shown(value)}")
+    return float(value)
+
+
+def check_length(value, field: str = "arm.length"):
+    """An arm length (m) as a float, or None (unbounded): a positive finite number; else
+    :class:`~throwmap.errors.InvalidArmError` on ``field``."""
+    if value is None:
+        return None
+    if not _is_real(value) or not math.isfinite(value) or value <= 0:
+        raise InvalidArmError(field, f"must be a positive finite number or None, got {shown(value)}")
+    return float(value)
 
 
 @dataclass(frozen=True, slots=True)
@@ -54,32 +92,16 @@ class Arm:
     back: float = 0.0
 
     def __post_init__(self):
-        for name in ("h", "g"):
-            val = getattr(self, name)
-            if not _is_real(val):
-                raise InvalidArmError(f"arm.{name}", f"must be a number, got {shown(val)}")
-            if not math.isfinite(val):
-                raise InvalidArmError(f"arm.{name}", f"must be finite, got {val}")
-        if self.g <= 0:
-            raise InvalidArmError("arm.g", f"must be positive (gravity acts along -y), got {self.g}")
-        if self.length is not None:
-            L = self.length
-            if not _is_real(L) or not math.isfinite(L) or L <= 0:
-                raise InvalidArmError("arm.length", f"must be a positive finite number or None, got {shown(L)}")
-        mu = self.mu
-        if not _is_real(mu) or math.isnan(mu) or mu < 0:
-            raise InvalidArmError("arm.mu", f"must be a number ≥ 0 (inf: no slip), got {shown(mu)}")
-        object.__setattr__(self, "mu", float(mu))
-        back = self.back
-        if not _is_real(back):
-            raise InvalidArmError("arm.back", f"must be a number, got {shown(back)}")
-        if not math.isfinite(back) or back < 0:
-            raise InvalidArmError("arm.back", f"must be a finite number ≥ 0, got {shown(back)}")
-        object.__setattr__(self, "back", float(back))
-        object.__setattr__(self, "h", float(self.h))
-        object.__setattr__(self, "g", float(self.g))
-        if self.length is not None:
-            object.__setattr__(self, "length", float(self.length))
+        h = self.h
+        if not _is_real(h):
+            raise InvalidArmError("arm.h", f"must be a number, got {shown(h)}")
+        if not math.isfinite(h):
+            raise InvalidArmError("arm.h", f"must be finite, got {h}")
+        object.__setattr__(self, "h", float(h))
+        object.__setattr__(self, "g", check_g(self.g))
+        object.__setattr__(self, "length", check_length(self.length))
+        object.__setattr__(self, "mu", check_mu(self.mu))
+        object.__setattr__(self, "back", check_back(self.back))
 
     @property
     def no_slip(self) -> bool:

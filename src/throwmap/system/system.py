@@ -16,7 +16,17 @@ from ..errors import InvalidStateError, shown
 from .arm import Arm
 from .fixtures import Cavity, Wall
 
-__all__ = ["System"]
+__all__ = ["System", "check_alpha"]
+
+
+def check_alpha(value, field: str = "alpha") -> float:
+    """The arm's rest angle α (rad, counter-clockwise from horizontal) as a float: finite, |α| < π/2 (the arm
+    below vertical; draft Sec. VI); else :class:`~throwmap.errors.InvalidStateError` on ``field``."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise InvalidStateError(field, f"must be a finite angle in rad, got {shown(value)}")
+    if not abs(value) < 0.5 * math.pi:
+        raise InvalidStateError(field, f"must be an angle with |α| < π/2 rad (the arm below vertical), got {value}")
+    return float(value)
 
 
 @dataclass(frozen=True, slots=True)
@@ -52,10 +62,7 @@ class System:
                 raise InvalidStateError("fixtures", f"at most one {kind.__name__} (the arm has one end), got "
                                                     f"{sum(isinstance(f, kind) for f in fx)}")
         object.__setattr__(self, "fixtures", fx)
-        a = self.alpha
-        if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a):
-            raise InvalidStateError("alpha", f"must be a finite angle in rad, got {shown(a)}")
-        object.__setattr__(self, "alpha", float(a))
+        object.__setattr__(self, "alpha", check_alpha(self.alpha))
 
     @property
     def plain(self) -> bool:

@@ -99,8 +99,9 @@ def open_session(part, arm: Arm, state, model: str = DEFAULT_MODEL, *, fixtures=
     m, system, opts = prepare(model, arm, fixtures, alpha, options, option_kw)
     most = m.features.parts
     if most and len(parts) > most:
-        raise InvalidStateError("part", f"model {m.name!r} throws {most} part{'s' if most > 1 else ''} at a time, "
-                                        f"got {len(parts)} (models taking several: those with features.parts = 0)")
+        many = "one part" if most == 1 else f"{most} parts"
+        raise InvalidStateError("part", f"model {m.name!r} throws {many} at a time, got {len(parts)} (models taking "
+                                        f"several: those with features.parts = 0)")
     if hasattr(scene, "placements"):
         if scene.parts != parts or scene.arm != arm:
             n = len(parts)

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import math
 
 import numpy as np
 
@@ -63,8 +62,6 @@ def prepare(model, arm: Arm, fixtures=(), alpha: float = 0.0, options=None, opti
         feature = _FEATURE_OF[key]
         if value and not getattr(m.features, feature):
             raise _only(key, [n for n in model_names() if getattr(get_model(n).features, feature)], m.name)
-    if not abs(system.alpha) < 0.5 * math.pi:
-        raise InvalidStateError("alpha", f"must be an angle with |α| < π/2 rad (the arm below vertical), got {system.alpha}")
     if option_kw:
         own = {f.name for f in dataclasses.fields(m.options_type)}
         for key in option_kw:

@@ -1,5 +1,4 @@
-"""Noise models for Monte Carlo experiments (issue 11, item 3): what varies from throw to
-throw and from trial to trial on a real feeder.
+"""Noise: what varies from throw to throw and from trial to trial on a real feeder.
 
 * **ω jitter** — each throw's release rate is ω·(1 + σ_ω·N(0, 1)) (clipped at 0), σ_ω
   relative (the issue's feeding experiment: 3 %, ``omega_rel=0.03``). The draft's arm
@@ -9,13 +8,13 @@ throw and from trial to trial on a real feeder.
   (``mu_rel``), or uniform over an absolute range (``mu_range``, which wins if given).
   μ = ∞ (no slip) stays ∞ under a relative spread.
 * **Realisation** — how the arm moves: ``"impulse"`` (the paper's idealisation,
-  :class:`throwmap.engine.ImpulseThrow`) or ``"recoil"`` (the Flatland arm of Sec. IV-A,
-  :meth:`throwmap.engine.RecoilThrow.for_release_rate`, recoil ``recoil`` rad and damping
+  :class:`throwmap.system.motion.ImpulseThrow`) or ``"recoil"`` (the Flatland arm of Sec. IV-A,
+  :meth:`throwmap.system.motion.RecoilThrow.for_release_rate`, recoil ``recoil`` rad and damping
   ratio ``zeta``), built for each throw's (jittered) ω.
 
-:class:`Noise` is a frozen value; its methods take the generator, so the draws belong to
-the trial's stream. :class:`NoiseConfig` is the same as a pydantic model for experiment
-configs (``Noise`` via :meth:`NoiseConfig.noise`).
+:class:`Noise` is a frozen value that checks its own fields (the one statement of their rules); its
+methods take the generator, so the draws belong to the trial's stream. Configs declare it as
+:class:`throwmap.io.spec.NoiseSpec` (``[noise]``).
 """
 
 from __future__ import annotations
@@ -23,15 +22,12 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from typing import Literal
-
-from pydantic import BaseModel, ConfigDict, Field
 
 from ..errors import InvalidStateError, shown
 from ..rng import as_generator
-from ..system.arm import Arm
+from .arm import Arm
 
-__all__ = ["Noise", "NoiseConfig", "REALISATIONS"]
+__all__ = ["Noise", "REALISATIONS"]
 
 REALISATIONS = ("impulse", "recoil")
 """Arm motions a :class:`Noise` can build: the paper's impulse, the Flatland recoil profile."""
@@ -128,19 +124,3 @@ class Noise:
         return {"omega_rel": self.omega_rel, "mu_rel": self.mu_rel,
                 "mu_range": None if self.mu_range is None else list(self.mu_range),
                 "realisation": self.realisation, "recoil_rad": self.recoil, "zeta": self.zeta}
-
-
-class NoiseConfig(BaseModel):
-    """:class:`Noise` in an experiment's config file (``[noise]`` table; SI units, rad)."""
-
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-    omega_rel: float = Field(0.0, ge=0, allow_inf_nan=False, description="relative σ of each throw's ω")
-    mu_rel: float = Field(0.0, ge=0, allow_inf_nan=False, description="relative σ of the trial's arm μ")
-    mu_range: tuple[float, float] | None = Field(None, description="uniform arm μ per trial (overrides mu_rel)")
-    realisation: Literal["impulse", "recoil"] = "impulse"
-    recoil: float = Field(math.radians(3.0), gt=0, allow_inf_nan=False, description="recoil depth, rad")
-    zeta: float = Field(0.5, gt=0, lt=1, description="recoil loop damping ratio")
-
-    def noise(self) -> Noise:
-        return Noise(self.omega_rel, self.mu_rel, self.mu_range, self.realisation, self.recoil, self.zeta)
