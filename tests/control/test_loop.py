@@ -2,13 +2,12 @@
 says how it ended (refusals are refusals, never successes); engine episodes keep the part's pose."""
 
 import dataclasses
-import math
 
 import numpy as np
 import pytest
 
 import throwmap as tm
-from throwmap.control import Episode, Goal, PaperController, WithinSensor, closed_loop
+from throwmap.control import Episode, Goal, PaperController, closed_loop
 from throwmap.errors import InvalidStateError
 from throwmap.system.noise import Noise
 from throwmap.records.outcome import Status
@@ -61,7 +60,7 @@ def test_a_refused_throw_is_a_refusal(monkeypatch):
         step = real(self, *args, **kw)
         self.status = Status.UNRESOLVED
         return dataclasses.replace(step, status=Status.UNRESOLVED,
-                                   outcomes=(dataclasses.replace(step.outcome, status=Status.UNRESOLVED),))
+                                   outcomes=(step.outcome.replace(status=Status.UNRESOLVED),))
 
     monkeypatch.setattr(S.MapSession, "throw", refusing)
     ep = closed_loop(PART, ARM, CTL, 0.15, 0, model="paper")

@@ -9,7 +9,6 @@ rest angle, which :class:`~throwmap.system.motion.TiltTo` moves change. Each ste
 
 from __future__ import annotations
 
-import dataclasses
 
 from ..errors import InvalidStateError
 from ..records.outcome import Status
@@ -102,7 +101,7 @@ class EngineSession:
         for i, s in enumerate(before):
             o = run.outcome(i, x0=s.x, side0=s.side, omega=omega, model=self.model)
             if system.alpha != 0.0 or system.fixtures:
-                o = dataclasses.replace(o, alpha=float(system.alpha), fixtures=tuple(system.fixtures))
+                o = o.replace(alpha=float(system.alpha), fixtures=tuple(system.fixtures))
             outcomes.append(o)
         self.states = tuple(PartState(float(x), int(k), float(t), tuple(float(c) for c in q))
                             for (x, k, t), q in zip(run.states, run.poses))

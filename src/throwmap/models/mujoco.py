@@ -8,7 +8,6 @@ line saying what to install.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,7 +49,7 @@ class MujocoModel:
 
     def outcome(self, part, system, x, side, omega, o: MujocoOptions):
         out = _backend().mujoco_throw(part, system.arm, x, side, omega, o.resolved())
-        return dataclasses.replace(out, model=self.name)
+        return out.replace(model=self.name)
 
     def throw_one(self, part, system, x, side, omega, o: MujocoOptions):
         out = self.outcome(part, system, x, side, omega, o)
@@ -73,7 +72,7 @@ class MujocoModel:
 
     def trajectory(self, part, system, x, side, omega, o: MujocoOptions, dt):
         out, traj = _backend().mujoco_throw(part, system.arm, x, side, omega, o.resolved(), record=True)
-        return dataclasses.replace(out, model=self.name), traj
+        return out.replace(model=self.name), traj
 
 
 MODEL = register(MujocoModel())

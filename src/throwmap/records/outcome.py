@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import shown
 from ..kernels import codes as C
 
-__all__ = ["Status", "ThrowOutcome", "BatchOutcome"]
+__all__ = ["Status", "ThrowOutcome", "ThrowStart", "ThrowEnd", "ThrowRecord", "ThrowSystem", "BatchOutcome", "FLAT_FIELDS"]
 
 
 class Status(enum.IntEnum):
@@ -117,8 +117,83 @@ def _count(v: float) -> int:
 
 
 @dataclass(frozen=True, slots=True)
+class ThrowStart:
+    """Where a throw started: the rest ``(x, side)`` (m) and the release rate ``omega`` (rad/s)."""
+
+    x: float
+    side: int
+    omega: float
+
+
+@dataclass(frozen=True, slots=True)
+class ThrowEnd:
+    """How a throw ended: ``status``, and the rest ``(x, side)`` it came to (for an escape: the CM's x and the
+    side at the moment the part left the arm); ``message``: why the result was refused or what limited it."""
+
+    x: float
+    side: int
+    status: Status
+    message: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class ThrowRecord:
+    """The physics of one throw, as a kernel or an engine recorded it (SI units; see :class:`ThrowOutcome`)."""
+
+    t_flight: float
+    contact_vertex: int
+    contact_x: float
+    v_pre: tuple
+    v_post: tuple
+    impulse: tuple
+    friction_ratio_impact: float
+    friction_ratio_max: float
+    energy_release: float
+    kinetic_pre: float
+    kinetic_post: float
+    potential_impact: float
+    energy_final: float
+    max_impact_energy_gain: float
+    n_impacts: int
+    n_flips: int
+    min_normal_force: float
+    lift_off: bool
+    pull_impulse: bool
+    n_lift_offs: int = 0
+    n_slips: int = 0
+    slip_distance: float = 0.0
+    t_rest: float = float("nan")
+    penetration_max: float = 0.0
+    cap_hit: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class ThrowSystem:
+    """What a throw was made with: the ``model``'s name, the arm's rest angle ``alpha`` (rad) and the
+    ``fixtures`` (Wall/Cavity) standing on it."""
+
+    model: str
+    alpha: float = 0.0
+    fixtures: tuple = ()
+
+
+_START = tuple(f.name for f in dataclasses.fields(ThrowStart))
+_RECORD = tuple(f.name for f in dataclasses.fields(ThrowRecord))
+FLAT_FIELDS = ("x", "side", "status", "x0", "side0", "omega", "model") + _RECORD + ("message", "alpha", "fixtures")
+"""The fields of an outcome as one flat table (its ``to_dict`` keys, in order, before ``kind``)."""
+_WHERE = {**{"x0": ("start", "x"), "side0": ("start", "side"), "omega": ("start", "omega")},
+          **{k: ("end", k) for k in ("x", "side", "status", "message")},
+          **{k: ("system", k) for k in ("model", "alpha", "fixtures")},
+          **{k: ("record", k) for k in _RECORD}}
+
+
+@dataclass(frozen=True, slots=True)
 class ThrowOutcome:
-    """One throw: where the part came to rest and the record of how (SI units).
+    """One throw, read as four parts: its ``start`` (:class:`ThrowStart`), its ``end`` (:class:`ThrowEnd`), the
+    ``record`` of how it went (:class:`ThrowRecord`) and the ``system`` it was made in (:class:`ThrowSystem`).
+
+    Each part's fields read through as the outcome's own (``outcome.x``, ``outcome.x0``, ``outcome.t_flight``,
+    ``outcome.model``); :meth:`replace` changes any of them by name. Below, every field by name (SI units).
 
     ``x``/``side`` are the new resting configuration when ``status`` is OK; for an
     escape they are the CM x and side at the moment the part left the arm.
@@ -145,41 +220,38 @@ class ThrowOutcome:
     system the throw was made in (the arm's rest angle and what stands on it).
     """
 
-    x: float
-    side: int
-    status: Status
-    x0: float
-    side0: int
-    omega: float
-    model: str
-    t_flight: float
-    contact_vertex: int
-    contact_x: float
-    v_pre: tuple
-    v_post: tuple
-    impulse: tuple
-    friction_ratio_impact: float
-    friction_ratio_max: float
-    energy_release: float
-    kinetic_pre: float
-    kinetic_post: float
-    potential_impact: float
-    energy_final: float
-    max_impact_energy_gain: float
-    n_impacts: int
-    n_flips: int
-    min_normal_force: float
-    lift_off: bool
-    pull_impulse: bool
-    n_lift_offs: int = 0
-    n_slips: int = 0
-    slip_distance: float = 0.0
-    t_rest: float = float("nan")
-    penetration_max: float = 0.0
-    cap_hit: bool = False
-    message: str = ""
-    alpha: float = 0.0
-    fixtures: tuple = ()
+    start: ThrowStart
+    end: ThrowEnd
+    record: ThrowRecord
+    system: ThrowSystem
+
+    def __getattr__(self, name: str):
+        where = _WHERE.get(name)
+        if where is None:
+            raise AttributeError(f"'ThrowOutcome' object has no attribute {name!r}")
+        part, field = where
+        return getattr(object.__getattribute__(self, part), field)
+
+    def replace(self, **changes) -> "ThrowOutcome":
+        """This outcome with fields changed by name (e.g. ``status=``, ``message=``, ``alpha=``, ``fixtures=``)."""
+        parts = {}
+        for name, value in changes.items():
+            where = _WHERE.get(name)
+            if where is None:
+                raise TypeError(f"ThrowOutcome has no field {name!r}")
+            parts.setdefault(where[0], {})[where[1]] = value
+        return ThrowOutcome(**{part: dataclasses.replace(getattr(self, part), **kw) if part in parts
+                               else getattr(self, part) for part, kw in
+                               (("start", parts.get("start")), ("end", parts.get("end")),
+                                ("record", parts.get("record")), ("system", parts.get("system")))})
+
+    @classmethod
+    def of(cls, **fields) -> "ThrowOutcome":
+        """An outcome from its fields by name (as :data:`FLAT_FIELDS`; record fields with defaults may be left out)."""
+        return cls(ThrowStart(fields.pop("x0"), fields.pop("side0"), fields.pop("omega")),
+                   ThrowEnd(fields.pop("x"), fields.pop("side"), fields.pop("status"), fields.pop("message", "")),
+                   ThrowRecord(**{k: fields.pop(k) for k in _RECORD if k in fields}),
+                   ThrowSystem(fields.pop("model"), fields.pop("alpha", 0.0), fields.pop("fixtures", ())))
 
     def __repr__(self) -> str:
         end = (f"(x={self.x:.4g} m, side {self.side}), {self.kind}" if self.ok
@@ -216,33 +288,36 @@ class ThrowOutcome:
         n_imp = r[C.N_IMPACTS]
         n_flip = r[C.N_FLIPS]
         return cls(
-            float(x), int(side), _STATUS[int(status)], float(x0), int(side0), float(omega), model,
-            r[C.T_FLIGHT],
-            part.user_index[cv] if cv >= 0 else -1,
-            r[C.CONTACT_X],
-            (r[C.VX_PRE], r[C.VY_PRE], r[C.W_PRE]),
-            (r[C.VX_POST], r[C.VY_POST], r[C.W_POST]),
-            (m * r[C.JX], m * r[C.JY]),
-            r[C.MU_IMPACT],
-            r[C.MU_MAX],
-            m * r[C.E_RELEASE],
-            m * r[C.K_PRE],
-            m * r[C.K_POST],
-            m * r[C.U_IMPACT],
-            m * r[C.E_FINAL],
-            m * r[C.K_MAX_IMPACT_GAIN],
-            int(n_imp) if n_imp == n_imp else 0,
-            int(n_flip) if n_flip == n_flip else 0,
-            n_min,
-            n_min < 0.0 or _count(r[C.N_LIFTOFFS]) > 0,
-            r[C.N_PULL] > 0,
-            _count(r[C.N_LIFTOFFS]),
-            _count(r[C.N_SLIPS]),
-            r[C.SLIP_DISTANCE],
-            r[C.T_REST],
-            r[C.PENETRATION_MAX],
-            r[C.CAP_HIT] == 1.0,
-            _why(int(status), r[C.CAP_HIT] == 1.0, r[C.WHY], reason),
+            ThrowStart(float(x0), int(side0), float(omega)),
+            ThrowEnd(float(x), int(side), _STATUS[int(status)], _why(int(status), r[C.CAP_HIT] == 1.0, r[C.WHY], reason)),
+            ThrowRecord(
+                r[C.T_FLIGHT],
+                part.user_index[cv] if cv >= 0 else -1,
+                r[C.CONTACT_X],
+                (r[C.VX_PRE], r[C.VY_PRE], r[C.W_PRE]),
+                (r[C.VX_POST], r[C.VY_POST], r[C.W_POST]),
+                (m * r[C.JX], m * r[C.JY]),
+                r[C.MU_IMPACT],
+                r[C.MU_MAX],
+                m * r[C.E_RELEASE],
+                m * r[C.K_PRE],
+                m * r[C.K_POST],
+                m * r[C.U_IMPACT],
+                m * r[C.E_FINAL],
+                m * r[C.K_MAX_IMPACT_GAIN],
+                int(n_imp) if n_imp == n_imp else 0,
+                int(n_flip) if n_flip == n_flip else 0,
+                n_min,
+                n_min < 0.0 or _count(r[C.N_LIFTOFFS]) > 0,
+                r[C.N_PULL] > 0,
+                _count(r[C.N_LIFTOFFS]),
+                _count(r[C.N_SLIPS]),
+                r[C.SLIP_DISTANCE],
+                r[C.T_REST],
+                r[C.PENETRATION_MAX],
+                r[C.CAP_HIT] == 1.0,
+            ),
+            ThrowSystem(model),
         )
 
     def to_record(self, part) -> np.ndarray:
@@ -273,7 +348,7 @@ class ThrowOutcome:
 
         from ..system.fixtures import fixture_to_dict
 
-        out = {name: getattr(self, name) for name in self.__dataclass_fields__}
+        out = {name: getattr(self, name) for name in FLAT_FIELDS}
         out["status"] = self.status.label
         out["kind"] = self.kind
         out["fixtures"] = [fixture_to_dict(f) for f in self.fixtures]
@@ -281,11 +356,14 @@ class ThrowOutcome:
 
     @classmethod
     def from_dict(cls, d: dict) -> "ThrowOutcome":
-        """Inverse of :meth:`to_dict` (non-finite numbers, written as ``None``, come back as nan)."""
+        """Inverse of :meth:`to_dict` (non-finite numbers, written as ``None``, come back as nan; a field written
+        before it existed, e.g. ``cap_hit``, takes its default)."""
+        defaults = {f.name: f.default for f in dataclasses.fields(ThrowRecord) if f.default is not dataclasses.MISSING}
+        defaults.update(message="", alpha=0.0, fixtures=())
         kw = {}
-        for name, f in cls.__dataclass_fields__.items():
-            if name not in d and f.default is not dataclasses.MISSING:
-                continue  # a field added later (e.g. cap_hit): its default
+        for name in FLAT_FIELDS:
+            if name not in d and name in defaults:
+                continue
             v = d[name]
             if name == "status":
                 v = Status.from_label(v)
@@ -298,7 +376,7 @@ class ThrowOutcome:
             elif v is None:
                 v = float("nan")
             kw[name] = v
-        return cls(**kw)
+        return cls.of(**kw)
 
     def table(self) -> str:
         """A few lines for people: the throw, where it ended, and the first impact."""

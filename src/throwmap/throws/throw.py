@@ -76,7 +76,7 @@ def _invalid_outcome(part, x0, k, om, model, reason) -> ThrowOutcome:
     """A start that was not thrown: status INVALID_START, the start kept, the record nan, ``message`` the reason."""
     rec = np.full(C.NREC, np.nan)
     out = ThrowOutcome.from_record(part, x0, k, om, model, x0, k, C.INVALID_START, rec)
-    return dataclasses.replace(out, message=reason)
+    return out.replace(message=reason)
 
 
 def throw(
@@ -131,7 +131,7 @@ def _in_system(out, system):
     """``out`` stamped with the system's α and fixtures (unchanged on a level, bare arm)."""
     if system.alpha == 0.0 and not system.fixtures:
         return out
-    return dataclasses.replace(out, alpha=float(system.alpha), fixtures=tuple(system.fixtures))
+    return out.replace(alpha=float(system.alpha), fixtures=tuple(system.fixtures))
 
 
 _KINDS = {"U": "text", "S": "bytes", "O": "object", "c": "complex", "M": "date", "m": "time-delta", "V": "record"}

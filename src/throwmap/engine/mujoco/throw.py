@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 
 import numpy as np
 
@@ -77,9 +76,8 @@ def mujoco_throw(part: Part, arm: Arm, x: float, side: int, omega: float,
         if arm.length is None and out.status == Status.OFF_END:
             if n + 1 < len(tried):
                 continue
-            out = replace(out, status=Status.UNRESOLVED)
-            if "message" in ThrowOutcome.__dataclass_fields__:
-                out = replace(out, message=unbounded_message(L, tried))
+            out = out.replace(status=Status.UNRESOLVED)
+            out = out.replace(message=unbounded_message(L, tried))
             return (out, res[1]) if record else out
         return res
     raise AssertionError("unreachable")  # pragma: no cover
@@ -225,8 +223,8 @@ def _run(mujoco, part, arm, x0, k0, om, s, record, L):
             if status == Status.UNCONVERGED:
                 message = tilted_message(0, tilt, ke)
     out = ThrowOutcome.from_record(part, x0, k0, om, MODEL_NAME, xe, ke, status, rec)
-    if message and "message" in ThrowOutcome.__dataclass_fields__:
-        out = replace(out, message=message)  # why the result was refused
+    if message:
+        out = out.replace(message=message)  # why the result was refused
     if not record:
         return out
     traj = Trajectory(

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -73,8 +73,8 @@ class EngineRun:
             x0, side0, _ = state_from_pose(part, pl.arm_pose(self.scene.arm.h))
         x, side, _ = self.states[i]
         out = ThrowOutcome.from_record(part, x0, side0, omega, model, x, side, self.statuses[i], self.records[i])
-        if self.message and self.statuses[i] != Status.OK and "message" in ThrowOutcome.__dataclass_fields__:
-            out = replace(out, message=self.message)  # why the result was refused (unconverged, unresolved, …)
+        if self.message and self.statuses[i] != Status.OK:
+            out = out.replace(message=self.message)  # why the result was refused (unconverged, unresolved, …)
         return out
 
     def next_scene(self, **changes) -> Scene:
