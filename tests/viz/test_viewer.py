@@ -8,6 +8,8 @@ import re
 
 import numpy as np
 import pytest
+
+from throwmap.errors import RegimeWarning
 from typer.testing import CliRunner
 
 from throwmap.cli.app import app
@@ -58,7 +60,8 @@ def test_an_orbit_of_throws_gives_its_steps():
     from throwmap.system.catalogue import triangle_30_60_90
     from throwmap.throws.orbit_trajectory import orbit_trajectory
 
-    tr = orbit_trajectory(triangle_30_60_90(), Arm(0.02), 0.1, 0, 3.0, 3, model="paper")
+    with pytest.warns(RegimeWarning):  # h ≥ 0: as every throw on such an arm warns
+        tr = orbit_trajectory(triangle_30_60_90(), Arm(0.02), 0.1, 0, 3.0, 3, model="paper")
     o = orbit_steps(tr)
     assert o["throw"] == [0, 1, 2, 3] and o["x"][0] == [0.1] and o["t"][0] is None
     assert o["x"][1:] == [[out.x] for out in tr.meta["outcomes"]]

@@ -13,12 +13,12 @@ import pytest
 
 VIZ = Path(__file__).resolve().parents[2] / "src" / "throwmap" / "viz"
 
-ALLOWED = ("throwmap.viz", "throwmap.errors", "throwmap.conventions", "throwmap.io",
-           "throwmap.records.outcome", "throwmap.records.trajectory", "throwmap.system.part",
-           "throwmap.system.fixtures")
-"""Package modules a figure module may import (each with its submodules); ``system.part``: the
-part's type and its descriptive name for titles (:func:`throwmap.system.part.default_name`), no throws;
-``system.fixtures``: the outline of a wall or cavity to draw (:func:`~throwmap.system.fixtures.surface_profile`)."""
+ALLOWED = ("throwmap.viz", "throwmap.errors", "throwmap.conventions", "throwmap.io", "throwmap.serial",
+           "throwmap.records", "throwmap.system.part", "throwmap.system.pose", "throwmap.system.fixtures")
+"""Package modules a figure module may import (each with its submodules); ``records``: the results it draws;
+``system.part``: the part's type and its descriptive name for titles (:func:`throwmap.system.part.default_name`),
+no throws; ``system.pose``: where a part's vertices are at a pose; ``system.fixtures``: the outline of a wall or
+cavity to draw (:func:`~throwmap.system.fixtures.surface_profile`); ``serial``: plain JSON values."""
 
 PHYSICS_NAMES = {"throw", "throw_batch", "iterate", "engine_batch", "as_map", "sample_map", "throw_map_samples",
                  "limit_set", "critical_points", "basins", "funnels", "push", "compare_models", "kernels"}
@@ -91,6 +91,6 @@ def test_the_checker_catches_physics(source, culprit):
 
 def test_the_checker_passes_plain_figures():
     src = ("from __future__ import annotations\nimport numpy as np\nfrom ..errors import InvalidStateError\n"
-           "from .style import _plt\nfrom ..throws.outcome import Status\n"
+           "from .style import _plt\nfrom ..records.outcome import Status\n"
            "def f(basins):\n    from matplotlib.patches import Patch\n    return basins.x\n")
     assert problems(src, "throwmap.viz.example") == []

@@ -36,10 +36,10 @@ from ..kernels import codes as C
 from ..models import DEFAULT_MODEL, check_model  # DEFAULT_MODEL re-exported here for the analysis modules
 from ..system.part import Part
 from ..throws.throw import prepare, throw_batch
-from ..system.starts import start_interval
+from ..system.starts import check_omega, start_interval
 
 __all__ = ["ConfigMap", "ThrowMap", "FunctionMap", "DEFAULT_X_MAX", "DEFAULT_MODEL", "as_map", "config_grid",
-           "fixtures_doc", "system_text"]
+           "fixtures_doc", "plot_throw_map", "system_text"]
 
 DEFAULT_X_MAX = 0.6
 """Outer end of the analysed domain on an unbounded arm, m (the paper's arms span ≈ 60 cm).
@@ -175,11 +175,7 @@ class ThrowMap(ConfigMap):
         om = np.atleast_1d(np.asarray(self.omegas, dtype=float))
         if om.ndim != 1 or om.size == 0:
             raise InvalidStateError("omega", "must be a release rate or a non-empty sequence of them")
-        if not np.all(np.isfinite(om)):
-            raise InvalidStateError("omega", f"must be finite, got {om.tolist()}")
-        if np.any(om < 0):
-            raise InvalidStateError("omega", f"must be ≥ 0 (the arm throws upward), got {om.tolist()}")
-        object.__setattr__(self, "omegas", tuple(float(w) for w in om))
+        object.__setattr__(self, "omegas", tuple(check_omega(float(w)) for w in om))
         opts = dict(self.throw_options)
         kw = {k: opts.pop(k) for k in ("fixtures", "alpha", "options") if k in opts}
         for k in ("progress", "on_invalid"):
@@ -310,3 +306,26 @@ def config_grid(cmap: ConfigMap, n: int, *, field_name: str = "grid") -> tuple[n
         xs.append(np.linspace(cmap.x_lo[s], cmap.x_hi[s], int(n) + 1)[1:])
         ss.append(np.full(int(n), s, dtype=np.int64))
     return np.concatenate(xs), np.concatenate(ss)
+
+
+def plot_throw_map(part, arm, omega, *, model: str = DEFAULT_MODEL, sides=None, x_max=None, n: int = 1500, axes=None,
+                   unit: str = "cm", **throw_options):
+    """T(x) against x, one panel per starting side, with the diagonal (paper Fig. 2); returns the Figure.
+
+    Samples the throw map at ``n`` x per side over ``(x_min(side), x_max]`` (m;
+    ``x_max`` defaults to the arm length, or 0.5 m for an unbounded arm) with
+    :func:`throwmap.throws.samples.throw_map_samples` (with ``fixtures`` and every side: over each
+    side's starts up to the wall, x + u_R ≤ length, by :func:`~throwmap.throws.samples.sample_map`
+    of a :class:`~throwmap.analysis.ThrowMap`) and draws it with
+    :func:`throwmap.viz.throw_map.plot_map` (``compact`` look): points coloured
+    by the side the part lands on, escapes marked ``x`` on the axis. ``omega`` in
+    rad/s; ``unit`` ``"cm"`` or ``"m"``; ``throw_options`` go to :func:`throw_batch`.
+    """
+    from ..throws.samples import sample_map, throw_map_samples
+    from ..viz.throw_map import plot_map
+
+    if throw_options.get("fixtures") and sides is None:  # sampled up to the wall: x + u_R ≤ length per side
+        samples = sample_map(ThrowMap(part, arm, omega, model, x_max, dict(throw_options)), n)
+    else:
+        samples = throw_map_samples(part, arm, omega, model=model, sides=sides, x_max=x_max, n=n, **throw_options)
+    return plot_map(samples, axes=axes, unit=unit, compact=True)

@@ -18,6 +18,7 @@ import typer
 
 from ..version import __version__
 from ..errors import ConfigError, InvalidStateError
+from ..system.starts import check_omega
 from ..io.config import resolve_part
 from ..throws.throw import check_model
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOptionOpt, MuOpt, PartOpt, arm_dict, check_finite,
@@ -63,10 +64,7 @@ def _compare_kwargs(omegas: str | None, n_x: int | None, models: str | None, x_m
             kwargs[name] = check_finite(value, name)
     if omegas is not None:
         oms = parse_floats(omegas, "omegas")
-        for w in oms:
-            if w < 0:
-                raise InvalidStateError("omegas", f"must be ≥ 0 (the arm throws upward), got {w:g}")
-        kwargs["omegas"] = tuple(oms)
+        kwargs["omegas"] = tuple(check_omega(w, "omegas") for w in oms)
     if n_x is not None:
         if n_x < 1:
             raise InvalidStateError("n_x", f"must be a positive integer, got {n_x}")

@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InvalidPartError, InvalidStateError, shown
+from ..system.starts import check_omega
 from ..system.arm import Arm
 from ..system.part import Part
 from .plate import InsetPolygon, inset_polygon
@@ -141,8 +142,7 @@ class DesignSpace:
                                         f"must be a finite number, got {shown(v)}")
         if st["weight_mass"] < 0:
             raise InvalidStateError("weight_mass", f"must be ≥ 0 kg, got {st['weight_mass']}")
-        if st["omega"] < 0:
-            raise InvalidStateError("omega", f"must be ≥ 0 rad/s, got {st['omega']}")
+        check_omega(st["omega"])
         st.setdefault("h", self.arm.h)
         st.setdefault("alpha", None)
         if "alpha" in vary and st["alpha"] is None:

@@ -46,6 +46,7 @@ from typing import Annotated
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from ..conventions import G
 from ..errors import InvalidStateError, ThrowmapError
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, Spread, drop_kind, drop_parts
@@ -186,10 +187,10 @@ class AssembleConfig(Spec):
     settings: dict | None = Field(None, description="EngineSettings fields to override")
 
 
-def lean_bound(part, *, alpha: float, mu: float, length: float, h: float = 0.0) -> dict:
+def lean_bound(part, *, alpha: float, mu: float, length: float, h: float = 0.0, g: float = G) -> dict:
     """The release rate below which part *b* cannot lean against the wall (Fig. 13): β* =
     :func:`~throwmap.statics.lean_free_beta` (the least lean it can hold), the CM's rise to lean β* from flat
-    along −g (m), and ω = √(2 g rise) / ``length`` (rad/s; a throw gives a point at r ≤ L at most (ωL)²/2 of
+    along −g (m), and ω = √(2 g rise) / ``length`` (``g`` m/s²) (rad/s; a throw gives a point at r ≤ L at most (ωL)²/2 of
     kinetic energy per unit mass)."""
     from ..statics import edge_frame_cm, lean_free_beta, leaning_bodies
 
@@ -200,7 +201,7 @@ def lean_bound(part, *, alpha: float, mu: float, length: float, h: float = 0.0) 
     (lean,), _ = leaning_bodies(part, beta, length=length, h=h, mu_arm=mu)
     (flat,), _ = leaning_bodies(part, 1e-9, length=length, h=h, mu_arm=mu)
     rise = (lean.y - flat.y) * math.cos(alpha) + (lean.x - flat.x) * math.sin(alpha)
-    return {"beta_star_rad": float(beta), "rise_m": float(rise), "omega_rad_s": math.sqrt(2 * 9.81 * rise) / length}
+    return {"beta_star_rad": float(beta), "rise_m": float(rise), "omega_rad_s": math.sqrt(2 * g * rise) / length}
 
 
 def _setup(cfg: AssembleConfig):
@@ -451,7 +452,7 @@ class Assemble:
                 "low_stall": {"throws": cfg.stall_low, "still_m": cfg.still_m, "resets": cfg.resets},
                 "omega_low_rad_s": cfg.omega_low, "approach": [list(r) for r in cfg.approach], "alpha_rad": cfg.alpha, "tilt_rate_rad_s": cfg.tilt_rate,
                 "lean_bound": lean_bound(part, alpha=cfg.alpha, mu=min(hi_mu, arm.mu * 1.1), length=arm.length,
-                                         h=arm.h),
+                                         h=arm.h, g=arm.g),
                 "sensor": dict(cfg.sensor.model_dump()), "noise": cfg.noise.noise().to_dict(),
                 "drop": {"height_m": list(cfg.height), "x_range_m": list(cfg.x_range), "gap_m": cfg.gap},
                 "max_high": cfg.max_high, "max_low": cfg.max_low, "hold": cfg.hold,

@@ -301,7 +301,7 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     if n_workers > 1:
         from .registry import _REGISTRY
 
-        if _REGISTRY.get(exp.name) is not exp:
+        if _REGISTRY.registered(exp.name) is not exp:
             raise InvalidStateError("experiment", f"{exp.name!r} is not the registered experiment of that name: workers "
                                                   f"look experiments up by name, so register it "
                                                   f"(register_experiment) or run it with workers=1")

@@ -51,7 +51,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from ..system.arm import Arm
 from ..errors import ConfigError, InvalidPartError
 from .files import atomic_write_text
-from .spec import ArmSpec
+from .schema import ArmSpec
 from ..system.part import Part
 from ..system.catalogue import BUILTIN_PARTS, builtin_part, lead_name
 

@@ -1,13 +1,13 @@
 """The model registry (STYLE §12, like Gymnasium's ``register``/``make``): callers look models up by name.
 
 Adding a model touches one file: a module in this package that defines the model
-and calls :func:`register` at import (every module of :mod:`throwmap.models` is
-discovered on first look-up), or a user's code calling :func:`register` at run time.
+and calls :func:`register` at its top level (:class:`throwmap.discovery.Registry` finds such
+modules on the first look-up), or a user's code calling :func:`register` at run time.
 """
 
 from __future__ import annotations
 
-from ..discovery import import_submodules
+from ..discovery import Registry
 from ..errors import InvalidStateError
 from .base import ThrowModel
 
@@ -20,47 +20,32 @@ validated model (README, "Validation": within 0.5 mm of pymunk in 98.4 % of thro
 DISPLAY_ORDER = ("paper", "small_angle", "small_angle2", "rigid_body", "engine", "mujoco")
 """The order in which the built-in models are listed; other models follow in registration order."""
 
-_REGISTRY: dict[str, ThrowModel] = {}
-_DISCOVERED = False
+def _check(model) -> None:
+    if not isinstance(model, ThrowModel):
+        raise InvalidStateError("model", f"{model!r} does not implement the ThrowModel protocol")
 
 
-def _discover() -> None:
-    """Import every model module of this package once (each registers its models)."""
-    global _DISCOVERED
-    if _DISCOVERED:
-        return
-    _DISCOVERED = True
-    import_submodules(__package__, skip=("base", "registry"))
+_REGISTRY = Registry("model", __package__, "register", _check, first=DISPLAY_ORDER)
 
 
 def register(model: ThrowModel, *, replace: bool = False) -> ThrowModel:
     """Make ``model`` available by ``model.name``; refuses a clash unless ``replace``."""
-    if not isinstance(model, ThrowModel):
-        raise InvalidStateError("model", f"{model!r} does not implement the ThrowModel protocol")
-    name = model.name
-    if not isinstance(name, str) or not name:
-        raise InvalidStateError("model.name", f"must be a non-empty string, got {name!r}")
-    if name in _REGISTRY and _REGISTRY[name] is not model and not replace:
-        raise InvalidStateError("model.name", f"a model named {name!r} is already registered")
-    _REGISTRY[name] = model
-    return model
+    return _REGISTRY.register(model, replace=replace)
 
 
 def unregister(name: str) -> None:
     """Remove a model added with :func:`register` (built-ins come back on the next discovery only)."""
-    _REGISTRY.pop(name, None)
+    _REGISTRY.unregister(name)
 
 
 def model_names() -> tuple[str, ...]:
     """Every registered model name: the built-ins in :data:`DISPLAY_ORDER`, then the others."""
-    _discover()
-    first = tuple(n for n in DISPLAY_ORDER if n in _REGISTRY)
-    return first + tuple(n for n in _REGISTRY if n not in first)
+    return _REGISTRY.names()
 
 
 def check_model(name) -> str:
     """``name`` if it is a registered model, else a one-line :class:`InvalidStateError` (field ``model``)."""
-    if not (isinstance(name, str) and (name in _REGISTRY or name in model_names())):
+    if not (isinstance(name, str) and name in _REGISTRY):
         raise InvalidStateError("model", f"unknown model {name!r} (choose from {', '.join(model_names())})")
     return name
 
@@ -69,7 +54,7 @@ def get_model(name) -> ThrowModel:
     """The registered model called ``name`` (or ``name`` itself if it is a model object)."""
     if not isinstance(name, str) and isinstance(name, ThrowModel):
         return name
-    return _REGISTRY[check_model(name)]
+    return _REGISTRY.get(check_model(name))
 
 
 def options_taken(name, **keywords) -> dict:
