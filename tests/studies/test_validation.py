@@ -7,7 +7,8 @@ import pytest
 from typer.testing import CliRunner
 
 from throwmap.cli.app import app
-from throwmap.studies.validation import _compare, default_parts, make_cases, validate
+from throwmap.studies.validation import default_parts, make_cases, validate
+from throwmap.studies.validation_report import compare_row
 
 runner = CliRunner()
 
@@ -27,7 +28,7 @@ def test_cases_cover_every_stable_side_and_are_admissible():
 def test_compare_counts_matching_escapes_as_agreement():
     ref = {"x": np.array([0.1, 0.2, 0.3]), "side": np.array([0, 1, 0]), "status": np.array([0, 0, 1])}
     res = {"x": np.array([0.1002, 0.2, 0.5]), "side": np.array([0, 2, 0]), "status": np.array([0, 0, 1])}
-    row = _compare("m", ref, res, "")
+    row = compare_row("m", ref, res, "")
     assert row["same_status_pct"] == 100.0
     assert row["same_side_pct"] == pytest.approx(200 / 3)
     assert row["within_0p5mm_pct"] == pytest.approx(200 / 3)

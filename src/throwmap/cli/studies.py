@@ -45,11 +45,10 @@ def demo_cmd(
     with guard():
         check_out_dir(out)
         try:
-            summary = demo.run_demo(out, progress=lambda msg: stderr_line(f"demo: {msg}…"))
+            result = demo.run_demo(out, progress=lambda msg: stderr_line(f"demo: {msg}…"))
         except OSError as err:
             raise ConfigError("out", f"cannot write into {out}: {err.strerror or err}") from None
-        files = summary.get("files", []) if isinstance(summary, dict) else []
-        for f in files:
+        for f in getattr(result, "files", ()):
             typer.echo(f"wrote {f}")
 
 

@@ -40,7 +40,7 @@ from ..system.arm import Arm
 from ..throws.throw import throw
 from .agreement import REFUSED, AgreementTable, agreement
 from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
-from .study import StudyConfig, case_trial, cached_cases, run_study
+from .study import StudyConfig, case_trial, cached_cases, run_study, stored
 from .validation import default_parts
 
 __all__ = ["recoil_cases", "validate_recoil", "recoil_table", "RecoilConfig", "RecoilValidation", "RECOIL", "MUS",
@@ -136,7 +136,7 @@ class RecoilStudy:
 
 
 def _values(key: str, a: tuple, seconds: float) -> dict:
-    return {f"{key}.x": float(a[0]), f"{key}.side": int(a[1]), f"{key}.status": int(a[2]), f"{key}.message": a[3],
+    return {f"{key}.x": stored(a[0]), f"{key}.side": int(a[1]), f"{key}.status": int(a[2]), f"{key}.message": a[3],
             f"{key}.seconds": float(seconds)}
 
 
@@ -204,7 +204,7 @@ def recoil_report(cfg: RecoilConfig, trials) -> RecoilValidation:
         from ..errors import InvalidStateError
 
         raise InvalidStateError("trials", f"the study has {n} cases, got {len(trials)} trials")
-    res = {key: [(t.values[f"{key}.x"], t.values[f"{key}.side"], t.values[f"{key}.status"],
+    res = {key: [(float(t.values[f"{key}.x"]), t.values[f"{key}.side"], t.values[f"{key}.status"],
                   t.values[f"{key}.message"]) for t in trials] for key in KEYS}
     secs = {key: float(sum(t.values[f"{key}.seconds"] for t in trials)) for key in KEYS}
     arr = {key: {"x": np.array([v[0] for v in res[key]]), "side": np.array([v[1] for v in res[key]]),

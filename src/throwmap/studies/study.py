@@ -27,7 +27,7 @@ from ..errors import InvalidStateError
 from ..experiments.base import Trial, seed_of
 from .agreement import REFUSED
 
-__all__ = ["StudyConfig", "Mu", "answer_values", "answers", "case_trial", "cached_cases", "run_study"]
+__all__ = ["StudyConfig", "Mu", "stored", "answer_values", "answers", "case_trial", "cached_cases", "run_study"]
 
 
 def _mu_in(value):
@@ -50,12 +50,21 @@ class StudyConfig(BaseModel):
     seed: int = 0
 
 
+def stored(v) -> float | str:
+    """A float as a trial value that survives the runner's JSON lines exactly: ±inf as the text ``"inf"`` /
+    ``"-inf"`` (the runner writes non-finite numbers as null, read back as nan; a record field such as the
+    friction an impact needs may be infinite); finite numbers and nan as they are. :func:`float` reads it back."""
+    v = float(v)
+    return ("inf" if v > 0 else "-inf") if math.isinf(v) else v
+
+
 def answer_values(key: str, x, side, status, record=None, message: str | None = None) -> dict:
     """One model's answer to one throw as trial values: ``key.x`` (m), ``key.side``, ``key.status`` (code), and
-    optionally ``key.r0`` … (the record's fields, :mod:`throwmap.kernels.codes`) and ``key.message``."""
-    out = {f"{key}.x": float(x), f"{key}.side": int(side), f"{key}.status": int(status)}
+    optionally ``key.r0`` … (the record's fields, :mod:`throwmap.kernels.codes`) and ``key.message``; floats
+    through :func:`stored` (±inf kept)."""
+    out = {f"{key}.x": stored(x), f"{key}.side": int(side), f"{key}.status": int(status)}
     if record is not None:
-        out.update({f"{key}.r{j}": float(v) for j, v in enumerate(np.asarray(record, dtype=float))})
+        out.update({f"{key}.r{j}": stored(v) for j, v in enumerate(np.asarray(record, dtype=float))})
     if message is not None:
         out[f"{key}.message"] = str(message)
     return out
@@ -65,11 +74,11 @@ def answers(trials, key: str, *, record: int = 0) -> dict:
     """The answers stored under ``key`` over ``trials`` (in their order) as arrays ``x``, ``side``, ``status`` and,
     with ``record`` = the record's length, ``recs`` (rows × ``record``)."""
     vals = [t.values for t in trials]
-    out = {"x": np.array([v[f"{key}.x"] for v in vals], dtype=float),
+    out = {"x": np.array([float(v[f"{key}.x"]) for v in vals], dtype=float),
            "side": np.array([v[f"{key}.side"] for v in vals], dtype=np.int64),
            "status": np.array([v[f"{key}.status"] for v in vals], dtype=np.int64)}
     if record:
-        out["recs"] = np.array([[v[f"{key}.r{j}"] for j in range(record)] for v in vals], dtype=float).reshape(
+        out["recs"] = np.array([[float(v[f"{key}.r{j}"]) for j in range(record)] for v in vals], dtype=float).reshape(
             len(vals), record)
     return out
 

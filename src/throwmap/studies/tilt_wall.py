@@ -56,7 +56,7 @@ from ..system.starts import start_interval, tilted_rest_reason, wall_reach
 from ..throws.throw import throw, throw_batch
 from .agreement import REFUSED, AgreementTable, agreement, refusal_counts
 from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
-from .study import StudyConfig, answer_values, answers, cached_cases, case_trial, run_study
+from .study import StudyConfig, answer_values, answers, cached_cases, case_trial, run_study, stored
 from .tilt_wall_report import MU_BANDS, TiltWallReport, TiltWallRow, _band
 from .validation import default_parts
 
@@ -366,7 +366,7 @@ def _models(cfg: TiltWallConfig, condition: str) -> tuple:
 
 def _answer(key: str, one: dict) -> dict:
     values = answer_values(key, one["x"], one["side"], one["status"])
-    values[f"{key}.n_min"] = one["n_min"]
+    values[f"{key}.n_min"] = stored(one["n_min"])
     values[f"{key}.why"] = one["why"]
     if one["message"]:
         values[f"{key}.message"] = one["message"]
@@ -413,7 +413,7 @@ TILT_WALL = register_experiment(TiltWallStudy())
 
 def _results(trials, key: str) -> dict:
     """The answers stored under ``key`` as :func:`_throw_all` gives them (arrays, ``why``, ``message``)."""
-    out = {**answers(trials, key), "n_min": np.array([t.values[f"{key}.n_min"] for t in trials], dtype=float),
+    out = {**answers(trials, key), "n_min": np.array([float(t.values[f"{key}.n_min"]) for t in trials], dtype=float),
            "why": np.array([t.values[f"{key}.why"] for t in trials], dtype=object), "message": None}
     msgs = [t.values[f"{key}.message"] for t in trials if f"{key}.message" in t.values]
     if msgs:  # a model that refuses the condition's keywords: the first refusal, no answers (as _throw_all)
@@ -421,8 +421,8 @@ def _results(trials, key: str) -> dict:
         out = {"x": np.full(len(trials), np.nan), "side": np.full(len(trials), -1, dtype=np.int64),
                "status": np.full(len(trials), -1, dtype=np.int64), "n_min": np.full(len(trials), np.nan),
                "why": np.full(len(trials), "", dtype=object), "message": msgs[0]}
-        for k in ("x", "side", "status", "n_min", "why"):
-            out[k][:first] = [t.values[f"{key}.{k}"] for t in trials[:first]]
+        for k, read in (("x", float), ("side", int), ("status", int), ("n_min", float), ("why", str)):
+            out[k][:first] = [read(t.values[f"{key}.{k}"]) for t in trials[:first]]
     return out
 
 

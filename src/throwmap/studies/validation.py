@@ -39,7 +39,7 @@ from ..system.catalogue import rectangle, regular_polygon, triangle_30_60_90
 from ..system.part import Part
 from ..throws.throw import throw_batch
 from .agreement import AgreementTable, agreement
-from .study import Mu, StudyConfig, answer_values, answers, cached_cases, case_trial, run_study
+from .study import Mu, StudyConfig, answer_values, answers, cached_cases, case_trial, run_study, stored
 from .validation_report import ValidationReport, compare_row
 
 __all__ = ["ValidationCase", "ValidationConfig", "ValidationReport", "VALIDATE", "default_parts", "make_cases",
@@ -263,7 +263,7 @@ class ValidationStudy:
             arm_j = Arm(h=h, mu=float(mu))
             rb = _one(part, arm_j, x, side, omega, "rigid_body", on_invalid="status")
             values.update(answer_values(f"mu{j}.rigid_body", *rb[:3]))
-            values[f"mu{j}.rigid_body.slips"] = float(rb[3][C.N_SLIPS])
+            values[f"mu{j}.rigid_body.slips"] = stored(rb[3][C.N_SLIPS])
             en = _one(part, arm_j, x, side, omega, "engine", on_invalid="status", workers=1, **eng)
             values.update(answer_values(f"mu{j}.pymunk", *en[:3]))
         return case_trial(index, rng, values, statuses)
@@ -317,7 +317,7 @@ def validation_report(cfg: ValidationConfig, trials) -> ValidationReport:
 
     def add(name, sub_ref, res, assumptions, at=None):
         row = compare_row(name, sub_ref, res, assumptions)
-        ag = agreement(res, sub_ref, label=f"{name} vs pymunk")
+        ag = agreement(res, sub_ref, label=name)
         rows.insert(at, row) if at is not None else rows.append(row)
         agree.insert(at, ag) if at is not None else agree.append(ag)
 
@@ -348,11 +348,11 @@ def validation_report(cfg: ValidationConfig, trials) -> ValidationReport:
         for r, label in enumerate(REALISATIONS):
             res = answers(rt, f"real{r}")
             real_rows.append(compare_row(label, imp, res, ""))
-            real_agree.append(agreement(res, imp, label=f"{label} vs impulse (pymunk)"))
+            real_agree.append(agreement(res, imp, label=f"{label} vs impulse"))
         settings["n_realisations"] = cfg.n_realisations
     for j, mu in enumerate(cfg.mu_rows):
         res = answers(vt, f"mu{j}.rigid_body")
-        res["slips"] = np.array([t.values[f"mu{j}.rigid_body.slips"] for t in vt], dtype=float)
+        res["slips"] = np.array([float(t.values[f"mu{j}.rigid_body.slips"]) for t in vt], dtype=float)
         mref = answers(vt, f"mu{j}.pymunk")
         slip = 100.0 * np.mean(np.nan_to_num(res["slips"]) > 0) if res["slips"].size else math.nan
         add(f"rigid_body, μ = {_mu_label(mu)}", mref, res, f"slip in {slip:.0f} % of throws")

@@ -44,6 +44,7 @@ def plot_agreement(table, ax=None, *, title: str | None = None):
     ax.set_ylim(-0.8, len(rows) - 0.2)
     ax.set_xlabel("agreement (%)")
     ax.set_title(title or f"agreement with the {d.get('reference', 'reference')}", fontsize=9)
-    ax.legend(fontsize=7, loc="lower left")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7, loc="lower left")
     layout(fig)
     return fig
