@@ -82,7 +82,7 @@ def test_validation_report_round_trips_with_its_agreement():
     back = ValidationReport.from_dict(json.loads(json.dumps(rep.to_dict(), allow_nan=False)))
     assert back.table() == rep.table() and back.agreement_table() == rep.agreement_table()
     assert "| m | 3 | 0 / 1 | 2 | 50.0 [9.5, 90.5] | 1 | 100.0 [20.7, 100.0] |" in rep.agreement_table()
-    assert row["same_status_pct"] == pytest.approx(200 / 3)  # the old table counts the refusal as a miss
+    assert row.same_status_pct == pytest.approx(200 / 3)  # the old table counts the refusal as a miss
     assert isinstance(rep.plot(), Figure)
 
 

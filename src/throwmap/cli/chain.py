@@ -62,7 +62,9 @@ def _seconds_per_throw(step, part, arm, n: int = 32) -> float:
     lo, hi = start_interval(part, arm, k)
     x = np.linspace(lo, hi, n + 2)[1:-1] if np.isfinite(lo) and np.isfinite(hi) else np.zeros(n)
     side = np.full(n, k, dtype=np.int64)
-    rng = np.random.default_rng(0)
+    from ..rng import as_generator
+
+    rng = as_generator(0)
     step(x[:2], side[:2], rng)
     t0 = time.perf_counter()
     step(x, side, rng)

@@ -40,9 +40,9 @@ from ..system.part import Part
 from ..throws.throw import throw_batch
 from .agreement import AgreementTable, agreement
 from .study import Mu, StudyConfig, answer_values, answers, cached_cases, case_trial, run_study, stored
-from .validation_report import ValidationReport, compare_row
+from .validation_report import ValidationReport, ValidationRow, compare_row
 
-__all__ = ["ValidationCase", "ValidationConfig", "ValidationReport", "VALIDATE", "default_parts", "make_cases",
+__all__ = ["ValidationCase", "ValidationConfig", "ValidationReport", "ValidationRow", "VALIDATE", "default_parts", "make_cases",
            "realisation_cases", "validate", "validation_report"]
 
 DEFAULT_MU = 1.5
@@ -333,11 +333,11 @@ def validation_report(cfg: ValidationConfig, trials) -> ValidationReport:
             add("paper, assumptions hold", subref, sub, f"{100 * holds.mean():.0f} % of throws", at=1)
     goals = {}
     if "rigid_body" in results:
-        r = next(r for r in rows if r["model"] == "rigid_body")
-        goals["rigid_body vs pymunk: same side"] = {"value": r["same_side_pct"], "goal": 99.0,
-                                                     "met": bool(r["same_side_pct"] >= 99.0)}
-        goals["rigid_body vs pymunk: |Δx| ≤ 0.5 mm"] = {"value": r["within_0p5mm_pct"], "goal": 95.0,
-                                                         "met": bool(r["within_0p5mm_pct"] >= 95.0)}
+        r = next(r for r in rows if r.model == "rigid_body")
+        goals["rigid_body vs pymunk: same side"] = {"value": r.same_side_pct, "goal": 99.0,
+                                                     "met": bool(r.same_side_pct >= 99.0)}
+        goals["rigid_body vs pymunk: |Δx| ≤ 0.5 mm"] = {"value": r.within_0p5mm_pct, "goal": 95.0,
+                                                         "met": bool(r.within_0p5mm_pct >= 95.0)}
     settings = {"n_random": cfg.n, "grid": cfg.grid, "seed": cfg.seed, "mu": cfg.mu, "h": list(cfg.hs),
                 "omega_range": list(cfg.omega_range), "parts": list(cfg.parts), "models": list(cfg.models),
                 "engines": list(cfg.engines), "n_throws": int(ref["x"].size)}

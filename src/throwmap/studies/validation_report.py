@@ -1,7 +1,8 @@
 """The report of :func:`throwmap.studies.validation.validate`: its comparison rows, tables and JSON.
 
 :func:`compare_row` compares one model's answers with the reference's throw by throw (the validation table's
-row: same status %, same side %, |Δx| statistics, |Δx| ≤ 0.5 mm %); :class:`ValidationReport` holds the rows,
+row, a :class:`ValidationRow`: same status %, same side %, |Δx| statistics, |Δx| ≤ 0.5 mm %);
+:class:`ValidationReport` holds the rows,
 the goals, the settings, the per-throw answers and the study's :class:`~throwmap.studies.agreement.AgreementTable`
 (the one agreement statistic, with refusals counted apart and Wilson intervals), with ``table()`` (Markdown),
 ``to_dict()`` (JSON) and ``.plot()``.
@@ -17,7 +18,59 @@ import numpy as np
 from ..records.outcome import Status
 from .agreement import AgreementTable
 
-__all__ = ["ValidationReport", "compare_row"]
+__all__ = ["ValidationReport", "ValidationRow", "compare_row"]
+
+
+_ROW_KEYS = ("model", "n", "n_both_ok", "same_status_pct", "same_side_pct", "dx_median_mm", "dx_p90_mm", "dx_max_mm",
+             "within_0p5mm_pct", "assumptions")
+
+
+@dataclass(frozen=True, slots=True)
+class ValidationRow:
+    """One row of the validation table: ``model`` (its label) against the reference over ``n`` throws, ``n_both_ok``
+    of them at rest in both; ``same_status_pct``; ``same_side_pct`` (same side at rest, or the same escape);
+    |Δx| median, p90 and max (mm) over the same-side rests; ``within_0p5mm_pct`` (same side within 0.5 mm, or the
+    same escape); ``assumptions`` the model's own account of where its assumptions failed. Shares in % of all
+    throws (a refusal is a status like any other here; :mod:`throwmap.studies.agreement` counts it apart)."""
+
+    model: str
+    n: int
+    n_both_ok: int
+    same_status_pct: float
+    same_side_pct: float
+    dx_median_mm: float
+    dx_p90_mm: float
+    dx_max_mm: float
+    within_0p5mm_pct: float
+    assumptions: str
+
+    def line(self) -> str:
+        """The row's line of :meth:`ValidationReport.table`."""
+        return (f"| {self.model} | {self.n} | {self.same_status_pct:.1f} | {self.same_side_pct:.1f} | "
+                f"{_f(self.dx_median_mm)} | {_f(self.dx_p90_mm)} | {_f(self.dx_max_mm)} | "
+                f"{_f(self.within_0p5mm_pct, '.1f')} | {self.assumptions} |")
+
+    def realisation_line(self) -> str:
+        """The row's line of :meth:`ValidationReport.realisation_table` (mm to 0.01)."""
+        return (f"| {self.model} | {self.n} | {self.same_status_pct:.1f} | {self.same_side_pct:.1f} | "
+                f"{_f(self.dx_median_mm, '.2f')} | {_f(self.dx_p90_mm, '.2f')} | {_f(self.dx_max_mm, '.2f')} |")
+
+    def table(self) -> str:
+        """The row as a one-row Markdown table."""
+        return "\n".join([_HEAD.format(reference="reference"), "|" + "---|" * 9, self.line()])
+
+    def to_dict(self) -> dict:
+        """The row as a dict, as the report's JSON holds it."""
+        return {k: getattr(self, k) for k in _ROW_KEYS}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "ValidationRow":
+        """The inverse of :meth:`to_dict` (null shares, as JSON writes nan, come back as nan)."""
+        return cls(**{k: (math.nan if d[k] is None and k != "assumptions" else d[k]) for k in _ROW_KEYS})
+
+
+_HEAD = ("| model vs {reference} | throws | same status % | same side % | |Δx| median (mm) "
+         "| |Δx| p90 (mm) | |Δx| max (mm) | |Δx| ≤ 0.5 mm % | assumptions failed |")
 
 
 @dataclass(frozen=True, slots=True)
@@ -26,7 +79,8 @@ class ValidationReport:
 
     ``results[model]`` holds flat arrays over all cases: ``x``, ``side``,
     ``status`` and, for analytic models, the per-throw record flags. ``rows`` is
-    the comparison table (one dict per model vs ``reference``), ``goals`` the
+    the comparison table (one :class:`ValidationRow` per model vs ``reference``;
+    ``realisation_rows`` likewise, finite arm motions vs the impulse), ``goals`` the
     rigid_body-vs-pymunk goals with pass/fail, ``settings`` what was run,
     ``agreement`` the same comparisons by the one agreement statistic
     (:mod:`throwmap.studies.agreement`).
@@ -43,15 +97,8 @@ class ValidationReport:
 
     def table(self) -> str:
         """The comparison table in Markdown (distances in mm)."""
-        head = ("| model vs " + self.reference + " | throws | same status % | same side % | |Δx| median (mm) "
-                "| |Δx| p90 (mm) | |Δx| max (mm) | |Δx| ≤ 0.5 mm % | assumptions failed |")
-        lines = [head, "|" + "---|" * 9]
-        for r in self.rows:
-            lines.append(
-                f"| {r['model']} | {r['n']} | {r['same_status_pct']:.1f} | {r['same_side_pct']:.1f} | "
-                f"{_f(r['dx_median_mm'])} | {_f(r['dx_p90_mm'])} | {_f(r['dx_max_mm'])} | "
-                f"{_f(r['within_0p5mm_pct'], '.1f')} | {r['assumptions']} |"
-            )
+        lines = [_HEAD.format(reference=self.reference), "|" + "---|" * 9]
+        lines += [r.line() for r in self.rows]
         return "\n".join(lines)
 
     def realisation_table(self) -> str:
@@ -60,9 +107,7 @@ class ValidationReport:
             return ""
         lines = ["| realisation vs impulse (pymunk) | throws | same status % | same side % | |Δx| median (mm) "
                  "| |Δx| p90 (mm) | |Δx| max (mm) |", "|" + "---|" * 7]
-        for r in self.realisation_rows:
-            lines.append(f"| {r['model']} | {r['n']} | {r['same_status_pct']:.1f} | {r['same_side_pct']:.1f} | "
-                         f"{_f(r['dx_median_mm'], '.2f')} | {_f(r['dx_p90_mm'], '.2f')} | {_f(r['dx_max_mm'], '.2f')} |")
+        lines += [r.realisation_line() for r in self.realisation_rows]
         return "\n".join(lines)
 
     def agreement_table(self) -> str:
@@ -76,9 +121,9 @@ class ValidationReport:
     def to_dict(self) -> dict:
         from ..serial import json_ready
 
-        doc = {"reference": self.reference, "rows": list(self.rows), "goals": self.goals,
+        doc = {"reference": self.reference, "rows": [r.to_dict() for r in self.rows], "goals": self.goals,
                "settings": self.settings, "table_markdown": self.table(),
-               "realisations": list(self.realisation_rows)}
+               "realisations": [r.to_dict() for r in self.realisation_rows]}
         if self.agreement is not None:
             doc["agreement"] = self.agreement.to_dict()
         return json_ready(doc)
@@ -88,8 +133,9 @@ class ValidationReport:
         """The report's summary back from :meth:`to_dict` (rows, goals, settings, realisations, agreement);
         the per-throw arrays (``cases``, ``results``) are not written and come back empty."""
         agree = AgreementTable.from_dict(d["agreement"]) if d.get("agreement") else None
-        return cls(d["reference"], {}, {}, tuple(d["rows"]), dict(d["goals"]), dict(d.get("settings", {})),
-                   tuple(d.get("realisations", ())), agree)
+        return cls(d["reference"], {}, {}, tuple(ValidationRow.from_dict(r) for r in d["rows"]), dict(d["goals"]),
+                   dict(d.get("settings", {})), tuple(ValidationRow.from_dict(r) for r in d.get("realisations", ())),
+                   agree)
 
     def plot(self, ax=None):
         """The agreement of every comparison with its Wilson intervals (:func:`throwmap.viz.agreement.plot_agreement`)."""
@@ -103,8 +149,9 @@ def _f(v, spec=".3f"):
     return "—" if v is None or not math.isfinite(v) else format(v, spec)
 
 
-def compare_row(name, ref, res, assumptions: str) -> dict:
-    """The validation table's row of ``res`` against ``ref`` (dicts of arrays ``x``, ``side``, ``status``).
+def compare_row(name, ref, res, assumptions: str) -> ValidationRow:
+    """The validation table's row (a :class:`ValidationRow`) of ``res`` against ``ref`` (dicts of arrays ``x``,
+    ``side``, ``status``).
 
     Refusals are statuses like any other here (the table's record); the agreement statistic
     (:func:`~throwmap.studies.agreement.agreement`) counts them apart.
@@ -118,15 +165,15 @@ def compare_row(name, ref, res, assumptions: str) -> dict:
     within = np.zeros(n, dtype=bool)
     within[same_side] = np.abs(res["x"][same_side] - ref["x"][same_side]) <= 0.5e-3
     within |= same_status & ~both_ok
-    return {
-        "model": name,
-        "n": n,
-        "n_both_ok": int(both_ok.sum()),
-        "same_status_pct": 100.0 * same_status.mean() if n else math.nan,
-        "same_side_pct": 100.0 * (same_side.sum() + (same_status & ~both_ok).sum()) / n if n else math.nan,
-        "dx_median_mm": float(np.median(dx)) if dx.size else math.nan,
-        "dx_p90_mm": float(np.percentile(dx, 90)) if dx.size else math.nan,
-        "dx_max_mm": float(dx.max()) if dx.size else math.nan,
-        "within_0p5mm_pct": 100.0 * within.mean() if n else math.nan,
-        "assumptions": assumptions,
-    }
+    return ValidationRow(
+        model=name,
+        n=n,
+        n_both_ok=int(both_ok.sum()),
+        same_status_pct=100.0 * same_status.mean() if n else math.nan,
+        same_side_pct=100.0 * (same_side.sum() + (same_status & ~both_ok).sum()) / n if n else math.nan,
+        dx_median_mm=float(np.median(dx)) if dx.size else math.nan,
+        dx_p90_mm=float(np.percentile(dx, 90)) if dx.size else math.nan,
+        dx_max_mm=float(dx.max()) if dx.size else math.nan,
+        within_0p5mm_pct=100.0 * within.mean() if n else math.nan,
+        assumptions=assumptions,
+    )
