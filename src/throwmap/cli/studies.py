@@ -22,7 +22,7 @@ from ..io.config import resolve_part
 from ..throws.throw import check_model
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOptionOpt, MuOpt, PartOpt, arm_dict, check_finite,
                       check_out_dir, check_output, guard, make_out_dir, model_options, parse_floats, part_and_arm,
-                      progress_bar, stderr_line,
+                      interrupted_line, progress_bar, stderr_line,
                       strict_int, to_json, write_text)
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
@@ -135,13 +135,11 @@ def _agreement_section(table: str) -> str:
 def _run_study(name: str, out: Path, call):
     """``call(update)`` with a progress bar on stderr; a Ctrl-C leaves one line saying how many cases ``out`` keeps
     (the same command resumes from them) and exits 130, as ``throwmap experiment`` does."""
-    from .experiment import _interrupted
-
     try:
         with progress_bar(name) as update:
             return call(update)
     except KeyboardInterrupt:
-        stderr_line(_interrupted(out))
+        stderr_line(interrupted_line(out, "case"))
         raise typer.Exit(130) from None
 
 
@@ -219,10 +217,10 @@ def validate_cmd(
 
             if importlib.util.find_spec("mujoco") is None:
                 raise ConfigError("engines", "MuJoCo is not installed: pip install 'throwmap[mujoco]'")
-        make_out_dir(out)
         report = _run_study("validate", out, lambda update: validate(
             parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, workers=workers, progress=update,
             n_realisations=realisations, out=out, resume=resume, **limits))
+        make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "validation.json", to_json(doc) + "\n", "out")
         md = (f"# throwmap validation ({report.settings['n_throws']} throws, seed {seed}, μ = {mu:g})\n\n"
@@ -292,10 +290,10 @@ def validate_fixtures_cmd(
         limits = work_limits(max_memory, max_time, force)
         check_out_dir(out)
         parts = _validation_parts(part)
-        make_out_dir(out)
         report = _run_study("validate-fixtures", out, lambda update: validate_tilt_wall(
             parts, n=n, seed=seed, conditions=conds, rigid_body_options=rb, fixed_point=fixed_point, progress=update,
             workers=workers, out=out, resume=resume, **limits))
+        make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "tilt_wall.json", to_json(doc) + "\n", "out")
         lines = [report.table(), "", *(f"- {g}" for g in report.goal_lines()), "",
@@ -346,10 +344,10 @@ def validate_recoil_cmd(
             raise InvalidStateError("seed", f"must be a non-negative integer, got {seed}")
         limits = work_limits(max_memory, max_time, force)
         check_out_dir(out)
-        make_out_dir(out)
         report = _run_study("validate-recoil", out, lambda update: validate_recoil(
             n=n, seed=seed, impact_law=impact_law, engine_refine=engine_refine, progress=update, workers=workers,
             out=out, resume=resume, **limits))
+        make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "recoil_validation.json", to_json(doc) + "\n", "out")
         md = (f"# throwmap validate-recoil ({n} throws, seed {seed}, impact law {impact_law}, engine steps / "

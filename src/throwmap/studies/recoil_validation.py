@@ -232,7 +232,7 @@ def recoil_report(cfg: RecoilConfig, trials) -> RecoilValidation:
         agree.append(agreement(_arrays(ra), _arrays(rb), label=label, tol=WITHIN))
     # the old results' keys, in their order (engine_cap_alt last)
     return RecoilValidation(cases, res, secs, cfg.impact_law, k, [int(i) for i in np.flatnonzero(bound)], summary,
-                            AgreementTable(tuple(agree), "reference (second of each pair)"))
+                            AgreementTable(tuple(agree), "second of each pair"))
 
 
 def _arrays(rows) -> dict:
