@@ -1,4 +1,4 @@
-"""The tilt/wall validation study (throwmap.studies.tilt_wall, issue 11 item 2): its draws, its comparison
+"""The tilt/wall validation study (throwmap.studies.tilt_wall): its draws, its comparison
 arithmetic, its report, and a small run of the engine against itself (which must agree on every throw)."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The fixed point a wall at the arm's end makes, found and checked (issue 11, item 2).
+"""The fixed point a wall at the arm's end makes, found and checked.
 
 With a :class:`~throwmap.Wall` at the arm's end a jog that would carry the part past
 the wall stops against it: T(x) = x* = length − u_R for every x just below x* on that

@@ -38,7 +38,7 @@ from ..records.outcome import Status
 from ..rng import as_generator
 from ..system.arm import Arm
 from ..throws.throw import throw
-from .agreement import REFUSED, AgreementTable, agreement
+from .agreement import REFUSED, WITHIN, AgreementTable, agreement
 from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
 from .study import StudyConfig, case_trial, cached_cases, run_study, stored
 from .validation import default_parts
@@ -49,7 +49,6 @@ __all__ = ["recoil_cases", "validate_recoil", "recoil_table", "RecoilConfig", "R
 MUS = (0.3, 0.6, 1.0, 2.0, math.inf)
 ZETAS = (0.2, 0.5)
 HS = (-0.01, -0.005)
-WITHIN = 0.5e-3
 KEYS = ("rb", "engine", "engine_default", "rb_impulse", "engine_impulse", "engine_cap_alt")
 """The answers of each case: rigid_body and the engine (steps / engine_refine) on the recoil, the engine at its
 default step on the recoil, both on the impulse, and the fine engine on the recoil with its friction cap relaxed."""

@@ -55,6 +55,7 @@ from ..system.part import Part
 from ..system.starts import start_interval, tilted_rest_reason, wall_reach
 from ..throws.throw import throw, throw_batch
 from .agreement import REFUSED, AgreementTable, agreement, refusal_counts
+from .agreement import WITHIN as AGREEMENT_WITHIN
 from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
 from .study import StudyConfig, answer_values, answers, cached_cases, case_trial, run_study, stored
 from .tilt_wall_report import MU_BANDS, TiltWallReport, TiltWallRow, _band
@@ -65,7 +66,7 @@ __all__ = ["CONDITIONS", "REFUSED", "TILT_WALL", "TiltWallCases", "TiltWallConfi
            "wall_fixed_point"]
 
 ALPHA_RANGE = (-math.radians(15.0), math.radians(15.0))
-"""Arm rest angles α, rad (issue 11: ±15°)."""
+"""Arm rest angles α, rad (±15°)."""
 MU_RANGE = (0.3, 3.0)
 """Finite arm frictions, drawn log-uniformly; with probability :data:`P_MU_INF` μ = ∞ instead."""
 P_MU_INF = 0.2
@@ -80,10 +81,10 @@ WALL_X_SHARE = 0.25
 """With a wall, x is drawn over this outer share of the starts on the side (where jogs reach the wall)."""
 WALL_HEIGHT = 0.05
 """Wall height above the arm surface, m (taller than every part of the set lying on a side)."""
-WITHIN = 0.5e-3
-"""|Δx| counted as agreement, m (issue 3's 0.5 mm)."""
+WITHIN = AGREEMENT_WITHIN
+"""|Δx| counted as agreement, m (the 0.5 mm of the validation goals, :data:`throwmap.studies.agreement.WITHIN`)."""
 GOALS = {"same_pct": 99.0, "within_pct": 95.0}
-"""Targets of issue 11 per row: same outcome ≥ 99 %, |Δx| ≤ 0.5 mm in ≥ 95 %."""
+"""Targets per row: same outcome ≥ 99 %, |Δx| ≤ 0.5 mm in ≥ 95 %."""
 CONDITIONS = {
     "tilt, μ = ∞": {"wall": None, "mu": "inf", "models": ("paper", "rigid_body")},
     "tilt": {"wall": None, "mu": "random", "models": ("rigid_body",)},
