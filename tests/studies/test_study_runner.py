@@ -170,3 +170,18 @@ def test_cli_validate_writes_the_agreement_and_resumes(tmp_path):
     fresh = runner.invoke(app, args[:4] + ["4"] + args[5:] + ["--no-resume"])
     assert fresh.exit_code == 0, fresh.output
     assert json.loads((out / "validation.json").read_text())["settings"]["n_throws"] == 4
+
+
+def test_a_fresh_worker_imports_the_study_it_is_handed():
+    """Workers look experiments up by name; a worker that was spawned (not forked) has not imported the study,
+    so the runner hands it the registering module too."""
+    import subprocess
+    import sys
+
+    cfg = rv.RecoilConfig(n=1).model_dump_json()
+    code = ("import sys\nfrom throwmap.experiments.runner import _run_chunk\n"
+            "assert 'throwmap.studies.recoil_validation' not in sys.modules\n"
+            f"rows, secs = _run_chunk('validate-recoil', {cfg!r}, 0, (), 'throwmap.studies.recoil_validation')\n"
+            "print(rows, 'throwmap.studies.recoil_validation' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["[]", "True"]
