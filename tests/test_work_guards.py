@@ -15,6 +15,7 @@ from typer.testing import CliRunner
 
 import throwmap as tm
 from throwmap.budget import Limits
+from throwmap.studies.study import StudyRun
 from throwmap.budget import MAX_COUNT, check_count, guard_work
 from throwmap.cli.app import app
 from throwmap.errors import InvalidStateError
@@ -95,12 +96,12 @@ def test_compare_refuses_huge_n_x(n_x):
 
 def test_compare_past_int64_and_time_and_force():
     with pytest.raises(InvalidStateError) as info:
-        compare_models(PART, ARM, n_x=MAX_COUNT + 1, force=True)
+        compare_models(PART, ARM, n_x=MAX_COUNT + 1, limits=Limits(force=True))
     assert "2^63" in _one_line(info.value, "n_x")
     with pytest.raises(InvalidStateError) as info:
-        compare_models(PART, ARM, omegas=(1.0,), n_x=10**5, max_seconds=1e-6)
+        compare_models(PART, ARM, omegas=(1.0,), n_x=10**5, limits=Limits(max_seconds=1e-6))
     assert "measured now" in _one_line(info.value, "n_x")
-    r = compare_models(PART, ARM, omegas=(1.0,), n_x=20, max_memory=1.0, max_seconds=1e-9, force=True)
+    r = compare_models(PART, ARM, omegas=(1.0,), n_x=20, limits=Limits(max_memory=1.0, max_seconds=1e-9, force=True))
     assert r.settings["n_x"] == 20
 
 
@@ -113,7 +114,7 @@ def test_validate_refuses_huge_n(n):
 
 def test_validate_past_int64():
     with pytest.raises(InvalidStateError) as info:
-        validate(n=MAX_COUNT + 1, force=True)
+        validate(n=MAX_COUNT + 1, run=StudyRun(limits=Limits(force=True)))
     assert "2^63" in _one_line(info.value, "n")
 
 

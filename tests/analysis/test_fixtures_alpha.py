@@ -239,12 +239,13 @@ def test_wall_fixed_point_checks_the_multiplier_by_left_differences(model):
 
     fp = wall_fixed_point(PART, ARM, 1.0, 0, wall=WALL, model=model.name, n_starts=4, reference=model.name)
     x_star = start_interval(PART, ARM, 0)[1]
-    assert fp["found"] and fp["x_star_m"] == x_star == fp["x_wall_m"]
-    assert fp["multiplier"] == 0.0 and fp["fd_left"] == [0.0] * 4 and fp["n_at_wall"] == 3
-    assert math.isnan(fp["free_slope"])  # without the wall x* jogs off the end: no slope there
-    assert [g["dx_from_x_wall_m"] for g in fp["reference"]["images"]] == [0.0, 0.0, 0.0] and fp["gap_m"] == 0.0
+    assert fp.found and fp.x_star_m == x_star == fp.x_wall_m
+    assert fp.multiplier == 0.0 and list(fp.fd_left) == [0.0] * 4 and fp.n_at_wall == 3
+    assert math.isnan(fp.free_slope)  # without the wall x* jogs off the end: no slope there
+    assert [g["dx_from_x_wall_m"] for g in fp.reference["images"]] == [0.0, 0.0, 0.0] and fp.gap_m == 0.0
     lines = TiltWallReport((), {}, fp, {}).fixed_point_lines()
     assert "multiplier +0" in lines[0] and "h = 1e-06 m: +0" in lines[1] and "T(x_w -5 mm) − x_w = +0 µm" in lines[2]
+    assert fp.to_dict()["found"] is True and fp.to_dict()["fd_left"] == [0.0] * 4
     missing = wall_fixed_point(PART, ARM, 1.0, 0, wall=WALL, model="small_angle")
-    assert not missing["found"] and "fixtures" in missing["message"]
+    assert not missing.found and "fixtures" in missing.message
     assert "NOT found" in TiltWallReport((), {}, missing, {}).fixed_point_lines()[0]

@@ -21,7 +21,7 @@ def test_stored_feeder_design_still_meets_its_targets_on_the_exact_model(rerun):
     fd = feeder_design()
     # the stored part at the stored ω: exact r_i within 1 mm of the targets (re-evaluated, not read back), and
     # within 0.1 mm of the stored r_i (else the data file is stale: regenerate it)
-    r = exact_r(fd.part, fd.arm, fd.omega)
+    r = exact_r(fd.part, fd.arm, fd.omega).r
     for s, v in fd.targets.items():
         assert abs(r[s] - v) <= 1e-3
         assert abs(r[s] - fd.r[s]) <= 1e-4
@@ -57,7 +57,7 @@ def test_feeder_part_is_plate_plus_weight_inside_the_margin():
 @pytest.mark.slow
 def test_feeder_engine_r_within_a_millimetre_of_the_exact():
     fd = feeder_design()
-    er = engine_r(fd.part, fd.arm, fd.omega)
+    er = engine_r(fd.part, fd.arm, fd.omega).r
     for s in fd.r:
         assert abs(er[s] - fd.r[s]) <= 1e-3
         assert abs(er[s] - fd.engine_r[s]) <= 5e-5

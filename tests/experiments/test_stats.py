@@ -44,3 +44,21 @@ def test_no_trials_is_no_information():
 def test_refuses_impossible_counts(k, n):
     with pytest.raises(InvalidStateError, match="successes"):
         wilson_interval(k, n)
+
+
+def test_mean_interval_is_the_large_sample_interval_of_a_mean():
+    import math
+
+    import numpy as np
+
+    from throwmap.experiments.stats import Z95, mean_interval
+
+    v = np.array([3.0, 5.0, 7.0, 9.0, math.nan])  # nan (a failed trial's throws) is left out
+    m, lo, hi = mean_interval(v)
+    half = Z95 * np.std([3.0, 5.0, 7.0, 9.0], ddof=1) / 2.0
+    assert m == 6.0 and lo == pytest.approx(6.0 - half) and hi == pytest.approx(6.0 + half)
+    one = mean_interval([4.0])
+    assert one[0] == 4.0 and math.isnan(one[1]) and math.isnan(one[2])
+    assert all(math.isnan(v) for v in mean_interval([]))
+    with pytest.raises(Exception, match="^z"):
+        mean_interval([1.0, 2.0], z=0.0)

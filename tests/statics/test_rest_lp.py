@@ -106,6 +106,6 @@ def test_partial_assembly_geometry_and_friction_needed():
     bodies, cs = partial_assembly(TRI, math.radians(-15), length=0.5, mu_arm=1.0)
     assert sorted(c.label for c in cs) == ["arm", "arm", "arm", "part", "wall"]
     reg = partial_region(TRI, np.radians([-25, -15, -5]), [1.0], alpha=math.radians(-10))
-    assert reg["rests"].all() and (reg["mu_needed"] < 0.1).all()
-    steeper = partial_region(TRI, np.radians([-25, -15, -5]), [1.0], alpha=math.radians(-30))["mu_needed"]
-    assert (steeper > reg["mu_needed"]).all()
+    assert reg.rests.all() and (reg.mu_needed < 0.1).all()
+    steeper = partial_region(TRI, np.radians([-25, -15, -5]), [1.0], alpha=math.radians(-30)).mu_needed
+    assert (steeper > reg.mu_needed).all()

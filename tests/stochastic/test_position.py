@@ -59,6 +59,15 @@ def test_cli_chain_position_writes_the_comparison(mc, tmp_path):
     assert "inside the Wilson 95 % band" in r.output
     d = json.loads(out.read_text())
     assert 0 <= d["fraction_inside"] <= 1 and d["trials"] == 80
+    # the Monte Carlo's P(success) with the library's Wilson interval (experiments.stats), not one of the CLI's own
+    from throwmap.experiments.stats import wilson_interval
+
+    hits = position_hits(read_trials(mc))
+    k = int((hits >= 0).sum())
+    p = d["p_success"]
+    assert p["mc"] == k / 80 and p["mc_ci95"] == pytest.approx(list(wilson_interval(k, 80)), abs=1e-15)
+    lo, hi = wilson_interval(k, 80)
+    assert f"Monte Carlo {100 * k / 80:.1f} % [{100 * lo:.1f}, {100 * hi:.1f}] (Wilson 95 %)" in r.output
 
 
 def test_cli_chain_errors_are_one_line(tmp_path):

@@ -108,7 +108,7 @@ def test_inf_in_a_sweep_file(tmp_path):
     d = make_design(spec)
     assert d.configs[1]["arm"]["mu"] == float("inf") and d.configs[0]["arm"]["length"] is None  # unbounded
     st = sweep_status(spec, tmp_path / "out")
-    assert (st["n_points"], st["rows"], st["missing"]) == (2, 0, 2)
+    assert (st.n_points, st.rows, st.missing) == (2, 0, 2) and st.to_dict()["n_points"] == 2
     from throwmap.sweeps.run import _plan
 
     _plan(spec, tmp_path / "out")  # a run's first step writes the manifest (--status does not)

@@ -62,7 +62,9 @@ def _seconds_per_throw(step, part, arm, n: int = 32) -> float:
     lo, hi = start_interval(part, arm, k)
     x = np.linspace(lo, hi, n + 2)[1:-1] if np.isfinite(lo) and np.isfinite(hi) else np.zeros(n)
     side = np.full(n, k, dtype=np.int64)
-    rng = np.random.default_rng(0)
+    from ..rng import as_generator
+
+    rng = as_generator(0)
     step(x[:2], side[:2], rng)
     t0 = time.perf_counter()
     step(x, side, rng)
@@ -278,14 +280,17 @@ def position_cmd(
                             meta={"check": check, "mu_nodes": mix.meta["mu_nodes"],
                                   "initial": str(initial or trials)})
         _report(cmp, check)
-        import numpy as np
+        from ..experiments.stats import mean_interval, wilson_interval
 
         ab = mix.absorption_of(init)
         p_reach, mean_chain = mix.reach("stop:goal", init)
-        ok = hits[hits >= 0].astype(float)
-        half = 1.96 * ok.std(ddof=1) / np.sqrt(ok.size) if ok.size > 1 else float("nan")
-        typer.echo(f"  throws of a success: chain mean {mean_chain:.2f}, Monte Carlo mean {ok.mean():.2f} ± {half:.2f} "
-                   f"(95 %); P(success) chain {100 * p_reach:.1f} %")
+        mc_mean, mc_lo, mc_hi = mean_interval(hits[hits >= 0])
+        half = 0.5 * (mc_hi - mc_lo)
+        k, n_mc = int((hits >= 0).sum()), int(hits.size)
+        p_lo, p_hi = wilson_interval(k, n_mc)
+        typer.echo(f"  throws of a success: chain mean {mean_chain:.2f}, Monte Carlo mean {mc_mean:.2f} ± {half:.2f} "
+                   f"(95 %); P(success) chain {100 * p_reach:.1f} %, Monte Carlo {100 * k / max(n_mc, 1):.1f} % "
+                   f"[{100 * p_lo:.1f}, {100 * p_hi:.1f}] (Wilson 95 %)")
         on_arm = sum(v for k, v in ab.items() if k.startswith("side "))  # mass the chain never absorbs
         typer.echo("  chain's end states: " + ", ".join([f"{k} {100 * v:.1f} %" for k, v in ab.items() if v > 5e-4
                                                         and not k.startswith("side ")]
@@ -299,8 +304,8 @@ def position_cmd(
             save_figure(st.plot(title=f"position ({cfg.model}): long-run mass from the drops"), plot_stationary,
                         fmt_s, "plot_stationary")
             typer.echo(f"wrote {plot_stationary}")
-        _emit(dict(cmp.to_dict(), absorbed=ab, mean_throws={"chain": mean_chain, "mc": float(ok.mean()),
-                                                             "mc_half_width_95": float(half)}), out)
+        _emit(dict(cmp.to_dict(), absorbed=ab, mean_throws={"chain": mean_chain, "mc": mc_mean, "mc_half_width_95": half},
+                   p_success={"chain": p_reach, "mc": k / n_mc if n_mc else None, "mc_ci95": [p_lo, p_hi]}), out)
 
 
 @chain_app.command("assemble")

@@ -27,7 +27,7 @@ import typer
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits
 from ..errors import InvalidStateError
 from .options import (ForceOpt, progress_bar, JsonOpt, MaxMemoryOpt, MaxTimeOpt, check_out_dir, figure_format, guard, save_figure,
-                      stderr_line, strict_int, to_json)
+                      interrupted_line, stderr_line, strict_int, to_json)
 
 __all__ = ["register", "experiment_cmd"]
 
@@ -105,7 +105,7 @@ def experiment_cmd(
                 result = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=out, resume=resume,
                                         progress=update, limits=limits)
         except KeyboardInterrupt:
-            stderr_line(_interrupted(out))
+            stderr_line(interrupted_line(out, "trial"))
             raise typer.Exit(130) from None
         if plot is not None:
             save_figure(result.plot(), plot, fmt, "plot")
@@ -113,18 +113,6 @@ def experiment_cmd(
             typer.echo(to_json(result.to_json()))
         else:
             _table(result)
-
-
-def _interrupted(out: Path | None) -> str:
-    """The one line a Ctrl-C leaves: how many trials ``out`` keeps (its ``trials.jsonl`` lines), or that none are."""
-    if out is None:
-        return "interrupted: no --out DIR, so no trial was kept"
-    try:
-        with open(Path(out) / "trials.jsonl", encoding="utf-8") as f:
-            k = sum(1 for line in f if line.strip())
-    except OSError:
-        k = 0
-    return f"interrupted: {k} trial(s) stored in {str(out)!r}; the same command resumes from them"
 
 
 def register(app: typer.Typer) -> None:

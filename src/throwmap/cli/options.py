@@ -499,3 +499,16 @@ def progress_bar(name: str):
                   console=console, transient=True) as bar:
         task = bar.add_task(name, total=None)
         yield lambda done, total: bar.update(task, completed=done, total=total)
+
+
+def interrupted_line(out: Path | None, what: str = "trial") -> str:
+    """The one line a Ctrl-C leaves: how many trials ``out`` keeps (its ``trials.jsonl`` lines), or that none
+    are; ``what`` names them (``"trial"``, ``"case"``)."""
+    if out is None:
+        return f"interrupted: no --out DIR, so no {what} was kept"
+    try:
+        with open(Path(out) / "trials.jsonl", encoding="utf-8") as f:
+            k = sum(1 for line in f if line.strip())
+    except OSError:
+        k = 0
+    return f"interrupted: {k} {what}(s) stored in {str(out)!r}; the same command resumes from them"

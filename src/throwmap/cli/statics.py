@@ -63,9 +63,8 @@ def lean_cmd(
             typer.echo(line)
         if plot is not None:
             from ..statics.figures import lean_data
-            from ..viz.statics import lean_figure
 
-            save_figure(lean_figure(lean_data(part, alpha=alpha, beta_show=0.5, mu_show=mu)), plot, fmt, "plot")
+            save_figure(lean_data(part, alpha=alpha, beta_show=0.5, mu_show=mu).plot(), plot, fmt, "plot")
             typer.echo(f"wrote {plot}")
 
 
@@ -87,17 +86,12 @@ def partial_cmd(
         part = tm.triangle_30_60_90()
         typer.echo(f"partial assembly of two {part.name} at a frictionless wall, frictionless parts, "
                    f"α = {alpha_deg:g}°, arm μ = {mu:g}:")
-        typer.echo("| γ (deg) | arm μ needed (LP) | rests at μ (LP) | stays in the engine (1 s) | engine moved (mm) |")
-        typer.echo("|---|---|---|---|---|")
-        for g, need, lp, stayed, moved, status in partial_table(part, alpha_deg=alpha_deg, mu=mu, engine=engine):
-            st = "—" if stayed is None else ("yes" if stayed else f"no ({status})")
-            typer.echo(f"| {g} | {need:.4f} | {'yes' if lp else 'no'} | {st} | {moved * 1e3:.3g} |")
+        typer.echo(partial_table(part, alpha_deg=alpha_deg, mu=mu, engine=engine).table())
         if plot is not None:
             from ..statics.figures import partial_data
-            from ..viz.statics import partial_figure
 
             data = partial_data(part, alpha=math.radians(alpha_deg), gamma_show=math.radians(-15), mu_show=mu)
-            save_figure(partial_figure(data), plot, fmt, "plot")
+            save_figure(data.plot(), plot, fmt, "plot")
             typer.echo(f"wrote {plot}")
 
 

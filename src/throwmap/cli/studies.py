@@ -23,9 +23,10 @@ from ..io.config import resolve_part
 from ..throws.throw import check_model
 from .options import (BackOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOptionOpt, MuOpt, PartOpt, arm_dict, check_finite,
                       check_out_dir, check_output, guard, make_out_dir, model_options, parse_floats, part_and_arm,
-                      stderr_line,
+                      interrupted_line, progress_bar, stderr_line,
                       strict_int, to_json, write_text)
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
+from ..studies.study import StudyRun
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
 __all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "validate_fixtures_cmd", "validate_recoil_cmd",
@@ -46,11 +47,10 @@ def demo_cmd(
     with guard():
         check_out_dir(out)
         try:
-            summary = demo.run_demo(out, progress=lambda msg: stderr_line(f"demo: {msg}…"))
+            result = demo.run_demo(out, progress=lambda msg: stderr_line(f"demo: {msg}…"))
         except OSError as err:
             raise ConfigError("out", f"cannot write into {out}: {err.strerror or err}") from None
-        files = summary.get("files", []) if isinstance(summary, dict) else []
-        for f in files:
+        for f in getattr(result, "files", ()):
             typer.echo(f"wrote {f}")
 
 
@@ -107,11 +107,39 @@ def compare_cmd(
         limits = work_limits(max_memory, max_time, force)
         if out is not None:
             check_output(out, "out")
-        result = compare.compare_models(the_part, arm, **kwargs, **_limit_keywords(limits))
+        result = compare.compare_models(the_part, arm, **kwargs, limits=limits)
         doc = {**result.to_dict(), "arm": arm_dict(arm), "version": __version__}
         if out is not None:
             write_text(out, to_json(doc) + "\n" if out.suffix.lower() == ".json" else result.table() + "\n", "out")
         typer.echo(to_json(doc) if as_json else result.table())
+
+
+# ------------------------------------------------------------------ the studies on the runner
+ResumeOpt = Annotated[bool, typer.Option("--resume/--no-resume", help="Reuse the cases stored in --out by an "
+                                                                      "earlier (or interrupted) run of the same study.")]
+WorkersOpt = Annotated[int, typer.Option("--workers", parser=strict_int, metavar="INTEGER",
+                                         help="Processes (0: one per core).")]
+
+AGREEMENT_HEADING = "## Agreement"
+"""The heading of the agreement section that the studies' Markdown files end with."""
+
+
+def _agreement_section(table: str) -> str:
+    """The agreement section appended to a study's Markdown (after its own tables, which it leaves unchanged)."""
+    from ..studies.agreement import DEFINITION
+
+    return f"\n{AGREEMENT_HEADING}\n\n{DEFINITION[0].upper() + DEFINITION[1:]}.\n\n{table}\n" if table else ""
+
+
+def _run_study(name: str, out: Path, call):
+    """``call(update)`` with a progress bar on stderr; a Ctrl-C leaves one line saying how many cases ``out`` keeps
+    (the same command resumes from them) and exits 130, as ``throwmap experiment`` does."""
+    try:
+        with progress_bar(name) as update:
+            return call(update)
+    except KeyboardInterrupt:
+        stderr_line(interrupted_line(out, "case"))
+        raise typer.Exit(130) from None
 
 
 # ------------------------------------------------------------------ validate
@@ -165,7 +193,9 @@ def validate_cmd(
     realisations: Annotated[int, typer.Option("--realisations", parser=strict_int, metavar="INTEGER",
                                               help="Also compare finite arm motions with the "
                                                    "impulse on this many throws (0: skip).")] = 40,
-    out: Annotated[Path, typer.Option("--out", help="Directory for validation.json and validation.md.")] = Path("out"),
+    out: Annotated[Path, typer.Option("--out", help="Directory for validation.json and validation.md, and the "
+                                                    "study's trials (a rerun resumes).")] = Path("out"),
+    resume: ResumeOpt = True,
     as_json: JsonOpt = False,
     max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
     max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
@@ -186,21 +216,16 @@ def validate_cmd(
 
             if importlib.util.find_spec("mujoco") is None:
                 raise ConfigError("engines", "MuJoCo is not installed: pip install 'throwmap[mujoco]'")
-        from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-        with Progress(TextColumn("engine throws"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                      console=Console(stderr=True), transient=True) as bar:
-            task = bar.add_task("engine", total=None)
-            report = validate(parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, workers=workers,
-                              progress=lambda done, total: bar.update(task, completed=done, total=total),
-                              n_realisations=realisations, **_limit_keywords(limits))
+        report = _run_study("validate", out, lambda update: validate(
+            parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, n_realisations=realisations,
+            run=StudyRun(workers=workers, out=out, resume=resume, progress=update, limits=limits)))
         make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "validation.json", to_json(doc) + "\n", "out")
         md = (f"# throwmap validation ({report.settings['n_throws']} throws, seed {seed}, μ = {mu:g})\n\n"
               + report.table() + "\n\n" + "\n".join(f"- {g}" for g in report.goal_lines()) + "\n"
-              + ("\n" + report.realisation_table() + "\n" if report.realisation_rows else ""))
+              + ("\n" + report.realisation_table() + "\n" if report.realisation_rows else "")
+              + _agreement_section(report.agreement_table()))
         write_text(out / "validation.md", md, "out")
         if as_json:
             typer.echo(to_json(doc))
@@ -211,6 +236,8 @@ def validate_cmd(
         if report.realisation_rows:
             typer.echo("")
             typer.echo(report.realisation_table())
+        typer.echo("")
+        typer.echo(report.agreement_table())
         typer.echo(f"wrote {out / 'validation.json'}, {out / 'validation.md'}")
 
 
@@ -229,7 +256,10 @@ def validate_fixtures_cmd(
     fixed_point: Annotated[bool, typer.Option("--fixed-point/--no-fixed-point",
                                               help="Also find the fixed point at the wall with limit_set and "
                                                    "check its multiplier.")] = True,
-    out: Annotated[Path, typer.Option("--out", help="Directory for tilt_wall.json and tilt_wall.md.")] = Path("out"),
+    workers: WorkersOpt = 0,
+    out: Annotated[Path, typer.Option("--out", help="Directory for tilt_wall.json and tilt_wall.md, and the study's "
+                                                    "trials (a rerun resumes).")] = Path("out"),
+    resume: ResumeOpt = True,
     as_json: JsonOpt = False,
     max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
     max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
@@ -259,28 +289,22 @@ def validate_fixtures_cmd(
         limits = work_limits(max_memory, max_time, force)
         check_out_dir(out)
         parts = _validation_parts(part)
-        from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-        with Progress(TextColumn("engine throws"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                      console=Console(stderr=True), transient=True) as bar:
-            task = bar.add_task("engine", total=None)
-            report = validate_tilt_wall(parts, n=n, seed=seed, conditions=conds, rigid_body_options=rb,
-                                        fixed_point=fixed_point,
-                                        progress=lambda done, total: bar.update(task, completed=done, total=total),
-                                        **_limit_keywords(limits))
+        report = _run_study("validate-fixtures", out, lambda update: validate_tilt_wall(
+            parts, n=n, seed=seed, conditions=conds, rigid_body_options=rb, fixed_point=fixed_point,
+            run=StudyRun(workers=workers, out=out, resume=resume, progress=update, limits=limits)))
         make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
         write_text(out / "tilt_wall.json", to_json(doc) + "\n", "out")
         lines = [report.table(), "", *(f"- {g}" for g in report.goal_lines()), "",
                  *(f"- {c}" for c in report.cap_lines()), "",
                  *(f"- {w}" for w in report.refusal_lines()), "", *report.fixed_point_lines()]
-        md = (f"# throwmap validate-fixtures ({n} throws per condition, seed {seed})\n\n" + "\n".join(lines) + "\n")
+        md = (f"# throwmap validate-fixtures ({n} throws per condition, seed {seed})\n\n" + "\n".join(lines) + "\n"
+              + _agreement_section(report.agreement_table()))
         write_text(out / "tilt_wall.md", md, "out")
         if as_json:
             typer.echo(to_json(doc))
             return
-        for line in lines:
+        for line in lines + ["", report.agreement_table()]:
             typer.echo(line)
         typer.echo(f"wrote {out / 'tilt_wall.json'}, {out / 'tilt_wall.md'}")
 
@@ -296,8 +320,14 @@ def validate_recoil_cmd(
     engine_refine: Annotated[int, typer.Option("--engine-refine", parser=strict_int, metavar="INTEGER",
                                                help="The reference engine's steps are its defaults divided by this "
                                                     "(16: converged on impacts against the moving arm).")] = 16,
-    out: Annotated[Path, typer.Option("--out", help="Directory for recoil_validation.json and .md.")] = Path("out"),
+    workers: WorkersOpt = 0,
+    out: Annotated[Path, typer.Option("--out", help="Directory for recoil_validation.json and .md, and the study's "
+                                                    "trials (a rerun resumes).")] = Path("out"),
+    resume: ResumeOpt = True,
     as_json: JsonOpt = False,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """rigid_body on the moving arm (RecoilThrow, 3° recoil, ζ ∈ {0.2, 0.5}) against the engine, and against the impulse."""
     from ..studies.recoil_validation import recoil_table, validate_recoil
@@ -311,18 +341,23 @@ def validate_recoil_cmd(
             raise InvalidStateError("engine_refine", f"must be a positive integer, got {engine_refine}")
         if seed < 0:
             raise InvalidStateError("seed", f"must be a non-negative integer, got {seed}")
+        limits = work_limits(max_memory, max_time, force)
         check_out_dir(out)
-        report = validate_recoil(n=n, seed=seed, impact_law=impact_law, engine_refine=engine_refine)
+        report = _run_study("validate-recoil", out, lambda update: validate_recoil(
+            n=n, seed=seed, impact_law=impact_law, engine_refine=engine_refine,
+            run=StudyRun(workers=workers, out=out, resume=resume, progress=update, limits=limits)))
         make_out_dir(out)
-        doc = {**report, "version": __version__}
+        doc = {**report.to_dict(), "version": __version__}
         write_text(out / "recoil_validation.json", to_json(doc) + "\n", "out")
         md = (f"# throwmap validate-recoil ({n} throws, seed {seed}, impact law {impact_law}, engine steps / "
-              f"{engine_refine})\n\n" + recoil_table(report) + "\n")
+              f"{engine_refine})\n\n" + recoil_table(report) + "\n" + _agreement_section(report.agreement_table()))
         write_text(out / "recoil_validation.md", md, "out")
         if as_json:
             typer.echo(to_json(doc))
             return
         typer.echo(recoil_table(report))
+        typer.echo("")
+        typer.echo(report.agreement_table())
         typer.echo(f"wrote {out / 'recoil_validation.json'}, {out / 'recoil_validation.md'}")
 
 
@@ -333,8 +368,3 @@ def register(app: typer.Typer) -> None:
     app.command("validate")(validate_cmd)
     app.command("validate-fixtures")(validate_fixtures_cmd)
     app.command("validate-recoil")(validate_recoil_cmd)
-
-
-def _limit_keywords(limits) -> dict:
-    """The studies' work-guard keywords from a :class:`~throwmap.budget.Limits`."""
-    return {"max_memory": limits.max_memory, "max_seconds": limits.max_seconds, "force": limits.force}

@@ -71,12 +71,7 @@ def sweep_cmd(
             raise InvalidStateError("scheduler", "give an address (tcp://host:8786)")
         if status:
             st = sweep_status(spec, target)
-            if as_json:
-                typer.echo(to_json(st))
-            else:
-                typer.echo(f"sweep {st['sweep_sha256'][:12]} in {st['out']}: {st['n_points']} points in "
-                           f"{st['n_chunks']} parts; rows stored {st['rows']}, missing {st['missing']} "
-                           f"({st['chunks_missing']} parts)")
+            typer.echo(to_json(st.to_dict()) if as_json else st.table())
             return
         try:
             with _bar(f"sweep {sweep.name}") as update:

@@ -196,7 +196,7 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         try:
             st = space.setup(p)
             if model == SMALL_ANGLE_F:
-                r = energy_critical_points(st.part, st.arm, st.omega, x_max=x_max)
+                r = energy_critical_points(st.part, st.arm, st.omega, x_max=x_max).r
                 ev = Evaluation(r=r, top={}, bottom={}, next_kind={},
                                 residual={t.label: r.get(t.side, math.nan) - t.value for t in targets})
             else:

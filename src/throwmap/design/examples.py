@@ -37,6 +37,7 @@ from ..system.catalogue import triangle_30_60_90
 from ..system.part import Part
 from .api import DEFAULT_MARGIN, SMALL_ANGLE_F, design
 from .plate import WeightForCom, lightest_weight_for_com
+from .radii import SideRadii
 from .result import DesignResult
 from .small_angle import energy_critical_points
 
@@ -142,16 +143,18 @@ def draft_cm_readings(uv, plate: Part | None = None, margin: float = DEFAULT_MAR
 
 
 # ----------------------------------------------------------------- r_i on every model
-def exact_r(part, arm, omega, model: str = "rigid_body", **options) -> dict:
-    """r_i of every stable side on a registered model (m), l_i skipped."""
+def exact_r(part, arm, omega, model: str = "rigid_body", **options) -> SideRadii:
+    """r_i of every stable side on a registered model (m), l_i skipped: a :class:`~throwmap.design.radii.SideRadii`
+    (``.r``: side → m)."""
     from ..analysis.critical import critical_points
     from .targets import _NoLimit
 
-    return dict(critical_points(part, arm, omega, model, limit=_NoLimit(), **options).r)
+    return SideRadii(dict(critical_points(part, arm, omega, model, limit=_NoLimit(), **options).r), model, part.name,
+                     float(omega))
 
 
-def engine_r(part, arm, omega) -> dict:
-    """r_i in the pymunk engine with :data:`ENGINE_GRID` (to 20 µm)."""
+def engine_r(part, arm, omega) -> SideRadii:
+    """r_i in the pymunk engine with :data:`ENGINE_GRID` (to 20 µm): a :class:`~throwmap.design.radii.SideRadii`."""
     return exact_r(part, arm, omega, "engine", **ENGINE_GRID)
 
 
@@ -169,8 +172,8 @@ class PointRow:
 
 
 def _row(label, part, arm, omega, draft_r, engine: bool) -> PointRow:
-    return PointRow(label, part, float(omega), energy_critical_points(part, arm, omega), exact_r(part, arm, omega),
-                    engine_r(part, arm, omega) if engine else {}, dict(draft_r))
+    return PointRow(label, part, float(omega), energy_critical_points(part, arm, omega).r, exact_r(part, arm, omega).r,
+                    engine_r(part, arm, omega).r if engine else {}, dict(draft_r))
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -335,8 +338,8 @@ def end_wall_window(part, arm, omega, side: int, jitter: float = 0.06) -> tuple:
     iff L > lo = max_j r_j(ω(1 − jitter)) + u_R(j). ``S = hi − lo`` is the usable width (> 0 needed).
     r_i on ``arm`` (exact model).
     """
-    r_lo = exact_r(part, arm, omega * (1 - jitter))
-    r_hi = exact_r(part, arm, omega * (1 + jitter))
+    r_lo = exact_r(part, arm, omega * (1 - jitter)).r
+    r_hi = exact_r(part, arm, omega * (1 + jitter)).r
     hi = r_hi[side] + float(part.uR[side])
     lo = max(r_lo[j] + float(part.uR[j]) for j in r_lo if j != side)
     return lo, hi, hi - lo
@@ -385,7 +388,7 @@ def run_feeder_design(*, engine: bool = True, limit_starts: int = 64) -> tuple:
     objective.append(WallWindow(FEEDER["side"], FEEDER["jitter"], FEEDER["wall_width"]))
     res = design(plate, arm, FEEDER["omega_start"], objective, weight_mass=FEEDER["weight_mass"])
     ls = limit_set(res.part, arm, res.omega, n_starts=limit_starts, rng=0)
-    er = engine_r(res.part, arm, res.omega) if engine else {s: math.nan for s in res.achieved}
+    er = engine_r(res.part, arm, res.omega).r if engine else {s: math.nan for s in res.achieved}
     fd = FeederDesign(plate=plate, part=res.part, arm=arm, omega=res.omega, weight_mass=res.weight_mass,
                       weight_at=res.weight_at, target_side=FEEDER["side"], separation_x=FEEDER["x"],
                       separation_margin=FEEDER["margin"], targets=dict(FEEDER["targets"]), r=dict(res.achieved),

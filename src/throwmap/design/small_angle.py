@@ -33,6 +33,7 @@ import math
 import numpy as np
 
 from ..system.starts import start_interval
+from .radii import SideRadii
 
 __all__ = ["energy_terms", "energy_critical_points"]
 
@@ -59,8 +60,9 @@ def _flips(R, *args):
     return (H > 0) & (F > 0)
 
 
-def energy_critical_points(part, arm, omega: float, *, x_max=None, n_grid: int = 512, xtol: float = 1e-9) -> dict:
-    """r_i per stable side from the corrected energy test (m; nan if every R up to ``x_max`` jogs).
+def energy_critical_points(part, arm, omega: float, *, x_max=None, n_grid: int = 512, xtol: float = 1e-9) -> SideRadii:
+    """r_i per stable side from the corrected energy test (m; nan if every R up to ``x_max`` jogs), as a
+    :class:`~throwmap.design.radii.SideRadii` (``.r``: side → m; method ``"energy test"``).
 
     The domain of each side is :func:`~throwmap.system.starts.start_interval` cut at ``x_max``
     (default: the arm's length, else 0.6 m), sampled at ``n_grid`` points; the first flip
@@ -97,4 +99,4 @@ def energy_critical_points(part, arm, omega: float, *, x_max=None, n_grid: int =
             else:
                 a = c
         out[s] = b
-    return out
+    return SideRadii(out, "energy test", part.name, float(omega))

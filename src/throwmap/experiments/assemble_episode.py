@@ -157,6 +157,27 @@ class AssemblyEpisode:
                 "assembled_throw": None if self.assembled_run is None else int(self.throw_no[self.assembled_run]),
                 "values": dict(t.values)}
 
+    def to_dict(self) -> dict:
+        """The episode as one JSON-ready dict (a line of ``throwmap chain assemble``'s episode file): the trial
+        (``index``, ``seed``, ``success``, ``failure``, ``values``; non-finite values as null), and per run its
+        ``phases``, ``omegas``, ``throw_no``, ``poses``, ``states`` and ``statuses``."""
+        import math
+
+        tr = self.trial
+        values = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in tr.values.items()}
+        return {"index": self.index, "seed": self.seed, "success": tr.success, "failure": tr.failure, "values": values,
+                "phases": list(self.phases), "omegas": self.omegas.tolist(), "throw_no": self.throw_no.tolist(),
+                "poses": self.poses.tolist(), "states": self.states.tolist(), "statuses": list(self.statuses)}
+
+    def table(self) -> str:
+        """One line per run: throw, phase, ω (rad/s), both parts' (x cm, side), status."""
+        lines = [repr(self), "| run | throw | phase | ω (rad/s) | parts (x cm, side) | status |",
+                 "|---|---|---|---|---|---|"]
+        for r in self.rows():
+            parts = "; ".join(f"{100 * p['x_m']:.2f}, {p['side']}" for p in r["parts"])
+            lines.append(f"| {r['run']} | {r['throw']} | {r['phase']} | {r['omega_rad_s']:g} | {parts} | {r['status']} |")
+        return "\n".join(lines)
+
     def rows(self) -> list[dict]:
         """One dict per run: throw, phase, ω, both parts' (x, side, tilt) and poses, α, status."""
         return [{"run": i, "throw": int(self.throw_no[i]), "phase": self.phases[i], "omega_rad_s": float(self.omegas[i]),

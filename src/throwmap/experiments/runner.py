@@ -171,10 +171,19 @@ def _worker_init() -> None:
             pass
 
 
-def _run_chunk(name: str, config_json: str, seed: int, indices: tuple) -> tuple[list, float]:
+def _run_chunk(name: str, config_json: str, seed: int, indices: tuple, module: str | None = None) -> tuple[list, float]:
     """Run trials ``indices`` in a worker: look the experiment up by name, rebuild the config from JSON.
-    Returns the trials as JSON objects and the seconds they took."""
+    ``module``: the module that registers the experiment, imported first where the worker does not know the
+    name yet (an experiment registered outside this package, e.g. a study, in a worker that was spawned rather
+    than forked). Returns the trials as JSON objects and the seconds they took."""
     t0 = time.perf_counter()
+    if module is not None:
+        from .registry import _REGISTRY
+
+        if name not in _REGISTRY:
+            import importlib
+
+            importlib.import_module(module)
     exp = get_experiment(name)
     key = (name, config_json)
     cfg = _CONFIGS.get(key)
@@ -376,7 +385,7 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
                     # would otherwise spend most of their time in inter-process traffic)
                     size = 1 if counted == 0 else max(1, min(MAX_CHUNK, int(CHUNK_SECONDS * counted / max(spent, 1e-9))))
                     chunk, queue[:] = tuple(queue[:size]), queue[size:]
-                    pending.add(pool.submit(_run_chunk, exp.name, config_json, seed, chunk))
+                    pending.add(pool.submit(_run_chunk, exp.name, config_json, seed, chunk, type(exp).__module__))
 
                 try:
                     while queue and len(pending) < 2 * n_workers:

@@ -1,8 +1,9 @@
-"""Interval estimates for Monte Carlo success rates.
+"""Interval estimates for Monte Carlo results.
 
-Every experiment result carries the Wilson score interval (Wilson 1927; Brown, Cai &
+Every success rate carries the Wilson score interval (Wilson 1927; Brown, Cai &
 DasGupta, *Statist. Sci.* 16 (2001) 101, Eq. (4)) rather than the Wald interval, which
 collapses to a point at 0 or n successes — the cases a feeder is designed for.
+:func:`mean_interval` is the large-sample interval of a mean (e.g. throws to success).
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ import math
 
 from ..errors import InvalidStateError, shown
 
-__all__ = ["Z95", "wilson_interval"]
+__all__ = ["Z95", "wilson_interval", "mean_interval"]
 
 Z95 = 1.959963984540054
 """The two-sided 95 % standard-normal quantile, Φ⁻¹(0.975)."""
@@ -46,3 +47,22 @@ def wilson_interval(successes: int, n: int, z: float = Z95) -> tuple[float, floa
     low = 0.0 if k == 0 else max(0.0, centre - half)
     high = 1.0 if k == n else min(1.0, centre + half)
     return low, high
+
+
+def mean_interval(values, z: float = Z95) -> tuple[float, float, float]:
+    """``(mean, low, high)`` of the finite ``values`` with the large-sample interval mean ± z·s/√n
+    (s the sample standard deviation, ddof = 1; ``z`` = :data:`Z95`: 95 %). Fewer than two values give nan
+    bounds (no spread to estimate); none gives nan throughout."""
+    import numpy as np
+
+    if not (isinstance(z, (int, float)) and math.isfinite(z) and z > 0):
+        raise InvalidStateError("z", f"must be a positive finite number, got {shown(z)}")
+    v = np.asarray(values, dtype=float).ravel()
+    v = v[np.isfinite(v)]
+    if v.size == 0:
+        return math.nan, math.nan, math.nan
+    m = float(v.mean())
+    if v.size < 2:
+        return m, math.nan, math.nan
+    half = z * float(v.std(ddof=1)) / math.sqrt(v.size)
+    return m, m - half, m + half

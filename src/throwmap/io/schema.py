@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, model_validator
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, PlainSerializer, model_validator
 
 from ..conventions import G
 from ..errors import InvalidArmError, ThrowmapError
@@ -74,8 +74,9 @@ Omega = Annotated[float, Field(strict=True), _rule(check_omega)]
 """A release rate ω, rad/s: finite and ≥ 0 (the arm throws upward)."""
 Rate = Annotated[Omega, Field(gt=0)]
 """A nominal release rate of an experiment, rad/s: an :data:`Omega` > 0."""
-Friction = Annotated[float, BeforeValidator(_infinite_text), Field(strict=True), _rule(check_mu)]
-"""Coulomb friction μ ≥ 0; ``inf`` (or ``"inf"``, ``null``): the contact never slips."""
+Friction = Annotated[float, BeforeValidator(_infinite_text), Field(strict=True), _rule(check_mu),
+                     PlainSerializer(lambda v: "inf" if math.isinf(v) else v, return_type=float | str, when_used="json")]
+"""Coulomb friction μ ≥ 0; ``inf`` (or ``"inf"``, ``null``): the contact never slips. Written ``"inf"`` in JSON."""
 Length = Annotated[Annotated[float, Field(strict=True)] | None, BeforeValidator(_unbounded_text), _rule(check_length)]
 """An arm length, m: positive and finite, or unbounded (left out, ``inf``, ``"inf"``, ``null``)."""
 Angle = Annotated[float, Field(strict=True), _rule(check_alpha)]

@@ -59,6 +59,8 @@ class PaperModel:
                "impulses flagged, not modelled")
     options_type = PaperOptions
     features = Features(trajectory=True, tilt=True)
+    assumes = ("no lift-off", "no slip")
+    """The contact assumptions of Sec. III (the pivot never lifts, the contact never slips)."""
 
     def throw_one(self, part, system, x, side, omega, o: PaperOptions):
         arm = system.arm
@@ -86,6 +88,11 @@ class PaperModel:
         imp = np.nan_to_num(records[:, C.MU_IMPACT], nan=0.0) > mu
         return (f"lift-off {100 * lift.mean():.0f} %, impact outside cone {100 * imp.mean():.0f} %, "
                 f"needs μ > arm μ {100 * slip.mean():.0f} %")
+
+    def assumptions_hold(self, records, mu):
+        """Where the paper's contact assumptions held over a batch's records (a boolean mask): no lift-off (the
+        pivot's normal force never pulls) and no friction demand above the arm's ``mu``."""
+        return (np.nan_to_num(records[:, C.N_MIN], nan=1.0) >= 0) & (np.nan_to_num(records[:, C.MU_MAX], nan=0.0) <= mu)
 
     def trajectory(self, part, system, x, side, omega, o: PaperOptions, dt):
         return record_trajectory(part, system.arm, x, side, omega, dt, o, alpha=system.alpha)

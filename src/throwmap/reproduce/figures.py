@@ -119,11 +119,10 @@ def lean(path, size, ctx) -> dict:
     from ..statics import edge_frame_cm, lean_free_beta
     from ..statics.figures import lean_data
     from ..statics.tables import lean_table
-    from ..viz.statics import lean_figure
 
     part, _ = _canonical()
     alpha = math.radians(-10.0)
-    _save(lean_figure(lean_data(part, alpha=alpha, beta_show=0.5, mu_show=2.0)), path)
+    _save(lean_data(part, alpha=alpha, beta_show=0.5, mu_show=2.0).plot(), path)
     a, b, _ = edge_frame_cm(part)
     t = lean_table(part, n=size.lean_n, seed=0, engine=size.engine)
     return {"numbers": {"beta_star_rad": {"mu=1": lean_free_beta(a, b, alpha, 1.0),
@@ -135,12 +134,11 @@ def lean(path, size, ctx) -> dict:
 def partial(path, size, ctx) -> dict:
     from ..statics.figures import partial_data
     from ..statics.tables import partial_table
-    from ..viz.statics import partial_figure
 
     part, _ = _canonical()
     alpha = math.radians(-10.0)
-    _save(partial_figure(partial_data(part, alpha=alpha, gamma_show=math.radians(-15), mu_show=1.0)), path)
-    rows = partial_table(part, alpha_deg=-10.0, mu=1.0, engine=size.engine)
+    _save(partial_data(part, alpha=alpha, gamma_show=math.radians(-15), mu_show=1.0).plot(), path)
+    rows = partial_table(part, alpha_deg=-10.0, mu=1.0, engine=size.engine).rows
     return {"numbers": {"mu_needed_max": max(r[1] for r in rows),
                         "rows": [[g, need, lp, stayed] for g, need, lp, stayed, _, _ in rows]},
             "parameters": {"alpha_rad": alpha, "arm_mu": 1.0, "wall_mu": 0.0, "part_mu": 0.0}}

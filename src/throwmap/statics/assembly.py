@@ -15,6 +15,7 @@ can rest over (γ, μ) and the friction it needs. Units: m, rad.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -22,7 +23,7 @@ from ..errors import InvalidStateError
 from .contacts import find_contacts
 from .rest import Body, analyse_rest, least_mu
 
-__all__ = ["legs", "assembled_pair", "partial_assembly", "partial_region"]
+__all__ = ["legs", "assembled_pair", "partial_assembly", "partial_region", "PartialRegion"]
 
 
 def legs(part) -> tuple[float, float]:
@@ -73,10 +74,47 @@ def partial_assembly(part, gamma: float, *, length: float, h: float = 0.0, mu_ar
     return (a, b), contacts
 
 
+@dataclass(frozen=True, slots=True, eq=False)
+class PartialRegion:
+    """Where the partial assembly rests (Fig. 14): ``gamma`` (rad) × ``mu`` (arm μ) → ``rests`` (bool,
+    ``(len(gamma), len(mu))``, LP), and ``mu_needed`` per γ (the least arm μ that holds it; inf: none), with the
+    arm's rest angle ``alpha`` (rad), the wall's and the parts' μ."""
+
+    gamma: np.ndarray
+    mu: np.ndarray
+    rests: np.ndarray
+    mu_needed: np.ndarray
+    alpha: float = 0.0
+    mu_wall: float = 0.0
+    mu_parts: float = 0.0
+
+    def table(self) -> str:
+        """Per γ (degrees): the arm μ needed and the share of the μ grid where it rests."""
+        lines = ["| γ (deg) | arm μ needed (LP) | rests at μ of the grid |", "|---|---|---|"]
+        for i, g in enumerate(self.gamma):
+            ok = ", ".join(f"{m:g}" for m in self.mu[self.rests[i]]) or "none"
+            lines.append(f"| {math.degrees(float(g)):.4g} | {float(self.mu_needed[i]):.4g} | {ok} |")
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict:
+        """``{"gamma", "mu", "rests", "mu_needed"}`` as lists (rad; inf μ needed as null), with ``alpha``,
+        ``mu_wall``, ``mu_parts``."""
+        from ..serial import json_ready
+
+        return json_ready({"gamma": self.gamma, "mu": self.mu, "rests": self.rests, "mu_needed": self.mu_needed,
+                           "alpha": self.alpha, "mu_wall": self.mu_wall, "mu_parts": self.mu_parts})
+
+    def plot(self, ax=None):
+        """The region over (γ, μ) and the μ needed against γ (:func:`throwmap.viz.statics.plot_partial_region`)."""
+        from ..viz.statics import plot_partial_region
+
+        return plot_partial_region(self, ax=ax)
+
+
 def partial_region(part, gammas, mus, *, alpha: float, mu_wall: float = 0.0, mu_parts: float = 0.0,
-                   length: float = 0.5) -> dict:
-    """Where the partial assembly rests: ``{"rests": bool (len(gammas), len(mus)), "mu_needed": (len(gammas),)}``
-    (the least arm μ that holds it at each γ, with the wall and part–part μ as given)."""
+                   length: float = 0.5) -> PartialRegion:
+    """Where the partial assembly rests over ``gammas`` (rad) × ``mus`` (arm μ), and the least arm μ that holds it at
+    each γ (with the wall and part–part μ as given): a :class:`PartialRegion`."""
     gammas = np.asarray(gammas, dtype=float)
     mus = np.asarray(mus, dtype=float)
     rests = np.zeros((len(gammas), len(mus)), dtype=bool)
@@ -87,7 +125,7 @@ def partial_region(part, gammas, mus, *, alpha: float, mu_wall: float = 0.0, mu_
                                           mu_parts=mu_parts)
             rests[i, j] = analyse_rest(bodies, cs, alpha=alpha, detail=False).can_rest
         need[i] = _arm_mu_needed(part, float(gmm), alpha, mu_wall, mu_parts, length)
-    return {"gamma": gammas, "mu": mus, "rests": rests, "mu_needed": need}
+    return PartialRegion(gammas, mus, rests, need, float(alpha), float(mu_wall), float(mu_parts))
 
 
 def _arm_mu_needed(part, gamma, alpha, mu_wall, mu_parts, length) -> float:

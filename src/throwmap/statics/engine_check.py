@@ -21,7 +21,7 @@ REFUSED = ("penetration", "unconverged", "timeout", "unresolved")
 """Engine statuses whose run is refused."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class EngineRest:
     """``moved`` (m) and ``turned`` (rad) per part after ``run_for`` s; ``stayed`` all within the thresholds;
     ``status`` the engine run's: a refused run (:data:`REFUSED`) is never read as resting; the others
@@ -35,6 +35,25 @@ class EngineRest:
     @property
     def stayed(self) -> bool:
         return self.status not in REFUSED and all(m < STAYED for m in self.moved) and all(t < STAYED_TURN for t in self.turned)
+
+    def table(self) -> str:
+        """Per part: moved (mm) and turned (rad) after ``run_for`` s, then the verdict."""
+        lines = ["| part | moved (mm) | turned (rad) |", "|---|---|---|"]
+        lines += [f"| {i} | {1e3 * m:.4g} | {t:.4g} |" for i, (m, t) in enumerate(zip(self.moved, self.turned))]
+        verdict = "stayed" if self.stayed else ("refused" if self.status in REFUSED else "moved")
+        return "\n".join(lines + [f"engine run of {self.run_for:g} s: {self.status}; {verdict} (thresholds "
+                                   f"{1e3 * STAYED:g} mm, {STAYED_TURN:g} rad)"])
+
+    def to_dict(self) -> dict:
+        """``moved_m``, ``turned_rad`` (per part), ``status``, ``run_for_s``, ``stayed``."""
+        return {"moved_m": list(self.moved), "turned_rad": list(self.turned), "status": self.status,
+                "run_for_s": self.run_for, "stayed": self.stayed}
+
+    def plot(self, ax=None):
+        """How far each part moved against the threshold of "stayed" (:func:`throwmap.viz.statics.plot_engine_rest`)."""
+        from ..viz.statics import plot_engine_rest
+
+        return plot_engine_rest(self, ax=ax, threshold=STAYED)
 
 
 def engine_rest(bodies, *, h: float, mu_arm: float, length: float, wall=None, mu_parts: float = 0.0,

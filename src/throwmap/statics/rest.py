@@ -92,7 +92,7 @@ class Contact:
         return (ny, -nx)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class RestAnalysis:
     """The answer of :func:`analyse_rest` (see the module docstring). ``forces`` and ``ranges`` per contact:
     ``(f_n, f_t)`` in N and ``((f_n min, max), (f_t min, max))``; ``unique`` per contact; ``weight`` the
@@ -118,6 +118,28 @@ class RestAnalysis:
                         f"{c.point[1]:.4f}) | {c.mu:g} | {f[0]:.4g} | {f[1]:.4g} | [{r[0][0]:.4g}, {r[0][1]:.4g}] | "
                         f"[{r[1][0]:.4g}, {r[1][1]:.4g}] |")
         return "\n".join(rows)
+
+    def to_dict(self) -> dict:
+        """JSON-ready (:func:`throwmap.serial.json_ready`: inf and nan as null): ``can_rest``, ``mu_needed``,
+        ``weight_n``, ``message`` and per contact its ``a``, ``b``, ``point_m``, ``normal``, ``mu``, ``label``,
+        ``force_n`` (f_n, f_t), ``range_n`` ((f_n min, max), (f_t min, max)) and ``unique``."""
+        from ..serial import json_ready
+
+        contacts = []
+        for i, c in enumerate(self.contacts):
+            contacts.append({"a": c.a, "b": c.b, "point_m": c.point, "normal": c.normal, "mu": c.mu, "label": c.label,
+                             "force_n": self.forces[i] if self.forces else None,
+                             "range_n": self.ranges[i] if self.ranges else None,
+                             "unique": self.unique[i] if self.unique else None})
+        return json_ready({"can_rest": bool(self.can_rest), "mu_needed": self.mu_needed, "weight_n": self.weight,
+                           "message": self.message, "contacts": contacts})
+
+    def plot(self, ax=None):
+        """The contact forces (f_n, f_t per contact, in units of the weight) with their admissible ranges
+        (:func:`throwmap.viz.statics.plot_rest_forces`)."""
+        from ..viz.statics import plot_rest_forces
+
+        return plot_rest_forces(self, ax=ax)
 
 
 def _system(bodies, contacts, gvec):

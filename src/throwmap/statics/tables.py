@@ -1,12 +1,12 @@
-"""The statics tables of issue 13: closed form against the general LP against the engine (Figs. 13, 14).
+"""The statics tables: closed form against the general LP against the engine (Figs. 13, 14).
 
 :func:`lean_table` draws random leans (β, α, μ) of the draft's triangle against a frictionless wall and
 answers "can it lean?" three ways: the complete closed form (:func:`~throwmap.statics.leaning.lean_possible`),
 the LP of :func:`~throwmap.statics.rest.analyse_rest`, and the engine (:func:`~throwmap.statics.engine_check.engine_rest`:
 placed and left for 1 s); it also counts where the draft's printed condition calls a lean impossible
-that is, and the reverse. :func:`partial_table` does the same for Fig. 14's partial assembly over γ:
-the arm friction it needs (LP), whether it rests at the chosen μ, and whether it stays in the engine.
-Units: m, rad.
+that is, and the reverse (a :class:`LeanTable`). :func:`partial_table` does the same for Fig. 14's partial
+assembly over γ: the arm friction it needs (LP), whether it rests at the chosen μ, and whether it stays in the
+engine (a :class:`PartialTable`). Both are results with ``table()``, ``to_dict()`` and ``.plot()``. Units: m, rad.
 """
 
 from __future__ import annotations
@@ -20,13 +20,13 @@ from .engine_check import engine_rest
 from .leaning import drafts_no_lean, edge_frame_cm, lean_possible, leaning_bodies
 from .rest import analyse_rest
 
-__all__ = ["LeanTable", "lean_table", "partial_table"]
+__all__ = ["LeanTable", "PartialTable", "lean_table", "partial_table"]
 
 H = -0.01
 """Arm surface height of the checks, m (the project's default regime)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class LeanTable:
     """Counts over ``n`` random leans; ``rows`` keep (β, α, μ, closed form, LP, engine stayed, engine moved m,
     draft says no lean, engine status, cap-bound). A lean is *cap-bound* when the LP says it rests but the
@@ -57,6 +57,62 @@ class LeanTable:
                 f" (engine runs refused: {self.engine_refused}); cap-bound (the lean needs more friction than the "
                 f"engine's cap gives): {self.cap_bound}; LP = engine without them: {self.lp_vs_engine_free}/"
                 f"{n - self.engine_refused - self.cap_bound}"] + tail
+
+    def table(self) -> str:
+        """:meth:`lines` as text."""
+        return "\n".join(self.lines())
+
+    def to_dict(self) -> dict:
+        """The counts, and per lean ``beta_rad``, ``alpha_rad``, ``mu``, ``closed_form``, ``lp``, ``engine_stayed``,
+        ``engine_moved_m``, ``draft_no_lean``, ``engine_status``, ``cap_bound`` (JSON-ready: μ = ∞ as null)."""
+        from ..serial import json_ready
+
+        keys = ("beta_rad", "alpha_rad", "mu", "closed_form", "lp", "engine_stayed", "engine_moved_m", "draft_no_lean",
+                "engine_status", "cap_bound")
+        return json_ready({"n": self.n, "seed": self.seed, "closed_vs_lp": self.closed_vs_lp,
+                           "lp_vs_engine": self.lp_vs_engine, "engine_refused": self.engine_refused,
+                           "cap_bound": self.cap_bound, "lp_vs_engine_free": self.lp_vs_engine_free,
+                           "draft_wrong_no_lean": self.draft_wrong_no_lean, "draft_misses_fall": self.draft_misses_fall,
+                           "rows": [dict(zip(keys, r)) for r in self.rows]})
+
+    def plot(self, ax=None):
+        """How often the answers agree (:func:`throwmap.viz.statics.plot_lean_table`)."""
+        from ..viz.statics import plot_lean_table
+
+        return plot_lean_table(self, ax=ax)
+
+
+@dataclass(frozen=True, slots=True)
+class PartialTable:
+    """The partial assembly over γ at arm μ ``mu`` on an arm at ``alpha_deg`` (degrees): ``rows`` of
+    ``(γ deg, arm μ needed (LP), rests at μ (LP), engine stayed (None: not checked), engine moved m, status)``."""
+
+    alpha_deg: float
+    mu: float
+    rows: tuple
+
+    def table(self) -> str:
+        """The rows as Markdown (the engine's movement in mm)."""
+        lines = ["| γ (deg) | arm μ needed (LP) | rests at μ (LP) | stays in the engine (1 s) | engine moved (mm) |",
+                 "|---|---|---|---|---|"]
+        for g, need, lp, stayed, moved, status in self.rows:
+            st = "—" if stayed is None else ("yes" if stayed else f"no ({status})")
+            lines.append(f"| {g} | {need:.4f} | {'yes' if lp else 'no'} | {st} | {moved * 1e3:.3g} |")
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict:
+        """``alpha_deg``, ``mu`` and per γ ``gamma_deg``, ``mu_needed``, ``rests_lp``, ``engine_stayed``,
+        ``engine_moved_m``, ``status`` (JSON-ready)."""
+        from ..serial import json_ready
+
+        keys = ("gamma_deg", "mu_needed", "rests_lp", "engine_stayed", "engine_moved_m", "status")
+        return json_ready({"alpha_deg": self.alpha_deg, "mu": self.mu, "rows": [dict(zip(keys, r)) for r in self.rows]})
+
+    def plot(self, ax=None):
+        """The μ needed against γ with the engine's verdicts (:func:`throwmap.viz.statics.plot_partial_table`)."""
+        from ..viz.statics import plot_partial_table
+
+        return plot_partial_table(self, ax=ax)
 
 
 def lean_table(part, *, n: int = 100, seed: int = 0, length: float = 0.3, engine: bool = True,
@@ -111,8 +167,9 @@ def _cap_bound(part, bodies, contacts, alpha) -> bool:
 
 
 def partial_table(part, gammas_deg=(-29, -25, -20, -15, -10, -5, -1), *, alpha_deg: float = -10.0, mu: float = 1.0,
-                  length: float = 0.5, engine: bool = True) -> list[tuple]:
-    """Rows ``(γ deg, arm μ needed, rests at μ (LP), engine stayed, engine moved m, status)`` for Fig. 14."""
+                  length: float = 0.5, engine: bool = True) -> PartialTable:
+    """The :class:`PartialTable` of Fig. 14: rows ``(γ deg, arm μ needed, rests at μ (LP), engine stayed, engine
+    moved m, status)``."""
     from ..system.fixtures import Wall
 
     alpha = math.radians(alpha_deg)
@@ -127,4 +184,4 @@ def partial_table(part, gammas_deg=(-29, -25, -20, -15, -10, -5, -1), *, alpha_d
             out.append((g, need, lp, er.stayed, max(er.moved), er.status))
         else:
             out.append((g, need, lp, None, math.nan, "skipped"))
-    return out
+    return PartialTable(float(alpha_deg), float(mu), tuple(out))

@@ -26,7 +26,7 @@ import numpy as np
 from ..errors import InvalidStateError
 from .chain import MarkovChain
 
-__all__ = ["low_phase_sequences", "low_phase_chain", "low_phase_hits", "episode_row", "read_episodes", "record_episodes"]
+__all__ = ["low_phase_sequences", "low_phase_chain", "low_phase_hits", "read_episodes", "record_episodes"]
 
 
 def _first_low(phases) -> list[int]:
@@ -120,18 +120,6 @@ def low_phase_chain(sequences) -> MarkovChain:
                        meta={"kind": "assemble low phase", "transitions": int(C.sum()), "episodes": len(sequences)})
 
 
-def episode_row(ep) -> dict:
-    """An :class:`~throwmap.experiments.assemble_episode.AssemblyEpisode` as a JSON-ready dict (the trial, the
-    phases, the poses and statuses of every run)."""
-    import math
-
-    tr = ep.trial
-    values = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in tr.values.items()}
-    return {"index": ep.index, "seed": ep.seed, "success": tr.success, "failure": tr.failure, "values": values,
-            "phases": list(ep.phases), "omegas": ep.omegas.tolist(), "throw_no": ep.throw_no.tolist(),
-            "poses": ep.poses.tolist(), "states": ep.states.tolist(), "statuses": list(ep.statuses)}
-
-
 def read_episodes(path, *, cut: bool = False) -> list[dict]:
     """The episode rows of the JSON-lines file ``path`` (:func:`record_episodes`). A torn last line (a recording
     interrupted while writing it: no newline, or not JSON) is skipped with a warning, and cut off the file when
@@ -192,7 +180,7 @@ def record_episodes(path, seed: int, n: int, config=None, progress=None) -> list
     for i in range(int(n)):
         if (int(seed), i) in have:
             continue
-        row = episode_row(assembly_episode(config, i, int(seed)))
+        row = assembly_episode(config, i, int(seed)).to_dict()
         with p.open("a", encoding="utf-8") as f:
             f.write(json.dumps(row) + "\n")
         rows.append(row)

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..budget import Limits, DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..budget import Limits, check_count, guard_work
 from ..system.arm import Arm
 from ..records.outcome import Status
 from ..system.part import Part
@@ -108,8 +108,7 @@ class ModelComparison:
 
 def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), n_x: int = 200,
                    x_max: float | None = None, models=("small_angle", "small_angle2"),
-                   reference: str = "paper", x_min: float | None = None, *, max_memory: float = DEFAULT_MAX_MEMORY,
-                   max_seconds: float = DEFAULT_MAX_SECONDS, force: bool = False) -> ModelComparison:
+                   reference: str = "paper", x_min: float | None = None, *, limits: Limits | None = None) -> ModelComparison:
     """Compare ``models`` with ``reference`` over x ∈ (lo, x_max] on every stable side, for each ω.
 
     lo is the side's smallest admissible start x_min (m), or ``x_min`` where that is
@@ -120,8 +119,8 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
 
     Work guard (:mod:`throwmap.budget`): memory :data:`BYTES_PER_START` per start
     (``n_x`` per stable side) and time from :data:`TIMED_STARTS` throws of each model
-    measured now (every start is thrown once per ω and model); above ``max_memory``
-    (bytes) or ``max_seconds`` (s) it is refused with one line on ``n_x``, unless ``force``.
+    measured now (every start is thrown once per ω and model); above ``limits``
+    (:class:`~throwmap.budget.Limits`) it is refused with one line on ``n_x``, unless ``limits.force``.
     """
     from ..errors import InvalidStateError
 
@@ -139,7 +138,6 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
                                          f"got {x_max:g}")
     n_x = check_count("n_x", n_x, minimum=1)
     omegas = tuple(np.atleast_1d(np.asarray(omegas, dtype=float)))
-    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
     n_starts = n_x * len(part.stable_sides)
 
     def seconds_per_throw() -> float:
@@ -155,7 +153,7 @@ def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), 
             total += time.perf_counter() - t0
         return total / (xt.size * (1 + len(models)))
 
-    guard_work(f"compare (n_x = {n_x:,} per stable side)", "n_x", n_starts, BYTES_PER_START, Limits(max_memory, max_seconds, force),
+    guard_work(f"compare (n_x = {n_x:,} per stable side)", "n_x", n_starts, BYTES_PER_START, limits,
                throws_per_config=len(omegas) * (1 + len(models)), timer=seconds_per_throw,
                hint="a smaller n_x (--n-x)", unit="starts")
     xs, ss = [], []

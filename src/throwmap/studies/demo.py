@@ -26,6 +26,7 @@ Every file is written atomically (temp file + rename); :data:`OUTPUTS` names the
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -38,7 +39,7 @@ from ..throws.orbit import iterate
 from ..system.catalogue import triangle_30_60_90
 from ..throws.throw import throw
 
-__all__ = ["ANALYSIS", "DEMO", "OUTPUTS", "run_demo"]
+__all__ = ["ANALYSIS", "DEMO", "OUTPUTS", "DemoResult", "run_demo"]
 
 OUTPUTS = ("throw_map.png", "orbit.png", "model_comparison.png", "model_comparison.txt", "limit_set.png",
            "throw_map_limits.png", "basins.png", "funnels.png", "summary.json")
@@ -52,8 +53,31 @@ ANALYSIS = {"model": "rigid_body", "x_max": 0.6, "basin_grid": 2000, "funnel_ome
 """Parameters of the demo's limit-set, basin and funnel analysis (SI units; grids: points per side)."""
 
 
-def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
-    """Run the built-in example and write its figures and summary; returns the summary.
+@dataclass(frozen=True, slots=True)
+class DemoResult:
+    """What :func:`run_demo` did: ``out_dir``, the ``files`` it wrote (paths, in :data:`OUTPUTS` order of writing)
+    and the ``summary`` it wrote as ``summary.json`` (see the module docstring)."""
+
+    out_dir: str
+    files: tuple
+    summary: dict
+
+    def table(self) -> str:
+        """The example, the limit set found and the files written, one per line."""
+        ex, an = self.summary["example"], self.summary["analysis"]
+        lines = [f"demo: {self.summary['part']['name']} on h = {ex['h']:g} m at ω = {ex['omega']:g} rad/s; limit set "
+                 f"({an['parameters']['model']}): {an['limit_set']['kind']}; orbit of {ex['n_throws']} throws "
+                 f"({ex['model']}): {self.summary['orbit']['status']}"]
+        return "\n".join(lines + [f"wrote {f}" for f in self.files])
+
+    def to_dict(self) -> dict:
+        """The summary (JSON-ready), as ``summary.json`` holds it."""
+        return json_ready(self.summary)
+
+
+def run_demo(out_dir: Path | str = "out", progress=None) -> DemoResult:
+    """Run the built-in example and write its figures and summary; returns a :class:`DemoResult` (its ``to_dict()``
+    is the summary).
 
     ``progress``, if given, is called as ``progress(message)`` before each step.
     """
@@ -133,7 +157,7 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> dict:
         raise RuntimeError(f"demo: writes {written}, but OUTPUTS lists {list(OUTPUTS)}")
     atomic_write_text(out / "model_comparison.txt", comp.table() + "\n")
     atomic_write_text(out / "summary.json", json.dumps(json_ready(summary), indent=2, allow_nan=False))
-    return summary
+    return DemoResult(str(out), tuple(summary["files"]), summary)
 
 
 def _analysis(part, arm, omega, out: Path, say, plt) -> tuple[dict, list]:

@@ -1,4 +1,4 @@
-"""Validation of "rigid_body" on the moving arm (RecoilThrow) against the pymunk engine (issue 12 item 2).
+"""Validation of "rigid_body" on the moving arm (RecoilThrow) against the pymunk engine.
 
 Random throws as the impulse validation (:mod:`.validation`): a part of the validation set, a stable
 side, x uniform on [the part's left limit + 5 mm, 0.45 m], ω ∈ [3, 7] rad/s, μ from
@@ -12,37 +12,54 @@ both leave the arm the same way, and within when also |Δx| ≤ 0.5 mm. Wilson 9
 Rows also without the throws whose engine answer is bound to pymunk's friction cap (:mod:`.engine_cap`:
 the engine again with the cap relaxed 0.7 → 0.9 moves by > 0.25 mm), and split at μ finite / μ = ∞ (where
 the README reads the engine as ±2 mm). Also: how often the recoil's answer differs in side (or status)
-from the impulse's at the same ω, in rigid_body and in the engine.
+from the impulse's at the same ω, in rigid_body and in the engine. Every comparison is also given by the one
+agreement statistic (:mod:`throwmap.studies.agreement`: refusals apart, same-outcome rests within 0.5 mm).
+
+The study is declared as a :class:`RecoilConfig` and run on the experiment runner (experiment
+``"validate-recoil"``, :mod:`throwmap.studies.study`): trial i throws case i of :func:`recoil_cases` (drawn from
+the config's seed through :func:`throwmap.rng.as_generator`) in every model and realisation; the result is a
+:class:`RecoilValidation` with ``table()``, ``to_dict()`` and ``.plot()``.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
+from pydantic import Field
 
+from ..experiments.registry import register_experiment
+from ..io.config import part_document, part_from_spec
 from ..kernels import codes as C
-from ..system.arm import Arm
 from ..records.outcome import Status
+from ..rng import as_generator
+from ..system.arm import Arm
 from ..throws.throw import throw
+from .agreement import REFUSED, WITHIN, AgreementTable, agreement
 from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
+from .study import StudyRun, StudyConfig, case_trial, cached_cases, run_study, stored
 from .validation import default_parts
 
-__all__ = ["recoil_cases", "validate_recoil", "recoil_table", "MUS", "ZETAS", "WITHIN"]
+__all__ = ["recoil_cases", "validate_recoil", "recoil_table", "RecoilConfig", "RecoilValidation", "RECOIL", "MUS",
+           "ZETAS", "WITHIN"]
 
 MUS = (0.3, 0.6, 1.0, 2.0, math.inf)
 ZETAS = (0.2, 0.5)
 HS = (-0.01, -0.005)
-WITHIN = 0.5e-3
-REFUSED = (C.UNRESOLVED, C.TIMEOUT, C.PENETRATION, C.UNCONVERGED, C.INCONSISTENT, C.INVALID_START)
+KEYS = ("rb", "engine", "engine_default", "rb_impulse", "engine_impulse", "engine_cap_alt")
+"""The answers of each case: rigid_body and the engine (steps / engine_refine) on the recoil, the engine at its
+default step on the recoil, both on the impulse, and the fine engine on the recoil with its friction cap relaxed."""
 
 
-def recoil_cases(n: int, seed: int = 0, parts=None, *, x_max: float = 0.45, recoil: float = math.radians(3.0)):
-    """``n`` random throws: a list of dicts (part name, side, x m, ω rad/s, μ, h m, ζ, recoil rad)."""
+def recoil_cases(n: int, seed=0, parts=None, *, x_max: float = 0.45, recoil: float = math.radians(3.0)):
+    """``n`` random throws: a list of dicts (part name, side, x m, ω rad/s, μ, h m, ζ, recoil rad), drawn from
+    ``seed`` (an int or a Generator, :func:`throwmap.rng.as_generator`)."""
     parts = default_parts() if parts is None else parts
     names = list(parts)
-    rng = np.random.default_rng(seed)
+    rng = as_generator(seed, "seed")
     out = []
     for _ in range(n):
         name = names[int(rng.integers(len(names)))]
@@ -61,69 +78,190 @@ def _one(part, c, model, realisation, **opts):
     return o.x, o.side, int(o.status), (o.message or "")
 
 
-def validate_recoil(n: int = 200, seed: int = 0, parts=None, impact_law: str = "velocity", engine_refine: int = 16,
-                    progress=None) -> dict:
-    """Throw ``n`` random recoil cases with rigid_body (moving arm) and the engine, and both with the impulse.
+class RecoilConfig(StudyConfig):
+    """The recoil study, declared (SI units, rad): ``n`` cases drawn from ``seed`` over ``parts`` (name →
+    ``[part]`` table), rigid_body's ``impact_law``, the reference engine's steps divided by ``engine_refine``."""
 
-    The reference is the engine at its step (``dt``, ``coarse_dt``) divided by ``engine_refine``: at its
-    default 0.125 ms the engine is not converged on impacts against the fast-moving arm (its own row,
-    "engine vs engine/k", shows by how much). ``impact_law`` is rigid_body's (default "velocity", the
-    one-step law of time-stepping engines such as pymunk; "routh" differs from it at μ = 0.3). Returns a dict: ``cases``, per-throw ``results`` (``rb``,
-    ``engine``, ``engine_default``, ``rb_impulse``, ``engine_impulse``: lists of (x, side, status,
-    message)), ``summary`` (:func:`_summary`), ``seconds`` per model."""
-    from ..system.motion import RecoilThrow
-    from ..engine.settings import EngineSettings
+    parts: dict[str, dict] = Field(default_factory=lambda: {k: part_document(p)["part"]
+                                                            for k, p in default_parts().items()})
+    n: int = Field(200, ge=1)
+    impact_law: str = "velocity"
+    engine_refine: int = Field(16, ge=1)
 
-    base = EngineSettings()
-    fine = EngineSettings(dt=base.dt / engine_refine, coarse_dt=base.coarse_dt / engine_refine)
-    parts = default_parts() if parts is None else parts
-    cases = recoil_cases(n, seed, parts)
-    res = {"rb": [], "engine": [], "engine_default": [], "rb_impulse": [], "engine_impulse": []}
-    secs = dict.fromkeys(res, 0.0)
-    for i, c in enumerate(cases):
+
+def _recoil_cases(cfg: RecoilConfig):
+    parts = {name: part_from_spec(doc) for name, doc in cfg.parts.items()}
+    return parts, recoil_cases(cfg.n, cfg.seed, parts)
+
+
+class RecoilStudy:
+    """The ``validate-recoil`` study as an experiment: trial i throws case i (module docstring)."""
+
+    name = "validate-recoil"
+    summary = "rigid_body on the moving arm against the pymunk engine, case by case (throwmap validate-recoil)"
+    config_type = RecoilConfig
+
+    def parameters(self, cfg: RecoilConfig) -> dict:
+        return json.loads(cfg.model_dump_json())
+
+    def trial(self, cfg: RecoilConfig, index: int, rng):
+        from ..engine.settings import EngineSettings
+        from ..system.motion import RecoilThrow
+
+        parts, cases = cached_cases(cfg, _recoil_cases)
+        base = EngineSettings()
+        fine = EngineSettings(dt=base.dt / cfg.engine_refine, coarse_dt=base.coarse_dt / cfg.engine_refine)
+        c = cases[index]
         part = parts[c["part"]]
         r = RecoilThrow.for_release_rate(c["omega"], c["recoil"], c["zeta"])
-        for key, model, real, opts in (("rb", "rigid_body", r, {"impact_law": impact_law}),
+        values, statuses = {}, []
+        for key, model, real, opts in (("rb", "rigid_body", r, {"impact_law": cfg.impact_law}),
                                        ("engine", "engine", r, {"settings": fine}),
                                        ("engine_default", "engine", r, {}),
-                                       ("rb_impulse", "rigid_body", None, {"impact_law": impact_law}),
+                                       ("rb_impulse", "rigid_body", None, {"impact_law": cfg.impact_law}),
                                        ("engine_impulse", "engine", None, {"settings": fine})):
             t0 = time.perf_counter()
-            res[key].append(_one(part, c, model, real, **opts))
-            secs[key] += time.perf_counter() - t0
-        if progress is not None:
-            progress(i + 1, n)
-    # where the engine's answer rests on its friction cap (studies/engine_cap.py): the recoil throws again with
-    # the cap relaxed from 0.7 to 0.9; those that move by > 0.25 mm (or change side/status) are cap-bound
-    res["engine_cap_alt"] = []
-    t0 = time.perf_counter()
-    with friction_cap(CAP_ALT):
-        for c in cases:
-            r = RecoilThrow.for_release_rate(c["omega"], c["recoil"], c["zeta"])
-            res["engine_cap_alt"].append(_one(parts[c["part"]], c, "engine", r, settings=fine))
-    secs["engine_cap_alt"] = time.perf_counter() - t0
+            a = _one(part, c, model, real, **opts)
+            values.update(_values(key, a, time.perf_counter() - t0))
+            statuses.append((key, a[2]))
+        # where the engine's answer rests on its friction cap (studies/engine_cap.py): the recoil throw again with
+        # the cap relaxed from 0.7 to 0.9; one that moves by > 0.25 mm (or changes side/status) is cap-bound
+        t0 = time.perf_counter()
+        with friction_cap(CAP_ALT):
+            a = _one(part, c, "engine", RecoilThrow.for_release_rate(c["omega"], c["recoil"], c["zeta"]),
+                     settings=fine)
+        values.update(_values("engine_cap_alt", a, time.perf_counter() - t0))
+        return case_trial(index, rng, values, statuses)
+
+
+def _values(key: str, a: tuple, seconds: float) -> dict:
+    return {f"{key}.x": stored(a[0]), f"{key}.side": int(a[1]), f"{key}.status": int(a[2]), f"{key}.message": a[3],
+            f"{key}.seconds": float(seconds)}
+
+
+RECOIL = register_experiment(RecoilStudy())
+"""The registered ``validate-recoil`` study."""
+
+
+@dataclass(frozen=True, slots=True)
+class RecoilValidation:
+    """The result of :func:`validate_recoil`.
+
+    ``cases`` (dicts, :func:`recoil_cases`), ``results`` (per :data:`KEYS`, one ``(x, side, status, message)``
+    per case), ``seconds`` per key (summed over the cases, s), ``impact_law``, ``engine_refine``, ``cap_bound``
+    (indices of the cases whose engine answer is bound to its friction cap), ``summary`` (label → the comparison's
+    dict, :func:`_summary`) and ``agreement`` (the same comparisons by the one agreement statistic).
+    """
+
+    cases: list
+    results: dict
+    seconds: dict
+    impact_law: str
+    engine_refine: int
+    cap_bound: list
+    summary: dict
+    agreement: AgreementTable | None = None
+
+    def table(self) -> str:
+        """The summary as a Markdown table, then the refusals by reason and the seconds per throw."""
+        return recoil_table(self)
+
+    def agreement_table(self) -> str:
+        """The comparisons by the one agreement statistic (:meth:`AgreementTable.table`); empty without one."""
+        return self.agreement.table() if self.agreement is not None else ""
+
+    def to_dict(self) -> dict:
+        """``cases``, ``results``, ``seconds``, ``impact_law``, ``engine_refine``, ``cap_bound``, ``summary`` and
+        ``agreement`` (:meth:`AgreementTable.to_dict`)."""
+        doc = {"cases": self.cases, "results": self.results, "seconds": self.seconds, "impact_law": self.impact_law,
+               "engine_refine": self.engine_refine, "cap_bound": self.cap_bound, "summary": self.summary}
+        if self.agreement is not None:
+            doc["agreement"] = self.agreement.to_dict()
+        return doc
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "RecoilValidation":
+        """The inverse of :meth:`to_dict` (as read back from JSON: tuples come back as lists, nan as None)."""
+        agree = AgreementTable.from_dict(d["agreement"]) if d.get("agreement") else None
+        return cls(list(d["cases"]), dict(d["results"]), dict(d["seconds"]), d["impact_law"], int(d["engine_refine"]),
+                   list(d["cap_bound"]), dict(d["summary"]), agree)
+
+    def plot(self, ax=None):
+        """Every comparison's agreement with its Wilson intervals (:func:`throwmap.viz.agreement.plot_agreement`)."""
+        from ..viz.agreement import plot_agreement
+
+        table = self.agreement if self.agreement is not None else AgreementTable((), "engine")
+        return plot_agreement(table, ax=ax, title="recoil: rigid_body and the engine on the moving arm")
+
+
+def recoil_report(cfg: RecoilConfig, trials) -> RecoilValidation:
+    """The :class:`RecoilValidation` of the study ``cfg`` from its trials (sorted by index, all of them)."""
+    _, cases = cached_cases(cfg, _recoil_cases)
+    trials = tuple(trials)
+    n = len(cases)
+    if len(trials) != n:
+        from ..errors import InvalidStateError
+
+        raise InvalidStateError("trials", f"the study has {n} cases, got {len(trials)} trials")
+    res = {key: [(float(t.values[f"{key}.x"]), t.values[f"{key}.side"], t.values[f"{key}.status"],
+                  t.values[f"{key}.message"]) for t in trials] for key in KEYS}
+    secs = {key: float(sum(t.values[f"{key}.seconds"] for t in trials)) for key in KEYS}
     arr = {key: {"x": np.array([v[0] for v in res[key]]), "side": np.array([v[1] for v in res[key]]),
                  "status": np.array([v[2] for v in res[key]])} for key in ("engine", "engine_cap_alt")}
     bound = cap_sensitive(arr["engine"], arr["engine_cap_alt"])
     free = [i for i in range(n) if not bound[i]]
     mus = np.array([c["mu"] for c in cases])
     finite = [i for i in range(n) if math.isfinite(mus[i])]
-    k = engine_refine
-    return {"cases": cases, "results": res, "seconds": secs, "impact_law": impact_law, "engine_refine": k,
-            "cap_bound": [int(i) for i in np.flatnonzero(bound)],
-            "summary": {f"rb vs engine/{k} (recoil)": _summary(res["rb"], res["engine"]),
-                        "rb vs engine (recoil, default dt)": _summary(res["rb"], res["engine_default"]),
-                        f"engine vs engine/{k} (recoil)": _summary(res["engine_default"], res["engine"]),
-                        f"rb vs engine/{k} (recoil), cap-bound left out": _summary([res["rb"][i] for i in free],
-                                                                                 [res["engine"][i] for i in free]),
-                        f"rb vs engine/{k} (recoil), μ finite": _summary([res["rb"][i] for i in finite],
-                                                                        [res["engine"][i] for i in finite]),
-                        f"rb vs engine/{k} (recoil), μ = ∞": _summary(
-                            [res["rb"][i] for i in range(n) if i not in set(finite)],
-                            [res["engine"][i] for i in range(n) if i not in set(finite)]),
-                        f"rb vs engine/{k} (impulse)": _summary(res["rb_impulse"], res["engine_impulse"]),
-                        "recoil vs impulse (rigid_body)": _summary(res["rb"], res["rb_impulse"]),
-                        f"recoil vs impulse (engine/{k})": _summary(res["engine"], res["engine_impulse"])}}
+    k = cfg.engine_refine
+    infinite = [i for i in range(n) if i not in set(finite)]
+    pairs = {f"rb vs engine/{k} (recoil)": ("rb", "engine", None),
+             "rb vs engine (recoil, default dt)": ("rb", "engine_default", None),
+             f"engine vs engine/{k} (recoil)": ("engine_default", "engine", None),
+             f"rb vs engine/{k} (recoil), cap-bound left out": ("rb", "engine", free),
+             f"rb vs engine/{k} (recoil), μ finite": ("rb", "engine", finite),
+             f"rb vs engine/{k} (recoil), μ = ∞": ("rb", "engine", infinite),
+             f"rb vs engine/{k} (impulse)": ("rb_impulse", "engine_impulse", None),
+             "recoil vs impulse (rigid_body)": ("rb", "rb_impulse", None),
+             f"recoil vs impulse (engine/{k})": ("engine", "engine_impulse", None)}
+    summary, agree = {}, []
+    for label, (a, b, keep) in pairs.items():
+        ra = res[a] if keep is None else [res[a][i] for i in keep]
+        rb = res[b] if keep is None else [res[b][i] for i in keep]
+        summary[label] = _summary(ra, rb)
+        agree.append(agreement(_arrays(ra), _arrays(rb), label=label, tol=WITHIN))
+    # the old results' keys, in their order (engine_cap_alt last)
+    return RecoilValidation(cases, res, secs, cfg.impact_law, k, [int(i) for i in np.flatnonzero(bound)], summary,
+                            AgreementTable(tuple(agree), "second of each pair"))
+
+
+def _arrays(rows) -> dict:
+    return {"x": np.array([r[0] for r in rows], dtype=float), "side": np.array([r[1] for r in rows], dtype=np.int64),
+            "status": np.array([r[2] for r in rows], dtype=np.int64)}
+
+
+def validate_recoil(n: int = 200, seed: int = 0, parts=None, impact_law: str = "velocity", engine_refine: int = 16, *,
+                    run: StudyRun = StudyRun()) -> RecoilValidation:
+    """Throw ``n`` random recoil cases with rigid_body (moving arm) and the engine, and both with the impulse.
+
+    The reference is the engine at its step (``dt``, ``coarse_dt``) divided by ``engine_refine``: at its
+    default 0.125 ms the engine is not converged on impacts against the fast-moving arm (its own row,
+    "engine vs engine/k", shows by how much). ``impact_law`` is rigid_body's (default "velocity", the
+    one-step law of time-stepping engines such as pymunk; "routh" differs from it at μ = 0.3). Returns a
+    :class:`RecoilValidation` (``to_dict()``: ``cases``, per-throw ``results`` (``rb``, ``engine``,
+    ``engine_default``, ``rb_impulse``, ``engine_impulse``, ``engine_cap_alt``: lists of (x, side, status,
+    message)), ``summary`` (:func:`_summary`), ``seconds`` per model, ``agreement``).
+
+    ``run`` (:class:`~throwmap.studies.study.StudyRun`): on the experiment runner, one case per trial — ``workers``
+    processes (0: one per core), ``out`` keeps the trials and resumes (``resume``), ``stop_after`` runs at most that
+    many new cases and then raises; ``progress(done, total)`` counts cases; ``limits``: the runner's work guard.
+    """
+    from ..budget import check_count
+
+    parts = default_parts() if parts is None else parts
+    cfg = RecoilConfig(parts={k: part_document(p)["part"] for k, p in parts.items()}, n=check_count("n", n, minimum=1),
+                       seed=seed, impact_law=impact_law, engine_refine=engine_refine)
+    res = run_study(RECOIL, cfg, cfg.n, run)
+    return recoil_report(cfg, res.trials)
 
 
 def _wilson(k: int, m: int) -> list:
@@ -164,8 +302,11 @@ def _summary(a, b) -> dict:
             "refused_first": why_a, "refused_second": why_b}
 
 
-def recoil_table(report: dict) -> str:
-    """The summary as a Markdown table, then the refusals by reason."""
+def recoil_table(report) -> str:
+    """The summary as a Markdown table, then the refusals by reason and the seconds per throw (``report``: a
+    :class:`RecoilValidation` or its ``to_dict()``)."""
+    if not isinstance(report, dict):
+        report = report.to_dict()
     lines = ["| comparison | compared | same side % (95 % CI) | \\|Δx\\| ≤ 0.5 mm % (95 % CI) | median \\|Δx\\| mm "
              "| p95 \\|Δx\\| mm | max \\|Δx\\| mm |", "|---|---|---|---|---|---|---|"]
     for label, s in report["summary"].items():

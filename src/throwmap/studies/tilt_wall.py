@@ -1,4 +1,4 @@
-"""Tilted and walled throws: the exact models against the engine (issue 11, item 2).
+"""Tilted and walled throws: the exact models against the engine.
 
 :func:`validate_tilt_wall` throws random cases on a tilted arm (rest angle α) and on
 an arm with a :class:`~throwmap.Wall` at its end through the exact models and through
@@ -19,37 +19,55 @@ rad/s, h ∈ {−1, −0.5} cm (the paper's regime 0 > h > −min d), the arm le
 |Δx| ≤ 0.5 mm %, each with its Wilson 95 % interval, median and 95th percentile |Δx|, and the throws each
 side refused (``unresolved``, ``timeout``, …) with their reasons, and the worst misses as reproducers.
 :func:`~throwmap.analysis.wall.wall_fixed_point` finds, with :func:`throwmap.limit_set`, the fixed point a
-wall makes where jogs saturate (x* = length − u_R) and checks its multiplier by finite differences.
+wall makes where jogs saturate (x* = length − u_R) and checks its multiplier by finite differences. Every row
+is also given by the one agreement statistic (:mod:`throwmap.studies.agreement`).
+
+The study is declared as a :class:`TiltWallConfig` and run on the experiment runner (experiment
+``"validate-fixtures"``, :mod:`throwmap.studies.study`): trial i throws one case (condition by condition, in
+:data:`CONDITIONS` order, ``n`` each) through the engine (also with its friction cap relaxed, without the wall
+and at α = 0) and the models; each condition's cases are drawn from child ``c`` of the seed
+(:func:`throwmap.experiments.base.trial_generator`, c the condition's place in :data:`CONDITIONS`).
 """
 
 from __future__ import annotations
 
+import json
 import math
 import time
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from pydantic import Field
 
-from ..budget import Limits, DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, check_count, check_limits, guard_work
+from ..analysis.wall import WallFixedPoint, wall_fixed_point
+from ..budget import check_count, guard_work
 from ..errors import InvalidStateError, ThrowmapError
+from ..experiments.base import trial_generator
+from ..experiments.registry import register_experiment
+from ..io.config import part_document, part_from_spec
 from ..kernels import codes as C
+from ..models import DEFAULT_MODEL, get_model
+from ..records.outcome import Status
+from ..rng import as_generator
 from ..system.arm import Arm
 from ..system.fixtures import Wall
 from ..system.part import Part
-from ..records.outcome import Status
 from ..system.starts import start_interval, tilted_rest_reason, wall_reach
 from ..throws.throw import throw, throw_batch
-from ..analysis.wall import wall_fixed_point
+from .agreement import REFUSED, AgreementTable, agreement, refusal_counts
+from .agreement import WITHIN as AGREEMENT_WITHIN
 from .engine_cap import CAP_ALT, cap_sensitive, friction_cap
-from .tilt_wall_report import MU_BANDS, TiltWallReport, _band
+from .study import StudyRun, StudyConfig, answer_values, answers, cached_cases, case_trial, run_study, stored
+from .tilt_wall_report import MU_BANDS, TiltWallReport, TiltWallRow, _band
 from .validation import default_parts
 
-__all__ = ["CONDITIONS", "REFUSED", "TiltWallCases", "TiltWallReport", "compare_rows", "make_cases",
-           "validate_tilt_wall", "wall_fixed_point"]
+__all__ = ["CONDITIONS", "REFUSED", "TILT_WALL", "TiltWallCases", "TiltWallConfig", "TiltWallReport", "TiltWallRow",
+           "WallFixedPoint", "compare_rows", "make_cases", "tilt_wall_report", "validate_tilt_wall",
+           "wall_fixed_point"]
 
 ALPHA_RANGE = (-math.radians(15.0), math.radians(15.0))
-"""Arm rest angles α, rad (issue 11: ±15°)."""
+"""Arm rest angles α, rad (±15°)."""
 MU_RANGE = (0.3, 3.0)
 """Finite arm frictions, drawn log-uniformly; with probability :data:`P_MU_INF` μ = ∞ instead."""
 P_MU_INF = 0.2
@@ -64,12 +82,13 @@ WALL_X_SHARE = 0.25
 """With a wall, x is drawn over this outer share of the starts on the side (where jogs reach the wall)."""
 WALL_HEIGHT = 0.05
 """Wall height above the arm surface, m (taller than every part of the set lying on a side)."""
-WITHIN = 0.5e-3
-"""|Δx| counted as agreement, m (issue 3's 0.5 mm)."""
+WITHIN = AGREEMENT_WITHIN
+"""|Δx| counted as agreement, m (the 0.5 mm of the validation goals, :data:`throwmap.studies.agreement.WITHIN`)."""
 GOALS = {"same_pct": 99.0, "within_pct": 95.0}
-"""Targets of issue 11 per row: same outcome ≥ 99 %, |Δx| ≤ 0.5 mm in ≥ 95 %."""
-REFUSED = (C.UNRESOLVED, C.TIMEOUT, C.PENETRATION, C.UNCONVERGED, C.INCONSISTENT, C.INVALID_START)
-"""Statuses that refuse a result rather than give one (or a start not thrown); counted, not compared."""
+"""Targets per row: same outcome ≥ 99 %, |Δx| ≤ 0.5 mm in ≥ 95 %."""
+VALIDATED = DEFAULT_MODEL
+"""The model whose options ``rigid_body_options`` are and against which the other exact models are compared."""
+
 CONDITIONS = {
     "tilt, μ = ∞": {"wall": None, "mu": "inf", "models": ("paper", "rigid_body")},
     "tilt": {"wall": None, "mu": "random", "models": ("rigid_body",)},
@@ -128,7 +147,9 @@ def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Ge
     """``n`` random throws of ``condition`` (a key of :data:`CONDITIONS`) drawn with ``rng``; α uniform
     over ``alpha_range`` (rad; ``(0, 0)``: the plain arm's baseline on the same draws). The side is
     drawn among those the part rests on at that α (:func:`throwmap.system.starts.tilted_rest_reason`:
-    it neither tips nor slides); a draw where every side tips is drawn again."""
+    it neither tips nor slides); a draw where every side tips is drawn again. ``rng``: a Generator or an int seed
+    (:func:`throwmap.rng.as_generator`)."""
+    rng = as_generator(rng)
     spec = CONDITIONS[condition]
     names = list(parts)
     cols: dict[str, list] = {k: [] for k in ("part", "x", "side", "omega", "alpha", "mu", "h", "length", "wall_mu")}
@@ -162,33 +183,48 @@ def make_cases(parts: dict[str, Part], condition: str, n: int, rng: np.random.Ge
                            for k in ("x", "side", "omega", "alpha", "mu", "h", "length", "wall_mu")))
 
 
+def _throw_one(cases: TiltWallCases, i: int, parts: dict, model: str, options: dict, walls: bool = True,
+               level: bool = False) -> dict:
+    """Throw ``i`` of ``cases`` through ``model`` (``walls`` False: without the wall; ``level``: at α = 0):
+    ``{"x", "side", "status", "n_min", "why", "message"}``; refused keywords (a model without tilt or fixtures) give
+    ``message`` (the refusal's) and no answer (x nan, side and status −1)."""
+    part, arm, fixtures, alpha = cases.system(i, parts)
+    fixtures = fixtures if walls else ()
+    alpha = 0.0 if level else alpha
+    out = {"x": math.nan, "side": -1, "status": -1, "n_min": math.nan, "why": "", "message": None}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            b = throw_batch(part, arm, cases.x[i:i + 1], cases.side[i:i + 1], cases.omega[i:i + 1], model=model,
+                            on_invalid="status", fixtures=fixtures, alpha=alpha, **options)
+    except ThrowmapError as err:
+        out["message"] = str(err)
+        return out
+    out.update(x=float(b.x[0]), side=int(b.side[0]), status=int(b.status[0]))
+    out["n_min"] = float(b.records[0, C.N_MIN])  # < 0: the pivot lifts off (paper assumes it does not)
+    if int(b.status[0]) in REFUSED:  # the model's reason, from the one-throw call
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            o = throw(part, arm, float(cases.x[i]), int(cases.side[i]), float(cases.omega[i]), model,
+                      fixtures=fixtures, alpha=alpha, **options)
+        out["why"] = o.message or o.status.label
+    return out
+
+
 def _throw_all(cases: TiltWallCases, parts: dict, model: str, options: dict, tick, walls: bool = True,
                level: bool = False) -> dict:
-    """Every throw of ``cases`` through ``model`` (``walls`` False: without the wall; ``level``: at α = 0);
-    refused keywords (a model without tilt or fixtures) end the run with the refusal's message."""
+    """Every throw of ``cases`` through ``model`` (:func:`_throw_one`) as arrays; refused keywords end the run
+    with the refusal's message."""
     n = cases.n
     out = {"x": np.full(n, np.nan), "side": np.full(n, -1, dtype=np.int64), "status": np.full(n, -1, dtype=np.int64),
            "n_min": np.full(n, np.nan), "why": np.full(n, "", dtype=object), "message": None}
     for i in range(n):
-        part, arm, fixtures, alpha = cases.system(i, parts)
-        fixtures = fixtures if walls else ()
-        alpha = 0.0 if level else alpha
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                b = throw_batch(part, arm, cases.x[i:i + 1], cases.side[i:i + 1], cases.omega[i:i + 1], model=model,
-                                on_invalid="status", fixtures=fixtures, alpha=alpha, **options)
-        except ThrowmapError as err:
-            out["message"] = str(err)
+        one = _throw_one(cases, i, parts, model, options, walls, level)
+        if one["message"]:
+            out["message"] = one["message"]
             return out
-        out["x"][i], out["side"][i], out["status"][i] = float(b.x[0]), int(b.side[0]), int(b.status[0])
-        out["n_min"][i] = float(b.records[0, C.N_MIN])  # < 0: the pivot lifts off (paper assumes it does not)
-        if int(b.status[0]) in REFUSED:  # the model's reason, from the one-throw call
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                o = throw(part, arm, float(cases.x[i]), int(cases.side[i]), float(cases.omega[i]), model,
-                          fixtures=fixtures, alpha=alpha, **options)
-            out["why"][i] = o.message or o.status.label
+        for k in ("x", "side", "status", "n_min", "why"):
+            out[k][i] = one[k]
         if tick is not None:
             tick()
     return out
@@ -203,10 +239,6 @@ def _wilson(k: int, n: int) -> list:
 
     lo, hi = wilson_interval(int(k), int(n))
     return [100.0 * lo, 100.0 * hi]
-
-
-def _refusals(status) -> dict:
-    return {Status(int(c)).label: int(np.sum(status == c)) for c in REFUSED if np.any(status == c)}
 
 
 def _reasons(res: dict) -> dict:
@@ -225,17 +257,19 @@ def _agree(a: dict, b: dict) -> np.ndarray:
 
 
 def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: dict, free: dict | None = None,
-                 level: tuple | None = None, sensitive=None) -> dict:
-    """One row: ``res`` (a model) against ``ref`` (the engine) on ``cases``; see the module docstring.
+                 level: tuple | None = None, sensitive=None) -> TiltWallRow:
+    """One row (a :class:`TiltWallRow`): ``res`` (a model) against ``ref`` (the engine) on ``cases``; see the
+    module docstring. ``res``, ``ref``: dicts of arrays ``x``, ``side``, ``status`` (and ``why``, ``message``).
 
     ``free`` (the engine without the wall, same throws) gives ``wall_changed_pct``: the share of
     throws whose engine outcome the wall changed (beyond 0.5 mm, or side, or status). ``level``
     (``(res, ref)`` of the same throws at α = 0) gives the row's ``baseline``. ``sensitive`` (booleans,
     :func:`~throwmap.studies.engine_cap.cap_sensitive`) marks throws whose engine answer depends on its friction cap:
-    the row then also gives its agreement without them (``cap``)."""
+    the row then also gives its agreement without them (``cap``). The row's ``agreement`` is the one agreement
+    statistic of ``res`` against ``ref`` (:func:`~throwmap.studies.agreement.agreement`)."""
     n = cases.n
     if res.get("message"):
-        return {"row": label, "n": n, "n_compared": 0, "available": False, "message": res["message"]}
+        return TiltWallRow(label, n, 0, False, res["message"])
     refused_m = np.isin(res["status"], REFUSED)
     refused_e = np.isin(ref["status"], REFUSED)
     cmp = ~refused_m & ~refused_e
@@ -260,7 +294,7 @@ def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: 
     base = None
     if level is not None and not level[0].get("message") and not level[1].get("message"):
         b = compare_rows(label, cases, parts, level[0], level[1])
-        base = {k: b[k] for k in ("n_compared", "same_pct", "within_pct", "dx_median_mm", "dx_p95_mm", "by_mu")}
+        base = {k: getattr(b, k) for k in ("n_compared", "same_pct", "within_pct", "dx_median_mm", "dx_p95_mm", "by_mu")}
     miss = np.flatnonzero(cmp & ~within)
     order = miss[np.argsort(-np.nan_to_num(dx[miss], nan=np.inf), kind="stable")][:N_WORST]
     worst = [{**cases.case(int(i)), "model": {"x_m": float(res["x"][i]), "side": int(res["side"][i]),
@@ -268,22 +302,22 @@ def compare_rows(label: str, cases: TiltWallCases, parts: dict, res: dict, ref: 
               "engine": {"x_m": float(ref["x"][i]), "side": int(ref["side"][i]),
                          "status": Status(int(ref["status"][i])).label},
               "dx_mm": float(dx[i] * 1e3) if math.isfinite(dx[i]) else None} for i in order]
-    return {
-        "row": label, "n": n, "n_compared": m, "available": True,
-        "same_pct": 100.0 * same.sum() / m if m else math.nan, "same_ci95": _wilson(same.sum(), m),
-        "within_pct": 100.0 * within.sum() / m if m else math.nan, "within_ci95": _wilson(within.sum(), m),
-        "dx_median_mm": float(np.median(d)) if d.size else math.nan,
-        "dx_p95_mm": float(np.percentile(d, 95)) if d.size else math.nan,
-        "dx_max_mm": float(d.max()) if d.size else math.nan,
-        "model_refused": _refusals(res["status"]), "engine_refused": _refusals(ref["status"]),
-        "model_refused_why": _reasons(res), "engine_refused_why": _reasons(ref),
-        "engine_leaning": int(leaning.sum()),
-        "at_wall_pct": (100.0 * float(np.mean((ref["status"] == C.OK) & (np.abs(ref["x"] + uR - cases.length) < 1e-3)))
-                        if not np.all(np.isnan(cases.wall_mu)) else 0.0),
-        "wall_changed_pct": 100.0 * float(np.mean(~_agree(free, ref))) if free is not None else None,
-        "by_mu": by_mu, "baseline": base, "cap": _cap_split(cmp, same, within, sensitive),
-        "worst": worst,
-    }
+    return TiltWallRow(
+        label, n, m, True, None,
+        same_pct=100.0 * same.sum() / m if m else math.nan, same_ci95=_wilson(same.sum(), m),
+        within_pct=100.0 * within.sum() / m if m else math.nan, within_ci95=_wilson(within.sum(), m),
+        dx_median_mm=float(np.median(d)) if d.size else math.nan,
+        dx_p95_mm=float(np.percentile(d, 95)) if d.size else math.nan,
+        dx_max_mm=float(d.max()) if d.size else math.nan,
+        model_refused=refusal_counts(res["status"]), engine_refused=refusal_counts(ref["status"]),
+        model_refused_why=_reasons(res), engine_refused_why=_reasons(ref),
+        engine_leaning=int(leaning.sum()),
+        at_wall_pct=(100.0 * float(np.mean((ref["status"] == C.OK) & (np.abs(ref["x"] + uR - cases.length) < 1e-3)))
+                     if not np.all(np.isnan(cases.wall_mu)) else 0.0),
+        wall_changed_pct=100.0 * float(np.mean(~_agree(free, ref))) if free is not None else None,
+        by_mu=by_mu, baseline=base, cap=_cap_split(cmp, same, within, sensitive),
+        worst=worst, agreement=agreement(res, ref, label=label, tol=WITHIN),
+    )
 
 
 def _cap_split(cmp, same, within, sensitive) -> dict | None:
@@ -301,18 +335,162 @@ def _cap_split(cmp, same, within, sensitive) -> dict | None:
 def _timer(parts: dict) -> float:
     """Seconds per engine throw, measured on three tilted throws against a wall (after one that warms the engine)."""
     first = dict([next(iter(parts.items()))])
-    _throw_all(make_cases(first, "wall, μ_w = 0", 1, np.random.default_rng(1)), parts, "engine", {}, None)
-    cases = make_cases(first, "wall, μ_w = 0", 3, np.random.default_rng(2))
+    _throw_all(make_cases(first, "wall, μ_w = 0", 1, as_generator(1)), parts, "engine", {}, None)
+    cases = make_cases(first, "wall, μ_w = 0", 3, as_generator(2))
     t0 = time.perf_counter()
     _throw_all(cases, parts, "engine", {}, None)
     return (time.perf_counter() - t0) / cases.n
 
 
+# ------------------------------------------------------------------ the study on the runner
+class TiltWallConfig(StudyConfig):
+    """The tilt/wall study, declared (SI units, rad; see :func:`validate_tilt_wall` for each key). ``parts``:
+    name → ``[part]`` table (:func:`throwmap.io.config.part_document`); ``models`` None: each condition's own."""
+
+    parts: dict[str, dict] = Field(default_factory=lambda: {k: part_document(p)["part"]
+                                                            for k, p in default_parts().items()})
+    n: int = Field(500, ge=1)
+    conditions: tuple[str, ...] = tuple(CONDITIONS)
+    models: tuple[str, ...] | None = None
+    alpha_range: tuple[float, float] = ALPHA_RANGE
+    baseline: bool = True
+    rigid_body_options: dict = Field(default_factory=dict)
+
+
+def _tilt_cases(cfg: TiltWallConfig) -> tuple[dict, dict]:
+    """``(parts, {condition: TiltWallCases})`` of ``cfg`` (condition c drawn from child c of the seed)."""
+    parts = {name: part_from_spec(doc) for name, doc in cfg.parts.items()}
+    names = list(CONDITIONS)
+    return parts, {c: make_cases(parts, c, cfg.n, trial_generator(cfg.seed, names.index(c)), cfg.alpha_range)
+                   for c in cfg.conditions}
+
+
+def _models(cfg: TiltWallConfig, condition: str) -> tuple:
+    return CONDITIONS[condition]["models"] if cfg.models is None else tuple(cfg.models)
+
+
+def _answer(key: str, one: dict) -> dict:
+    values = answer_values(key, one["x"], one["side"], one["status"])
+    values[f"{key}.n_min"] = stored(one["n_min"])
+    values[f"{key}.why"] = one["why"]
+    if one["message"]:
+        values[f"{key}.message"] = one["message"]
+    return values
+
+
+class TiltWallStudy:
+    """The ``validate-fixtures`` study as an experiment: trial i throws one case (module docstring)."""
+
+    name = "validate-fixtures"
+    summary = "tilted arms and walls: the exact models against the pymunk engine, case by case (throwmap validate-fixtures)"
+    config_type = TiltWallConfig
+
+    def parameters(self, cfg: TiltWallConfig) -> dict:
+        return json.loads(cfg.model_dump_json())
+
+    def trial(self, cfg: TiltWallConfig, index: int, rng):
+        parts, by_condition = cached_cases(cfg, _tilt_cases)
+        c = cfg.conditions[index // cfg.n]
+        cases, i = by_condition[c], index % cfg.n
+        values, statuses = {}, []
+        ref = _throw_one(cases, i, parts, "engine", {})
+        values.update(_answer("engine", ref))
+        statuses.append(("engine", ref["status"]))
+        with friction_cap(CAP_ALT):  # the same throw with the engine's friction cap relaxed: where it matters
+            values.update(_answer("engine, cap relaxed", _throw_one(cases, i, parts, "engine", {})))
+        if CONDITIONS[c]["wall"]:
+            values.update(_answer("engine, no wall", _throw_one(cases, i, parts, "engine", {}, walls=False)))
+        if cfg.baseline:
+            values.update(_answer("engine, α = 0", _throw_one(cases, i, parts, "engine", {}, level=True)))
+        for m in _models(cfg, c):
+            opts = dict(cfg.rigid_body_options) if m == VALIDATED else {}
+            one = _throw_one(cases, i, parts, m, opts)
+            values.update(_answer(m, one))
+            statuses.append((m, one["status"]))
+            if cfg.baseline:
+                values.update(_answer(f"{m}, α = 0", _throw_one(cases, i, parts, m, opts, level=True)))
+        return case_trial(index, rng, values, statuses)
+
+
+TILT_WALL = register_experiment(TiltWallStudy())
+"""The registered ``validate-fixtures`` study."""
+
+
+def _results(trials, key: str) -> dict:
+    """The answers stored under ``key`` as :func:`_throw_all` gives them (arrays, ``why``, ``message``)."""
+    out = {**answers(trials, key), "n_min": np.array([float(t.values[f"{key}.n_min"]) for t in trials], dtype=float),
+           "why": np.array([t.values[f"{key}.why"] for t in trials], dtype=object), "message": None}
+    msgs = [t.values[f"{key}.message"] for t in trials if f"{key}.message" in t.values]
+    if msgs:  # a model that refuses the condition's keywords: the first refusal, no answers (as _throw_all)
+        first = next(j for j, t in enumerate(trials) if f"{key}.message" in t.values)
+        out = {"x": np.full(len(trials), np.nan), "side": np.full(len(trials), -1, dtype=np.int64),
+               "status": np.full(len(trials), -1, dtype=np.int64), "n_min": np.full(len(trials), np.nan),
+               "why": np.full(len(trials), "", dtype=object), "message": msgs[0]}
+        for k, read in (("x", float), ("side", int), ("status", int), ("n_min", float), ("why", str)):
+            out[k][:first] = [read(t.values[f"{key}.{k}"]) for t in trials[:first]]
+    return out
+
+
+def tilt_wall_report(cfg: TiltWallConfig, trials, *, fixed_point: WallFixedPoint | None = None) -> TiltWallReport:
+    """The report of the study ``cfg`` from its trials (sorted by index, all of them); see :func:`validate_tilt_wall`."""
+    parts, by_condition = cached_cases(cfg, _tilt_cases)
+    trials = tuple(trials)
+    if len(trials) != cfg.n * len(cfg.conditions):
+        raise InvalidStateError("trials", f"the study has {cfg.n * len(cfg.conditions)} cases, got {len(trials)} trials")
+    rows, cases_out, results = [], {}, {}
+    for j, c in enumerate(cfg.conditions):
+        cases, tr = by_condition[c], trials[j * cfg.n:(j + 1) * cfg.n]
+        ref = _results(tr, "engine")
+        sens = cap_sensitive(ref, _results(tr, "engine, cap relaxed"))
+        free = _results(tr, "engine, no wall") if CONDITIONS[c]["wall"] else None
+        ref0 = _results(tr, "engine, α = 0") if cfg.baseline else None
+        names = _models(cfg, c)
+        res = {m: _results(tr, m) for m in names}
+        res0 = {m: _results(tr, f"{m}, α = 0") for m in names} if cfg.baseline else {}
+        cases_out[c] = cases
+        results[c] = {"engine": ref, **res, **({"engine, no wall": free} if free else {}),
+                      **({"engine, α = 0": ref0} if ref0 else {}), **{f"{m}, α = 0": r for m, r in res0.items()}}
+        for m, r in res.items():
+            rows.append(compare_rows(f"{c}: {m} vs engine", cases, parts, r, ref, free,
+                                     (res0[m], ref0) if cfg.baseline else None, sens))
+        others = [m for m in res if m != VALIDATED]
+        if VALIDATED in res:  # two exact models: no engine between them
+            for m in others:
+                rows.append(compare_rows(f"{c}: {m} vs {VALIDATED}", cases, parts, res[m], res[VALIDATED], None,
+                                         (res0[m], res0[VALIDATED]) if cfg.baseline else None))
+        for m in others:  # where a model's no-lift-off assumption holds
+            if "no lift-off" not in getattr(get_model(m), "assumes", ()) or res[m]["message"]:
+                continue
+            holds = np.nan_to_num(res[m]["n_min"], nan=1.0) >= 0
+            sub = cases.subset(holds)
+            for name, other in (("engine", ref), (VALIDATED, res.get(VALIDATED))):
+                if other is not None and holds.any():
+                    row = compare_rows(f"{c}: {m} vs {name}, no lift-off ({100 * holds.mean():.0f} %)", sub, parts,
+                                       _take(res[m], holds), _take(other, holds))
+                    rows.append(row)
+    goals = {}
+    for r in rows:
+        if r.available and r.n_compared:
+            for key, name in (("same_pct", "same outcome"), ("within_pct", "|Δx| ≤ 0.5 mm")):
+                value = getattr(r, key)
+                goals[f"{r.row}: {name}"] = {"value": value, "goal": GOALS[key], "met": bool(value >= GOALS[key]),
+                                             "ci95": getattr(r, key.replace("_pct", "_ci95")), "n": r.n_compared}
+    settings = {"n_per_condition": cfg.n, "seed": cfg.seed, "conditions": {c: {**CONDITIONS[c], "models": list(
+        _models(cfg, c))} for c in cfg.conditions}, "parts": list(cfg.parts),
+        "alpha_range_deg": [round(math.degrees(float(a)), 9) for a in cfg.alpha_range], "mu_range": list(MU_RANGE),
+        "p_mu_inf": P_MU_INF, "omega_range_rad_s": list(OMEGA_RANGE), "h_m": list(H_VALUES),
+        "length_range_m": list(LENGTH_RANGE), "wall_height_m": WALL_HEIGHT, "within_m": WITHIN,
+        "rigid_body_options": dict(cfg.rigid_body_options), "baseline_alpha_0": bool(cfg.baseline),
+        "mu_bands": [_band(*b) for b in MU_BANDS], "reference": "engine (pymunk, default EngineSettings)",
+        "refused_statuses": [Status(c).label for c in REFUSED]}
+    agree = AgreementTable(tuple(r.agreement for r in rows if r.agreement is not None), "pymunk engine")
+    return TiltWallReport(tuple(rows), goals, fixed_point, settings, cases_out, results, agree)
+
+
 def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, seed: int = 0, conditions=None,
                        models=None, alpha_range=ALPHA_RANGE, baseline: bool = True,
-                       rigid_body_options: dict | None = None, fixed_point: bool = True, progress=None,
-                       max_memory: float = DEFAULT_MAX_MEMORY, max_seconds: float = DEFAULT_MAX_SECONDS,
-                       force: bool = False) -> TiltWallReport:
+                       rigid_body_options: dict | None = None, fixed_point: bool = True,
+                       run: StudyRun = StudyRun()) -> TiltWallReport:
     """Throw ``n`` random cases per condition (:data:`CONDITIONS`) through the models and the engine; compare.
 
     ``models`` (a sequence of model names) replaces every condition's models (e.g.
@@ -324,8 +502,12 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
     condition's throws do not depend on which others run. ``rigid_body_options`` (e.g.
     ``{"impact_law": "velocity"}``) go to every rigid_body throw. ``fixed_point`` also runs
     :func:`wall_fixed_point` on a 6 cm square (side 0, ω = 3 rad/s: jogs of ≈ 5 mm, L = 0.30 m,
-    μ = 1, frictionless wall), with the engine's images of x*, x* − 1 mm, x* − 5 mm. ``progress(done, total)`` counts engine throws. Work
-    guard (:mod:`throwmap.budget`) on ``n``: the engine time per throw is measured first.
+    μ = 1, frictionless wall), with the engine's images of x*, x* − 1 mm, x* − 5 mm.
+
+    ``run`` (:class:`~throwmap.studies.study.StudyRun`): on the experiment runner, one case per trial — ``workers``
+    processes (0: one per core); ``out`` (a directory) keeps the cases' trials and resumes an interrupted run
+    (``resume``); ``stop_after`` runs at most that many new cases and then raises; ``progress(done, total)`` counts
+    cases; ``limits``: the work guard (:mod:`throwmap.budget`) on ``n``, the engine time per throw measured first.
     """
     parts = default_parts() if parts is None else parts
     conditions = tuple(CONDITIONS) if conditions is None else tuple(conditions)
@@ -336,71 +518,22 @@ def validate_tilt_wall(parts: dict[str, Part] | None = None, *, n: int = 500, se
         if c not in CONDITIONS:
             raise InvalidStateError("conditions", f"unknown condition {c!r} (choose from {', '.join(CONDITIONS)})")
     n = check_count("n", n, minimum=1)
-    max_memory, max_seconds, force = check_limits(max_memory, max_seconds, force)
     n_engine = n * sum(2 + bool(CONDITIONS[c]["wall"]) + bool(baseline) for c in conditions)  # (+ the relaxed cap)
-    guard_work("validate-fixtures", "n", n_engine, 400.0, Limits(max_memory, max_seconds, force), throws_per_config=1.0,
+    guard_work("validate-fixtures", "n", n_engine, 400.0, run.limits, throws_per_config=1.0,
                timer=lambda: _timer(parts), hint="fewer throws per condition (--n)", unit="engine throws")
     rb = dict(rigid_body_options or {})
     if models is not None:
         from ..models import check_model
 
         models = tuple(check_model(m) for m in ([models] if isinstance(models, str) else models))
-    seqs = np.random.SeedSequence(seed).spawn(len(CONDITIONS))
-    total = n_engine
-    done = [0]
-
-    def tick():
-        done[0] += 1
-        if progress is not None:
-            progress(done[0], total)
-
-    rows, cases_out, results = [], {}, {}
-    for c in conditions:
-        cases = make_cases(parts, c, n, np.random.default_rng(seqs[list(CONDITIONS).index(c)]), alpha_range)
-        ref = _throw_all(cases, parts, "engine", {}, tick)
-        with friction_cap(CAP_ALT):  # the same throws with the engine's friction cap relaxed: where it matters
-            sens = cap_sensitive(ref, _throw_all(cases, parts, "engine", {}, tick))
-        free = _throw_all(cases, parts, "engine", {}, tick, walls=False) if CONDITIONS[c]["wall"] else None
-        ref0 = _throw_all(cases, parts, "engine", {}, tick, level=True) if baseline else None
-        names = CONDITIONS[c]["models"] if models is None else tuple(models)
-        opts = {m: rb if m == "rigid_body" else {} for m in names}
-        res = {m: _throw_all(cases, parts, m, opts[m], None) for m in names}
-        res0 = {m: _throw_all(cases, parts, m, opts[m], None, level=True) for m in names} if baseline else {}
-        cases_out[c] = cases
-        results[c] = {"engine": ref, **res, **({"engine, no wall": free} if free else {}),
-                      **({"engine, α = 0": ref0} if ref0 else {}), **{f"{m}, α = 0": r for m, r in res0.items()}}
-        for m, r in res.items():
-            rows.append(compare_rows(f"{c}: {m} vs engine", cases, parts, r, ref, free,
-                                     (res0[m], ref0) if baseline else None, sens))
-        if "paper" in res and "rigid_body" in res:  # two exact models: no engine between them
-            rows.append(compare_rows(f"{c}: paper vs rigid_body", cases, parts, res["paper"], res["rigid_body"], None,
-                                     (res0["paper"], res0["rigid_body"]) if baseline else None))
-        if "paper" in res and not res["paper"]["message"]:  # where its no-lift-off assumption holds
-            holds = np.nan_to_num(res["paper"]["n_min"], nan=1.0) >= 0
-            sub = cases.subset(holds)
-            for name, other in (("engine", ref), ("rigid_body", res.get("rigid_body"))):
-                if other is not None and holds.any():
-                    row = compare_rows(f"{c}: paper vs {name}, no lift-off ({100 * holds.mean():.0f} %)", sub, parts,
-                                       _take(res["paper"], holds), _take(other, holds))
-                    rows.append(row)
-    goals = {}
-    for r in rows:
-        if r["available"] and r["n_compared"]:
-            for key, name in (("same_pct", "same outcome"), ("within_pct", "|Δx| ≤ 0.5 mm")):
-                goals[f"{r['row']}: {name}"] = {"value": r[key], "goal": GOALS[key], "met": bool(r[key] >= GOALS[key]),
-                                                "ci95": r[key.replace("_pct", "_ci95")], "n": r["n_compared"]}
+    cfg = TiltWallConfig(parts={k: part_document(p)["part"] for k, p in parts.items()}, n=n, seed=seed,
+                         conditions=conditions, models=models, alpha_range=alpha_range, baseline=baseline,
+                         rigid_body_options=rb)
+    res = run_study(TILT_WALL, cfg, n * len(conditions), run)
     fp = None
     if fixed_point:
         from ..system.catalogue import rectangle
 
         fp = wall_fixed_point(rectangle(0.06, 0.06), Arm(h=-0.01, mu=1.0, length=0.30), 3.0, 0,
                               wall=Wall(WALL_HEIGHT, mu=0.0), reference="engine", **rb)
-    settings = {"n_per_condition": n, "seed": seed, "conditions": {c: {**CONDITIONS[c], "models": list(
-        CONDITIONS[c]["models"] if models is None else models)} for c in conditions}, "parts": list(parts),
-        "alpha_range_deg": [round(math.degrees(float(a)), 9) for a in alpha_range], "mu_range": list(MU_RANGE),
-        "p_mu_inf": P_MU_INF, "omega_range_rad_s": list(OMEGA_RANGE), "h_m": list(H_VALUES),
-        "length_range_m": list(LENGTH_RANGE), "wall_height_m": WALL_HEIGHT, "within_m": WITHIN,
-        "rigid_body_options": rb, "baseline_alpha_0": bool(baseline), "mu_bands": [_band(*b) for b in MU_BANDS],
-        "reference": "engine (pymunk, default EngineSettings)",
-        "refused_statuses": [Status(c).label for c in REFUSED]}
-    return TiltWallReport(tuple(rows), goals, fp, settings, cases_out, results)
+    return tilt_wall_report(cfg, res.trials, fixed_point=fp)

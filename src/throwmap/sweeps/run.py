@@ -27,7 +27,7 @@ from .schema import SweepSpec, jsonable, spec_hash
 from .store import MANIFEST, column_types, count_rows, finished_chunks, prepare_out, write_chunk
 from .targets import RESULT_COLUMNS
 
-__all__ = ["SweepRun", "run_sweep", "sweep_status"]
+__all__ = ["SweepRun", "SweepStatus", "run_sweep", "sweep_status"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,6 +60,35 @@ class SweepRun:
         return (f"sweep {self.sweep_sha256[:12]} ({self.target}): {self.n_points} points in {self.n_chunks} parts; "
                 f"rows before {self.rows_before}, computed now {self.computed}, rows after {self.rows_after} — "
                 f"{state}; {self.elapsed_s:.3g} s on {self.workers} worker(s) ({self.scheduler}) → {self.out}")
+
+
+@dataclass(frozen=True, slots=True)
+class SweepStatus:
+    """What ``out`` holds of a sweep, computed without running anything (:func:`sweep_status`): ``out``,
+    ``sweep_sha256``, ``n_points`` and ``n_chunks`` of the design, ``rows`` stored, ``missing`` points,
+    ``chunks_missing`` parts."""
+
+    out: str
+    sweep_sha256: str
+    n_points: int
+    n_chunks: int
+    rows: int
+    missing: int
+    chunks_missing: int
+
+    def to_dict(self) -> dict:
+        return {k: getattr(self, k) for k in self.__slots__}
+
+    def table(self) -> str:
+        """One line: points and parts, rows stored and missing."""
+        return (f"sweep {self.sweep_sha256[:12]} in {self.out}: {self.n_points} points in {self.n_chunks} parts; "
+                f"rows stored {self.rows}, missing {self.missing} ({self.chunks_missing} parts)")
+
+    def plot(self, ax=None):
+        """Parts stored and missing as one bar (:func:`throwmap.viz.sweep.plot_sweep_status`)."""
+        from ..viz.sweep import plot_sweep_status
+
+        return plot_sweep_status(self, ax=ax)
 
 
 def _manifest(spec: SweepSpec, design, columns: dict) -> dict:
@@ -108,18 +137,17 @@ def _results(spec: SweepSpec, design, c: int, got: dict) -> list:
     out = []
     for i in design.chunk_points(c):
         blocks = [got[k] for k in sorted(k for k in got if k[0] == i)]
-        out.append(summarise_trials(spec.experiment, design.configs[i], design.seeds[i], spec.n, blocks))
+        out.append(summarise_trials(spec.experiment, design.configs[i], design.seeds[i], spec.n, blocks).to_dict())
     return out
 
 
-def sweep_status(spec: SweepSpec, out) -> dict:
-    """What is stored in ``out`` for ``spec`` without computing anything: ``n_points``, ``n_chunks``,
-    ``rows`` stored, ``missing`` points, ``chunks_missing``."""
+def sweep_status(spec: SweepSpec, out) -> SweepStatus:
+    """What is stored in ``out`` for ``spec`` without computing anything (a :class:`SweepStatus`: ``n_points``,
+    ``n_chunks``, ``rows`` stored, ``missing`` points, ``chunks_missing``)."""
     design, _, done = _plan(spec, out, create=False)
     rows = count_rows(out)
-    return {"out": str(out), "sweep_sha256": spec_hash(spec), "n_points": design.n_points,
-            "n_chunks": design.n_chunks, "rows": rows, "missing": design.n_points - rows,
-            "chunks_missing": design.n_chunks - len(done)}
+    return SweepStatus(str(out), spec_hash(spec), design.n_points, design.n_chunks, rows, design.n_points - rows,
+                       design.n_chunks - len(done))
 
 
 def _check_address(scheduler: str) -> None:

@@ -25,12 +25,13 @@ import json
 import math
 import time
 import warnings
+from dataclasses import dataclass
 
 from ..budget import Limits
 from ..version import __version__
 from ..errors import ThrowmapError
 
-__all__ = ["run_chunk", "run_trials", "summarise_trials", "RESULT_COLUMNS"]
+__all__ = ["run_chunk", "run_trials", "summarise_trials", "PointSummary", "RESULT_COLUMNS"]
 
 RESULT_COLUMNS = {
     "experiment": {"n": "int64", "successes": "int64", "success_rate": "float64", "ci95_low": "float64",
@@ -102,24 +103,67 @@ def run_trials(name: str, cfg: dict, seed: int, start: int, stop: int) -> tuple:
     return trials, time.perf_counter() - t0, __version__, None
 
 
-def summarise_trials(name: str, cfg: dict, seed: int, n: int, blocks: list) -> dict:
-    """A point's row from the ``blocks`` (:func:`run_trials` results) that together hold its trials 0 … n−1."""
+@dataclass(frozen=True, slots=True)
+class PointSummary:
+    """One design point of an experiment sweep, summarised from its trials (:func:`summarise_trials`): ``n`` trials,
+    ``successes``, ``success_rate`` (None when n = 0) with its Wilson 95 % interval ``ci95_low``/``ci95_high``,
+    ``failures`` and ``values`` (JSON text: counts by kind, the per-trial value summary), ``error`` (None, or
+    ``"field: reason"`` where the library refused the point; then only ``elapsed_s`` and ``version`` are set),
+    ``elapsed_s`` (s), ``version`` (the worker's throwmap)."""
+
+    elapsed_s: float
+    version: str
+    error: str | None = None
+    n: int = 0
+    successes: int = 0
+    success_rate: float | None = None
+    ci95_low: float = 0.0
+    ci95_high: float = 1.0
+    failures: str = "{}"
+    values: str = "{}"
+
+    def to_dict(self) -> dict:
+        """The point's row of the sweep's table (its result columns, ``error``, ``elapsed_s``, ``version``); a
+        refused point's row has ``error``, ``elapsed_s`` and ``version`` only."""
+        if self.error is not None:
+            return {"error": self.error, "elapsed_s": self.elapsed_s, "version": self.version}
+        return {"n": self.n, "successes": self.successes, "success_rate": self.success_rate,
+                "ci95_low": self.ci95_low, "ci95_high": self.ci95_high, "failures": self.failures,
+                "values": self.values, "error": None, "elapsed_s": self.elapsed_s, "version": self.version}
+
+    def table(self) -> str:
+        """One line: successes of n with the Wilson interval, then the failures by kind (or the refusal)."""
+        if self.error is not None:
+            return f"refused: {self.error}"
+        rate = "n/a" if self.success_rate is None else f"{100 * self.success_rate:.1f} %"
+        fails = ", ".join(f"{k} {v}" for k, v in json.loads(self.failures).items()) or "none"
+        return (f"{self.successes}/{self.n} succeeded = {rate}, Wilson 95 % [{100 * self.ci95_low:.1f}, "
+                f"{100 * self.ci95_high:.1f}] %; failures: {fails}")
+
+    def plot(self, ax=None):
+        """The outcomes with the success rate's interval (:func:`throwmap.viz.sweep.plot_point_summary`)."""
+        from ..viz.sweep import plot_point_summary
+
+        return plot_point_summary(self, ax=ax)
+
+
+def summarise_trials(name: str, cfg: dict, seed: int, n: int, blocks: list) -> PointSummary:
+    """A point's summary (:class:`PointSummary`; its ``to_dict()`` is the point's row) from the ``blocks``
+    (:func:`run_trials` results) that together hold its trials 0 … n−1."""
     from ..experiments.base import Trial
     from ..experiments.runner import ExperimentResult
 
     errors = [b[3] for b in blocks if b[3] is not None]
     if errors:
-        return {"error": errors[0], "elapsed_s": sum(b[1] for b in blocks), "version": blocks[0][2]}
+        return PointSummary(sum(b[1] for b in blocks), blocks[0][2], errors[0])
     trials = [Trial.from_json(t) for b in blocks for t in b[0]]
     if sorted(t.index for t in trials) != list(range(n)):
         raise ValueError(f"the tasks of a point returned trials {sorted(t.index for t in trials)[:5]}…, not 0…{n - 1}")
     res = ExperimentResult.from_trials(name, trials, seed=seed, parameters={}, planned=n,
                                        elapsed_s=sum(b[1] for b in blocks), workers=len(blocks))
-    return {"n": res.n, "successes": res.successes,
-            "success_rate": None if math.isnan(res.success_rate) else res.success_rate,
-            "ci95_low": float(res.ci95[0]), "ci95_high": float(res.ci95[1]),
-            "failures": _json(dict(res.failures)), "values": _json(_clean(res.value_summary())),
-            "error": None, "elapsed_s": res.elapsed_s, "version": blocks[0][2]}
+    return PointSummary(res.elapsed_s, blocks[0][2], None, res.n, res.successes,
+                        None if math.isnan(res.success_rate) else res.success_rate, float(res.ci95[0]),
+                        float(res.ci95[1]), _json(dict(res.failures)), _json(_clean(res.value_summary())))
 
 
 def _limit_set_point(cfg: dict, seed: int) -> dict:

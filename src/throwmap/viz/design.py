@@ -16,7 +16,7 @@ import numpy as np
 
 from .style import _plt, layout, scale, side_colors
 
-__all__ = ["plot_design", "draw_part"]
+__all__ = ["plot_design", "draw_part", "plot_side_radii"]
 
 
 def draw_part(ax, part, *, weight_radius: float = 0.008, unit: str = "cm", title: str | None = None):
@@ -164,3 +164,25 @@ def _fmt(name: str, v) -> str:
     if name == "alpha":
         return f"α {math.degrees(v):.2f}°"
     return f"ω {v:.3f} rad/s"
+
+
+def plot_side_radii(radii, ax=None):
+    """A :class:`~throwmap.design.radii.SideRadii`: r_i per side as bars (cm; sides without one left empty).
+    Returns the Figure."""
+    plt = _plt()
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(4.5, 3.2))
+    else:
+        fig = ax.figure
+    sides = list(radii.r)
+    vals = [100 * v if math.isfinite(v) else 0.0 for v in radii.r.values()]
+    colors = side_colors(max(sides) + 1 if sides else 1)
+    ax.bar(range(len(sides)), vals, color=[colors[s] for s in sides])
+    for i, v in enumerate(radii.r.values()):
+        ax.annotate(f"{100 * v:.2f}" if math.isfinite(v) else "none", (i, vals[i]), xytext=(0, 3),
+                    textcoords="offset points", ha="center", fontsize=7)
+    ax.set_xticks(range(len(sides)), [f"side {s}" for s in sides])
+    ax.set_ylabel("r_i (cm)")
+    ax.set_title(f"r_i at ω = {radii.omega:g} rad/s ({radii.method})", fontsize=9)
+    layout(fig)
+    return fig
