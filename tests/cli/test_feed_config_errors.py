@@ -1,4 +1,4 @@
-"""Hardening found by an outside tester: ``experiment --workers``, the feed config's ``settings``
+"""Bad input to the feeding commands: ``experiment --workers``, the feed config's ``settings``
 overrides and the keys of a ``--cavity`` file. Each refusal is one ``error: <field>: …`` line on
 stderr, exit 2, no traceback, nothing on stdout.
 

@@ -1,4 +1,4 @@
-"""Round-2 regressions: the start rule (both support vertices on the arm) and one side rule for batches."""
+"""The start rule (both support vertices on the arm) and one side rule for single throws and batches."""
 
 import math
 

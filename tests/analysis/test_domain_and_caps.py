@@ -1,4 +1,4 @@
-"""Outside tester's round-2 defects in the analysis (issue 10).
+"""The analysis covers what it says it covers: its domain, its options, its caps, its tables.
 
 1. The analysed domain is the set of starts ``throw()`` accepts (``Arm.back`` and the arm's end
    included), so a certificate never claims uniqueness over starts it did not look at.

@@ -1,5 +1,5 @@
-"""The tester's sweep bugs: a huge grid range, a bad throw config, non-landing throw rows, ``--status`` creating
-``--out``, a malformed ``--scheduler``, and Ctrl-C on a running sweep (slow: a local cluster)."""
+"""Sweeps refuse and stop cleanly: a huge grid range, a bad throw config, non-landing throw rows, ``--status`` without
+creating ``--out``, a malformed ``--scheduler``, and Ctrl-C on a running sweep (slow: a local cluster)."""
 
 from __future__ import annotations
 

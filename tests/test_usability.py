@@ -1,4 +1,4 @@
-"""Round-2 outsider defects (usability): part files stay editable, defaults, names, paths, JSON, suggestions."""
+"""Usability: part files stay editable, defaults, names, paths, JSON, suggestions."""
 
 from __future__ import annotations
 
