@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test bench clean
+.PHONY: demo test test-quick bench clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -19,7 +19,11 @@ test: $(STAMP)
 	@# the viewer's browser test needs Chromium; installed where we can (Debian, as root), never failing the target
 	@{ command -v chromium && command -v chromedriver; } >/dev/null || (command -v apt-get >/dev/null && [ "$$(id -u)" = 0 ] && \
 		(apt-get update -qq && apt-get install -y -qq chromium chromium-driver) >/dev/null 2>&1) || true
-	$(PY) -m pytest -q --durations=15
+	$(PY) -m pytest -q -n auto --dist loadgroup --durations=15
+
+# the quick tier for development: everything but the tests marked slow (the full suite above runs them all, as CI does)
+test-quick: $(STAMP)
+	$(PY) -m pytest -q -n auto --dist loadgroup -m "not slow"
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_throw.py

@@ -1,6 +1,6 @@
 """Sweeps on a real local ``distributed`` cluster: scheduler and workers as processes on this machine.
 
-One module-scoped ``LocalCluster`` (2 worker processes, 1 thread each) serves the target tests; the
+The session's ``LocalCluster`` (2 worker processes, 1 thread each; ``tests/sweeps/conftest.py``) serves the target tests; the
 worker-kill test, the ``--scheduler ADDRESS`` test (``dask scheduler`` / ``dask worker`` subprocesses)
 and the killed-and-restarted ``throwmap sweep`` test start their own processes.
 """
@@ -22,7 +22,7 @@ import throwmap as tm
 from throwmap.experiments.runner import run_experiment
 from throwmap.sweeps import make_design, parse_sweep, read_table, run_sweep
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("dask")]
 distributed = pytest.importorskip("distributed")
 BIN = Path(sys.executable).parent
 
@@ -30,13 +30,10 @@ SETTLE = {"kind": "grid", "target": "experiment:settle", "n": 4, "seed": 5,
           "parameters": {"arm.mu": [0.3, 0.8], "noise.mu_rel": [0.0, 0.2]}}
 
 
-@pytest.fixture(scope="module")
-def client():
-    import logging
-
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
-                                  silence_logs=logging.CRITICAL) as cluster, distributed.Client(cluster) as c:
-        yield c
+@pytest.fixture
+def client(dask_client):
+    """The session's cluster (tests/sweeps/conftest.py)."""
+    return dask_client
 
 
 def test_experiment_sweep_rows_are_the_runner_s(client, tmp_path):
