@@ -24,7 +24,7 @@ from ...records.outcome import Status
 from ..rest import EDGE_EPS
 from .world import BOX_TOL, World
 
-__all__ = ["inspect", "clearance", "escape", "energy", "all_slow", "body_state", "BOX_TOL"]
+__all__ = ["inspect", "probe", "clearance", "escape", "energy", "all_slow", "body_state", "BOX_TOL"]
 
 
 def body_state(w: World, i: int) -> tuple:
@@ -114,6 +114,23 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle, over, near
 
 
+def probe(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0, flips: bool = False):
+    """Everything the periodic checks read of part i at one instant, from one reading of its state:
+    ``(x, y, angle, vx, vy, spin)`` (:func:`body_state`), then :func:`inspect`'s ``(depth, x, y, phi, over, near)``,
+    its :func:`energy` (J/kg), whether it is slower than ``settle_speed`` and ``settle_spin`` (:func:`all_slow`) and,
+    with ``flips``, :func:`~.contacts.nearest_side`'s ``(side, tilt)`` of ``phi`` (else ``(0, 0.0)``). In the C helper
+    where the run has it (the same numbers)."""
+    if w.native is not None:
+        return w.native.probe(i, arm_angle, ca, sa, horizon, flips)
+    from .contacts import nearest_side
+
+    st = body_state(w, i)
+    pen, xa, ya, phi, over, near = inspect(w, i, arm_angle, ca, sa, horizon, st)
+    k, tilt = nearest_side(w.betas[i], phi) if flips else (0, 0.0)
+    slow = math.hypot(st[3], st[4]) < w.settle[0] and abs(st[5]) < w.settle[1]
+    return (*st, pen, xa, ya, phi, over, near, energy(w, i, st), slow, k, tilt)
+
+
 def clearance(w: World, i: int, enough: float = -math.inf) -> float:
     """Lower bound of the distance (m) from part i to every other shape: the least distance over part i's
     vertices to the other shapes, the arm's corners to part i and the other parts' vertices to part i.
@@ -123,6 +140,8 @@ def clearance(w: World, i: int, enough: float = -math.inf) -> float:
     that gave the last bound (``w.clear_hint[i]``) is tried first, and where it is still within ``enough``
     the rest is not searched. Where the bound exceeds ``enough`` it is returned exactly as without it.
     """
+    if w.native is not None:
+        return w.native.clearance(i, enough)
     cp = w.cp
     distance, NULL, to_world = cp.distance, cp.NULL, cp.to_world
     b = w.bodies_h[i]

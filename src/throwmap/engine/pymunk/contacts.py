@@ -17,7 +17,7 @@ import numpy as np
 
 from ...kernels import codes as C
 from ...records.outcome import Status
-from .friction import attach_raw, install_friction_cap
+from .friction import NativeCap, attach_raw, install_friction_cap
 from .world import World
 
 __all__ = ["HOP_MIN", "PartTrack", "Contacts", "nearest_side"]
@@ -57,10 +57,21 @@ class PartTrack:
         self.status = Status.OK
 
 
+class _Clock:
+    """The run's clock where there is no C helper (:class:`.native.NativeRun` is the clock otherwise)."""
+
+    __slots__ = ("now", "stop")
+
+    def __init__(self):
+        self.now = 0.0
+        self.stop = 0
+
+
 class Contacts:
     """The callbacks of one run and what they record.
 
-    ``now`` is the simulated time (s) at the end of the step being taken;
+    ``now`` is the simulated time (s) at the end of the step being taken (kept by ``clock``, which the C helper's
+    step loop advances; a first impact sets ``clock.stop`` so that the loop returns after its step);
     ``last_begin`` the time the latest contact began; ``need_post`` is set when a
     first impact waits for its post-impact state; ``events`` the run's
     ``(t, text)`` log; ``finished`` silences the callbacks once the run is over.
@@ -69,12 +80,13 @@ class Contacts:
     those of them that were touching when removed.
     """
 
-    __slots__ = ("world", "tracks", "now", "last_begin", "need_post", "finished", "events", "n_touching", "n_fell",
+    __slots__ = ("world", "tracks", "clock", "last_begin", "need_post", "finished", "events", "n_touching", "n_fell",
                  "n_fell_touching", "_one", "friction_cap")
 
     def __init__(self, world: World):
         self.world = world
         self.tracks = [PartTrack() for _ in world.bodies]
+        self.clock = _Clock() if world.native is None else world.native.ptr
         self.now = 0.0
         self.last_begin = -math.inf
         self.need_post = False
@@ -92,9 +104,21 @@ class Contacts:
             tr.rec[C.E_RELEASE] = (0.5 * (v.x**2 + v.y**2 + p.radius_of_gyration**2 * b.angular_velocity**2)
                                    + world.g * (y_arm - world.h))
         self.friction_cap = cap = install_friction_cap(world)
-        world.space.on_collision(begin=self._begin, separate=self._separate, pre_solve=cap)
-        if cap is not None:
+        native = isinstance(cap, NativeCap)
+        world.space.on_collision(begin=self._begin, separate=self._separate, pre_solve=None if native else cap)
+        if cap is not None and not native:
             attach_raw(world.space, cap)
+        if world.native is not None:
+            world.native.attach(world.space)  # (the C hook, where it is one, and the run as the space's user data)
+
+    @property
+    def now(self) -> float:
+        """Simulated time at the end of the step being taken, s."""
+        return self.clock.now
+
+    @now.setter
+    def now(self, t: float) -> None:
+        self.clock.now = t
 
     def _parts(self, arbiter):
         if self._one is not None:
@@ -125,6 +149,7 @@ class Contacts:
         tr.pre = (tuple(b.velocity), b.angular_velocity, b.angle, tuple(b.position))
         tr.need_post = True
         self.need_post = True
+        self.clock.stop = 1  # (the C step loop returns after this step, for record_post)
         pts = arbiter.contact_point_set.points
         if pts:
             p = pts[0].point_a if arbiter.shapes[0].body is b else pts[0].point_b
@@ -199,6 +224,8 @@ class Contacts:
         self.events.append((t, f"escape: {status.name.lower()}"))
         w = self.world
         w.space.remove(w.bodies[i], w.shapes[i])
+        if w.native is not None:
+            w.native.fell(i)
 
     def all_free(self) -> bool:
         """No part touches anything."""

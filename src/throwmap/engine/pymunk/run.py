@@ -13,8 +13,8 @@ from ...system.motion import ImpulseThrow, angle_function, check_realisation
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
-from .checks import all_slow, body_state, clearance, energy, escape, inspect
-from .contacts import Contacts, nearest_side
+from .checks import clearance, escape, probe
+from .contacts import Contacts
 from .interrupt import deferred_interrupts
 from .result import EngineRun, Recorder, finish
 from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
@@ -190,7 +190,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     # penetration_tol), not a part that left the arm; one that flew over the wall is caught by its CM (escape)
     end_wall = any(type(f).__name__ == "Wall" for f in scene.fixtures)
     pen_tol, thickness, impact_window = settings.penetration_tol, settings.arm_thickness, settings.impact_window
-    settle_speed, settle_spin, settle_hold = settings.settle_speed, settings.settle_spin, settings.settle_hold
+    settle_hold = settings.settle_hold
     exact_flight = settings.exact_flight
     horizon = 2.0 * 4.0 * coarse_dt if use_coarse else 0.0  # twice the longest stretch between two checks, s
     n_steps = n_coarse = n_leaps = n_checks = n_clearance = 0
@@ -254,7 +254,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     ca, sa = math.cos(aa), math.sin(aa)
                     for i in range(n_parts):
                         if tracks[i].fell is None:
-                            _, xa, ya, _, over, _ = inspect(w, i, aa, ca, sa)
+                            _, _, _, _, _, _, _, xa, ya, _, over, _, _, _, _, _ = probe(w, i, aa, ca, sa)
                             gone = escape(w, i, xa, ya, thickness, 0 if end_wall and over > 0 else over)
                             if gone is not None:
                                 contacts.fell(i, t, gone)
@@ -280,17 +280,19 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             ca, sa = math.cos(aa), math.sin(aa)
             landing_near = False
             states = [None] * n_parts  # each part's state, read once for all the checks of this instant
+            slow = True  # every part still on the arm below the settling speeds
             e_sum = 0.0  # Σ m_i e_i of the parts still on the arm (several parts), J
             for i in range(n_parts):
                 tr = tracks[i]
                 if tr.fell is not None:
                     continue
-                states[i] = st = body_state(w, i)
+                flips = tr.n_contacts > 0 and tr.ever
                 # one part touching nothing: its `near` is not looked for (horizon 0), since it cannot matter:
                 # coarse steps need it touching, and the contact that begins first sets last_begin later
                 # than this check would (with more parts, one leaving the arm here could still matter)
-                pen, xa, ya, phi, over, near = inspect(w, i, aa, ca, sa,
-                                                      0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, st)
+                px, py, pa, vx, vy, om, pen, xa, ya, phi, over, near, e, slow_i, k, tilt = probe(
+                    w, i, aa, ca, sa, 0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, flips)
+                states[i] = (px, py, pa, vx, vy, om)
                 if near:  # a landing is coming: fine steps until impact_window after it (pymunk's warm
                     landing_near = True  # start would scale the landing impulse by coarse_dt / dt)
                     contacts.last_begin = t
@@ -298,8 +300,9 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 if gone is not None:  # left the arm: its depth "into" the arm's far side is no penetration
                     contacts.fell(i, t, gone)
                     continue
+                if not slow_i:
+                    slow = False
                 if t >= arm_stop:
-                    e = energy(w, i, st)
                     if n_parts > 1:  # parts push each other: only their total energy may not rise
                         e_sum += masses[i] * e
                     else:
@@ -319,8 +322,8 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     done = True
                     break
                 # flips: the side the part lies on whenever it is in contact and nearly flat
-                if tr.n_contacts > 0 and tr.ever:
-                    k, tilt = nearest_side(w.betas[i], phi)
+                if flips:
+                    k = int(k)
                     if abs(tilt) < FLIP_TILT:
                         if k != tr.last_side:
                             tr.rec[C.N_FLIPS] += 1.0
@@ -338,7 +341,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 break
             # settling
             if t >= arm_stop:
-                if all_slow(w, tracks, settle_speed, settle_spin, states):
+                if slow:
                     if still_since is None:
                         still_since = t
                     elif t - still_since >= settle_hold and run_for is None:
