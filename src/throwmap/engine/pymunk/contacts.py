@@ -108,8 +108,8 @@ class Contacts:
         world.space.on_collision(begin=self._begin, separate=self._separate, pre_solve=None if native else cap)
         if cap is not None and not native:
             attach_raw(world.space, cap)
-        if world.native is not None:
-            world.native.attach(world.space)  # (the C hook, where it is one, and the run as the space's user data)
+        if world.native is not None:  # the C hook (where it is one) and C begin/separate calling begin_parts etc.
+            world.native.attach(world.space, self)
 
     @property
     def now(self) -> float:
@@ -127,13 +127,30 @@ class Contacts:
         return [index[id(b)] for b in arbiter.bodies if id(b) in index]
 
     def _begin(self, arbiter, space_, data):
+        self._begun(self._parts(arbiter), arbiter, self._first_point)
+
+    def _first_point(self, arbiter, i):
+        """The first contact point ``(x, y)`` of pymunk ``arbiter`` on part i's body (None: it has none)."""
+        pts = arbiter.contact_point_set.points
+        if not pts:
+            return None
+        p = pts[0].point_a if arbiter.shapes[0].body is self.world.bodies[i] else pts[0].point_b
+        return (p.x, p.y)
+
+    def begin_parts(self, ia: int, ib: int, arb):
+        """A contact began between the bodies of parts ``ia`` and ``ib`` (-1: not a part) on raw arbiter ``arb``
+        (the C helper's begin callback)."""
+        parts = self._one if self._one is not None else [i for i in (ia, ib) if i >= 0]
+        self._begun(parts, arb, self.world.native.contact_point)
+
+    def _begun(self, parts, arbiter, point):
         t = self.now
         self.last_begin = t
-        for i in self._parts(arbiter):
+        for i in parts:
             tr = self.tracks[i]
             if tr.n_contacts == 0 and tr.armed:
                 if not tr.ever:
-                    self._first_impact(i, tr, arbiter, t)
+                    self._first_impact(i, tr, point(arbiter, i), t)
                 elif tr.t_sep is not None and (tr.t_sep == -math.inf or t - tr.t_sep >= HOP_MIN):
                     tr.rec[C.N_IMPACTS] += 1.0
                 tr.t_sep = None
@@ -141,7 +158,9 @@ class Contacts:
                 self.n_touching += 1
             tr.n_contacts += 1
 
-    def _first_impact(self, i, tr, arbiter, t):
+    def _first_impact(self, i, tr, p, t):
+        """Part i's first touch after release at ``t`` (s), ``p`` its first contact point (world frame, m; None: the
+        arbiter has none)."""
         w = self.world
         b = w.bodies[i]
         tr.ever = True
@@ -150,10 +169,7 @@ class Contacts:
         tr.need_post = True
         self.need_post = True
         self.clock.stop = 1  # (the C step loop returns after this step, for record_post)
-        pts = arbiter.contact_point_set.points
-        if pts:
-            p = pts[0].point_a if arbiter.shapes[0].body is b else pts[0].point_b
-            p = (p.x, p.y)
+        if p is not None:
             aa = w.arm.angle
             ca, sa = math.cos(aa), math.sin(aa)
             tr.rec[C.CONTACT_X] = ca * p[0] + sa * p[1]
@@ -167,7 +183,16 @@ class Contacts:
     def _separate(self, arbiter, space_, data):
         if self.finished or arbiter.is_removal:
             return
-        for i in self._parts(arbiter):
+        self._separated(self._parts(arbiter))
+
+    def separate_parts(self, ia: int, ib: int):
+        """A contact between the bodies of parts ``ia`` and ``ib`` (-1: not a part) ended (the C helper's separate
+        callback; not called for removals)."""
+        if not self.finished:
+            self._separated(self._one if self._one is not None else [i for i in (ia, ib) if i >= 0])
+
+    def _separated(self, parts):
+        for i in parts:
             tr = self.tracks[i]
             if tr.n_contacts == 1:
                 self.n_touching -= 1

@@ -173,6 +173,15 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             raise InvalidStateError("run_for", f"must be a positive number of seconds, got {shown(run_for)}")
         t_max = float(run_for)
     w = build_world(scene, realisation, settings, raw=raw, length=length)
+    try:
+        return _run_world(w, scene, realisation, settings, record, progress, run_for, t_max)
+    finally:
+        if w.native is not None:  # the space gets its own callbacks back: it may outlive the run's C state
+            w.native.detach()
+
+
+def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max) -> EngineRun:
+    """The loop of :func:`_simulate_once` on world ``w`` (built for ``scene``), until every part settles or ``t_max``."""
     contacts = Contacts(w)
     tracks, events = contacts.tracks, contacts.events
     recorder = Recorder(w) if record else None

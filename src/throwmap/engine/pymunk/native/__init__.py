@@ -33,7 +33,7 @@ def _bind(module) -> None:
              "cpShapeGetBody cpBodyGetPosition cpBodyGetVelocity cpBodyGetAngularVelocity cpBodyGetAngle "
              "cpBodySetPosition cpBodySetVelocity cpBodySetAngle cpBodySetAngularVelocity cpBodySetVelocityUpdateFunc "
              "cpBodyUpdateVelocity cpBodyEachArbiter cpBodyGetSpace cpBodyLocalToWorld cpShapePointQuery cpSpaceStep "
-             "cpSpaceGetUserData cpSpaceSetUserData cpSpaceReindexShapesForBody").split()
+             "cpSpaceGetUserData cpSpaceSetUserData cpSpaceReindexShapesForBody cpArbiterIsRemoval").split()
     missing = None
     for name in names:
         try:
@@ -50,7 +50,8 @@ def _bind(module) -> None:
     expected += [pffi.sizeof(con)] + [pffi.offsetof(con, f) for f in ("r1", "r2", "tMass", "bounce", "jnAcc", "jtAcc",
                                                                       "hash")]
     expected += [pffi.sizeof(cps), pffi.offsetof(cps, "normal"), pffi.offsetof(cps, "points"), pffi.sizeof(point)]
-    expected += [pffi.sizeof(handler), pffi.offsetof(handler, "preSolveFunc"), pffi.offsetof(handler, "userData")]
+    expected += [pffi.sizeof(handler)] + [pffi.offsetof(handler, f) for f in ("beginFunc", "preSolveFunc",
+                                                                              "separateFunc", "userData")]
     out = ffi.new("long[]", 64)
     got = list(out[0:lib.tm_layout(out, 64)])
     if got != expected:
@@ -71,6 +72,16 @@ def _bind(module) -> None:
         for i, (jn, jt) in enumerate(x):
             out[2 * i], out[2 * i + 1] = jn, jt
         return 1
+
+    from_handle = ffi.from_handle
+
+    @ffi.def_extern(name="tm_py_begin")
+    def _begin(py, arb, ia, ib):
+        from_handle(py).begin_parts(ia, ib, arb)
+
+    @ffi.def_extern(name="tm_py_separate")
+    def _separate(py, ia, ib):
+        from_handle(py).separate_parts(ia, ib)
 
 
 def load():
@@ -139,9 +150,7 @@ class NativeRun:
         keep = self.keep = []
 
         def arr(ctype, values):
-            a = ffi.new(ctype + "[]", max(len(values), 1))
-            for k, v in enumerate(values):
-                a[k] = v
+            a = ffi.new(ctype + "[]", values if len(values) else 1)
             keep.append(a)
             return a
 
@@ -172,7 +181,7 @@ class NativeRun:
                 boxes.extend(bx if bx is not None else (0.0,) * 4)
                 boxes_tol.extend(bt if bt is not None else (0.0,) * 4)
         r.others, r.ostart, r.ocount = arr("cpShape *", others), arr("int", ostart), arr("int", ocount)
-        r.hasbox, r.boxes, r.boxes_tol = arr("int", hasbox), arr("double", boxes), arr("double", boxes_tol)
+        r.hasbox, r.boxes, r.boxes_tol = arr("int", [int(b) for b in hasbox]), arr("double", boxes), arr("double", boxes_tol)
         r.corners = arr("double", [c for v in w.corners for c in v])
         r.ncorners = len(w.corners)
         r.hint = arr("int", [-1, 0, 0] * n)
@@ -207,14 +216,27 @@ class NativeRun:
         r.trigger, r.max_sweeps, r.tol, r.same_point, r.mu_skid = X.TRIGGER, X.MAX_SWEEPS, X.TOL, X.SAME_POINT, X.MU_SKID
         r.state_first = self.module.state_first
 
-    def attach(self, space) -> None:
-        """Make the C hook ``space``'s wildcard pre-solve (and the run its user data)."""
-        handler = space._handlers[(None, None)]._handler if self.ptr.hook else None
+    def attach(self, space, contacts) -> None:
+        """Make the run ``space``'s user data, the C hook its wildcard pre-solve (where :meth:`set_hook` set one) and
+        the C begin/separate, which hand the part indices to ``contacts.begin_parts``/``separate_parts``, its
+        callbacks; until :meth:`detach`."""
         from pymunk._chipmunk import ffi as pffi
 
-        h = self.ffi.NULL if handler is None else self.ffi.cast("void *", int(pffi.cast("uintptr_t", handler)))
-        if self.lib.tm_attach(self.ptr, h) != 0:
+        handler = space._handlers[(None, None)]._handler
+        handle = self.ffi.new_handle(contacts)
+        self.keep.append(handle)
+        self.ptr.py = handle
+        if self.lib.tm_attach(self.ptr, self.ffi.cast("void *", int(pffi.cast("uintptr_t", handler)))) != 0:
             raise RuntimeError("the engine's C helper could not attach to the space")
+
+    def detach(self) -> None:
+        """Give the space its own callbacks back and forget the run (the space may outlive it)."""
+        self.lib.tm_detach(self.ptr)
+
+    def contact_point(self, arb, i: int):
+        """The first contact point ``(x, y)`` (m, world frame) of raw arbiter ``arb`` on part ``i``, or None."""
+        out = self.out
+        return (out[0], out[1]) if self.lib.tm_contact_point(self.ptr, arb, i, out) else None
 
     # ------------------------------------------------------------------------------------------------ the loop
     def steps(self, contacts, t: float, n: int, step: float) -> float:

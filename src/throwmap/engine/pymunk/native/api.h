@@ -50,7 +50,11 @@ typedef struct tm_run {
     long ex_steps, ex_sweeps, ex_unconverged, ex_fallback, ex_enumerated;
     int n_warm, cap_warm;
     void *warm;          /* owned by C (freed by tm_free) */
-    void *py;            /* handle of the Python object that enumerates contact modes */
+
+    /* the collision callbacks while attached (tm_attach .. tm_detach) */
+    void *py;            /* handle of the run's Python contact bookkeeping (begin/separate), or NULL */
+    void *handler;       /* the space's wildcard collision handler */
+    void *saved[3];      /* its begin, pre-solve and separate functions before tm_attach */
 } tm_run;
 
 tm_run *tm_new(void);
@@ -58,6 +62,8 @@ void tm_free(tm_run *r);
 int tm_bind(const char *name, void *fn);
 int tm_layout(long *out, int n);
 int tm_attach(tm_run *r, void *handler);
+void tm_detach(tm_run *r);
+int tm_contact_point(tm_run *r, cpArbiter *arb, int i, double *out);
 double tm_py_hypot(double x, double y);
 double tm_py_mod(double x, double y);
 int tm_steps(tm_run *r, int n, double step, double *t);

@@ -30,7 +30,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCES = ("api.h", "chipmunk.h", "friction.c", "exact.c", "checks.c")
 """The helper's C text, concatenated in this order into one translation unit."""
 CALLBACK = ('extern "Python" int tm_enumerate(void *py, int k, double *rows, double *u0, double m_inv, double i_inv, '
-            "double scale, double *out);")
+            "double scale, double *out);\n"
+            'extern "Python" void tm_py_begin(void *py, cpArbiter *arb, int ia, int ib);\n'
+            'extern "Python" void tm_py_separate(void *py, int ia, int ib);')
 FLAGS = ("-O2", "-ffp-contract=off", "-fno-strict-aliasing")
 
 

@@ -79,6 +79,7 @@ static struct {
     void *(*cpSpaceGetUserData)(cpSpace *);
     void (*cpSpaceSetUserData)(cpSpace *, void *);
     void (*cpSpaceReindexShapesForBody)(cpSpace *, cpBody *);
+    unsigned char (*cpArbiterIsRemoval)(cpArbiter *);
 } CP;
 
 static const char *const CP_NAMES[] = {
@@ -88,7 +89,7 @@ static const char *const CP_NAMES[] = {
     "cpBodyGetAngularVelocity", "cpBodyGetAngle", "cpBodySetPosition", "cpBodySetVelocity", "cpBodySetAngle",
     "cpBodySetAngularVelocity", "cpBodySetVelocityUpdateFunc", "cpBodyUpdateVelocity", "cpBodyEachArbiter",
     "cpBodyGetSpace", "cpBodyLocalToWorld", "cpShapePointQuery", "cpSpaceStep", "cpSpaceGetUserData",
-    "cpSpaceSetUserData", "cpSpaceReindexShapesForBody",
+    "cpSpaceSetUserData", "cpSpaceReindexShapesForBody", "cpArbiterIsRemoval",
 };
 
 /* Bind Chipmunk function `name` to `fn`; returns how many of the table's functions are still unbound, or -1 for an
@@ -119,7 +120,8 @@ int tm_layout(long *out, int n) {
         (long)offsetof(cpContact, jtAcc), (long)offsetof(cpContact, hash),
         (long)sizeof(cpContactPointSet), (long)offsetof(cpContactPointSet, normal),
         (long)offsetof(cpContactPointSet, points), (long)sizeof(tm_point_pair),
-        (long)sizeof(tm_handler), (long)offsetof(tm_handler, preSolveFunc), (long)offsetof(tm_handler, userData),
+        (long)sizeof(tm_handler), (long)offsetof(tm_handler, beginFunc), (long)offsetof(tm_handler, preSolveFunc),
+        (long)offsetof(tm_handler, separateFunc), (long)offsetof(tm_handler, userData),
     };
     int m = (int)(sizeof(v) / sizeof(v[0]));
     for (int i = 0; i < m && i < n; i++) out[i] = v[i];

@@ -18,14 +18,68 @@ void tm_free(tm_run *r) {
     free(r);
 }
 
-/* Point the collision handler's pre-solve at the C hook and the space's user data at `r`. */
 static void tm_presolve(cpArbiter *arb, cpSpace *space, void *data);
+static void tm_py_begin(void *py, cpArbiter *arb, int ia, int ib);
+static void tm_py_separate(void *py, int ia, int ib);
 
+static int tm_part_index(tm_run *r, cpBody *b) {
+    for (int i = 0; i < r->n; i++)
+        if (r->body[i] == b) return i;
+    return -1;
+}
+
+/* Begin and separate: the part indices of the arbiter's bodies (-1: not a part), handed to the run's Python
+   bookkeeping (contacts.Contacts); a separation because a shape was removed is not one. */
+static void tm_begin(cpArbiter *arb, cpSpace *space, void *data) {
+    (void)data;
+    tm_run *r = (tm_run *)CP.cpSpaceGetUserData(space);
+    if (r == NULL || r->py == NULL) return;
+    cpBody *a, *b;
+    CP.cpArbiterGetBodies(arb, &a, &b);
+    tm_py_begin(r->py, arb, tm_part_index(r, a), tm_part_index(r, b));
+}
+
+static void tm_separate(cpArbiter *arb, cpSpace *space, void *data) {
+    (void)data;
+    tm_run *r = (tm_run *)CP.cpSpaceGetUserData(space);
+    if (r == NULL || r->py == NULL || CP.cpArbiterIsRemoval(arb)) return;
+    cpBody *a, *b;
+    CP.cpArbiterGetBodies(arb, &a, &b);
+    tm_py_separate(r->py, tm_part_index(r, a), tm_part_index(r, b));
+}
+
+/* The first contact point of `arb` on part i, into out[2] (m, world frame); 0 where the arbiter has none. */
+int tm_contact_point(tm_run *r, cpArbiter *arb, int i, double *out) {
+    cpContactPointSet cps = CP.cpArbiterGetContactPointSet(arb);
+    if (cps.count <= 0) return 0;
+    cpShape *a, *b;
+    CP.cpArbiterGetShapes(arb, &a, &b);
+    cpVect p = CP.cpShapeGetBody(a) == r->body[i] ? cps.points[0].pointA : cps.points[0].pointB;
+    out[0] = p.x, out[1] = p.y;
+    return 1;
+}
+
+/* Make `r` the space's user data and, on the wildcard collision `handler`, the C friction hook its pre-solve (where
+   r->hook is set) and the C begin/separate its callbacks (where r->py is set). tm_detach undoes it: the run's C
+   state is only reached from the space while the run is in progress. */
 int tm_attach(tm_run *r, void *handler) {
-    if (r->space == NULL) return -1;
+    if (r->space == NULL || handler == NULL) return -1;
+    tm_handler *h = (tm_handler *)handler;
+    r->handler = handler;
+    r->saved[0] = h->beginFunc, r->saved[1] = h->preSolveFunc, r->saved[2] = h->separateFunc;
     CP.cpSpaceSetUserData(r->space, r);
-    if (handler != NULL) ((tm_handler *)handler)->preSolveFunc = (void *)tm_presolve;
+    if (r->hook) h->preSolveFunc = (void *)tm_presolve;
+    if (r->py != NULL) h->beginFunc = (void *)tm_begin, h->separateFunc = (void *)tm_separate;
     return 0;
+}
+
+void tm_detach(tm_run *r) {
+    if (r->handler == NULL) return;
+    tm_handler *h = (tm_handler *)r->handler;
+    h->beginFunc = r->saved[0], h->preSolveFunc = r->saved[1], h->separateFunc = r->saved[2];
+    CP.cpSpaceSetUserData(r->space, NULL);
+    r->handler = NULL;
+    r->py = NULL;
 }
 
 /* Whether the step needs the exact solve at friction cap `cap`: a contact is new or did not push, or its friction
@@ -137,12 +191,6 @@ static void tm_fixture(tm_run *r, cpArbiter *arb) {
     } else if (unc != u) {
         CP.cpArbiterSetFriction(arb, unc);
     }
-}
-
-static int tm_part_index(tm_run *r, cpBody *b) {
-    for (int i = 0; i < r->n; i++)
-        if (r->body[i] == b) return i;
-    return -1;
 }
 
 /* Several parts (friction._MultiPartCap): part-part pairs take mu_pp, the others the arm's or the fixture's mu. */
