@@ -24,7 +24,7 @@ from ...records.outcome import Status
 from ..rest import EDGE_EPS
 from .world import BOX_TOL, World
 
-__all__ = ["inspect", "probe", "clearance", "escape", "energy", "all_slow", "body_state", "BOX_TOL"]
+__all__ = ["BOX_TOL", "GONE", "all_slow", "body_state", "clearance", "energy", "escape", "inspect", "probe"]
 
 
 def body_state(w: World, i: int) -> tuple:
@@ -114,21 +114,25 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle, over, near
 
 
+GONE = (None, Status.BEHIND_JOINT, Status.OFF_END)
+"""The status of each escape code of :func:`probe`."""
+
+
 def probe(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0, flips: bool = False):
     """Everything the periodic checks read of part i at one instant, from one reading of its state:
     ``(x, y, angle, vx, vy, spin)`` (:func:`body_state`), then :func:`inspect`'s ``(depth, x, y, phi, over, near)``,
-    its :func:`energy` (J/kg), whether it is slower than ``settle_speed`` and ``settle_spin`` (:func:`all_slow`) and,
-    with ``flips``, :func:`~.contacts.nearest_side`'s ``(side, tilt)`` of ``phi`` (else ``(0, 0.0)``). In the C helper
-    where the run has it (the same numbers)."""
-    if w.native is not None:
-        return w.native.probe(i, arm_angle, ca, sa, horizon, flips)
+    its :func:`energy` (J/kg), whether it is slower than ``settle_speed`` and ``settle_spin`` (:func:`all_slow`),
+    with ``flips`` :func:`~.contacts.nearest_side`'s ``(side, tilt)`` of ``phi`` (else ``(0, 0.0)``), and whether it
+    has left the arm (:func:`escape`; a vertex beyond the end with a wall there does not count) as a code, ``GONE[code]``
+    its status. :meth:`.native.NativeRun.probe` gives the same numbers from the C helper."""
     from .contacts import nearest_side
 
     st = body_state(w, i)
     pen, xa, ya, phi, over, near = inspect(w, i, arm_angle, ca, sa, horizon, st)
     k, tilt = nearest_side(w.betas[i], phi) if flips else (0, 0.0)
     slow = math.hypot(st[3], st[4]) < w.settle[0] and abs(st[5]) < w.settle[1]
-    return (*st, pen, xa, ya, phi, over, near, energy(w, i, st), slow, k, tilt)
+    gone = escape(w, i, xa, ya, w.arm_thickness, 0 if w.end_wall and over > 0 else over)
+    return (*st, pen, xa, ya, phi, over, near, energy(w, i, st), slow, k, tilt, GONE.index(gone))
 
 
 def clearance(w: World, i: int, enough: float = -math.inf) -> float:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import partial
 
 from ...errors import InvalidStateError, shown
 from ...kernels import codes as C
@@ -13,8 +14,9 @@ from ...system.motion import ImpulseThrow, angle_function, check_realisation
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
-from .checks import clearance, escape, probe
+from .checks import GONE, clearance, probe
 from .contacts import Contacts
+from .interrupt import check as check_interrupt
 from .interrupt import deferred_interrupts
 from .result import EngineRun, Recorder, finish
 from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
@@ -195,14 +197,16 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
     omega_arm_bound = abs(getattr(realisation, "omega", 0.0)) + abs(getattr(realisation, "peak_rate", 0.0)) \
         + abs(getattr(realisation, "rate_", 0.0))
     n_parts = w.n
-    # a wall at the arm's end: a vertex "below the surface beyond L" is one pressed into the wall's foot (within
-    # penetration_tol), not a part that left the arm; one that flew over the wall is caught by its CM (escape)
-    end_wall = any(type(f).__name__ == "Wall" for f in scene.fixtures)
-    pen_tol, thickness, impact_window = settings.penetration_tol, settings.arm_thickness, settings.impact_window
+    pen_tol, impact_window = settings.penetration_tol, settings.impact_window
     settle_hold = settings.settle_hold
     exact_flight = settings.exact_flight
     horizon = 2.0 * 4.0 * coarse_dt if use_coarse else 0.0  # twice the longest stretch between two checks, s
     n_steps = n_coarse = n_leaps = n_checks = n_clearance = 0
+    native = w.native
+    if native is not None:  # (bound once: the C helper's calls, else the same checks in Python)
+        look, clear, parked_steps = native.probe, native.clearance, native.steps
+    else:
+        look, clear, parked_steps = partial(probe, w), partial(clearance, w), None
 
     t = 0.0
     next_check = next_flight_check = next_sample = next_progress = 0.0
@@ -243,8 +247,8 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
             next_flight_check = t + CHECK_EVERY
             n_clearance += n_parts
             # (clearance may stop at a pair within margin: only gap > margin and, then, its exact value matter)
-            gap = min(clearance(w, i, margin) if tracks[i].fell is None else math.inf for i in range(n_parts)) \
-                if n_parts > 1 else clearance(w, 0, margin) if tracks[0].fell is None else math.inf
+            gap = min(clear(i, margin) if tracks[i].fell is None else math.inf for i in range(n_parts)) \
+                if n_parts > 1 else clear(0, margin) if tracks[0].fell is None else math.inf
             if gap > margin:
                 vmax = vertex_speed_bound(w, tracks)
                 if n_parts > 1:  # two parts in flight close on each other at up to the sum of their speeds
@@ -263,10 +267,9 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
                     ca, sa = math.cos(aa), math.sin(aa)
                     for i in range(n_parts):
                         if tracks[i].fell is None:
-                            _, _, _, _, _, _, _, xa, ya, _, over, _, _, _, _, _ = probe(w, i, aa, ca, sa)
-                            gone = escape(w, i, xa, ya, thickness, 0 if end_wall and over > 0 else over)
-                            if gone is not None:
-                                contacts.fell(i, t, gone)
+                            gone = look(i, aa, ca, sa)[16]
+                            if gone:
+                                contacts.fell(i, t, GONE[int(gone)])
                     if contacts.n_fell == n_parts:
                         break
                     continue
@@ -275,7 +278,11 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
                   and contacts.n_touching - contacts.n_fell_touching == n_parts - contacts.n_fell)  # all touching
         h_step = coarse_dt if coarse else dt
         n_inner = max(1, int(math.ceil((min(next_check, t_max) - t) / h_step - 1e-9)))
-        t = fixed_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
+        if parked_steps is not None and not arm_moving and w.arm_w == 0.0:  # (fixed_steps' parked arm, in C)
+            t = parked_steps(contacts, t, n_inner, h_step)
+            check_interrupt()
+        else:
+            t = fixed_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
         n_steps += n_inner
         if coarse:
             n_coarse += n_inner
@@ -299,15 +306,14 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
                 # one part touching nothing: its `near` is not looked for (horizon 0), since it cannot matter:
                 # coarse steps need it touching, and the contact that begins first sets last_begin later
                 # than this check would (with more parts, one leaving the arm here could still matter)
-                px, py, pa, vx, vy, om, pen, xa, ya, phi, over, near, e, slow_i, k, tilt = probe(
-                    w, i, aa, ca, sa, 0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, flips)
+                px, py, pa, vx, vy, om, pen, _, _, _, _, near, e, slow_i, k, tilt, gone = look(
+                    i, aa, ca, sa, 0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, flips)
                 states[i] = (px, py, pa, vx, vy, om)
                 if near:  # a landing is coming: fine steps until impact_window after it (pymunk's warm
                     landing_near = True  # start would scale the landing impulse by coarse_dt / dt)
                     contacts.last_begin = t
-                gone = escape(w, i, xa, ya, thickness, 0 if end_wall and over > 0 else over)
-                if gone is not None:  # left the arm: its depth "into" the arm's far side is no penetration
-                    contacts.fell(i, t, gone)
+                if gone:  # left the arm: its depth "into" the arm's far side is no penetration
+                    contacts.fell(i, t, GONE[int(gone)])
                     continue
                 if not slow_i:
                     slow = False

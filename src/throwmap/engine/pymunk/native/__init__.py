@@ -188,11 +188,11 @@ class NativeRun:
         r.L, r.h, r.back, r.thick, r.margin, r.g = w.L, w.h, w.back, w.thickness, w.margin, w.g
         r.edge_eps, r.box_tol = EDGE_EPS, BOX_TOL
         r.settle_speed, r.settle_spin = settings.settle_speed, settings.settle_spin
-        r.plain_arm = bool(w.plain_arm)
+        r.plain_arm, r.end_wall, r.arm_thickness = bool(w.plain_arm), bool(w.end_wall), settings.arm_thickness
         r.inv_m = arr("double", [1.0 / b.mass for b in w.bodies])
         r.inv_i = arr("double", [1.0 / b.moment for b in w.bodies])
         r.hook = 0
-        self.out = ffi.new("double[16]")
+        self.out = ffi.new("double[17]")
         self.tbuf = ffi.new("double[1]")
         self.unpack = ffi.unpack
         self._probe, self._steps = lib.tm_probe, lib.tm_steps
@@ -249,11 +249,11 @@ class NativeRun:
                 contacts.record_post(step)
         return tbuf[0]
 
-    def probe(self, i: int, arm_angle: float, ca: float, sa: float, horizon: float, flips: bool) -> list:
+    def probe(self, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0, flips: bool = False) -> list:
         """Part i's state and checks (:func:`..checks.probe`)."""
         out = self.out
         self._probe(self.ptr, i, arm_angle, ca, sa, horizon, flips, out)
-        return self.unpack(out, 16)
+        return self.unpack(out, 17)
 
     def clearance(self, i: int, enough: float) -> float:
         return self.lib.tm_clearance(self.ptr, i, enough)

@@ -31,8 +31,8 @@ typedef struct tm_run {
     double *corners;     /* arm-piece corners, arm frame, (x, y) pairs */
     int ncorners;
     int *hint;           /* [3 n] clearance hint per part: (kind, j, k), kind -1 none */
-    double L, h, back, thick, margin, g, edge_eps, box_tol, settle_speed, settle_spin;
-    int plain_arm;
+    double L, h, back, thick, margin, g, edge_eps, box_tol, settle_speed, settle_spin, arm_thickness;
+    int plain_arm, end_wall;
 
     /* friction hook: 0 none, 1 one part on a bare arm, 2 one part with fixtures, 3 several parts */
     int hook;

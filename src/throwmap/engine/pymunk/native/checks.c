@@ -21,9 +21,18 @@ int tm_steps(tm_run *r, int n, double step, double *t) {
     return n;
 }
 
-/* Part i's state and checks at one instant, into out[16]: x, y, angle, vx, vy, spin (world frame); then
+/* checks.escape as a code: 0 on the arm, 1 behind the joint, 2 off the end. */
+static int tm_escape(tm_run *r, int i, double xa, double ya, int over) {
+    if (r->end_wall && over > 0) over = 0; /* a vertex pressed into the wall's foot (run.py) */
+    if (over) return over < 0 ? 1 : 2;
+    double R = r->R[i], L = r->L, h = r->h;
+    if (ya < h - r->arm_thickness - 3.0 * R || (ya < h && (xa < -r->back - R || xa > L + R))) return xa < 0.5 * L ? 1 : 2;
+    return 0;
+}
+
+/* Part i's state and checks at one instant, into out[17]: x, y, angle, vx, vy, spin (world frame); then
    checks.inspect's (depth, x_arm, y_arm, phi, over, near); checks.energy (J/kg); 1 if slower than the settling
-   speed and spin; with `flips`, contacts.nearest_side's (side, tilt) of phi (else 0, 0). */
+   speed and spin; with `flips`, contacts.nearest_side's (side, tilt) of phi (else 0, 0); the escape code. */
 void tm_probe(tm_run *r, int i, double arm_angle, double ca, double sa, double horizon, int flips, double *out) {
     cpBody *b = r->body[i];
     cpVect p = CP.cpBodyGetPosition(b);
@@ -113,6 +122,7 @@ void tm_probe(tm_run *r, int i, double arm_angle, double ca, double sa, double h
         }
         out[14] = kb, out[15] = best;
     }
+    out[16] = tm_escape(r, i, out[7], out[8], over);
 }
 
 static inline double tm_distance(cpShape *s, cpVect p) { return CP.cpShapePointQuery(s, p, NULL); }
