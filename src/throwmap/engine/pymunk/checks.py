@@ -118,8 +118,9 @@ GONE = (None, Status.BEHIND_JOINT, Status.OFF_END)
 """The status of each escape code of :func:`probe`."""
 
 
-def probe(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0, flips: bool = False):
-    """Everything the periodic checks read of part i at one instant, from one reading of its state:
+def probe(w: World, i: int, horizon: float = 0.0, flips: bool = False):
+    """Everything the periodic checks read of part i at one instant (the arm at its angle now), from one reading of
+    its state:
     ``(x, y, angle, vx, vy, spin)`` (:func:`body_state`), then :func:`inspect`'s ``(depth, x, y, phi, over, near)``,
     its :func:`energy` (J/kg), whether it is slower than ``settle_speed`` and ``settle_spin`` (:func:`all_slow`),
     with ``flips`` :func:`~.contacts.nearest_side`'s ``(side, tilt)`` of ``phi`` (else ``(0, 0.0)``), and whether it
@@ -127,8 +128,9 @@ def probe(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: flo
     its status. :meth:`.native.NativeRun.probe` gives the same numbers from the C helper."""
     from .contacts import nearest_side
 
+    arm_angle = w.cp.angle(w.arm_h)
     st = body_state(w, i)
-    pen, xa, ya, phi, over, near = inspect(w, i, arm_angle, ca, sa, horizon, st)
+    pen, xa, ya, phi, over, near = inspect(w, i, arm_angle, math.cos(arm_angle), math.sin(arm_angle), horizon, st)
     k, tilt = nearest_side(w.betas[i], phi) if flips else (0, 0.0)
     slow = math.hypot(st[3], st[4]) < w.settle[0] and abs(st[5]) < w.settle[1]
     gone = escape(w, i, xa, ya, w.arm_thickness, 0 if w.end_wall and over > 0 else over)

@@ -41,6 +41,13 @@ exactly with the pair's μ instead (:mod:`.exact`); below that the capped μ
 leaves the sticking solution unchanged and Chipmunk solves it as before. A run
 where the cap never binds, and every run of several parts, is unchanged bit for
 bit (tests/engine/test_high_friction.py).
+
+In C
+----
+Where the engine's C helper is built (:mod:`.native`), the hook is :class:`NativeCap`: the
+arithmetic of the raw hooks below (``native/friction.c``) and of the exact solve
+(``native/exact.c``), operation for operation, without a call into Python per contact per step;
+the Python hooks remain the reference it is tested against (tests/engine/test_native.py).
 """
 
 from __future__ import annotations

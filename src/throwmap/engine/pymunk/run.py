@@ -187,7 +187,6 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
     contacts = Contacts(w)
     tracks, events = contacts.tracks, contacts.events
     recorder = Recorder(w) if record else None
-    cp = w.cp
     dt, coarse_dt, margin = settings.dt, settings.coarse_dt, settings.flight_margin
     use_coarse = coarse_dt > dt
     alpha = scene.alpha
@@ -263,11 +262,9 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
                     leap(w, tau, alpha + angle(t))
                     n_leaps += 1
                     # a part falling past an edge of the arm has left it: say so now, not at t_max
-                    aa = cp.angle(w.arm_h)
-                    ca, sa = math.cos(aa), math.sin(aa)
                     for i in range(n_parts):
                         if tracks[i].fell is None:
-                            gone = look(i, aa, ca, sa)[16]
+                            gone = look(i)[16]
                             if gone:
                                 contacts.fell(i, t, GONE[int(gone)])
                     if contacts.n_fell == n_parts:
@@ -292,10 +289,8 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
         if t >= next_check:
             n_checks += 1
             next_check = t + (CHECK_EVERY if h_step == dt else 4.0 * h_step)
-            aa = cp.angle(w.arm_h)
-            ca, sa = math.cos(aa), math.sin(aa)
             landing_near = False
-            states = [None] * n_parts  # each part's state, read once for all the checks of this instant
+            states = [None] * n_parts  # several parts: each one's state at this instant (confinement)
             slow = True  # every part still on the arm below the settling speeds
             e_sum = 0.0  # Σ m_i e_i of the parts still on the arm (several parts), J
             for i in range(n_parts):
@@ -307,8 +302,9 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
                 # coarse steps need it touching, and the contact that begins first sets last_begin later
                 # than this check would (with more parts, one leaving the arm here could still matter)
                 px, py, pa, vx, vy, om, pen, _, _, _, _, near, e, slow_i, k, tilt, gone = look(
-                    i, aa, ca, sa, 0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, flips)
-                states[i] = (px, py, pa, vx, vy, om)
+                    i, 0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, flips)
+                if n_parts > 1:
+                    states[i] = (px, py, pa, vx, vy, om)
                 if near:  # a landing is coming: fine steps until impact_window after it (pymunk's warm
                     landing_near = True  # start would scale the landing impulse by coarse_dt / dt)
                     contacts.last_begin = t

@@ -77,11 +77,11 @@ def _bind(module) -> None:
 
     @ffi.def_extern(name="tm_py_begin")
     def _begin(py, arb, ia, ib):
-        from_handle(py).begin_parts(ia, ib, arb)
+        from_handle(py)[0](ia, ib, arb)
 
     @ffi.def_extern(name="tm_py_separate")
     def _separate(py, ia, ib):
-        from_handle(py).separate_parts(ia, ib)
+        from_handle(py)[1](ia, ib)
 
 
 def load():
@@ -223,7 +223,7 @@ class NativeRun:
         from pymunk._chipmunk import ffi as pffi
 
         handler = space._handlers[(None, None)]._handler
-        handle = self.ffi.new_handle(contacts)
+        handle = self.ffi.new_handle((contacts.begin_parts, contacts.separate_parts))
         self.keep.append(handle)
         self.ptr.py = handle
         if self.lib.tm_attach(self.ptr, self.ffi.cast("void *", int(pffi.cast("uintptr_t", handler)))) != 0:
@@ -249,10 +249,10 @@ class NativeRun:
                 contacts.record_post(step)
         return tbuf[0]
 
-    def probe(self, i: int, arm_angle: float, ca: float, sa: float, horizon: float = 0.0, flips: bool = False) -> list:
+    def probe(self, i: int, horizon: float = 0.0, flips: bool = False) -> list:
         """Part i's state and checks (:func:`..checks.probe`)."""
         out = self.out
-        self._probe(self.ptr, i, arm_angle, ca, sa, horizon, flips, out)
+        self._probe(self.ptr, i, horizon, flips, out)
         return self.unpack(out, 17)
 
     def clearance(self, i: int, enough: float) -> float:

@@ -30,10 +30,12 @@ static int tm_escape(tm_run *r, int i, double xa, double ya, int over) {
     return 0;
 }
 
-/* Part i's state and checks at one instant, into out[17]: x, y, angle, vx, vy, spin (world frame); then
+/* Part i's state and checks at one instant (the arm at its angle now), into out[17]: x, y, angle, vx, vy, spin
+   (world frame); then
    checks.inspect's (depth, x_arm, y_arm, phi, over, near); checks.energy (J/kg); 1 if slower than the settling
    speed and spin; with `flips`, contacts.nearest_side's (side, tilt) of phi (else 0, 0); the escape code. */
-void tm_probe(tm_run *r, int i, double arm_angle, double ca, double sa, double horizon, int flips, double *out) {
+void tm_probe(tm_run *r, int i, double horizon, int flips, double *out) {
+    double arm_angle = CP.cpBodyGetAngle(r->arm), ca = cos(arm_angle), sa = sin(arm_angle);
     cpBody *b = r->body[i];
     cpVect p = CP.cpBodyGetPosition(b);
     double a = CP.cpBodyGetAngle(b);
