@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import throwmap as tm
-from throwmap.engine import Friction, ImpulseThrow, Placement, RecoilThrow, Scene, simulate
+from throwmap.engine import FiniteThrow, Friction, ImpulseThrow, Placement, RecoilThrow, Scene, TiltTo, simulate
 from throwmap.engine.pymunk import exact, native
 from throwmap.system.fixtures import Cavity, Wall
 
@@ -52,6 +52,9 @@ CASES = {
                       ImpulseThrow(4.0)),
     "recoil": (Scene(tm.Arm(h=-0.01, mu=1.5), (Placement(TRI, x=0.25, side=1),)),
                RecoilThrow.for_release_rate(5.0)),
+    "finite throw": (Scene(tm.Arm(h=-0.01, mu=math.inf), (Placement(LEAD, x=0.2, side=1),)), FiniteThrow(5.0, 0.02)),
+    "tilt to a wall": (Scene(tm.Arm(h=-0.01, mu=0.8, length=0.35), (Placement(PENTAGON, x=0.15, side=0),),
+                             (Wall(0.05, mu=0.0),)), TiltTo(-0.15, 0.4)),
     "two parts": (Scene(tm.Arm(h=-0.01, mu=1.2, length=0.4),
                         (Placement(TRI, x=0.28, side=0), Placement(TRI, pose=(0.14, 0.07, 1.1))),
                         (Wall(0.05, mu=0.0),), friction=Friction(part_part=0.5)), ImpulseThrow(4.5)),
@@ -64,7 +67,7 @@ CASES = {
 @pytest.mark.parametrize("name", list(CASES))
 def test_runs_are_the_python_runs_bit_for_bit(name):
     scene, real = CASES[name]
-    fast, slow = _both(scene, real, record=name in ("bare arm", "two parts"))
+    fast, slow = _both(scene, real, record=name in ("bare arm", "two parts", "tilt to a wall"))
     assert _key(fast) == _key(slow)
 
 

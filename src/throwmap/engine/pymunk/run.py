@@ -275,11 +275,14 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
                   and contacts.n_touching - contacts.n_fell_touching == n_parts - contacts.n_fell)  # all touching
         h_step = coarse_dt if coarse else dt
         n_inner = max(1, int(math.ceil((min(next_check, t_max) - t) / h_step - 1e-9)))
-        if parked_steps is not None and not arm_moving and w.arm_w == 0.0:  # (fixed_steps' parked arm, in C)
-            t = parked_steps(contacts, t, n_inner, h_step)
-            check_interrupt()
-        else:
+        if native is None:
             t = fixed_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
+        else:  # (fixed_steps in C: the arm parked, or moving)
+            if not arm_moving and w.arm_w == 0.0:
+                t = parked_steps(contacts, t, n_inner, h_step)
+            else:
+                t = native.arm_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
+            check_interrupt()
         n_steps += n_inner
         if coarse:
             n_coarse += n_inner

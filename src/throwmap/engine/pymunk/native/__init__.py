@@ -137,7 +137,7 @@ class NativeRun:
     ``ptr`` doubles as the run's clock: the collision callbacks read ``ptr.now`` (s) and set ``ptr.stop`` to make
     :meth:`steps` return after the current step. The friction hook is configured by :meth:`set_hook`."""
 
-    __slots__ = ("module", "ffi", "lib", "ptr", "keep", "out", "tbuf", "unpack", "_probe", "_steps")
+    __slots__ = ("module", "ffi", "lib", "ptr", "keep", "out", "tbuf", "rate", "unpack", "_probe", "_steps")
 
     def __init__(self, module, w, settings):
         from ..world import BOX_TOL
@@ -194,6 +194,7 @@ class NativeRun:
         r.hook = 0
         self.out = ffi.new("double[17]")
         self.tbuf = ffi.new("double[1]")
+        self.rate = ffi.new("double[1]")
         self.unpack = ffi.unpack
         self._probe, self._steps = lib.tm_probe, lib.tm_steps
 
@@ -248,6 +249,31 @@ class NativeRun:
             if contacts.need_post:
                 contacts.record_post(step)
         return tbuf[0]
+
+    def arm_steps(self, w, contacts, t: float, n: int, step: float, angle, alpha: float, arm_stop: float,
+                  end_alpha: float) -> float:
+        """``n`` steps of ``step`` (s) from ``t`` (s) while the arm moves (α + θ(t), ``angle`` θ) or stops (parked at
+        ``end_alpha`` once t ≥ ``arm_stop``), as :func:`..stepping.fixed_steps`; θ is evaluated here, at the same
+        times as there, and the steps taken in C. Keeps ``w.arm_w``."""
+        ffi, run, r = self.ffi, self.lib.tm_steps_arm, self.ptr
+        tbuf, rate = self.tbuf, self.rate
+        rate[0] = w.arm_w
+        while n > 0:
+            angles, tk = [], t
+            if tk < arm_stop:  # the block's step times while the arm moves (as the loop of fixed_steps takes them)
+                angles.append(alpha + angle(tk))
+                for _ in range(n):
+                    tk += step
+                    angles.append(alpha + angle(tk))
+                    if not tk < arm_stop:
+                        break
+            tbuf[0] = t
+            n -= run(r, n, step, tbuf, ffi.new("double[]", angles) if angles else ffi.NULL, arm_stop, end_alpha, rate)
+            t = tbuf[0]
+            if contacts.need_post:
+                contacts.record_post(step)
+        w.arm_w = rate[0]
+        return t
 
     def probe(self, i: int, horizon: float = 0.0, flips: bool = False) -> list:
         """Part i's state and checks (:func:`..checks.probe`)."""

@@ -67,6 +67,8 @@ int tm_contact_point(tm_run *r, cpArbiter *arb, int i, double *out);
 double tm_py_hypot(double x, double y);
 double tm_py_mod(double x, double y);
 int tm_steps(tm_run *r, int n, double step, double *t);
+int tm_steps_arm(tm_run *r, int n, double step, double *t, const double *angles, double arm_stop, double end_alpha,
+                 double *rate);
 void tm_probe(tm_run *r, int i, double horizon, int flips, double *out);
 double tm_clearance(tm_run *r, int i, double enough);
 double tm_vertex_speed_bound(tm_run *r);

@@ -8,7 +8,9 @@ versions, so an edited source is rebuilt and a stale build never loaded. Builds 
 place, so processes starting together (a worker pool) may each build but never load a half-written file.
 
 Floating point: ``-ffp-contract=off`` keeps the compiler from fusing a multiply and an add (a fused result differs
-from Python's in the last bit); nothing is built with ``-ffast-math``.
+from Python's in the last bit), and ``-fno-builtin-sin``/``cos``/``exp`` keep each call to libm's own function (the
+one Python's ``math`` calls) instead of a merged ``sincos``; nothing is built with ``-ffast-math``. A successful build
+removes the other builds of the helper in its directory (earlier sources).
 """
 
 from __future__ import annotations
@@ -33,7 +35,9 @@ CALLBACK = ('extern "Python" int tm_enumerate(void *py, int k, double *rows, dou
             "double scale, double *out);\n"
             'extern "Python" void tm_py_begin(void *py, cpArbiter *arb, int ia, int ib);\n'
             'extern "Python" void tm_py_separate(void *py, int ia, int ib);')
-FLAGS = ("-O2", "-ffp-contract=off", "-fno-strict-aliasing")
+FLAGS = ("-O2", "-ffp-contract=off", "-fno-strict-aliasing", "-fno-builtin-sin", "-fno-builtin-cos", "-fno-builtin-exp")
+"""Compiler flags: no fused multiply-add, and sin/cos/exp called as libm's functions (as Python's math module calls
+them), never merged into one ``sincos`` call or expanded inline."""
 
 
 def _read(name: str) -> str:
@@ -102,6 +106,11 @@ def _compile(name: str, target: str) -> None:
             if done.returncode != 0:
                 raise OSError(f"{' '.join(cmd[:1])} failed: {(done.stderr or done.stdout).strip()[-2000:]}")
         os.replace(so_file, target)
+    suffix = sysconfig.get_config_var("EXT_SUFFIX") or ".so"
+    for old in os.listdir(directory):  # builds of earlier sources (a process still using one keeps its mapping)
+        if old.startswith("_throwmap_engine_") and old.endswith(suffix) and old != os.path.basename(target):
+            with contextlib.suppress(OSError):
+                os.remove(os.path.join(directory, old))
 
 
 def build():

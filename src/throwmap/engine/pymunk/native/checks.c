@@ -21,6 +21,42 @@ int tm_steps(tm_run *r, int n, double step, double *t) {
     return n;
 }
 
+/* stepping.fixed_steps with the arm moving (or stopping): up to n steps of `step` (s) from *t. While t < arm_stop the
+   arm is put at angles[j] (rad, alpha + theta(t_j): the angles at the block's step times t_0 = *t, t_{j+1} = t_j +
+   step, as far as the arm moves) turning at the rate that takes it to angles[j + 1] in the step; once t >= arm_stop
+   it is parked at end_alpha, at rest (once). *rate: the arm's rate as last set (rad/s, in and out). Returns the
+   steps taken (fewer where a Python callback set r->stop). */
+int tm_steps_arm(tm_run *r, int n, double step, double *t, const double *angles, double arm_stop, double end_alpha,
+                 double *rate) {
+    double tt = *t, wa = *rate;
+    int moving = tt < arm_stop, j = 0, i = 0;
+    while (i < n) {
+        double t_next = tt + step;
+        if (moving) {
+            double a_now = angles[j], a_next = angles[j + 1];
+            j++;
+            CP.cpBodySetAngle(r->arm, a_now);
+            wa = (a_next - a_now) / step;
+            CP.cpBodySetAngularVelocity(r->arm, wa);
+            moving = t_next < arm_stop;
+        } else if (wa != 0.0) {
+            CP.cpBodySetAngle(r->arm, end_alpha);
+            CP.cpBodySetAngularVelocity(r->arm, 0.0);
+            wa = 0.0;
+        }
+        r->now = t_next;
+        CP.cpSpaceStep(r->space, step);
+        tt = t_next;
+        i++;
+        if (r->stop) {
+            r->stop = 0;
+            break;
+        }
+    }
+    *t = tt, *rate = wa;
+    return i;
+}
+
 /* checks.escape as a code: 0 on the arm, 1 behind the joint, 2 off the end. */
 static int tm_escape(tm_run *r, int i, double xa, double ya, int over) {
     if (r->end_wall && over > 0) over = 0; /* a vertex pressed into the wall's foot (run.py) */
