@@ -206,7 +206,9 @@ class NativeCap:
 
     def solve_exactly(self) -> None:
         """Solve one part's steps where the cap binds exactly (:mod:`.exact`)."""
-        self.run.ptr.exact = 1
+        from . import exact as X
+
+        self.run.solve_exactly(X.TRIGGER, X.MAX_SWEEPS, X.TOL, X.SAME_POINT, X.MU_SKID, X.enumerate_modes)
         self.exact = True
 
     @property

@@ -280,5 +280,5 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
 
         module = load()
         if module is not None:
-            w.native = NativeRun(module, w, settings)
+            w.native = NativeRun(module, w, settings, BOX_TOL)
     return w

@@ -58,10 +58,11 @@ def _bind(module) -> None:
         raise ImportError(f"Chipmunk's struct layouts differ from the helper's ({got} != {expected})")
     module.state_first = int(plib.CP_ARBITER_STATE_FIRST_COLLISION)
 
+    from_handle = ffi.from_handle
+
     @ffi.def_extern(name="tm_enumerate")
     def _enumerate(py, k, rows, u0, m_inv, i_inv, scale, out):
-        from ..exact import enumerate_modes
-
+        enumerate_modes = from_handle(py)[2]  # (exact.enumerate_modes, given by NativeRun.solve_exactly)
         cons = []
         for i in range(k):
             r = ffi.unpack(rows + 11 * i, 11)
@@ -72,8 +73,6 @@ def _bind(module) -> None:
         for i, (jn, jt) in enumerate(x):
             out[2 * i], out[2 * i + 1] = jn, jt
         return 1
-
-    from_handle = ffi.from_handle
 
     @ffi.def_extern(name="tm_py_begin")
     def _begin(py, arb, ia, ib):
@@ -137,10 +136,11 @@ class NativeRun:
     ``ptr`` doubles as the run's clock: the collision callbacks read ``ptr.now`` (s) and set ``ptr.stop`` to make
     :meth:`steps` return after the current step. The friction hook is configured by :meth:`set_hook`."""
 
-    __slots__ = ("module", "ffi", "lib", "ptr", "keep", "out", "tbuf", "rate", "unpack", "_probe", "_steps")
+    __slots__ = ("module", "ffi", "lib", "ptr", "keep", "out", "tbuf", "rate", "unpack", "enumerate", "_probe",
+                 "_steps")
 
-    def __init__(self, module, w, settings):
-        from ..world import BOX_TOL
+    def __init__(self, module, w, settings, box_tol: float):
+        """``box_tol``: the margin of the checks' bounding boxes (:data:`..world.BOX_TOL`, m)."""
         from ...rest import EDGE_EPS
 
         ffi, lib = module.ffi, module.lib
@@ -186,12 +186,13 @@ class NativeRun:
         r.ncorners = len(w.corners)
         r.hint = arr("int", [-1, 0, 0] * n)
         r.L, r.h, r.back, r.thick, r.margin, r.g = w.L, w.h, w.back, w.thickness, w.margin, w.g
-        r.edge_eps, r.box_tol = EDGE_EPS, BOX_TOL
+        r.edge_eps, r.box_tol = EDGE_EPS, box_tol
         r.settle_speed, r.settle_spin = settings.settle_speed, settings.settle_spin
         r.plain_arm, r.end_wall, r.arm_thickness = bool(w.plain_arm), bool(w.end_wall), settings.arm_thickness
         r.inv_m = arr("double", [1.0 / b.mass for b in w.bodies])
         r.inv_i = arr("double", [1.0 / b.moment for b in w.bodies])
         r.hook = 0
+        self.enumerate = None
         self.out = ffi.new("double[17]")
         self.tbuf = ffi.new("double[1]")
         self.rate = ffi.new("double[1]")
@@ -200,22 +201,27 @@ class NativeRun:
 
     # ------------------------------------------------------------------------------------------------ friction hook
     def set_hook(self, kind: int, cap: float, mu_arm: float, mu_fix: float, fix: int, by_u: bool, u_arm: float,
-                 u_fix: float, mu_pp: float = 0.0, exact: bool = False) -> None:
+                 u_fix: float, mu_pp: float = 0.0) -> None:
         """Configure the C friction hook: ``kind`` 1 one part on a bare arm, 2 one part with fixtures, 3 several parts
         (:mod:`..friction`); ``cap`` its CAP; μ of arm, fixture and part pairs (``inf`` allowed); ``fix`` the fixtures'
-        collision type; ``by_u``: the arbiter's friction (``u_arm``/``u_fix``) names the pair; ``exact``: one part's
-        capped steps are solved exactly (:mod:`..exact`, its constants read now)."""
-        from .. import exact as X
-
+        collision type; ``by_u``: the arbiter's friction (``u_arm``/``u_fix``) names the pair."""
         r = self.ptr
         r.hook, r.cap, r.mu, r.mu_fix, r.fix, r.by_u = kind, cap, mu_arm, mu_fix, fix, bool(by_u)
         r.u_arm, r.u_fix = u_arm, u_fix
         r.unc_arm = mu_arm if math.isfinite(mu_arm) else 1.0e30
         r.unc_fix = mu_fix if math.isfinite(mu_fix) else 1.0e30
         r.mu_pp, r.unc_pp = mu_pp, (mu_pp if math.isfinite(mu_pp) else 1.0e30)
-        r.exact = bool(exact)
-        r.trigger, r.max_sweeps, r.tol, r.same_point, r.mu_skid = X.TRIGGER, X.MAX_SWEEPS, X.TOL, X.SAME_POINT, X.MU_SKID
+        r.exact = 0
+
+    def solve_exactly(self, trigger: float, max_sweeps: int, tol: float, same_point: float, mu_skid: float,
+                      enumerate_modes) -> None:
+        """One part: solve its capped steps exactly (:mod:`..exact`, whose constants these are; ``enumerate_modes``
+        is called back for the steps whose sweeps cycle)."""
+        r = self.ptr
+        r.exact = 1
+        r.trigger, r.max_sweeps, r.tol, r.same_point, r.mu_skid = trigger, max_sweeps, tol, same_point, mu_skid
         r.state_first = self.module.state_first
+        self.enumerate = enumerate_modes
 
     def attach(self, space, contacts) -> None:
         """Make the run ``space``'s user data, the C hook its wildcard pre-solve (where :meth:`set_hook` set one) and
@@ -224,7 +230,7 @@ class NativeRun:
         from pymunk._chipmunk import ffi as pffi
 
         handler = space._handlers[(None, None)]._handler
-        handle = self.ffi.new_handle((contacts.begin_parts, contacts.separate_parts))
+        handle = self.ffi.new_handle((contacts.begin_parts, contacts.separate_parts, self.enumerate))
         self.keep.append(handle)
         self.ptr.py = handle
         if self.lib.tm_attach(self.ptr, self.ffi.cast("void *", int(pffi.cast("uintptr_t", handler)))) != 0:
