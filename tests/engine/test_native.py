@@ -9,7 +9,16 @@ import numpy as np
 import pytest
 
 import throwmap as tm
-from throwmap.engine import FiniteThrow, Friction, ImpulseThrow, Placement, RecoilThrow, Scene, TiltTo, simulate
+from throwmap.engine import (
+    FiniteThrow,
+    Friction,
+    ImpulseThrow,
+    Placement,
+    RecoilThrow,
+    Scene,
+    TiltTo,
+    simulate,
+)
 from throwmap.engine.pymunk import exact, native
 from throwmap.system.fixtures import Cavity, Wall
 

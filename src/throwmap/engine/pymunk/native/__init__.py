@@ -28,12 +28,13 @@ def _bind(module) -> None:
     from pymunk._chipmunk import lib as plib
 
     ffi, lib = module.ffi, module.lib
-    names = ("cpArbiterGetNormal cpArbiterGetCount cpArbiterGetPointA cpArbiterGetPointB cpArbiterGetContactPointSet "
-             "cpArbiterSetFriction cpArbiterGetFriction cpArbiterGetBodies cpArbiterGetShapes cpShapeGetCollisionType "
-             "cpShapeGetBody cpBodyGetPosition cpBodyGetVelocity cpBodyGetAngularVelocity cpBodyGetAngle "
-             "cpBodySetPosition cpBodySetVelocity cpBodySetAngle cpBodySetAngularVelocity cpBodySetVelocityUpdateFunc "
-             "cpBodyUpdateVelocity cpBodyEachArbiter cpBodyGetSpace cpBodyLocalToWorld cpShapePointQuery cpSpaceStep "
-             "cpSpaceGetUserData cpSpaceSetUserData cpSpaceReindexShapesForBody cpArbiterIsRemoval").split()
+    names = ("cpArbiterGetNormal", "cpArbiterGetCount", "cpArbiterGetPointA", "cpArbiterGetPointB",
+             "cpArbiterGetContactPointSet", "cpArbiterSetFriction", "cpArbiterGetFriction", "cpArbiterGetBodies",
+             "cpArbiterGetShapes", "cpShapeGetCollisionType", "cpShapeGetBody", "cpBodyGetPosition", "cpBodyGetVelocity",
+             "cpBodyGetAngularVelocity", "cpBodyGetAngle", "cpBodySetPosition", "cpBodySetVelocity", "cpBodySetAngle",
+             "cpBodySetAngularVelocity", "cpBodySetVelocityUpdateFunc", "cpBodyUpdateVelocity", "cpBodyEachArbiter",
+             "cpBodyGetSpace", "cpBodyLocalToWorld", "cpShapePointQuery", "cpSpaceStep", "cpSpaceGetUserData",
+             "cpSpaceSetUserData", "cpSpaceReindexShapesForBody", "cpArbiterIsRemoval")
     missing = None
     for name in names:
         try:
@@ -136,8 +137,7 @@ class NativeRun:
     ``ptr`` doubles as the run's clock: the collision callbacks read ``ptr.now`` (s) and set ``ptr.stop`` to make
     :meth:`steps` return after the current step. The friction hook is configured by :meth:`set_hook`."""
 
-    __slots__ = ("module", "ffi", "lib", "ptr", "keep", "out", "tbuf", "rate", "unpack", "enumerate", "_probe",
-                 "_steps")
+    __slots__ = ("_probe", "_steps", "enumerate", "ffi", "keep", "lib", "module", "out", "ptr", "rate", "tbuf", "unpack")
 
     def __init__(self, module, w, settings, box_tol: float):
         """``box_tol``: the margin of the checks' bounding boxes (:data:`..world.BOX_TOL`, m)."""
