@@ -22,6 +22,7 @@ import math
 
 from ...records.outcome import Status
 from ..rest import EDGE_EPS
+from .contacts import nearest_side
 from .world import BOX_TOL, World
 
 __all__ = ["BOX_TOL", "GONE", "all_slow", "body_state", "clearance", "energy", "escape", "inspect", "probe"]
@@ -126,15 +127,14 @@ def probe(w: World, i: int, horizon: float = 0.0, flips: bool = False):
     with ``flips`` :func:`~.contacts.nearest_side`'s ``(side, tilt)`` of ``phi`` (else ``(0, 0.0)``), and whether it
     has left the arm (:func:`escape`; a vertex beyond the end with a wall there does not count) as a code, ``GONE[code]``
     its status. :meth:`.native.NativeRun.probe` gives the same numbers from the C helper."""
-    from .contacts import nearest_side
-
     arm_angle = w.cp.angle(w.arm_h)
     st = body_state(w, i)
     pen, xa, ya, phi, over, near = inspect(w, i, arm_angle, math.cos(arm_angle), math.sin(arm_angle), horizon, st)
     k, tilt = nearest_side(w.betas[i], phi) if flips else (0, 0.0)
     slow = math.hypot(st[3], st[4]) < w.settle[0] and abs(st[5]) < w.settle[1]
     gone = escape(w, i, xa, ya, w.arm_thickness, 0 if w.end_wall and over > 0 else over)
-    return (*st, pen, xa, ya, phi, over, near, energy(w, i, st), slow, k, tilt, GONE.index(gone))
+    code = 0 if gone is None else 1 if gone == Status.BEHIND_JOINT else 2
+    return (*st, pen, xa, ya, phi, over, near, energy(w, i, st), slow, k, tilt, code)
 
 
 def clearance(w: World, i: int, enough: float = -math.inf) -> float:

@@ -79,6 +79,7 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
     """
     cp = w.cp
     space_step, space_h, arm_h = cp.step, w.space_h, w.arm_h
+    clock = contacts.clock  # (contacts.now, set once per step)
     arm_moving = t < arm_stop
     wa = w.arm_w  # the arm's rate as last set (kept here, stored back once)
     if not arm_moving and wa == 0.0:  # the arm is parked: only the space moves
@@ -88,7 +89,7 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
             return t
         for _ in range(n):
             t_next = t + step
-            contacts.now = t_next
+            clock.now = t_next
             space_step(space_h, step)
             t = t_next
             if contacts.need_post:
@@ -110,7 +111,7 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
             set_angle(arm_h, end_alpha)
             set_spin(arm_h, 0.0)
             wa = 0.0
-        contacts.now = t_next
+        clock.now = t_next
         space_step(space_h, step)
         t = t_next
         if contacts.need_post:
