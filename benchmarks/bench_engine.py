@@ -11,9 +11,18 @@ Per throw it prints the run's cost (pymunk steps, fine and coarse; exact-flight
 leaps; rounds of checks; clearance evaluations) and, measured in the same run, a
 *reference*: a plain pymunk loop — the triangle resting on the arm, the same
 space settings, ``space.step`` called as many times per throw at the same step
-sizes and nothing else. The reference gives the time a throw spends in pymunk
-steps; the rest is the engine's Python (checks, leaps, callbacks, set-up).
-Figures on a shared machine are noisy; the ratio engine ÷ reference is not.
+sizes and nothing else. The ratio engine ÷ reference is the figure to compare
+between machines (figures on a shared machine are noisy; the ratio much less).
+
+The engine steps through its C helper (:mod:`throwmap.engine.pymunk.native`:
+friction hook, exact solve, step loop and checks in C; the line "C helper" says
+whether it is in use): it calls Chipmunk's ``cpSpaceStep`` without pymunk's
+``Space.step`` wrapper, which the reference pays on every step. So the time is
+split against a second loop timed the same way, *Chipmunk alone*: the same
+steps through pymunk's raw ``lib.cpSpaceStep``. Per throw: Chipmunk's own step
+time (that loop), pymunk's wrapper (reference − that loop), and the engine
+beyond Chipmunk's steps (engine − that loop: set-up, checks, leaps, callbacks,
+friction hook and exact solves, reruns at half the step).
 Usage::
 
     python benchmarks/bench_engine.py [--n 200] [--json bench_engine.json]
@@ -32,6 +41,7 @@ import numpy as np
 
 import throwmap as tm
 from throwmap.engine import EngineSettings, engine_run
+from throwmap.engine.pymunk import native
 from throwmap.system.fixtures import arm_solids
 from throwmap.system.pose import pose_at_rest
 
@@ -45,12 +55,13 @@ def cases(n: int, seed: int = 0):
     return part, x, k, om
 
 
-def plain_pymunk_seconds(part, arm, n_fine: int, n_coarse: int, settings: EngineSettings) -> float:
+def plain_pymunk_seconds(part, arm, n_fine: int, n_coarse: int, settings: EngineSettings, raw: bool = False) -> float:
     """Seconds for ``n_fine`` steps of ``dt`` and ``n_coarse`` of ``coarse_dt`` of a plain pymunk space.
 
     The space: the arm's solid (kinematic) and the part resting on side 0 at
     x = 0.2 m, with the engine's gravity, iterations, collision slop, friction
-    and empty begin/separate handlers; ``space.step`` in a bare loop.
+    and empty begin/separate handlers; ``space.step`` in a bare loop, or with
+    ``raw`` Chipmunk's ``cpSpaceStep`` through pymunk's cffi ``lib`` (no wrapper).
     """
     import pymunk as pm
 
@@ -70,7 +81,18 @@ def plain_pymunk_seconds(part, arm, n_fine: int, n_coarse: int, settings: Engine
     shape.friction, shape.elasticity = 1.0, 0.0
     space.add(body, shape)
     space.on_collision(begin=lambda *a: None, separate=lambda *a: None)
-    step, dt, coarse = space.step, settings.dt, settings.coarse_dt
+    dt, coarse = settings.dt, settings.coarse_dt
+    if raw:
+        from pymunk._chipmunk import lib
+
+        step, handle = lib.cpSpaceStep, space._space
+        t0 = time.perf_counter()
+        for _ in range(n_fine):
+            step(handle, dt)
+        for _ in range(n_coarse):
+            step(handle, coarse)
+        return time.perf_counter() - t0
+    step = space.step
     t0 = time.perf_counter()
     for _ in range(n_fine):
         step(dt)
@@ -92,12 +114,13 @@ def main(argv=None) -> dict:
     engine_run(part, arm, float(x[0]), int(k[0]), float(om[0]))  # warm-up
     plain_pymunk_seconds(part, arm, 100, 100, settings)
     tot = dict(steps=0, coarse=0, leaps=0, checks=0, clearance=0, sim=0.0)
-    t_engine = t_ref = 0.0
-    for i in range(args.n):  # engine and reference interleaved, so that both see the same machine load
+    t_engine = t_ref = t_raw = 0.0
+    for i in range(args.n):  # engine and references interleaved, so that all see the same machine load
         t0 = time.perf_counter()
         r = engine_run(part, arm, float(x[i]), int(k[i]), float(om[i]))
         t_engine += time.perf_counter() - t0
         t_ref += plain_pymunk_seconds(part, arm, r.n_steps - r.n_coarse, r.n_coarse, settings)
+        t_raw += plain_pymunk_seconds(part, arm, r.n_steps - r.n_coarse, r.n_coarse, settings, raw=True)
         tot["steps"] += r.n_steps
         tot["coarse"] += r.n_coarse
         tot["leaps"] += r.n_leaps
@@ -117,8 +140,11 @@ def main(argv=None) -> dict:
         "steps_per_throw": per["steps"], "coarse_steps_per_throw": per["coarse"], "leaps_per_throw": per["leaps"],
         "checks_per_throw": per["checks"], "clearances_per_throw": per["clearance"],
         "simulated_s_per_throw": per["sim"], "ms_per_throw": 1e3 * t_engine / n,
-        "ms_in_pymunk_steps_per_throw": 1e3 * t_ref / n, "ms_in_python_per_throw": 1e3 * (t_engine - t_ref) / n,
-        "us_per_step_reference": 1e6 * t_ref / tot["steps"],
+        "ms_in_pymunk_steps_per_throw": 1e3 * t_ref / n, "ms_in_chipmunk_steps_per_throw": 1e3 * t_raw / n,
+        "ms_in_pymunk_wrapper_per_throw": 1e3 * (t_ref - t_raw) / n,
+        "ms_beyond_chipmunk_per_throw": 1e3 * (t_engine - t_raw) / n,
+        "us_per_step_reference": 1e6 * t_ref / tot["steps"], "us_per_step_chipmunk": 1e6 * t_raw / tot["steps"],
+        "c_helper": native.available(), "c_helper_reason": native.reason(),
     }
     print(f"engine benchmark: {n} throws, {cores} cores, Python {res['python']} ({res['machine']})")
     print(f"  one core : {res['throws_per_s_one_core']:8.1f} throws/s  ({res['ms_per_throw']:.2f} ms/throw)")
@@ -126,11 +152,14 @@ def main(argv=None) -> dict:
     print(f"  reference: {res['reference_throws_per_s']:8.1f} throws/s  (plain pymunk loop, same steps per throw, "
           f"{res['us_per_step_reference']:.2f} µs/step)")
     print(f"  engine / reference: {res['ratio_engine_over_reference']:.3f}")
+    print(f"  C helper: {'in use' if res['c_helper'] else 'not used (' + str(res['c_helper_reason']) + ')'}")
     print(f"  per throw: {per['steps']:.0f} pymunk steps ({per['steps'] - per['coarse']:.0f} at dt, "
           f"{per['coarse']:.0f} at coarse_dt), {per['leaps']:.1f} exact-flight leaps, {per['checks']:.0f} check rounds, "
           f"{per['clearance']:.1f} clearances, {per['sim']:.3f} s simulated")
-    print(f"  time per throw: {res['ms_in_pymunk_steps_per_throw']:.2f} ms in pymunk steps (reference), "
-          f"{res['ms_in_python_per_throw']:.2f} ms in the engine's Python")
+    print(f"  time per throw: {res['ms_in_chipmunk_steps_per_throw']:.2f} ms in Chipmunk's steps "
+          f"({res['us_per_step_chipmunk']:.2f} µs/step, cpSpaceStep alone), "
+          f"{res['ms_in_pymunk_wrapper_per_throw']:.2f} ms more through pymunk's Space.step (reference); "
+          f"the engine {res['ms_beyond_chipmunk_per_throw']:.2f} ms beyond Chipmunk's steps")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(res, f, indent=2)

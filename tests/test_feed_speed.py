@@ -111,6 +111,7 @@ def test_fixture_hook_fast_path_is_bit_identical(monkeypatch):
         return slow(self, *a)
 
     monkeypatch.setattr(F._SinglePartFixtureCap, "_slow", counted)
+    monkeypatch.setenv("THROWMAP_NATIVE", "0")  # the Python hooks (the C one: tests/engine/test_native.py)
     for fast in (True, False):
         if not fast:
             init = F._SinglePartFixtureCap.__init__

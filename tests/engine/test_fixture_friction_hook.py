@@ -8,10 +8,18 @@ import pytest
 
 import throwmap as tm
 from throwmap.engine.pymunk import friction as F
+from throwmap.engine.pymunk import native
 
 PART = tm.triangle_30_60_90(0.17)
 ARM = tm.Arm(h=-0.01, mu=1.5, length=0.3)
 CASES = ((0.2, 0, 4.0), (0.19, 1, 5.0), (0.18, 2, 4.5))
+
+
+@pytest.fixture(autouse=True)
+def _python_hooks():
+    """These tests compare the engine's Python hooks with each other (its C hook: tests/engine/test_native.py)."""
+    with native.disabled():
+        yield
 
 
 def _throw(x, k, w, mu_w, fast: bool, monkeypatch):

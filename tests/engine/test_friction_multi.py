@@ -10,10 +10,18 @@ import pytest
 from throwmap import Arm
 from throwmap.engine import Friction, ImpulseThrow, Placement, Scene, simulate
 from throwmap.engine.pymunk import friction as F
+from throwmap.engine.pymunk import native
 from throwmap.system.catalogue import triangle_30_60_90
 from throwmap.system.fixtures import Wall
 
 TRI = triangle_30_60_90()
+
+
+@pytest.fixture(autouse=True)
+def _python_hooks():
+    """These tests compare the engine's Python hooks with each other (its C hook: tests/engine/test_native.py)."""
+    with native.disabled():
+        yield
 
 
 def _scene(mu_arm, wall_mu, mu_pp):

@@ -47,6 +47,15 @@ lost contacts in most long throws.
 Contacts, impacts, hops and flips are counted in :mod:`.contacts`; the loop is
 :func:`.run.simulate`, its result :class:`.result.EngineRun`. pymunk itself is
 imported only when a run starts.
+
+The C helper (:mod:`.native`)
+-----------------------------
+The hot paths — the friction hook and the exact solve (called per contact per
+step), blocks of steps with the arm parked, the checks of each round, clearance
+and leaps — run in a small C module built with cffi on first use, with the same
+arithmetic as their Python versions: a run is the same bit for bit with or
+without it. Where it cannot be built (no C compiler) or ``THROWMAP_NATIVE=0``,
+the Python versions run (several times slower).
 """
 
 from .result import EngineRun

@@ -22,9 +22,10 @@ import math
 
 from ...records.outcome import Status
 from ..rest import EDGE_EPS
+from .contacts import nearest_side
 from .world import BOX_TOL, World
 
-__all__ = ["inspect", "clearance", "escape", "energy", "all_slow", "body_state", "BOX_TOL"]
+__all__ = ["BOX_TOL", "GONE", "all_slow", "body_state", "clearance", "energy", "escape", "inspect", "probe"]
 
 
 def body_state(w: World, i: int) -> tuple:
@@ -114,6 +115,28 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
     return deepest, ca * px + sa * py, -sa * px + ca * py, a - arm_angle, over, near
 
 
+GONE = (None, Status.BEHIND_JOINT, Status.OFF_END)
+"""The status of each escape code of :func:`probe`."""
+
+
+def probe(w: World, i: int, horizon: float = 0.0, flips: bool = False):
+    """Everything the periodic checks read of part i at one instant (the arm at its angle now), from one reading of
+    its state:
+    ``(x, y, angle, vx, vy, spin)`` (:func:`body_state`), then :func:`inspect`'s ``(depth, x, y, phi, over, near)``,
+    its :func:`energy` (J/kg), whether it is slower than ``settle_speed`` and ``settle_spin`` (:func:`all_slow`),
+    with ``flips`` :func:`~.contacts.nearest_side`'s ``(side, tilt)`` of ``phi`` (else ``(0, 0.0)``), and whether it
+    has left the arm (:func:`escape`; a vertex beyond the end with a wall there does not count) as a code, ``GONE[code]``
+    its status. :meth:`.native.NativeRun.probe` gives the same numbers from the C helper."""
+    arm_angle = w.cp.angle(w.arm_h)
+    st = body_state(w, i)
+    pen, xa, ya, phi, over, near = inspect(w, i, arm_angle, math.cos(arm_angle), math.sin(arm_angle), horizon, st)
+    k, tilt = nearest_side(w.betas[i], phi) if flips else (0, 0.0)
+    slow = math.hypot(st[3], st[4]) < w.settle[0] and abs(st[5]) < w.settle[1]
+    gone = escape(w, i, xa, ya, w.arm_thickness, 0 if w.end_wall and over > 0 else over)
+    code = 0 if gone is None else 1 if gone == Status.BEHIND_JOINT else 2
+    return (*st, pen, xa, ya, phi, over, near, energy(w, i, st), slow, k, tilt, code)
+
+
 def clearance(w: World, i: int, enough: float = -math.inf) -> float:
     """Lower bound of the distance (m) from part i to every other shape: the least distance over part i's
     vertices to the other shapes, the arm's corners to part i and the other parts' vertices to part i.
@@ -123,6 +146,8 @@ def clearance(w: World, i: int, enough: float = -math.inf) -> float:
     that gave the last bound (``w.clear_hint[i]``) is tried first, and where it is still within ``enough``
     the rest is not searched. Where the bound exceeds ``enough`` it is returned exactly as without it.
     """
+    if w.native is not None:
+        return w.native.clearance(i, enough)
     cp = w.cp
     distance, NULL, to_world = cp.distance, cp.NULL, cp.to_world
     b = w.bodies_h[i]

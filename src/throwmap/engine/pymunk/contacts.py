@@ -17,7 +17,7 @@ import numpy as np
 
 from ...kernels import codes as C
 from ...records.outcome import Status
-from .friction import attach_raw, install_friction_cap
+from .friction import NativeCap, attach_raw, install_friction_cap
 from .world import World
 
 __all__ = ["HOP_MIN", "PartTrack", "Contacts", "nearest_side"]
@@ -57,10 +57,21 @@ class PartTrack:
         self.status = Status.OK
 
 
+class _Clock:
+    """The run's clock where there is no C helper (:class:`.native.NativeRun` is the clock otherwise)."""
+
+    __slots__ = ("now", "stop")
+
+    def __init__(self):
+        self.now = 0.0
+        self.stop = 0
+
+
 class Contacts:
     """The callbacks of one run and what they record.
 
-    ``now`` is the simulated time (s) at the end of the step being taken;
+    ``now`` is the simulated time (s) at the end of the step being taken (kept by ``clock``, which the C helper's
+    step loop advances; a first impact sets ``clock.stop`` so that the loop returns after its step);
     ``last_begin`` the time the latest contact began; ``need_post`` is set when a
     first impact waits for its post-impact state; ``events`` the run's
     ``(t, text)`` log; ``finished`` silences the callbacks once the run is over.
@@ -69,12 +80,13 @@ class Contacts:
     those of them that were touching when removed.
     """
 
-    __slots__ = ("world", "tracks", "now", "last_begin", "need_post", "finished", "events", "n_touching", "n_fell",
+    __slots__ = ("world", "tracks", "clock", "last_begin", "need_post", "finished", "events", "n_touching", "n_fell",
                  "n_fell_touching", "_one", "friction_cap")
 
     def __init__(self, world: World):
         self.world = world
         self.tracks = [PartTrack() for _ in world.bodies]
+        self.clock = _Clock() if world.native is None else world.native.ptr
         self.now = 0.0
         self.last_begin = -math.inf
         self.need_post = False
@@ -92,9 +104,21 @@ class Contacts:
             tr.rec[C.E_RELEASE] = (0.5 * (v.x**2 + v.y**2 + p.radius_of_gyration**2 * b.angular_velocity**2)
                                    + world.g * (y_arm - world.h))
         self.friction_cap = cap = install_friction_cap(world)
-        world.space.on_collision(begin=self._begin, separate=self._separate, pre_solve=cap)
-        if cap is not None:
+        native = isinstance(cap, NativeCap)
+        world.space.on_collision(begin=self._begin, separate=self._separate, pre_solve=None if native else cap)
+        if cap is not None and not native:
             attach_raw(world.space, cap)
+        if world.native is not None:  # the C hook (where it is one) and C begin/separate calling begin_parts etc.
+            world.native.attach(world.space, self)
+
+    @property
+    def now(self) -> float:
+        """Simulated time at the end of the step being taken, s."""
+        return self.clock.now
+
+    @now.setter
+    def now(self, t: float) -> None:
+        self.clock.now = t
 
     def _parts(self, arbiter):
         if self._one is not None:
@@ -103,13 +127,30 @@ class Contacts:
         return [index[id(b)] for b in arbiter.bodies if id(b) in index]
 
     def _begin(self, arbiter, space_, data):
+        self._begun(self._parts(arbiter), arbiter, self._first_point)
+
+    def _first_point(self, arbiter, i):
+        """The first contact point ``(x, y)`` of pymunk ``arbiter`` on part i's body (None: it has none)."""
+        pts = arbiter.contact_point_set.points
+        if not pts:
+            return None
+        p = pts[0].point_a if arbiter.shapes[0].body is self.world.bodies[i] else pts[0].point_b
+        return (p.x, p.y)
+
+    def begin_parts(self, ia: int, ib: int, arb):
+        """A contact began between the bodies of parts ``ia`` and ``ib`` (-1: not a part) on raw arbiter ``arb``
+        (the C helper's begin callback)."""
+        parts = self._one if self._one is not None else [i for i in (ia, ib) if i >= 0]
+        self._begun(parts, arb, self.world.native.contact_point)
+
+    def _begun(self, parts, arbiter, point):
         t = self.now
         self.last_begin = t
-        for i in self._parts(arbiter):
+        for i in parts:
             tr = self.tracks[i]
             if tr.n_contacts == 0 and tr.armed:
                 if not tr.ever:
-                    self._first_impact(i, tr, arbiter, t)
+                    self._first_impact(i, tr, point(arbiter, i), t)
                 elif tr.t_sep is not None and (tr.t_sep == -math.inf or t - tr.t_sep >= HOP_MIN):
                     tr.rec[C.N_IMPACTS] += 1.0
                 tr.t_sep = None
@@ -117,7 +158,9 @@ class Contacts:
                 self.n_touching += 1
             tr.n_contacts += 1
 
-    def _first_impact(self, i, tr, arbiter, t):
+    def _first_impact(self, i, tr, p, t):
+        """Part i's first touch after release at ``t`` (s), ``p`` its first contact point (world frame, m; None: the
+        arbiter has none)."""
         w = self.world
         b = w.bodies[i]
         tr.ever = True
@@ -125,10 +168,8 @@ class Contacts:
         tr.pre = (tuple(b.velocity), b.angular_velocity, b.angle, tuple(b.position))
         tr.need_post = True
         self.need_post = True
-        pts = arbiter.contact_point_set.points
-        if pts:
-            p = pts[0].point_a if arbiter.shapes[0].body is b else pts[0].point_b
-            p = (p.x, p.y)
+        self.clock.stop = 1  # (the C step loop returns after this step, for record_post)
+        if p is not None:
             aa = w.arm.angle
             ca, sa = math.cos(aa), math.sin(aa)
             tr.rec[C.CONTACT_X] = ca * p[0] + sa * p[1]
@@ -142,7 +183,16 @@ class Contacts:
     def _separate(self, arbiter, space_, data):
         if self.finished or arbiter.is_removal:
             return
-        for i in self._parts(arbiter):
+        self._separated(self._parts(arbiter))
+
+    def separate_parts(self, ia: int, ib: int):
+        """A contact between the bodies of parts ``ia`` and ``ib`` (-1: not a part) ended (the C helper's separate
+        callback; not called for removals)."""
+        if not self.finished:
+            self._separated(self._one if self._one is not None else [i for i in (ia, ib) if i >= 0])
+
+    def _separated(self, parts):
+        for i in parts:
             tr = self.tracks[i]
             if tr.n_contacts == 1:
                 self.n_touching -= 1
@@ -199,6 +249,8 @@ class Contacts:
         self.events.append((t, f"escape: {status.name.lower()}"))
         w = self.world
         w.space.remove(w.bodies[i], w.shapes[i])
+        if w.native is not None:
+            w.native.fell(i)
 
     def all_free(self) -> bool:
         """No part touches anything."""

@@ -39,6 +39,10 @@ The arbiters are marked first-contact for this step so the cached (warm-start)
 impulses are not applied twice; the next ordinary step warm-starts from the
 exact impulses. The function removes itself after the step, so a step where the
 cap does not bind runs through Chipmunk's own code unchanged.
+
+With the engine's C helper (:mod:`.native`) the same solve runs in C (``native/exact.c``, the
+arithmetic of :meth:`ExactSolve._solve` and :func:`solve_contact` operation for operation); only
+:func:`enumerate_modes` stays in Python, called back from C for the rare steps whose sweeps cycle.
 """
 
 from __future__ import annotations

@@ -41,13 +41,20 @@ exactly with the pair's μ instead (:mod:`.exact`); below that the capped μ
 leaves the sticking solution unchanged and Chipmunk solves it as before. A run
 where the cap never binds, and every run of several parts, is unchanged bit for
 bit (tests/engine/test_high_friction.py).
+
+In C
+----
+Where the engine's C helper is built (:mod:`.native`), the hook is :class:`NativeCap`: the
+arithmetic of the raw hooks below (``native/friction.c``) and of the exact solve
+(``native/exact.c``), operation for operation, without a call into Python per contact per step;
+the Python hooks remain the reference it is tested against (tests/engine/test_native.py).
 """
 
 from __future__ import annotations
 
 import math
 
-__all__ = ["CAP", "EXACT", "FrictionCap", "attach_raw", "cap_bound", "install_friction_cap"]
+__all__ = ["CAP", "EXACT", "FrictionCap", "NativeCap", "attach_raw", "cap_bound", "install_friction_cap"]
 
 EXACT = True
 """One part: solve the steps where the cap would bind exactly (:mod:`.exact`) instead of capping μ (read when a
@@ -149,16 +156,18 @@ def install_friction_cap(world) -> FrictionCap | None:
     if world.n == 1 and not any(s.collision_type == FIXTURE for s in world.static_shapes):
         if mu_arm <= bound:
             return None
-        fast = _single_part_hook(world, mu_arm)
+        fast = _native_hook(world, 1, mu_arm, mu_wall, mu_pp) or _single_part_hook(world, mu_arm)
         if fast is not None:
             return _with_exact(fast, world)
     elif world.n == 1 and not (mu_arm <= bound and mu_wall <= bound):
-        fast = _single_part_fixture_hook(world, mu_arm, mu_wall, FIXTURE)
+        fast = _native_hook(world, 2, mu_arm, mu_wall, mu_pp) \
+            or _single_part_fixture_hook(world, mu_arm, mu_wall, FIXTURE)
         if fast is not None:
             return _with_exact(fast, world)
     if world.n == 1 and mu_arm <= bound and mu_wall <= bound:
         return None
-    hook = _multi_part_hook(world, mu_arm, mu_wall, mu_pp) if world.n > 1 else None
+    hook = (_native_hook(world, 3, mu_arm, mu_wall, mu_pp) or _multi_part_hook(world, mu_arm, mu_wall, mu_pp)) \
+        if world.n > 1 else None
     if hook is None:
         hook = FrictionCap(inv, mu_of)
     return _with_exact(hook, world)
@@ -166,11 +175,50 @@ def install_friction_cap(world) -> FrictionCap | None:
 
 def _with_exact(hook, world):
     """``hook`` with its exact solver (:mod:`.exact`) where :data:`EXACT` is on."""
+    if isinstance(hook, NativeCap):
+        if EXACT and world.n == 1:
+            hook.solve_exactly()
+        return hook
     if EXACT:
         from .exact import exact_solver
 
         hook.exact = exact_solver(world)
     return hook
+
+
+class NativeCap:
+    """The friction hook in the engine's C helper (:mod:`.native`, ``friction.c``): the arithmetic of
+    :class:`_SinglePartCap` (``kind`` 1), :class:`_SinglePartFixtureCap` (2) or :class:`_MultiPartCap` (3), operation for
+    operation, and one part's exact solve (``exact.c``, the arithmetic of :class:`.exact.ExactSolve`), without a call
+    into Python per contact per step. ``exact`` is True once the exact solve is on (else None), ``n_capped`` as theirs."""
+
+    __slots__ = ("run", "exact")
+
+    def __init__(self, run, kind: int, mu_arm: float, mu_wall: float, mu_pp: float):
+        from ..settings import engine_mu
+        from .world import FIXTURE
+
+        u_arm, u_fix = engine_mu(mu_arm), engine_mu(mu_wall)
+        run.set_hook(kind, CAP, mu_arm, mu_wall, FIXTURE, not (u_arm == u_fix and mu_arm != mu_wall), u_arm, u_fix,
+                     mu_pp)
+        self.run = run
+        self.exact = None
+
+    def solve_exactly(self) -> None:
+        """Solve one part's steps where the cap binds exactly (:mod:`.exact`)."""
+        from . import exact as X
+
+        self.run.solve_exactly(X.TRIGGER, X.MAX_SWEEPS, X.TOL, X.SAME_POINT, X.MU_SKID, X.enumerate_modes)
+        self.exact = True
+
+    @property
+    def n_capped(self) -> int:
+        return self.run.n_capped
+
+
+def _native_hook(world, kind: int, mu_arm: float, mu_wall: float, mu_pp: float):
+    """The C hook (:class:`NativeCap`) where ``world`` runs with the C helper, else None."""
+    return None if world.native is None else NativeCap(world.native, kind, mu_arm, mu_wall, mu_pp)
 
 
 class _SinglePartCap:

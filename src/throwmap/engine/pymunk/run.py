@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import partial
 
 from ...errors import InvalidStateError, shown
 from ...kernels import codes as C
@@ -13,8 +14,9 @@ from ...system.motion import ImpulseThrow, angle_function, check_realisation
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
-from .checks import all_slow, body_state, clearance, energy, escape, inspect
-from .contacts import Contacts, nearest_side
+from .checks import GONE, clearance, probe
+from .contacts import Contacts
+from .interrupt import check as check_interrupt
 from .interrupt import deferred_interrupts
 from .result import EngineRun, Recorder, finish
 from .stepping import fixed_steps, leap, leap_length, vertex_speed_bound
@@ -173,10 +175,18 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             raise InvalidStateError("run_for", f"must be a positive number of seconds, got {shown(run_for)}")
         t_max = float(run_for)
     w = build_world(scene, realisation, settings, raw=raw, length=length)
+    try:
+        return _run_world(w, scene, realisation, settings, record, progress, run_for, t_max)
+    finally:
+        if w.native is not None:  # the space gets its own callbacks back: it may outlive the run's C state
+            w.native.detach()
+
+
+def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max) -> EngineRun:
+    """The loop of :func:`_simulate_once` on world ``w`` (built for ``scene``), until every part settles or ``t_max``."""
     contacts = Contacts(w)
     tracks, events = contacts.tracks, contacts.events
     recorder = Recorder(w) if record else None
-    cp = w.cp
     dt, coarse_dt, margin = settings.dt, settings.coarse_dt, settings.flight_margin
     use_coarse = coarse_dt > dt
     alpha = scene.alpha
@@ -186,14 +196,16 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
     omega_arm_bound = abs(getattr(realisation, "omega", 0.0)) + abs(getattr(realisation, "peak_rate", 0.0)) \
         + abs(getattr(realisation, "rate_", 0.0))
     n_parts = w.n
-    # a wall at the arm's end: a vertex "below the surface beyond L" is one pressed into the wall's foot (within
-    # penetration_tol), not a part that left the arm; one that flew over the wall is caught by its CM (escape)
-    end_wall = any(type(f).__name__ == "Wall" for f in scene.fixtures)
-    pen_tol, thickness, impact_window = settings.penetration_tol, settings.arm_thickness, settings.impact_window
-    settle_speed, settle_spin, settle_hold = settings.settle_speed, settings.settle_spin, settings.settle_hold
+    pen_tol, impact_window = settings.penetration_tol, settings.impact_window
+    settle_hold = settings.settle_hold
     exact_flight = settings.exact_flight
     horizon = 2.0 * 4.0 * coarse_dt if use_coarse else 0.0  # twice the longest stretch between two checks, s
     n_steps = n_coarse = n_leaps = n_checks = n_clearance = 0
+    native = w.native
+    if native is not None:  # (bound once: the C helper's calls, else the same checks in Python)
+        look, clear, parked_steps = native.probe, native.clearance, native.steps
+    else:
+        look, clear, parked_steps = partial(probe, w), partial(clearance, w), None
 
     t = 0.0
     next_check = next_flight_check = next_sample = next_progress = 0.0
@@ -234,8 +246,8 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
             next_flight_check = t + CHECK_EVERY
             n_clearance += n_parts
             # (clearance may stop at a pair within margin: only gap > margin and, then, its exact value matter)
-            gap = min(clearance(w, i, margin) if tracks[i].fell is None else math.inf for i in range(n_parts)) \
-                if n_parts > 1 else clearance(w, 0, margin) if tracks[0].fell is None else math.inf
+            gap = min(clear(i, margin) if tracks[i].fell is None else math.inf for i in range(n_parts)) \
+                if n_parts > 1 else clear(0, margin) if tracks[0].fell is None else math.inf
             if gap > margin:
                 vmax = vertex_speed_bound(w, tracks)
                 if n_parts > 1:  # two parts in flight close on each other at up to the sum of their speeds
@@ -250,14 +262,11 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     leap(w, tau, alpha + angle(t))
                     n_leaps += 1
                     # a part falling past an edge of the arm has left it: say so now, not at t_max
-                    aa = cp.angle(w.arm_h)
-                    ca, sa = math.cos(aa), math.sin(aa)
                     for i in range(n_parts):
                         if tracks[i].fell is None:
-                            _, xa, ya, _, over, _ = inspect(w, i, aa, ca, sa)
-                            gone = escape(w, i, xa, ya, thickness, 0 if end_wall and over > 0 else over)
-                            if gone is not None:
-                                contacts.fell(i, t, gone)
+                            gone = look(i)[16]
+                            if gone:
+                                contacts.fell(i, t, GONE[int(gone)])
                     if contacts.n_fell == n_parts:
                         break
                     continue
@@ -266,7 +275,14 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                   and contacts.n_touching - contacts.n_fell_touching == n_parts - contacts.n_fell)  # all touching
         h_step = coarse_dt if coarse else dt
         n_inner = max(1, int(math.ceil((min(next_check, t_max) - t) / h_step - 1e-9)))
-        t = fixed_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
+        if native is None:
+            t = fixed_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
+        else:  # (fixed_steps in C: the arm parked, or moving)
+            if not arm_moving and w.arm_w == 0.0:
+                t = parked_steps(contacts, t, n_inner, h_step)
+            else:
+                t = native.arm_steps(w, contacts, t, n_inner, h_step, angle, alpha, arm_stop, end_alpha)
+            check_interrupt()
         n_steps += n_inner
         if coarse:
             n_coarse += n_inner
@@ -276,30 +292,31 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
         if t >= next_check:
             n_checks += 1
             next_check = t + (CHECK_EVERY if h_step == dt else 4.0 * h_step)
-            aa = cp.angle(w.arm_h)
-            ca, sa = math.cos(aa), math.sin(aa)
             landing_near = False
-            states = [None] * n_parts  # each part's state, read once for all the checks of this instant
+            states = [None] * n_parts  # several parts: each one's state at this instant (confinement)
+            slow = True  # every part still on the arm below the settling speeds
             e_sum = 0.0  # Σ m_i e_i of the parts still on the arm (several parts), J
             for i in range(n_parts):
                 tr = tracks[i]
                 if tr.fell is not None:
                     continue
-                states[i] = st = body_state(w, i)
+                flips = tr.n_contacts > 0 and tr.ever
                 # one part touching nothing: its `near` is not looked for (horizon 0), since it cannot matter:
                 # coarse steps need it touching, and the contact that begins first sets last_begin later
                 # than this check would (with more parts, one leaving the arm here could still matter)
-                pen, xa, ya, phi, over, near = inspect(w, i, aa, ca, sa,
-                                                      0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, st)
+                px, py, pa, vx, vy, om, pen, _, _, _, _, near, e, slow_i, k, tilt, gone = look(
+                    i, 0.0 if n_parts == 1 and tr.n_contacts == 0 else horizon, flips)
+                if n_parts > 1:
+                    states[i] = (px, py, pa, vx, vy, om)
                 if near:  # a landing is coming: fine steps until impact_window after it (pymunk's warm
                     landing_near = True  # start would scale the landing impulse by coarse_dt / dt)
                     contacts.last_begin = t
-                gone = escape(w, i, xa, ya, thickness, 0 if end_wall and over > 0 else over)
-                if gone is not None:  # left the arm: its depth "into" the arm's far side is no penetration
-                    contacts.fell(i, t, gone)
+                if gone:  # left the arm: its depth "into" the arm's far side is no penetration
+                    contacts.fell(i, t, GONE[int(gone)])
                     continue
+                if not slow_i:
+                    slow = False
                 if t >= arm_stop:
-                    e = energy(w, i, st)
                     if n_parts > 1:  # parts push each other: only their total energy may not rise
                         e_sum += masses[i] * e
                     else:
@@ -319,8 +336,8 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                     done = True
                     break
                 # flips: the side the part lies on whenever it is in contact and nearly flat
-                if tr.n_contacts > 0 and tr.ever:
-                    k, tilt = nearest_side(w.betas[i], phi)
+                if flips:
+                    k = int(k)
                     if abs(tilt) < FLIP_TILT:
                         if k != tr.last_side:
                             tr.rec[C.N_FLIPS] += 1.0
@@ -338,7 +355,7 @@ def _simulate_once(scene, realisation, settings, record, progress, run_for, *, r
                 break
             # settling
             if t >= arm_stop:
-                if all_slow(w, tracks, settle_speed, settle_spin, states):
+                if slow:
                     if still_since is None:
                         still_since = t
                     elif t - still_since >= settle_hold and run_for is None:

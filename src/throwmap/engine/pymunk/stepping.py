@@ -30,6 +30,8 @@ def leap_length(w: World, gap: float, vmax: float, margin: float) -> float:
 
 def vertex_speed_bound(w: World, tracks) -> float:
     """Largest CM speed plus spin × reach over the parts still on the arm, m/s."""
+    if w.native is not None:
+        return w.native.vertex_speed_bound()
     cp = w.cp
     vmax = 0.0
     for i, b in enumerate(w.bodies_h):
@@ -41,6 +43,10 @@ def vertex_speed_bound(w: World, tracks) -> float:
 
 def leap(w: World, tau: float, arm_angle: float):
     """Move every part along its exact parabola for ``tau`` (s); put the arm at ``arm_angle`` (rad), at rest."""
+    w.arm_w = 0.0
+    if w.native is not None:
+        w.native.leap(tau, arm_angle)
+        return
     cp, g = w.cp, w.g
     for b in w.bodies_h:
         p, v = cp.position(b), cp.velocity(b)
@@ -50,7 +56,6 @@ def leap(w: World, tau: float, arm_angle: float):
         cp.set_angle(b, cp.angle(b) + cp.spin(b) * tau)
     cp.set_angle(w.arm_h, arm_angle)
     cp.set_spin(w.arm_h, 0.0)
-    w.arm_w = 0.0
     w.space.reindex_shapes_for_body(w.arm)
     if w.n > 1:
         # and the parts' shapes: Chipmunk caches a shape's world vertices at each step, and the next clearance
@@ -74,12 +79,17 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
     """
     cp = w.cp
     space_step, space_h, arm_h = cp.step, w.space_h, w.arm_h
+    clock = contacts.clock  # (contacts.now, set once per step)
     arm_moving = t < arm_stop
     wa = w.arm_w  # the arm's rate as last set (kept here, stored back once)
     if not arm_moving and wa == 0.0:  # the arm is parked: only the space moves
+        if w.native is not None:
+            t = w.native.steps(contacts, t, n, step)
+            check_interrupt()
+            return t
         for _ in range(n):
             t_next = t + step
-            contacts.now = t_next
+            clock.now = t_next
             space_step(space_h, step)
             t = t_next
             if contacts.need_post:
@@ -101,7 +111,7 @@ def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha:
             set_angle(arm_h, end_alpha)
             set_spin(arm_h, 0.0)
             wa = 0.0
-        contacts.now = t_next
+        clock.now = t_next
         space_step(space_h, step)
         t = t_next
         if contacts.need_post:

@@ -109,13 +109,16 @@ class World:
     inflated by :data:`.checks.BOX_TOL`), ``clear_hint[i]``
     the pair that gave part i's last clearance (:func:`.checks.clearance`). ``plain_arm``: one part and no fixtures (the
     penetration check then reads depth below the flat surface directly).
-    ``arm_w`` is the arm's angular velocity as last set, rad/s.
+    ``arm_w`` is the arm's angular velocity as last set, rad/s. ``settle``: ``(settle_speed, settle_spin)``;
+    ``end_wall``: a wall stands at the arm's end; ``arm_thickness``: :attr:`EngineSettings.arm_thickness` (for
+    :func:`.checks.escape`). ``native``: the run's state in the C helper
+    (:class:`.native.NativeRun`; None where the helper is unavailable or the run uses pymunk's public API).
     """
 
     __slots__ = ("pm", "cp", "space", "space_h", "arm", "arm_h", "arm_w", "bodies", "bodies_h", "shapes", "shapes_h",
                  "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h",
                  "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall", "back", "thickness", "margin", "rho2", "boxes",
-                 "boxes_tol", "clear_hint")
+                 "boxes_tol", "clear_hint", "settle", "end_wall", "arm_thickness", "native")
 
     @property
     def n(self) -> int:
@@ -266,4 +269,16 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     w.index = {id(b): i for i, b in enumerate(bodies)}
     w.mu_pp = scene.mu("part")
     w.mu_arm, w.mu_wall = scene.mu("arm"), scene.mu("wall")
+    w.settle = (settings.settle_speed, settings.settle_spin)
+    # a wall at the arm's end: a vertex "below the surface beyond L" is one pressed into the wall's foot (within
+    # penetration_tol), not a part that left the arm; one that flew over the wall is caught by its CM (escape)
+    w.end_wall = any(type(f).__name__ == "Wall" for f in scene.fixtures)
+    w.arm_thickness = settings.arm_thickness
+    w.native = None
+    if cp.raw:
+        from .native import NativeRun, load
+
+        module = load()
+        if module is not None:
+            w.native = NativeRun(module, w, settings, BOX_TOL)
     return w
