@@ -106,7 +106,7 @@ def test_inf_in_a_sweep_file(tmp_path):
     f.write_text('kind = "grid"\ntarget = "limit_set"\n[config.arm]\nlength = inf\n[parameters]\n"arm.mu" = [0.5, inf]\n')
     spec, _ = read_sweep(f)
     d = make_design(spec)
-    assert d.configs[1]["arm"]["mu"] == float("inf") and d.configs[0]["arm"]["length"] is None  # unbounded
+    assert d.configs[1]["arm"]["mu"] == "inf" and d.configs[0]["arm"]["length"] is None  # μ = ∞ as JSON writes it; unbounded
     st = sweep_status(spec, tmp_path / "out")
     assert (st.n_points, st.rows, st.missing) == (2, 0, 2) and st.to_dict()["n_points"] == 2
     from throwmap.sweeps.run import _plan
