@@ -15,6 +15,29 @@ if os.environ.get("CI"):
     settings.load_profile("ci")
 
 
+def pytest_configure(config):
+    """With pytest-xdist workers, compile the Numba kernels once, in parallel, before they start
+    (``tests/warmup.py``): on a fresh clone each worker would otherwise compile them all itself.
+    ``THROWMAP_NO_WARMUP=1`` leaves it out."""
+    workers = getattr(config.option, "numprocesses", None)
+    if hasattr(config, "workerinput") or not workers or os.environ.get("THROWMAP_NO_WARMUP"):
+        return
+    import sys
+
+    sys.path.insert(0, os.path.dirname(__file__))
+    import warmup
+
+    n = (os.cpu_count() or 1) if workers in ("auto", "logical") else int(workers)
+    seconds = warmup.warm(workers=n)
+    config._throwmap_warmup_s = seconds
+
+
+def pytest_terminal_summary(terminalreporter, config):
+    seconds = getattr(config, "_throwmap_warmup_s", None)
+    if seconds is not None:
+        terminalreporter.write_line(f"kernels compiled or loaded before the workers started: {seconds:.1f} s")
+
+
 @pytest.fixture(scope="session")
 def triangle():
     """The paper's part: uniform 30-60-90 triangle, hypotenuse 0.17 m."""

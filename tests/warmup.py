@@ -1,0 +1,120 @@
+"""Compile the Numba kernels once, before the test workers start.
+
+Numba caches each kernel on disk (``throwmap.kernels.numba_cache``), but on a fresh clone the
+cache is empty and every pytest-xdist worker would compile the same kernels for itself: on two
+cores that doubles the largest cost of the suite. ``conftest.pytest_configure`` runs this
+module in the controlling process, the groups below in parallel processes, one per core; the
+workers then load the kernels from the cache.
+
+Each group makes the calls that compile one model's kernels through the public API, with the
+argument types the tests use (a bare, tilted and walled arm, a batch below and above the
+parallel threshold, a trajectory, a recoil arm).
+
+    python tests/warmup.py [GROUP ...]      # every group in this process when none is named
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+
+def throw_trajectory(*a, **kw):
+    from throwmap.throws.orbit_trajectory import throw_trajectory as tt
+
+    return tt(*a, **kw)
+
+
+def _setup():
+    import throwmap as tm
+
+    return tm, tm.triangle_30_60_90(0.17), tm.Arm(h=-0.01)
+
+
+def _batch_sizes(parallel_min: int) -> tuple[int, int]:
+    return 8, parallel_min + 1
+
+
+def paper():
+    """Models "paper" and "small_angle": one throw, its trajectory, serial and parallel batches."""
+    tm, part, arm = _setup()
+    from throwmap.kernels import paper as kp
+    from throwmap.kernels import small_angle as ks
+
+    for model, pmin in (("paper", kp.PARALLEL_MIN), ("small_angle", ks.PARALLEL_MIN)):
+        tm.throw(part, arm, 0.2, 0, 4.0, model)
+        for n in _batch_sizes(pmin):
+            tm.throw_batch(part, arm, np.linspace(0.1, 0.3, n), 0, 4.0, model)
+    throw_trajectory(part, arm, 0.2, 0, 4.0, "paper")
+
+
+def rigid_body():
+    """Model "rigid_body" on a bare, tilted and walled arm: a throw, serial and parallel batches."""
+    tm, part, arm = _setup()
+    from throwmap.kernels.rigid_body import PARALLEL_MIN
+
+    walled = tm.Arm(h=-0.01, length=0.35)
+    wall = (tm.Wall(height=0.05, mu=0.5),)
+    tm.throw(part, arm, 0.2, 0, 4.0, "rigid_body")
+    tm.throw(part, walled, 0.25, 2, 5.0, "rigid_body", fixtures=wall, alpha=-math.radians(10.0))
+    for n in _batch_sizes(PARALLEL_MIN):
+        tm.throw_batch(part, arm, np.linspace(0.1, 0.3, n), 0, 4.0, "rigid_body")
+    tm.throw_batch(part, walled, np.linspace(0.2, 0.3, 8), 2, 5.0, "rigid_body", fixtures=wall,
+                   alpha=-math.radians(10.0))
+    throw_trajectory(part, arm, 0.2, 0, 4.0, "rigid_body")
+
+
+def reference():
+    """The kernels' RK4 reference sticking phase, called as the kernel tests call it."""
+    tm, part, arm = _setup()
+    from throwmap.kernels import codes as C
+    from throwmap.kernels import rigid_body as RB
+
+    n = 8
+    x, k, om = np.linspace(0.1, 0.3, n), np.zeros(n, np.int64), np.full(n, 4.0)
+    out = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64), np.empty((n, C.NREC))
+    for fn in (RB.throw_many_rigid_body_rk4, RB.throw_many_rigid_body):
+        fn(x, k, om, np.ones(n, bool), arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2,
+           1.5, RB.LAW_ROUTH, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, 1e-14, 200, 200, *out)
+
+
+def moving():
+    """Model "rigid_body" on a moving arm: the recoil arm's throw and its hand-over to the automaton."""
+    tm, part, arm = _setup()
+    from throwmap.system.motion import RecoilThrow
+
+    tm.throw(part, arm, 0.2, 0, 4.0, "rigid_body", realisation=RecoilThrow.for_release_rate(4.0))
+
+
+GROUPS = {"rigid_body": rigid_body, "reference": reference, "moving": moving, "paper": paper}
+"""Slowest first: the parallel processes start with the largest compilations."""
+
+
+def warm(groups=None, workers: int | None = None, stream=sys.stderr) -> float:
+    """Run ``groups`` (default all) in parallel processes, at most ``workers`` at once (default: the
+    cores); returns the seconds taken. A group that fails is reported and left to the tests."""
+    names = list(groups or GROUPS)
+    workers = max(1, workers or os.cpu_count() or 1)
+    here = os.path.abspath(__file__)
+
+    def run(name):
+        p = subprocess.run([sys.executable, here, name], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if p.returncode:
+            tail = p.stderr.strip().splitlines()[-1:] or ["?"]
+            print(f"warm-up group {name} failed (the tests compile it themselves): {tail[0]}", file=stream)
+
+    t0 = time.perf_counter()
+    with ThreadPoolExecutor(workers) as pool:
+        list(pool.map(run, names))
+    return time.perf_counter() - t0
+
+
+if __name__ == "__main__":
+    for n in sys.argv[1:] or list(GROUPS):
+        GROUPS[n]()
