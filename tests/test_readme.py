@@ -7,6 +7,7 @@ Shell examples meant to fail (bad input) are in ```console blocks and are not ru
 
 from __future__ import annotations
 
+import functools
 import re
 import shlex
 from pathlib import Path
@@ -83,6 +84,7 @@ def test_toml_part_files_load(tmp_path):
         assert loaded.part.n_sides >= 3
 
 
+@functools.lru_cache(maxsize=None)
 def _help(command: str) -> str:
     from throwmap.cli.app import app
 
@@ -92,14 +94,15 @@ def _help(command: str) -> str:
     return res.output
 
 
-def _subcommands(command: str) -> set[str]:
+@functools.lru_cache(maxsize=None)
+def _subcommands(command: str) -> frozenset[str]:
     """The subcommands of a command group (empty for a plain command)."""
     import typer.main
 
     from throwmap.cli.app import app
 
     group = typer.main.get_command(app).commands[command]
-    return set(getattr(group, "commands", {}) or {})
+    return frozenset(getattr(group, "commands", {}) or {})
 
 
 def _has_option(help_text: str, opt: str) -> bool:
