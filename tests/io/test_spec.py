@@ -124,3 +124,24 @@ def test_every_config_with_an_arm_embeds_the_one_arm_schema():
         if arm is not None:
             assert arm.annotation is ArmSpec, t.__name__
     assert issubclass(FileArmSpec, ArmSpec)
+
+
+@pytest.mark.parametrize("key, value", [("omega", True), ("omega", "4.5"), ("max_throws", "3"), ("side", True)])
+def test_an_experiment_config_refuses_texts_and_booleans_for_numbers(key, value):
+    from throwmap.errors import ConfigError
+    from throwmap.experiments import get_experiment
+    from throwmap.experiments.base import config_of
+
+    exp = get_experiment("feed")
+    with pytest.raises(ConfigError, match=rf"config\.{key}: must be a number"):
+        config_of(exp, {"part": "triangle", key: value})
+
+
+def test_a_wall_typo_names_the_wall_s_keys():
+    from throwmap.errors import ConfigError
+    from throwmap.experiments import get_experiment
+    from throwmap.experiments.base import config_of
+
+    with pytest.raises(ConfigError, match=r"config\.wall\.heigth: unknown key 'heigth' \(did you mean 'height'\? "
+                                          r"allowed: height, mu\)"):
+        config_of(get_experiment("settle"), {"part": "triangle", "arm": {"length": 0.4}, "wall": {"heigth": 0.05}})

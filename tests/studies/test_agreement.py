@@ -143,3 +143,21 @@ def test_counts_are_consistent_and_symmetric(rows):
     # swapping model and reference swaps the refusal columns and changes no share
     assert (a.same, a.rests, a.within) == (b.same, b.rests, b.within)
     assert (a.refused_model, a.refused_reference) == (b.refused_reference, b.refused_model)
+
+
+def test_goals_read_the_one_statistic_and_are_never_met_on_nothing():
+    """Escapes that end far apart agree on the outcome but say nothing of the position; with no same-outcome
+    rest there is no position goal, and with nothing compared no goal is met."""
+    from throwmap.studies.agreement import goals
+
+    esc = agreement(answers([C.OFF_END], [-1], [0.44]), answers([C.OFF_END], [-1], [0.39]))
+    g = goals(esc, "wall")
+    assert list(g) == ["wall: same outcome"] and g["wall: same outcome"]["met"] and g["wall: same outcome"]["n"] == 1
+    none = agreement(answers([C.UNRESOLVED], [-1], [math.nan]), answers([C.OK], [0], [0.3]))
+    g = goals(none, "x")
+    assert not g["x: same outcome"]["met"] and g["x: same outcome"]["n"] == 0
+    rest = agreement(answers([C.OK, C.OK], [0, 0], [0.3, 0.3]), answers([C.OK, C.OK], [0, 0], [0.3, 0.302]))
+    g = goals(rest, "r")
+    pos = g["r: |Δx| ≤ 0.5 mm (same-outcome rests)"]
+    assert pos["value"] == 50.0 and not pos["met"] and pos["n"] == 2
+    assert pos["ci95"] == pytest.approx([100 * v for v in wilson_closed_form(1, 2)])

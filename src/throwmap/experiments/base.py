@@ -159,6 +159,9 @@ def config_of(experiment: Any, config=None, source=None):
         return config
     if not isinstance(config, dict):
         raise InvalidStateError("config", f"must be a {ctype.__name__} or a dict, got {type(config).__name__}")
+    from ..io.schema import refuse_coerced_numbers
+
+    refuse_coerced_numbers(ctype, config)
     try:
         return ctype.model_validate(config)
     except ValidationError as err:
@@ -171,9 +174,9 @@ def config_of(experiment: Any, config=None, source=None):
             model = ctype
             for item in first["loc"][:-1]:
                 sub = model.model_fields.get(item) if isinstance(item, str) else None
-                ann = getattr(sub, "annotation", None)
-                if isinstance(ann, type) and issubclass(ann, BaseModel):
-                    model = ann
+                inner = _model_in(getattr(sub, "annotation", None), BaseModel)
+                if inner is not None:
+                    model = inner
             import difflib
 
             key = str(first["loc"][-1])
@@ -182,6 +185,20 @@ def config_of(experiment: Any, config=None, source=None):
             e = ConfigError(e.field, f"unknown key {key!r} ({table_hint(key, model) or hint}allowed: "
                                      f"{', '.join(model.model_fields)})")
         raise e from None
+
+
+def _model_in(annotation, base):
+    """The pydantic model class an annotation holds: itself, or the one inside ``X | None``, ``Optional[X]``,
+    ``Annotated[X, …]``; None when there is none."""
+    import typing
+
+    if isinstance(annotation, type) and issubclass(annotation, base):
+        return annotation
+    for arg in typing.get_args(annotation):
+        found = _model_in(arg, base)
+        if found is not None:
+            return found
+    return None
 
 
 def table_hint(key: str, model) -> str:

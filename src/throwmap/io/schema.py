@@ -170,3 +170,67 @@ class NoiseSpec(Spec):
 
     def noise(self) -> Noise:
         return Noise(self.omega_rel, self.mu_rel, self.mu_range, self.realisation, self.recoil, self.zeta)
+
+
+def _number_kind(annotation):
+    """``"number"`` when a field holds a plain number (float or int, maybe optional or annotated) with no
+    reading of texts of its own (a before-validator such as :data:`Friction`'s); a pydantic model class when
+    it holds a table; else None."""
+    import typing
+
+    args = typing.get_args(annotation)
+    origin = typing.get_origin(annotation)
+    if origin is Annotated:
+        if any(isinstance(m, BeforeValidator) for m in annotation.__metadata__):
+            return None
+        return _number_kind(args[0])
+    if isinstance(annotation, type):
+        if issubclass(annotation, BaseModel):
+            return annotation
+        if annotation in (float, int):
+            return "number"
+        return None
+    if args and origin is not Literal:  # X | None, Optional[X]: a number only if every member is one (or None)
+        kinds = [_number_kind(a) for a in args if a is not type(None)]
+        if kinds and all(k == "number" for k in kinds):
+            return "number"
+        models = [k for k in kinds if isinstance(k, type)]
+        return models[0] if len(models) == 1 and len(kinds) == 1 else None
+    return None
+
+
+def coerced_number(model, data, prefix: str = "config"):
+    """The first ``(field, value)`` of ``data`` (a config's table for pydantic ``model``) where a number goes and
+    a boolean or a text stands — pydantic's lax mode would turn ``true`` into 1 and ``"4.5"`` into 4.5 — with the
+    field dotted from ``prefix``; None when there is none. Fields that read texts themselves (μ, length: ``"inf"``)
+    are left to their validators."""
+    if not isinstance(data, dict) or not (isinstance(model, type) and issubclass(model, BaseModel)):
+        return None
+    fields = model.model_fields
+    for key, value in data.items():
+        info = fields.get(key) if isinstance(key, str) else None
+        if info is None:
+            continue
+        annotation = info.annotation
+        if info.metadata and not any(isinstance(m, BeforeValidator) for m in info.metadata):
+            annotation = Annotated[(annotation, *info.metadata)]
+        elif info.metadata:
+            continue
+        kind = _number_kind(annotation)
+        if kind == "number" and isinstance(value, (bool, str)):
+            return f"{prefix}.{key}", value
+        if isinstance(kind, type):
+            found = coerced_number(kind, value, f"{prefix}.{key}")
+            if found:
+                return found
+    return None
+
+
+def refuse_coerced_numbers(model, data, prefix: str = "config") -> None:
+    """Raise :class:`~throwmap.errors.ConfigError` naming the first field of :func:`coerced_number`."""
+    found = coerced_number(model, data, prefix)
+    if found:
+        from ..errors import ConfigError
+
+        field, value = found
+        raise ConfigError(field, f"must be a number, got {value!r}")

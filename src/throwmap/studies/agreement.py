@@ -244,3 +244,20 @@ def refusal_counts(status) -> dict:
     """``{status label: count}`` over the refused throws of ``status``, in :data:`REFUSED` order."""
     status = np.asarray(status)
     return {Status(int(c)).label: int(np.sum(status == c)) for c in REFUSED if np.any(status == c)}
+
+
+def goals(ag: Agreement, label: str, same_goal: float = 99.0, within_goal: float = 95.0) -> dict:
+    """A study's goals on one comparison, read from its :class:`Agreement` (the one statistic): the same outcome
+    in ≥ ``same_goal`` % of the compared throws, and |Δx| ≤ ``ag.tol`` in ≥ ``within_goal`` % of the same-outcome
+    rests. Each goal: ``{"value" (%), "goal" (%), "met", "ci95" (%), "n"}``; ``met`` is False when nothing was
+    compared (a goal is never met on no evidence), and the position goal is left out when no throw rested alike."""
+    out = {}
+    for name, rate, ci, n, goal in (
+            ("same outcome", ag.same_rate, ag.same_ci95, ag.compared, same_goal),
+            (f"|Δx| ≤ {ag.tol * 1e3:g} mm (same-outcome rests)", ag.within_rate, ag.within_ci95, ag.rests, within_goal)):
+        if n == 0 and name != "same outcome":
+            continue
+        value = 100.0 * rate if n else math.nan
+        out[f"{label}: {name}"] = {"value": value, "goal": goal, "met": bool(n and value >= goal),
+                                   "ci95": [100.0 * ci[0], 100.0 * ci[1]], "n": int(n)}
+    return out

@@ -111,8 +111,8 @@ class TiltWallRow:
         return plot_agreement(AgreementTable(rows, "engine"), ax=ax, title=self.row)
 
 
-_HEAD = ["| condition: model vs reference | throws (compared) | same outcome % [95 % CI] | |Δx| ≤ 0.5 mm % "
-         "[95 % CI] | |Δx| median (mm) | |Δx| p95 (mm) | α = 0: ≤ 0.5 mm % | wall changed % / at wall % "
+_HEAD = ["| condition: model vs reference | throws (compared) | same outcome % [95 % CI] | same escape or "
+         "|Δx| ≤ 0.5 mm % [95 % CI] | |Δx| median (mm) | |Δx| p95 (mm) | α = 0: ≤ 0.5 mm % | wall changed % / at wall % "
          "| refused: model / reference |", "|" + "---|" * 9]
 
 
@@ -136,7 +136,7 @@ class TiltWallReport:
         the share within 0.5 mm by arm friction μ, each with the same draws on the level arm (α = 0)."""
         lines = list(_HEAD) + [r.line() for r in self.rows]
         bands = [_band(*b) for b in MU_BANDS]
-        lines += ["", "| |Δx| ≤ 0.5 mm % by arm μ (throws), tilted [α = 0] | " + " | ".join(f"μ {b}" for b in bands)
+        lines += ["", "| same escape or |Δx| ≤ 0.5 mm % by arm μ (throws), tilted [α = 0] | " + " | ".join(f"μ {b}" for b in bands)
                   + " |", "|" + "---|" * (len(bands) + 1)]
         for r in (r for r in self.rows if r.available):
             base = (r.baseline or {}).get("by_mu", {})
@@ -162,7 +162,7 @@ class TiltWallReport:
             if c:
                 out.append(f"{r.row}: the engine's answer moves > 0.25 mm (or changes) with its friction cap 0.7 → 0.9 "
                            f"in {c['n_sensitive']} of {r.n_compared} compared throws; on the other {c['n_kept']}: same "
-                           f"outcome {_pct(c['same_pct'], c['same_ci95'])} %, |Δx| ≤ 0.5 mm "
+                           f"outcome {_pct(c['same_pct'], c['same_ci95'])} %, same escape or |Δx| ≤ 0.5 mm "
                            f"{_pct(c['within_pct'], c['within_ci95'])} %")
         return out
 

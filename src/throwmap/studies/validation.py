@@ -40,6 +40,7 @@ from ..system.catalogue import rectangle, regular_polygon, triangle_30_60_90
 from ..system.part import Part
 from ..throws.throw import throw_batch
 from .agreement import AgreementTable, agreement
+from .agreement import goals as agreement_goals
 from .study import Mu, StudyConfig, StudyRun, answer_values, answers, cached_cases, case_trial, run_study, stored
 from .validation_report import ValidationReport, ValidationRow, compare_row
 
@@ -348,11 +349,8 @@ def validation_report(cfg: ValidationConfig, trials) -> ValidationReport:
             add(f"{model}, assumptions hold", subref, sub, f"{100 * holds.mean():.0f} % of throws", at=at)
     goals = {}
     if VALIDATED in results:
-        r = next(r for r in rows if r.model == VALIDATED)
-        goals[f"{VALIDATED} vs {REFERENCE}: same side"] = {"value": r.same_side_pct, "goal": 99.0,
-                                                           "met": bool(r.same_side_pct >= 99.0)}
-        goals[f"{VALIDATED} vs {REFERENCE}: |Δx| ≤ 0.5 mm"] = {"value": r.within_0p5mm_pct, "goal": 95.0,
-                                                               "met": bool(r.within_0p5mm_pct >= 95.0)}
+        at = next(j for j, r in enumerate(rows) if r.model == VALIDATED)
+        goals = agreement_goals(agree[at], f"{VALIDATED} vs {REFERENCE}")
     settings = {"n_random": cfg.n, "grid": cfg.grid, "seed": cfg.seed, "mu": cfg.mu, "h": list(cfg.hs),
                 "omega_range": list(cfg.omega_range), "parts": list(cfg.parts), "models": list(cfg.models),
                 "engines": list(cfg.engines), "n_throws": int(ref["x"].size)}

@@ -116,6 +116,7 @@ class ValidationReport:
 
     def goal_lines(self) -> list[str]:
         return [f"{name}: {g['value']:.2f} % (goal ≥ {g['goal']:g} %) — {'met' if g['met'] else 'NOT met'}"
+                + (f"; 95 % interval [{g['ci95'][0]:.1f}, {g['ci95'][1]:.1f}] % over {g['n']} throws" if "ci95" in g else "")
                 for name, g in self.goals.items()]
 
     def to_dict(self) -> dict:
