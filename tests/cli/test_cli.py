@@ -224,7 +224,8 @@ def test_non_finite_in_file(tmp_path, text, field):
         ("--h", "nan", "arm.h"),
         ("--h", "inf", "arm.h"),
         ("--g", "nan", "arm.g"),
-        ("--length", "inf", "arm.length"),
+        ("--length", "nan", "arm.length"),
+        ("--length", "-inf", "arm.length"),
     ],
 )
 def test_non_finite_on_command_line(option, value, field):

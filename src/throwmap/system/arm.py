@@ -49,12 +49,14 @@ def check_back(value, field: str = "arm.back") -> float:
 
 
 def check_length(value, field: str = "arm.length"):
-    """An arm length (m) as a float, or None (unbounded): a positive finite number; else
-    :class:`~throwmap.errors.InvalidArmError` on ``field``."""
+    """An arm length (m) as a float, or None (unbounded): a positive number; ``inf`` and None both mean an
+    unbounded arm (the one spelling of config files); else :class:`~throwmap.errors.InvalidArmError` on ``field``."""
     if value is None:
         return None
+    if _is_real(value) and value == math.inf:
+        return None
     if not _is_real(value) or not math.isfinite(value) or value <= 0:
-        raise InvalidArmError(field, f"must be a positive finite number or None, got {shown(value)}")
+        raise InvalidArmError(field, f"must be a positive number in m (inf: unbounded), got {shown(value)}")
     return float(value)
 
 
