@@ -224,3 +224,10 @@ def test_an_unregistered_experiment_runs_in_this_process_only():
                                                                                        workers=1).trials
     with pytest.raises(InvalidStateError, match="^experiment: 'settle' is not the registered experiment"):
         run_experiment(mine, CFG, n=2, seed=7, workers=2)
+
+
+def test_the_result_has_to_dict_like_every_result(tmp_path):
+    from throwmap.experiments import run_experiment
+
+    r = run_experiment("settle", {"part": "triangle"}, n=2, seed=1, workers=1, out=tmp_path)
+    assert r.to_dict() == r.to_json() and r.to_dict()["n"] == 2

@@ -110,6 +110,10 @@ class ExperimentResult:
                 "config": self.config, "values": self.value_summary(), "elapsed_s": self.elapsed_s,
                 "workers": self.workers, "resumed": self.resumed}
 
+    def to_dict(self) -> dict:
+        """The summary as a JSON-ready dict, as every result object gives it (the same as :meth:`to_json`)."""
+        return self.to_json()
+
     def value_summary(self) -> dict:
         """For each numeric per-trial value: ``{"mean", "median", "p90", "min", "max", "count", "missing"}`` over
         the trials where it is finite (``missing``: trials where it is nan, e.g. throws to success of a failed
