@@ -309,11 +309,16 @@ def recoil_table(report) -> str:
         report = report.to_dict()
     lines = ["| comparison | compared | same side % (95 % CI) | \\|Δx\\| ≤ 0.5 mm % (95 % CI) | median \\|Δx\\| mm "
              "| p95 \\|Δx\\| mm | max \\|Δx\\| mm |", "|---|---|---|---|---|---|---|"]
+    def pct(v, ci):
+        return "—" if v is None or not math.isfinite(v) else f"{v:.1f} ({ci[0]:.1f}–{ci[1]:.1f})"
+
+    def mm(v):
+        return "—" if v is None or not math.isfinite(v) else f"{v:.3f}"
+
     for label, s in report["summary"].items():
-        lines.append(f"| {label} | {s['n_compared']}/{s['n']} | {s['same_pct']:.1f} ({s['same_ci95'][0]:.1f}–"
-                     f"{s['same_ci95'][1]:.1f}) | {s['within_pct']:.1f} ({s['within_ci95'][0]:.1f}–"
-                     f"{s['within_ci95'][1]:.1f}) | {s['dx_median_mm']:.3f} | {s['dx_p95_mm']:.3f} | "
-                     f"{s['dx_max_mm']:.3f} |")
+        lines.append(f"| {label} | {s['n_compared']}/{s['n']} | {pct(s['same_pct'], s['same_ci95'])} | "
+                     f"{pct(s['within_pct'], s['within_ci95'])} | {mm(s['dx_median_mm'])} | {mm(s['dx_p95_mm'])} | "
+                     f"{mm(s['dx_max_mm'])} |")
     lines.append("")
     for label, s in report["summary"].items():
         for side, key in (("first", "refused_first"), ("second", "refused_second")):
