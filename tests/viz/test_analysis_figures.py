@@ -377,3 +377,16 @@ def test_funnel_graph_without_goal_or_funnels():
     assert "goal" not in {p.get_gid() for p in ax.patches}
     empty = types.SimpleNamespace(funnels=(), edges=(), goal=None, rank={})
     assert "no funnels" in _texts(plot_funnel_graph(empty).axes[0])
+
+
+def test_critical_points_plot_marks_r_and_l_per_side(triangle, arm):
+    """CriticalPoints.plot: one row per stable side, r_i drawn where the object says, in the axis unit."""
+    from throwmap import critical_points
+
+    cp = critical_points(triangle, arm, 4.0, "paper")
+    fig = cp.plot(unit="cm")
+    ax = fig.axes[0]
+    assert [t.get_text() for t in ax.get_yticklabels()] == [f"side {s}" for s in cp.sides]
+    r_marks = sorted(float(line.get_xdata()[0]) for line in ax.lines if line.get_marker() == "|")
+    assert r_marks == pytest.approx(sorted(100 * cp.r[s] for s in cp.sides))
+    plt.close(fig)

@@ -121,6 +121,13 @@ class CriticalPoints:
             return "no"
         return "no: " + ", ".join(f"{w} {100 * a:.2f}–{100 * b:.2f} cm" for a, b, w in runs[:3])
 
+    def plot(self, ax=None, *, unit: str = "cm"):
+        """Per side: the jogs up to r_i, l_i, the non-flips beyond r_i (:func:`throwmap.viz.critical.plot_critical`);
+        returns the Figure."""
+        from ..viz.critical import plot_critical
+
+        return plot_critical(self, ax, unit=unit)
+
     def to_dict(self) -> dict:
         f = nan_to_none
         return {
