@@ -1,4 +1,4 @@
-"""Round-2 regressions: a search cap is a refusal (UNRESOLVED + cap_hit), never NO_CONTACT; tol is bounded;
+"""A search cap is a refusal (UNRESOLVED + cap_hit), never NO_CONTACT; tol is bounded;
 the kernels' rests obey the start rule (both support vertices on the arm)."""
 
 import json
