@@ -26,7 +26,7 @@ def rb(part, arm, x, k, om, mu, m=0, dt=0.005):
     traj = np.empty((m, 4))
     x1, k1, st_ = RB.throw_one_rigid_body(
         x, k, om, arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta,
-        part.d, part.uL, part.uR, part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, rec, traj, dt)
+        part.d, part.uL, part.uR, part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, rec, traj, dt, 0.0, 0.0)
     return x1, k1, st_, rec, traj
 
 
@@ -55,7 +55,7 @@ def batch(part, arm, x, k, om, mu):
     rec = np.empty((n, C.NREC))
     RB.throw_many_rigid_body(x, k, om, np.ones(n, bool), arm.h, arm.g, 0.0, arm.length_or_inf, arm.back,
                              part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta, part.d, part.uL, part.uR,
-                             part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, xo, so, sto, rec)
+                             part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, xo, so, sto, rec, 0.0, 0.0)
     return xo, so, sto, rec
 
 

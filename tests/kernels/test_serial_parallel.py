@@ -43,8 +43,8 @@ def test_rigid_body_serial_equals_parallel(triangle, mu):
     for par, ser in ((RB.throw_many_rigid_body, RB.throw_many_rigid_body_serial),
                      (RB.throw_many_rigid_body_rk4, RB.throw_many_rigid_body_rk4_serial)):
         a, b = _out(x.size), _out(x.size)
-        par(*args, *a)
-        ser(*args, *b)
+        par(*args, *a, 0.0, 0.0)  # no wall, as the model passes it
+        ser(*args, *b, 0.0, 0.0)
         _same(a, b)
         assert np.all(a[2][~valid] == C.INVALID_START)
 

@@ -124,7 +124,7 @@ def test_parallel_kernel_equals_serial_with_the_velocity_law():
     outs = []
     for fn in (RB.throw_many_rigid_body, RB.throw_many_rigid_body_serial):
         o = (np.empty(x.size), np.empty(x.size, np.int64), np.empty(x.size, np.int64), np.empty((x.size, C.NREC)))
-        fn(*args, *o)
+        fn(*args, *o, 0.0, 0.0)  # no wall, as the model passes it
         outs.append(o)
     for u, w in zip(*outs):
         np.testing.assert_array_equal(u, w)

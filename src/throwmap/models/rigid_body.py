@@ -93,10 +93,12 @@ class RigidBodyOptions:
 
 def stable_at(part, alpha: float) -> np.ndarray:
     """The sides of ``part`` that stand on an arm at rest angle ``alpha`` (rad): u_L < −d tan α < u_R
-    (:func:`~throwmap.kernels.rigid_body.tilt.tilted_stable`); ``part.stable`` for α = 0."""
+    (:func:`~throwmap.kernels.rigid_body.tilt.tilted_stable`); ``part.stable`` for α = 0. Read-only either way."""
     if alpha == 0.0:
         return part.stable
-    return tilted_stable(part.d, part.uL, part.uR, float(alpha))
+    table = tilted_stable(part.d, part.uL, part.uR, float(alpha))
+    table.flags.writeable = False  # read-only, as part.stable: one type, hence one compiled kernel, for both
+    return table
 
 
 def wall_args(arm, fixtures) -> tuple[float, float]:
