@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import sys
 import json
 import math
 from pathlib import Path
@@ -15,6 +16,9 @@ BENCH = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_throw.py"
 def _load():
     spec = importlib.util.spec_from_file_location("bench_throw", BENCH)
     mod = importlib.util.module_from_spec(spec)
+    # registered before it runs: Numba's on-disk cache of the script's kernels then names an importable module
+    # (a module missing from sys.modules is cached as '<dynamic>', which a later run cannot load)
+    sys.modules[spec.name] = mod
     spec.loader.exec_module(mod)
     return mod
 
@@ -46,6 +50,9 @@ def _load_named(name):
     path = BENCH.parent / name
     spec = importlib.util.spec_from_file_location(name.removesuffix(".py"), path)
     mod = importlib.util.module_from_spec(spec)
+    # registered before it runs: Numba's on-disk cache of the script's kernels then names an importable module
+    # (a module missing from sys.modules is cached as '<dynamic>', which a later run cannot load)
+    sys.modules[spec.name] = mod
     spec.loader.exec_module(mod)
     return mod
 

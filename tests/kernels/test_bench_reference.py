@@ -4,6 +4,7 @@ It used to divide by a hard-coded 421 throws/s, a figure from another run.
 """
 
 import importlib.util
+import sys
 import math
 from pathlib import Path
 
@@ -13,6 +14,9 @@ BENCH = Path(__file__).resolve().parents[2] / "benchmarks"
 def _load(name):
     spec = importlib.util.spec_from_file_location(name.removesuffix(".py"), BENCH / name)
     mod = importlib.util.module_from_spec(spec)
+    # registered before it runs: Numba's on-disk cache of the script's kernels then names an importable module
+    # (a module missing from sys.modules is cached as '<dynamic>', which a later run cannot load)
+    sys.modules[spec.name] = mod
     spec.loader.exec_module(mod)
     return mod
 
