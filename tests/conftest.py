@@ -16,11 +16,15 @@ if os.environ.get("CI"):
 
 
 def pytest_configure(config):
-    """With pytest-xdist workers, compile the Numba kernels once, in parallel, before they start
-    (``tests/warmup.py``): on a fresh clone each worker would otherwise compile them all itself.
-    ``THROWMAP_NO_WARMUP=1`` leaves it out."""
+    """With pytest-xdist workers on the whole suite (``make test``, CI: no test paths named), compile the Numba
+    kernels once, in parallel, before the workers start (``tests/warmup.py``): on a fresh clone each worker would
+    otherwise compile them all itself. A run of chosen files leaves it to the tests it runs;
+    ``THROWMAP_NO_WARMUP=1`` leaves it out, ``THROWMAP_WARMUP=1`` asks for it anyway."""
     workers = getattr(config.option, "numprocesses", None)
     if hasattr(config, "workerinput") or not workers or os.environ.get("THROWMAP_NO_WARMUP"):
+        return
+    named = [a for a in config.invocation_params.args if not str(a).startswith("-") and os.path.exists(str(a))]
+    if named and not os.environ.get("THROWMAP_WARMUP"):
         return
     import sys
 
