@@ -61,7 +61,7 @@ def run_batch(part, arm, mu, x, sides, omega, kernel=throw_many_rigid_body):
     rec_out = np.empty((n, C.NREC))
     kernel(x, sides, omega, np.ones(n, dtype=np.bool_), arm.h, arm.g, 0.0, arm.length_or_inf, arm.back,
            part.radius_of_gyration**2, mu, LAW_ROUTH, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, 1e-14, 100_000, 10_000, x_out,
-           side_out, status_out, rec_out)
+           side_out, status_out, rec_out, 0.0, 0.0)  # no wall, passed as the model passes it (one compiled kernel)
     return x_out, side_out, status_out, rec_out
 
 
