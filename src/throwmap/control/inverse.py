@@ -101,6 +101,11 @@ class InverseJog:
     samples: tuple = field(repr=False, default=())
     scatter: float = math.nan
 
+    def __repr__(self) -> str:
+        """One line: the rate, the start, the landing and its residual (:meth:`summary` says all)."""
+        return (f"InverseJog(ω = {self.omega:.9g} rad/s: ({self.x0:.6f} m, side {self.side}) → {self.x:.7f} m, "
+                f"residual {self.residual * 1e6:.3g} µm, model {self.model}, {self.n_throws} throws)")
+
     def summary(self) -> str:
         return (f"ω = {self.omega:.9g} rad/s jogs x0 = {self.x0:.6f} m (side {self.side}) to {self.x:.7f} m "
                 f"(target {self.x_target:.7f} m, residual {self.residual * 1e6:.3g} µm; model {self.model}; "

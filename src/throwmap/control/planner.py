@@ -158,6 +158,10 @@ class Plan:
     def omegas(self) -> tuple:
         return tuple(s.omega for s in self.steps)
 
+    def __repr__(self) -> str:
+        """One line: :meth:`summary` (the steps are in :meth:`table`)."""
+        return f"Plan<{self.summary()}>"
+
     def summary(self) -> str:
         n_round = sum(s.phase == "round" for s in self.steps)
         head = (f"plan ({self.model}) from ({self.x0:.4f} m, side {self.side0}) to ({self.x_f:.4f} m, side {self.side_f}): ")

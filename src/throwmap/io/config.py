@@ -251,6 +251,11 @@ class LoadedConfig:
     arm: Arm | None = None
     source: Path | None = None
 
+    def __repr__(self) -> str:
+        """One line: the file, the part (:meth:`Part.__repr__`) and the arm, if any."""
+        src = str(self.source) if self.source is not None else "built-in"
+        return f"LoadedConfig({src}: {self.part!r}, arm {self.arm!r})"
+
 
 def _no_duplicate_keys(pairs):
     out = {}

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -22,7 +22,8 @@ class Orbit:
     ``poses`` (model ``"engine"`` only, else None): the part's arm-frame pose
     ``(x, y, φ)`` (m, m, rad) at the start and after each completed throw — the pose
     the next throw starts from, tilted where a fixture holds the part so. ``alpha`` (rad) and
-    ``fixtures`` are the system the orbit was thrown in.
+    ``fixtures`` are the system the orbit was thrown in, ``part`` and ``arm`` its part and arm (None when
+    not known; not compared: two orbits are equal by their states and outcomes).
     """
 
     x: np.ndarray
@@ -34,6 +35,8 @@ class Orbit:
     poses: tuple | None = None
     alpha: float = 0.0
     fixtures: tuple = ()
+    part: object = field(default=None, compare=False, repr=False)
+    arm: object = field(default=None, compare=False, repr=False)
 
     def __repr__(self) -> str:
         om = np.asarray(self.omegas, dtype=float)
@@ -102,4 +105,6 @@ class Orbit:
         """x against throw number, side by colour (like paper Figs. 7, 16)."""
         from ..viz.orbit import plot_orbit
 
+        kwargs.setdefault("part", self.part)
+        kwargs.setdefault("arm", self.arm)
         return plot_orbit(self, ax=ax, **kwargs)

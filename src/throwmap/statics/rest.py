@@ -108,6 +108,13 @@ class RestAnalysis:
     weight: float
     message: str = ""
 
+    def __repr__(self) -> str:
+        """One line: whether it rests, the friction it needs, the contacts and the weight (:meth:`table`: the forces)."""
+        verdict = "rests" if self.can_rest else "cannot rest"
+        msg = f"; {self.message}" if self.message else ""
+        return (f"RestAnalysis({verdict}, μ needed {self.mu_needed:.4g}, {len(self.contacts)} contacts, "
+                f"weight {self.weight:.4g} N{msg})")
+
     def table(self) -> str:
         rows = ["| contact | on body | with | point (m) | μ | f_n (N) | f_t (N) | f_n range (N) | f_t range (N) |",
                 "|---|---|---|---|---|---|---|---|---|"]

@@ -135,6 +135,15 @@ class Part:
         set_(self, "min_d", float(np.min(tab["d"][tab["stable"]])))
         set_(self, "user_index", tuple(int(i) for i in idx))
 
+    def __repr__(self) -> str:
+        """One line: name, vertex count, mass (kg), CM (m), ρ (m), lead weights and stable sides."""
+        name = f"{self.name!r}, " if self.name else ""
+        n_w = len(self.point_masses)
+        weights = f", {n_w} lead weight{'s' if n_w != 1 else ''}" if n_w else ""
+        stable = ", ".join(str(i) for i in np.flatnonzero(self.stable))
+        return (f"Part({name}{len(self.vertices)} vertices, mass {self.mass:.4g} kg, CM ({self.com[0]:.4g}, "
+                f"{self.com[1]:.4g}) m, ρ {self.radius_of_gyration:.4g} m{weights}, stable sides {stable})")
+
     # ------------------------------------------------------------------ build
     @classmethod
     def from_vertices(

@@ -142,4 +142,4 @@ def iterate(part: Part, arm: Arm, state, omegas, n: int | None = None, model: st
     return Orbit(x=np.array(xs), side=np.array(ss, dtype=int), omegas=om[: len(outs)].copy(), outcomes=tuple(outs),
                  status=session.status, model=session.model.name if hasattr(session.model, "name") else str(model),
                  poses=None if poses is None else tuple(poses), alpha=float(system.alpha),
-                 fixtures=tuple(system.fixtures))
+                 fixtures=tuple(system.fixtures), part=part, arm=system.arm)
