@@ -30,3 +30,9 @@ def test_partial_table_lp_and_engine_agree_both_ways():
 def test_bad_figure_path_is_one_line():
     r = runner.invoke(app, ["statics", "partial", "--no-engine", "--plot", "out.xyz"])
     assert r.exit_code == 2 and r.stderr.startswith("error: plot:")
+
+
+def test_a_huge_lean_table_is_refused_before_work():
+    r = runner.invoke(app, ["statics", "lean", "--n", "100000000"])
+    assert r.exit_code == 2, r.output
+    assert "n: lean table on 100,000,000 leans needs" in r.output and "Traceback" not in r.output

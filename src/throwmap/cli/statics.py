@@ -15,7 +15,8 @@ from typing import Annotated
 
 import typer
 
-from .options import check_finite, figure_format, guard, save_figure
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits
+from .options import (ForceOpt, MaxMemoryOpt, MaxTimeOpt, check_finite, figure_format, guard, save_figure)
 from .usage import ThrowmapGroup
 
 __all__ = ["register", "statics_app"]
@@ -37,6 +38,9 @@ def lean_cmd(
     mu: Annotated[float, typer.Option("--mu", help="Arm μ of the figure and of the lean-free angle.")] = 2.0,
     engine: EngineOpt = True,
     plot: PlotOpt = None,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Fig. 13: can the draft's triangle lean on a frictionless wall? Closed form vs LP vs engine, the lean-free β."""
     import throwmap as tm
@@ -58,7 +62,7 @@ def lean_cmd(
                    f"(the draft's 0.58 and 0.14)")
         for m in (1.0, 2.0, mu) if mu not in (1.0, 2.0) else (1.0, 2.0):
             typer.echo(f"  α = {alpha_deg:g}°, μ = {m:g}: no lean below β* = {lean_free_beta(a, b, alpha, m):.4f} rad")
-        t = lean_table(part, n=n, seed=seed, engine=engine)
+        t = lean_table(part, n=n, seed=seed, engine=engine, limits=cli_limits(max_memory, max_time, force))
         for line in t.lines():
             typer.echo(line)
         if plot is not None:

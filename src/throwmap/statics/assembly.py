@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidStateError
+from ..system.system import check_alpha
 from .contacts import find_contacts
 from .rest import Body, analyse_rest, least_mu
 
@@ -115,8 +116,13 @@ def partial_region(part, gammas, mus, *, alpha: float, mu_wall: float = 0.0, mu_
                    length: float = 0.5) -> PartialRegion:
     """Where the partial assembly rests over ``gammas`` (rad) × ``mus`` (arm μ), and the least arm μ that holds it at
     each γ (with the wall and part–part μ as given): a :class:`PartialRegion`."""
+    alpha = check_alpha(alpha, "alpha")
     gammas = np.asarray(gammas, dtype=float)
     mus = np.asarray(mus, dtype=float)
+    if not np.all(np.isfinite(gammas)):
+        raise InvalidStateError("gammas", "must be finite angles (rad)")
+    if np.any(np.isnan(mus)) or np.any(mus < 0):
+        raise InvalidStateError("mus", "must be friction coefficients ≥ 0 (inf: no slip)")
     rests = np.zeros((len(gammas), len(mus)), dtype=bool)
     need = np.zeros(len(gammas))
     for i, gmm in enumerate(gammas):

@@ -31,7 +31,8 @@ import math
 
 import numpy as np
 
-from ..errors import InvalidStateError
+from ..errors import InvalidStateError, shown
+from ..system.system import check_alpha
 from .rest import Body, Contact
 
 __all__ = ["edge_frame_cm", "lean_possible", "drafts_no_lean", "leaning_bodies", "lean_free_beta"]
@@ -84,12 +85,43 @@ def drafts_no_lean(a: float, b: float, beta, alpha, mu) -> np.ndarray:
             + np.sin(alpha) * ((1 - a) * np.sin(beta) - b * np.cos(beta))) > 0
 
 
+BETA_TOL = 1e-12
+"""Bisection tolerance of :func:`lean_free_beta` (rad)."""
+
+
+def _finite(value, field: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not math.isfinite(value):
+        raise InvalidStateError(field, f"must be a finite number, got {shown(value)}")
+    return float(value)
+
+
 def lean_free_beta(a: float, b: float, alpha: float, mu: float, n: int = 20001) -> float:
     """The largest β* (rad) such that no lean angle in (0, β*] is possible (π/2 if none is): the part
-    given less than β* of lean falls back (the draft's "β < 0.25 rad")."""
+    given less than β* of lean falls back (the draft's "β < 0.25 rad").
+
+    ``a``, ``b`` the CM in the edge frame (:func:`edge_frame_cm`), ``alpha`` the arm's angle (rad), ``mu``
+    the arm's friction (≥ 0, inf: no slip). A grid of ``n`` (≥ 3) angles over (0, π/2] finds the first
+    lean; the boundary below it is then bisected to :data:`BETA_TOL` (a lean window narrower than the
+    grid's step π/(2(n − 1)) below it is not seen)."""
+    a, b = _finite(a, "a"), _finite(b, "b")
+    alpha = check_alpha(alpha, "alpha")
+    if isinstance(mu, bool) or not isinstance(mu, (int, float, np.floating)) or math.isnan(mu) or mu < 0:
+        raise InvalidStateError("mu", f"must be a number ≥ 0 (inf: no slip), got {shown(mu)}")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 3:
+        raise InvalidStateError("n", f"must be an integer ≥ 3 (grid angles), got {shown(n)}")
     betas = np.linspace(0.0, math.pi / 2, n)[1:]
     ok = lean_possible(a, b, betas, alpha, mu)
-    return float(betas[np.argmax(ok)] if ok.any() else math.pi / 2) - (betas[1] - betas[0] if ok.any() else 0.0)
+    if not ok.any():
+        return math.pi / 2
+    k = int(np.argmax(ok))
+    lo, hi = (float(betas[k - 1]) if k > 0 else 0.0), float(betas[k])  # no lean at lo (or lo = 0), a lean at hi
+    while hi - lo > BETA_TOL:
+        mid = 0.5 * (lo + hi)
+        if bool(lean_possible(a, b, mid, alpha, mu)):
+            hi = mid
+        else:
+            lo = mid
+    return lo
 
 
 def leaning_bodies(part, beta: float, *, length: float, h: float = 0.0, mu_arm: float, mu_wall: float = 0.0,
@@ -98,7 +130,17 @@ def leaning_bodies(part, beta: float, *, length: float, h: float = 0.0, mu_arm: 
     edge P → Q (default the longest) from P on the arm (μ_arm) to Q on the wall (μ_wall)."""
     if not 0 < beta < math.pi / 2:
         raise InvalidStateError("beta", f"must be in (0, π/2) rad, got {beta!r}")
-    i, j = _hypotenuse(part) if edge is None else edge
+    if not (isinstance(length, (int, float)) and math.isfinite(length) and length > 0):
+        raise InvalidStateError("length", f"the wall's place must be a positive finite x (m), got {shown(length)}")
+    n = len(part.w)
+    if edge is not None:
+        try:
+            i, j = (int(edge[0]), int(edge[1]))
+        except (TypeError, ValueError, IndexError):
+            raise InvalidStateError("edge", f"must be a pair of vertex indices (i, j), got {shown(edge)}") from None
+        if not (0 <= i < n and 0 <= j < n) or (j - i) % n not in (1, n - 1):
+            raise InvalidStateError("edge", f"must be two adjacent vertices of the {n}-gon (0 … {n - 1}), got {shown(edge)}")
+    i, j = _hypotenuse(part) if edge is None else (i, j)
     w = np.asarray(part.w, dtype=float)
     d = w[j] - w[i]
     phi = beta - math.atan2(d[1], d[0])

@@ -30,7 +30,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..conventions import G
-from ..errors import InvalidStateError, shown
+from ..errors import InvalidStateError, ThrowmapError, shown
+from ..models._checks import positive_float
+from ..system.system import check_alpha
 
 __all__ = ["Body", "Contact", "RestAnalysis", "analyse_rest", "gravity_arm_frame", "least_mu"]
 
@@ -49,6 +51,15 @@ class Body:
     x: float
     y: float
     phi: float = 0.0
+
+    def __post_init__(self):
+        if not hasattr(self.part, "w"):
+            raise InvalidStateError("body.part", f"must be a Part, got {type(self.part).__name__}")
+        for name in ("x", "y", "phi"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.floating)) or not math.isfinite(v):
+                raise InvalidStateError(f"body.{name}", f"must be a finite number (m, m, rad), got {shown(v)}")
+            object.__setattr__(self, name, float(v))
 
     def vertices(self) -> np.ndarray:
         """World (arm-frame) vertices, m, in the part's centred order."""
@@ -80,7 +91,15 @@ class Contact:
         if not (norm > 0 and math.isfinite(norm)):
             raise InvalidStateError("contact.normal", f"must be a nonzero finite vector, got {shown(self.normal)}")
         object.__setattr__(self, "normal", (float(n[0] / norm), float(n[1] / norm)))
-        object.__setattr__(self, "point", (float(self.point[0]), float(self.point[1])))
+        try:
+            px, py = (float(self.point[0]), float(self.point[1]))
+        except (TypeError, ValueError, IndexError):
+            raise InvalidStateError("contact.point", f"must be a point (x, y) in m, got {shown(self.point)}") from None
+        if not (math.isfinite(px) and math.isfinite(py)):
+            raise InvalidStateError("contact.point", f"must be finite, got {shown(self.point)}")
+        object.__setattr__(self, "point", (px, py))
+        if self.b is not None and self.b == self.a:
+            raise InvalidStateError("contact.b", f"a contact is between two bodies: body {self.a} with itself")
         mu = self.mu
         if isinstance(mu, bool) or not isinstance(mu, (int, float)) or math.isnan(mu) or mu < 0:
             raise InvalidStateError("contact.mu", f"must be a number ≥ 0 (inf: no slip), got {shown(mu)}")
@@ -208,6 +227,8 @@ def analyse_rest(bodies, contacts, *, alpha: float = 0.0, g: float = G, tol_uniq
     (one LP; ``mu_needed`` nan, no forces)."""
     bodies = tuple(bodies)
     contacts = tuple(contacts)
+    alpha = check_alpha(alpha, "alpha")
+    g = positive_float(g, "g")
     if not bodies:
         raise InvalidStateError("bodies", "give at least one Body")
     for c in contacts:
@@ -249,9 +270,15 @@ def _unit(n: int, i: int) -> np.ndarray:
     return e
 
 
+MAX_BISECTIONS = 200
+"""Cap on :func:`least_mu`'s bisection steps: a monotone predicate needs ≈ 34 for ``rel`` = 1e-10 from μ* ≥ 1/2,
+and one more per halving below (μ* down to ≈ 1e-50 fits)."""
+
+
 def least_mu(ok, *, rel: float = 1e-10, cap: float = 1e9) -> float:
     """The least μ ≥ 0 with ``ok(μ)`` for a predicate that holds above some μ* (0 if ``ok(0)``, inf if not even
-    ``ok(inf)``): doubling from 1, then bisection to ``rel`` (relative)."""
+    ``ok(inf)``): doubling from 1 (up to ``cap``: inf beyond), then bisection to ``rel`` (relative). At most :data:`MAX_BISECTIONS` steps: a predicate that does not settle by then
+    (not monotone in μ) is refused with :class:`~throwmap.errors.ThrowmapError`, never looped on."""
     if ok(0.0):
         return 0.0
     if not ok(math.inf):
@@ -261,7 +288,12 @@ def least_mu(ok, *, rel: float = 1e-10, cap: float = 1e9) -> float:
         lo, hi = hi, 2 * hi
         if hi > cap:
             return math.inf
+    steps = 0
     while hi - lo > rel * hi:
+        steps += 1
+        if steps > MAX_BISECTIONS:
+            raise ThrowmapError("least_mu", f"no μ* found in {MAX_BISECTIONS} bisections (between {lo:.6g} and "
+                                            f"{hi:.6g}): the rest test is not monotone in μ")
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if ok(mid) else (mid, hi)
     return hi

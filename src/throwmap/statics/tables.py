@@ -12,8 +12,10 @@ engine (a :class:`PartialTable`). Both are results with ``table()``, ``to_dict()
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
+from ..budget import Limits, check_count, guard_work
 from ..rng import as_generator
 from .assembly import _arm_mu_needed, partial_assembly
 from .engine_check import engine_rest
@@ -115,29 +117,33 @@ class PartialTable:
         return plot_partial_table(self, ax=ax)
 
 
+ROW_BYTES = 400
+"""Memory of one lean-table row (bytes, a tuple of ten numbers), for the work guard."""
+
+
 def lean_table(part, *, n: int = 100, seed: int = 0, length: float = 0.3, engine: bool = True,
-               progress=None) -> LeanTable:
-    """The lean table (see the module docstring)."""
+               progress=None, limits: Limits | None = None) -> LeanTable:
+    """The lean table (see the module docstring).
+
+    Work guard (``limits``, :mod:`throwmap.budget`): ``n`` rows' memory, and their time from the first
+    row, timed now; above the limits the table is refused with one line on ``n``."""
     from ..system.fixtures import Wall
 
+    n = check_count("n", n, minimum=1)
     rng = as_generator(seed)
     a, b, c = edge_frame_cm(part)
     rows = []
+
+    def first_row_seconds():
+        t0 = time.perf_counter()
+        rows.append(_lean_row(part, rng, a, b, c, length, engine, Wall))
+        return time.perf_counter() - t0
+
+    guard_work("lean table", "n", n, ROW_BYTES, limits, throws_per_config=1.0, timer=first_row_seconds,
+               hint="fewer leans (--n)", unit="leans")
     for i in range(n):
-        beta = float(rng.uniform(0.02, 1.5))
-        alpha = float(rng.uniform(math.radians(-30), math.radians(10)))
-        mu = float(rng.choice([0.3, 0.6, 1.0, 2.0, math.inf]))
-        bodies, cs = leaning_bodies(part, beta, length=length, h=H, mu_arm=mu)
-        closed = bool(lean_possible(a, b, beta, alpha, mu))
-        lp = analyse_rest(bodies, cs, alpha=alpha, detail=False).can_rest
-        if engine:
-            er = engine_rest(bodies, h=H, mu_arm=mu, length=length, wall=Wall(c, mu=0.0), alpha=alpha)
-            stayed, moved, status = er.stayed, max(er.moved), er.status
-        else:
-            stayed, moved, status = None, math.nan, "skipped"
-        capped = lp and _cap_bound(part, bodies, cs, alpha)
-        rows.append((beta, alpha, mu, closed, lp, stayed, moved, bool(drafts_no_lean(a, b, beta, alpha, mu)), status,
-                     capped))
+        if i >= len(rows):
+            rows.append(_lean_row(part, rng, a, b, c, length, engine, Wall))
         if progress is not None:
             progress(i + 1, n)
     from .engine_check import REFUSED
@@ -148,6 +154,23 @@ def lean_table(part, *, n: int = 100, seed: int = 0, length: float = 0.3, engine
                      n - len(ok_engine) if engine else n, sum(r[9] for r in ok_engine), sum(r[4] == r[5] for r in free),
                      sum(r[7] and r[4] for r in rows),
                      sum((not r[7]) and (not r[4]) for r in rows), tuple(rows))
+
+
+def _lean_row(part, rng, a, b, c, length, engine, Wall) -> tuple:
+    """One random lean (β, α, μ) of the lean table: closed form, LP, engine (see the module docstring)."""
+    beta = float(rng.uniform(0.02, 1.5))
+    alpha = float(rng.uniform(math.radians(-30), math.radians(10)))
+    mu = float(rng.choice([0.3, 0.6, 1.0, 2.0, math.inf]))
+    bodies, cs = leaning_bodies(part, beta, length=length, h=H, mu_arm=mu)
+    closed = bool(lean_possible(a, b, beta, alpha, mu))
+    lp = analyse_rest(bodies, cs, alpha=alpha, detail=False).can_rest
+    if engine:
+        er = engine_rest(bodies, h=H, mu_arm=mu, length=length, wall=Wall(c, mu=0.0), alpha=alpha)
+        stayed, moved, status = er.stayed, max(er.moved), er.status
+    else:
+        stayed, moved, status = None, math.nan, "skipped"
+    capped = lp and _cap_bound(part, bodies, cs, alpha)
+    return (beta, alpha, mu, closed, lp, stayed, moved, bool(drafts_no_lean(a, b, beta, alpha, mu)), status, capped)
 
 
 def _cap_bound(part, bodies, contacts, alpha) -> bool:
