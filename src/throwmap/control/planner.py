@@ -96,6 +96,39 @@ def _rest_check(part, arm, x_f: float, side_f: int) -> tuple[bool, str]:
     return True, ""
 
 
+def _finite(value, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) or not math.isfinite(value):
+        raise InvalidStateError(name, f"must be a finite number, got {shown(value)}")
+    return float(value)
+
+
+def check_rates(omegas, field: str = "omegas") -> tuple:
+    """Release rates (rad/s) as a tuple of floats: one number or a sequence, each finite and > 0 (a throw at
+    ω = 0 does not move the part); else :class:`~throwmap.errors.InvalidStateError` on ``field``."""
+    if isinstance(omegas, (str, bytes)):
+        raise InvalidStateError(field, f"must be numbers (rad/s), not text, got {shown(omegas)}")
+    try:
+        rates = tuple(float(w) for w in np.atleast_1d(np.asarray(omegas, dtype=float)))
+    except (TypeError, ValueError):
+        raise InvalidStateError(field, f"must be rates > 0 rad/s, got {shown(omegas)}") from None
+    if not rates or not all(math.isfinite(w) and w > 0 for w in rates):
+        raise InvalidStateError(field, f"must be rates > 0 rad/s, got {shown(omegas)}")
+    return rates
+
+
+def _x_range(arm, x_max) -> float:
+    """The upper end (m) of the starts a limit set is sought over: ``x_max``, else the arm's length, else 0.6 m;
+    finite, > 0 and on the arm."""
+    if x_max is None:
+        return 0.6 if arm.length is None else float(arm.length)
+    xm = _finite(x_max, "x_max")
+    if xm <= 0:
+        raise InvalidStateError("x_max", f"must be > 0 m (the far end of the starts searched), got {xm}")
+    if arm.length is not None and xm > arm.length:
+        raise InvalidStateError("x_max", f"{xm} m is beyond the arm's end at {arm.length} m")
+    return xm
+
+
 def reachability(part, arm, x_f: float, side_f: int, omegas, model: str = DEFAULT_MODEL, *, x_max=None,
                  n_starts: int = 32, realisation=None, **throw_options) -> Reachability:
     """Prop. 4.3's test for each rate in ``omegas`` (rad/s): does S(ω) visit side ``side_f`` below ``x_f`` (m)?
@@ -108,12 +141,12 @@ def reachability(part, arm, x_f: float, side_f: int, omegas, model: str = DEFAUL
     factory = realisation_factory(realisation)
 
     side_f = part.check_side(side_f, field="side_f")
-    x_f = float(x_f)
+    x_f = _finite(x_f, "x_f")
+    omegas = check_rates(omegas)
+    xm = _x_range(arm, x_max)
     ok, why = _rest_check(part, arm, x_f, side_f)
     per = {}
-    xm = 0.6 if x_max is None and arm.length is None else (arm.length if x_max is None else float(x_max))
     for w in omegas:
-        w = float(w)
         extra = {} if factory is None else {"realisation": factory(w)}
         ls = limit_set(part, arm, w, model, n_starts=n_starts, x_max=xm, **extra, **throw_options)
         lows = [lo for a in ls.attractors for (k, lo, hi) in a.bands if k == side_f]
@@ -194,14 +227,16 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
     side0 = part.check_side(side0, field="side0")
     side_f = part.check_side(side_f, field="side_f")
     for value, name in ((x0, "x0"), (x_f, "x_f"), (tol, "tol"), (jog_omega_max, "jog_omega_max")):
-        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
-                or not math.isfinite(value):
-            raise InvalidStateError(name, f"must be a finite number, got {shown(value)}")
+        _finite(value, name)
+    if tol <= 0:
+        raise InvalidStateError("tol", f"must be > 0 m (the final |x − x_f|), got {tol}")
+    if jog_omega_max <= 0:
+        raise InvalidStateError("jog_omega_max", f"must be > 0 rad/s (the jogs' largest rate), got {jog_omega_max}")
     if isinstance(max_throws, bool) or not isinstance(max_throws, int) or max_throws < 1:
         raise InvalidStateError("max_throws", f"must be an integer ≥ 1, got {shown(max_throws)}")
-    omegas = tuple(float(w) for w in np.atleast_1d(np.asarray(omegas, dtype=float)))
-    if not omegas or not all(math.isfinite(w) and w > 0 for w in omegas):
-        raise InvalidStateError("omegas", f"must be rates > 0 rad/s, got {shown(omegas)}")
+    omegas = check_rates(omegas)
+    if check_reachability:
+        _x_range(arm, x_max)
 
     def done(steps, ok, why):
         return Plan(float(x0), side0, float(x_f), side_f, model, tuple(steps), ok, why, tol)
