@@ -151,6 +151,11 @@ def throw_cmd(
         fmt = figure_format(plot, "plot")
         fmt_s = figure_format(plot_stationary, "plot_stationary")
         fmt_q = figure_format(plot_quasi, "plot_quasi")
+        from ..models import get_model
+
+        if get_model(model).features.pose:
+            raise InvalidStateError("model", f"{model!r} keeps the part's pose between throws; the chain is on rests "
+                                             f"(x, side): use an analytic model (rigid_body, paper, small_angle)")
         p, arm = part_and_arm(part, h, None, length, mu)
         noise = Noise(omega_rel=omega_rel, mu_rel=mu_rel, realisation=realisation)
         if goal in ("off_end", "behind_joint"):
@@ -158,14 +163,15 @@ def throw_cmd(
         else:
             try:
                 s, lo, hi = goal.split(":")
-                gs = GoalSet(side=int(s), lo=float(lo), hi=float(hi))
+                s, lo, hi = int(s), float(lo), float(hi)
             except ValueError:
                 raise InvalidStateError("goal", f"must be off_end, behind_joint or SIDE:LO:HI, got {goal!r}") from None
-            if gs.side not in p.stable_sides:
-                raise InvalidStateError("goal", f"side {gs.side} is not a stable side of {p.name} (its stable sides: "
+            if s not in p.stable_sides:
+                raise InvalidStateError("goal", f"side {s} is not a stable side of {p.name} (its stable sides: "
                                                 f"{', '.join(map(str, p.stable_sides))})")
-            if math.isnan(gs.lo) or math.isnan(gs.hi) or not gs.lo < gs.hi:
-                raise InvalidStateError("goal", f"needs LO < HI (m), got {gs.lo:g} and {gs.hi:g}")
+            if math.isnan(lo) or math.isnan(hi) or not lo < hi:
+                raise InvalidStateError("goal", f"needs LO < HI (m), got {lo:g} and {hi:g}")
+            gs = GoalSet(side=s, lo=lo, hi=hi)
         step = ThrowStep(p, arm, omega, model, noise)
         n_cells = count_cells(p, arm, cell, gs.breaks)
         n_mu = 1 if noise.mu_range is None and (noise.mu_rel == 0 or math.isinf(arm.mu)) else mu_nodes

@@ -93,6 +93,12 @@ class ThrowStep:
     labels = THROW_LABELS
     free = ()
 
+    def __post_init__(self):
+        w = self.omega
+        if isinstance(w, bool) or not isinstance(w, (int, float, np.integer, np.floating)) or not math.isfinite(w) \
+                or w <= 0:
+            raise InvalidStateError("omega", f"must be a release rate > 0 rad/s, got {shown(w)}")
+
     def with_arm(self, arm) -> "ThrowStep":
         return dataclasses.replace(self, arm=arm)
 

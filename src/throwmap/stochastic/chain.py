@@ -32,6 +32,7 @@ drawn once per trial: the chain conditional on μ is Markov, the trial is a mixt
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -189,6 +190,9 @@ class MarkovChain:
                     raise InvalidStateError("goal", f"unknown state {s!r}")
                 mask[self.labels.index(s)] = True
             else:
+                if isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not 0 <= int(s) < self.n:
+                    raise InvalidStateError("goal", f"state index {shown(s)} is not one of the chain's states "
+                                                    f"0 … {self.n - 1}")
                 mask[int(s)] = True
         return mask
 
@@ -212,12 +216,30 @@ class MarkovChain:
     def p_goal_by(self, k_max: int, goal, initial=None) -> np.ndarray:
         """P(goal reached by throw k), k = 0 … ``k_max`` (the goal states made absorbing; a goal state in
         ``free`` — a stop — is reached at the step after the k-th throw, and counted at k)."""
+        from ..budget import guard_work
+
         if isinstance(k_max, bool) or not isinstance(k_max, (int, np.integer)) or k_max < 0:
             raise InvalidStateError("k_max", f"must be an integer ≥ 0, got {shown(k_max)}")
+        k_max = int(k_max)
         g = self.states(goal)
-        d = self.with_goal(g).evolve(int(k_max) + 1, initial)
         free = self.states(list(self.free)) if self.free else np.zeros(self.n, dtype=bool)
-        return d[:-1][:, g & ~free].sum(axis=1) + d[1:][:, g & free].sum(axis=1)
+        chain = self.with_goal(g)
+        w = chain._initial(initial)
+
+        def one_step_seconds():
+            t0 = time.perf_counter()
+            _ = w @ chain.P
+            return time.perf_counter() - t0
+
+        guard_work("p_goal_by", "k_max", k_max + 1, 8.0, throws_per_config=1.0, timer=one_step_seconds,
+                   hint="a smaller k_max", unit="steps")
+        held, newly = g & ~free, g & free  # a goal stop is counted one step later, at the throw before it
+        out = np.empty(k_max + 1)
+        for k in range(k_max + 1):
+            nxt = w @ chain.P
+            out[k] = w[held].sum() + nxt[newly].sum()
+            w = nxt
+        return out
 
     def _reach(self) -> np.ndarray:
         """Mask of the states that can reach an absorbing state (absorbing ones included)."""

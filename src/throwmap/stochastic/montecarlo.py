@@ -34,6 +34,30 @@ class GoalSet:
     def __post_init__(self):
         if (self.label is None) == (self.side is None):
             raise InvalidStateError("goal", "give either a side (with lo, hi) or a label")
+        if self.side is not None:
+            if isinstance(self.side, bool) or not isinstance(self.side, (int, np.integer)) or self.side < 0:
+                raise InvalidStateError("goal.side", f"must be a side index ≥ 0, got {self.side!r}")
+            for name in ("lo", "hi"):
+                if math.isnan(getattr(self, name)):
+                    raise InvalidStateError(f"goal.{name}", "must be a number (m), got nan")
+            if not self.lo <= self.hi:
+                raise InvalidStateError("goal.lo", f"must be ≤ hi, got lo = {self.lo} m > hi = {self.hi} m")
+
+    def check(self, cells, labels) -> None:
+        """Refuse a goal these ``cells`` and absorbing ``labels`` can never reach: a side the cells do not
+        cover, a label not among ``labels``, a [lo, hi] outside the cells on its side."""
+        if self.label is not None:
+            if self.label not in labels:
+                raise InvalidStateError("goal.label", f"unknown state {self.label!r}; the throws end in "
+                                                      f"{', '.join(labels)} or a cell")
+            return
+        left, right, side = cells.bounds()
+        on = side == self.side
+        if not on.any():
+            raise InvalidStateError("goal.side", f"side {self.side} has no cells (sides {sorted(set(side.tolist()))})")
+        if self.hi < left[on].min() or self.lo > right[on].max():
+            raise InvalidStateError("goal.lo", f"[{self.lo}, {self.hi}] m is outside the cells of side {self.side} "
+                                               f"({left[on].min():.4g} … {right[on].max():.4g} m)")
 
     @property
     def breaks(self) -> tuple:
@@ -63,8 +87,22 @@ def open_loop_trials(step, cells, initial, goal: GoalSet, *, n: int = 400, k_max
     """Hitting throws of ``n`` simulated trials of ``step`` (a :class:`~throwmap.stochastic.build.ThrowStep`):
     the start drawn from ``initial`` over ``cells`` (a cell, then x uniform in it), μ per trial from the
     step's noise (unless ``mu_spread`` is False), then throws until the goal, the arm is left or ``k_max``."""
+    from ..budget import check_count
+
+    if not isinstance(goal, GoalSet):
+        raise InvalidStateError("goal", f"must be a GoalSet, got {type(goal).__name__}")
+    n = check_count("n", n, minimum=1)
+    k_max = check_count("k_max", k_max, minimum=0)
+    goal.check(cells, tuple(step.labels))
+    if initial is None:
+        raise InvalidStateError("initial", "give the starts' distribution over the cells (weights, one per cell)")
+    try:
+        w = np.asarray(initial, dtype=float)[: cells.n]
+    except (TypeError, ValueError):
+        raise InvalidStateError("initial", "must be weights, one per cell") from None
+    if w.shape != (cells.n,) or not np.all(np.isfinite(w)) or np.any(w < 0) or w.sum() <= 0:
+        raise InvalidStateError("initial", f"must be {cells.n} finite weights ≥ 0, not all 0")
     rng = as_generator(rng)
-    w = np.asarray(initial, dtype=float)[: cells.n]
     w = w / w.sum()
     left, right, side = cells.bounds()
     c = rng.choice(cells.n, size=n, p=w)
