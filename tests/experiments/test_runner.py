@@ -184,9 +184,10 @@ def test_bad_inputs_are_one_line_errors():
         run_experiment("settle", {"noise": {"omega_rel": -1}}, n=2, seed=0)
 
 
-def test_no_trials():
-    r = run_experiment("settle", n=0, seed=0, workers=1)
-    assert r.n == 0 and r.ci95 == (0.0, 1.0) and r.to_json()["success_rate"] is None
+def test_no_trials_is_refused_before_work():
+    # an experiment of 0 trials would report an empty table and exit 0: it is a usage error
+    with pytest.raises(InvalidStateError, match=r"^n: must be an integer ≥ 1, got 0"):
+        run_experiment("settle", n=0, seed=0, workers=1)
 
 
 def test_trial_values_are_checked():

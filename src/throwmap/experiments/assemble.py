@@ -50,7 +50,7 @@ from ..conventions import G
 from ..errors import InvalidStateError, ThrowmapError
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, Spread, drop_kind, drop_parts
-from ..io.spec import ArmSpec, NoiseSpec, Spec, WallSpec
+from ..io.spec import ArmSpec, Heights, NoiseSpec, Range, RateRange, Spec, WallSpec
 from .registry import register_experiment
 
 __all__ = ["ASSEMBLE", "Assemble", "AssembleConfig", "PairSensorConfig", "drop_pair", "lean_bound"]
@@ -138,7 +138,7 @@ class AssembleConfig(Spec):
                          description="the arm (its length is the wall's face), nominal μ")
     mu_parts: Finite = Field(0.5, ge=0, description="part–part friction")
     wall: WallSpec = Field(default_factory=lambda: WallSpec(height=0.80, mu=0.0), description="the end wall")
-    omega_high: tuple[Finite, Finite] = Field((3.0, 6.0), description="randomising release rate, uniform over "
+    omega_high: RateRange = Field((3.0, 6.0), description="randomising release rate, uniform over "
                                                                        "(low, high) per throw, rad/s")
     near_x: Finite = Field(0.22, ge=0, description="a part's CM within this of the joint: randomise below near_cap, m")
     near_cap: Finite = Field(4.0, gt=0, description="highest randomising rate with a part near the joint, rad/s")
@@ -168,8 +168,8 @@ class AssembleConfig(Spec):
                                    "0.5 mm); 2 mm is well inside the 5 mm the assembled test allows")
     sensor: PairSensorConfig = Field(default_factory=PairSensorConfig)
     noise: NoiseSpec = Field(default_factory=lambda: NoiseSpec(omega_rel=0.03, mu_rel=0.1, realisation="recoil"))
-    height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
-    x_range: tuple[Finite, Finite] = Field((0.12, 0.40), description="CM abscissa range of the drop, m")
+    height: Heights = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
+    x_range: Range = Field((0.12, 0.40), description="CM abscissa range of the drop, m")
     gap: Finite = Field(0.005, ge=0, description="least clearance between the dropped parts at release, m")
     max_high: int = Field(150, ge=0, le=100_000, description="randomising throws allowed")
     max_low: int = Field(150, ge=1, le=100_000, description="assembling throws allowed")

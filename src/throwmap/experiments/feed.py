@@ -52,7 +52,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from ..errors import InvalidStateError, ThrowmapError
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, drop_part
-from ..io.spec import ArmSpec, NoiseSpec, Spec
+from ..io.spec import ArmSpec, Heights, NoiseSpec, Range, Rate, Spec
 from .registry import register_experiment
 
 __all__ = ["FEED", "CavityConfig", "EndWall", "Feed", "FeedConfig", "WallConfig", "build_design", "build_wall",
@@ -137,7 +137,7 @@ class FeedConfig(Spec):
 
     part: str = Field("feeder", description="'feeder' (the feeder design) or a built-in part name / part file")
     side: int | None = Field(None, ge=0, strict=True, description="target side (None: the feeder design's)")
-    omega: Finite | None = Field(None, gt=0, description="nominal release rate, rad/s (None: the feeder design's)")
+    omega: Rate | None = Field(None, description="nominal release rate, rad/s (None: the feeder design's)")
     arm: ArmSpec = Field(default_factory=lambda: ArmSpec(mu=1.0), description="the arm: h (None: the feeder "
                                                                                "design's), nominal μ")
     variant: Literal["closed", "open"] = Field("closed", description="'closed': held at the end; 'open': thrown off it")
@@ -149,8 +149,8 @@ class FeedConfig(Spec):
                                                                     "feeder design's limit set)")
     noise: NoiseSpec = Field(default_factory=lambda: NoiseSpec(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
                                                                    zeta=0.2))
-    height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
-    x_range: tuple[Finite, Finite] | None = Field(None, description="CM abscissa range of the drop, m (None: the arm)")
+    height: Heights = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
+    x_range: Range | None = Field(None, description="CM abscissa range of the drop, m (None: the arm)")
     clear_every: int = Field(0, ge=0, le=100_000, description="every this many throws (throw t with t % clear_every "
                                                                "== 0) is a clearing throw (0: none)")
     clear_factor: Finite = Field(1.55, gt=0, description="clearing throw's nominal ω / omega (jittered like the others)")

@@ -37,7 +37,7 @@ from ..errors import InvalidStateError, ThrowmapError
 from ..models import options_taken
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, drop_part
-from ..io.spec import ArmSpec, NoiseSpec, Number, Point, Rate, SystemSpec
+from ..io.spec import ArmSpec, Heights, NoiseSpec, Number, Point, Rate, SystemSpec
 from .registry import register_experiment
 
 __all__ = ["POSITION", "Position", "PositionConfig", "SensorConfig", "InverseConfig", "throws_summary", "low_rate"]
@@ -99,7 +99,7 @@ class PositionConfig(SystemSpec):
     inverse: InverseConfig = Field(default_factory=InverseConfig)
     model: str = Field("engine", description="'engine' (pymunk, chained runs) or an analytic model name")
     noise: NoiseSpec = Field(default_factory=lambda: NoiseSpec(omega_rel=0.03, mu_rel=0.1, realisation="recoil"))
-    height: Point = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
+    height: Heights = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
     x_range: Point | None = Field((0.18, 0.30), description="CM abscissa range of the drop, m (None: the whole arm)")
     max_throws: int = Field(300, ge=1, le=100_000, description="throws allowed")
     settings: dict | None = Field(None, description="EngineSettings fields to override")

@@ -299,7 +299,7 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     """
     exp = get_experiment(experiment)
     cfg = config_of(exp, config)
-    n = check_count("n", n)
+    n = check_count("n", n, minimum=1)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise InvalidStateError("seed", f"must be a non-negative integer, got {shown(seed)}")
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:

@@ -53,7 +53,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from ..errors import InvalidStateError
 from .base import Trial, seed_of
 from .drop import DEFAULT_HEIGHT, Spread, drop_parts
-from ..io.spec import Friction, NoiseSpec
+from ..io.spec import Friction, Heights, NoiseSpec, Range, Rate
 from .registry import register_experiment
 
 __all__ = ["SEQUENTIAL", "SERIAL", "RecoverConfig", "SequentialAssembly", "SequentialConfig", "WedgeConfig", "build_stack",
@@ -122,17 +122,17 @@ class SequentialConfig(BaseModel):
 
     wedge: WedgeConfig = Field(default_factory=WedgeConfig)
     recover: RecoverConfig = Field(default_factory=RecoverConfig)
-    omega: Finite | None = Field(None, gt=0, description="release rate, rad/s (None: the feeder's 4.56)")
-    omega_second: Finite | None = Field(None, gt=0, description="serial: rate once the triangle is captured, "
+    omega: Rate | None = Field(None, description="release rate, rad/s (None: the feeder's 4.56)")
+    omega_second: Rate | None = Field(None, description="serial: rate once the triangle is captured, "
                                                                  "rad/s (None: omega)")
     mu: Friction = Field(1.0, description="nominal arm–part friction of the pocket's arm (its h and length are the "
                                           "design's)")
     mu_parts: Finite = Field(0.5, ge=0, description="part–part friction")
     noise: NoiseSpec = Field(default_factory=lambda: NoiseSpec(omega_rel=0.03, mu_rel=0.1, realisation="recoil",
                                                                    zeta=0.2))
-    height: tuple[Finite, Finite] = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
-    x_range: tuple[Finite, Finite] = Field((0.10, 0.25), description="CM abscissa range of the drops, m")
-    x_range_second: tuple[Finite, Finite] = Field((0.10, 0.18), description="serial: the wedge's drop range, m")
+    height: Heights = Field(DEFAULT_HEIGHT, description="drop height of the lowest vertex, m")
+    x_range: Range = Field((0.10, 0.25), description="CM abscissa range of the drops, m")
+    x_range_second: Range = Field((0.10, 0.18), description="serial: the wedge's drop range, m")
     gap: Finite = Field(0.005, ge=0, description="least clearance between the dropped parts at release, m")
     max_throws: int = Field(150, ge=1, le=100_000, description="sequential: throws allowed until assembled")
     max_first: int = Field(100, ge=1, le=100_000, description="serial: throws allowed until the triangle is captured")

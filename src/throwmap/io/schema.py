@@ -72,8 +72,11 @@ Number = Annotated[float, Field(strict=True, allow_inf_nan=False)]
 """A finite number (an integer or a float; booleans and strings refused)."""
 Omega = Annotated[float, Field(strict=True), _rule(check_omega)]
 """A release rate ω, rad/s: finite and ≥ 0 (the arm throws upward)."""
-Rate = Annotated[Omega, Field(gt=0)]
-"""A nominal release rate of an experiment, rad/s: an :data:`Omega` > 0."""
+MAX_RATE = 100.0
+"""The largest release rate an experiment config takes, rad/s (a 0.5 m arm's end at 50 m/s): far above any
+throw that rests a part on the arm; a larger one is a unit slip (deg/s, rpm)."""
+Rate = Annotated[Omega, Field(gt=0, le=MAX_RATE)]
+"""A nominal release rate of an experiment, rad/s: an :data:`Omega` > 0 and ≤ :data:`MAX_RATE`."""
 Friction = Annotated[float, BeforeValidator(_infinite_text), Field(strict=True), _rule(check_mu),
                      PlainSerializer(lambda v: "inf" if math.isinf(v) else v, return_type=float | str, when_used="json")]
 """Coulomb friction μ ≥ 0; ``inf`` (or ``"inf"``, ``null``): the contact never slips. Written ``"inf"`` in JSON."""
@@ -83,6 +86,21 @@ Angle = Annotated[float, Field(strict=True), _rule(check_alpha)]
 """The arm's rest angle α, rad (counter-clockwise +): finite, |α| < π/2."""
 Point = tuple[Number, Number]
 """A point or a pair (low, high) of finite numbers."""
+
+
+def _ordered(pair):
+    lo, hi = pair
+    if lo > hi:
+        raise ValueError(f"must be (low, high) with low ≤ high, got ({lo:g}, {hi:g})")
+    return pair
+
+
+Range = Annotated[Point, AfterValidator(_ordered)]
+"""A range (low, high) of finite numbers, low ≤ high."""
+RateRange = Annotated[tuple[Rate, Rate], AfterValidator(_ordered)]
+"""A range (low, high) of release rates (:data:`Rate`, rad/s), low ≤ high."""
+Heights = Annotated[tuple[Annotated[Number, Field(ge=0)], Annotated[Number, Field(ge=0)]], AfterValidator(_ordered)]
+"""A range (low, high) of drop heights above the arm, m: both ≥ 0, low ≤ high."""
 
 
 _NESTED = ("arm", "wall")

@@ -14,11 +14,11 @@ from pydantic import Field
 from ..errors import ThrowmapError
 from ..system.arm import Arm
 from ..system.noise import Noise
-from .schema import (INF_WORDS, Angle, ArmSpec, Friction, Length, NoiseSpec, Number, Omega, Point, Rate, Spec,
-                     WallSpec)
+from .schema import (INF_WORDS, MAX_RATE, Angle, ArmSpec, Friction, Heights, Length, NoiseSpec, Number, Omega, Point,
+                     Range, Rate, RateRange, Spec, WallSpec)
 
-__all__ = ["SystemSpec", "Number", "Omega", "Rate", "Friction", "Length", "Angle", "Point", "Spec", "ArmSpec",
-           "WallSpec", "NoiseSpec", "INF_WORDS"]
+__all__ = ["SystemSpec", "Number", "Omega", "Rate", "RateRange", "MAX_RATE", "Friction", "Length", "Angle", "Point",
+           "Range", "Heights", "Spec", "ArmSpec", "WallSpec", "NoiseSpec", "INF_WORDS"]
 
 
 class SystemSpec(Spec):
