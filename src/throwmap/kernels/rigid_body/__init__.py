@@ -147,7 +147,7 @@ Modules (the automaton's pieces)
 from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4
 from .batch import (PARALLEL_MIN, pick, throw_many_rigid_body, throw_many_rigid_body_rk4,
                     throw_many_rigid_body_rk4_serial, throw_many_rigid_body_serial)
-from .flight import departure_window
+from ..flight import departure_window
 from .impact import LAW_ROUTH, LAW_VELOCITY, coulomb_impact
 from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE,
                     EV_OFF_END, EV_SLIP, EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_SLIDE, IMP_STICK,

@@ -28,8 +28,7 @@ import numpy as np
 from ... import codes as C
 from ...rows import start_record
 from ..automaton import throw_from_state, throw_one_rigid_body
-from ..landing import flat_slide, rest, slide_away
-from ..tilt import settle
+from ..flat import flat_slide, rest, settle, slide_away
 from ..trajectory import clear
 from .dynamics import Body, offsets
 from .phase import Phase, run_phase
