@@ -238,11 +238,11 @@ def line_touch(c0, b, ru, rv, vn, w, g, ell, excl_j, excl_t, t_max, tol, max_ite
     g_pos = g if g > 0.0 else 0.0
     watch_all = off.shape[0] == 0
     for _ in range(max_iter):
+        if t > t_max:
+            return t_max, NO_CONTACT, 0.0, 0.0
         wt = w * t
         if aw * t > MAX_SPIN_ANGLE:
             return t, UNRESOLVED_J, 0.0, 0.0
-        if t > t_max:
-            return t_max, NO_CONTACT, 0.0, 0.0
         if t > 0.0:
             hs = math.sin(0.5 * wt)  # half-angle: two trig calls per step
             hc = math.cos(0.5 * wt)

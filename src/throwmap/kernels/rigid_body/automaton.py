@@ -457,7 +457,7 @@ def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, l
     the default of the model, or :data:`~.impact.LAW_VELOCITY`; :func:`~.impact.coulomb_impact`),
     ``max_iter`` caps the contact-search and integration steps of one mode,
     ``max_events`` the mode changes (status NO_REST beyond). The caller has
-    checked the start. The sticking phase is closed form (:func:`pivot_stick_exact`).
+    checked the start. The sticking phase is closed form (:func:`~.stick_exact.pivot_stick_exact`).
     ``wall_h`` (m, > 0) puts a :class:`~throwmap.system.fixtures.Wall` that high at x = ``length``
     (finite) with Coulomb ``wall_mu`` (:mod:`~.wall`); 0: no wall.
     """
@@ -468,7 +468,7 @@ def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, l
 @njit(cache=True)
 def throw_one_rigid_body_rk4(x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
                              tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
-    """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`pivot_stick`): the reference it is checked against."""
+    """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`~.stick.pivot_stick`): the reference it is checked against."""
     return run_throw(pivot_stick, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
                      tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu, np.empty(0))
 

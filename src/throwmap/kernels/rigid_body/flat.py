@@ -387,11 +387,11 @@ def settle_walled(x, v, t, k, mu, gx, gn, h, L, top, mu_w, back, rho2, w, beta, 
     contacts' cones (the arm at both support vertices, the wall at the leading vertices: a
     flush side stops dead); a part whose only wall contact is its right support vertex turns
     about that corner instead (:func:`corner_pivot_rate`); anything else is refused
-    (:data:`WHY_TWO_CONTACT`); a leading vertex above the wall's top hands over to :mod:`.wall_lean`
+    (:data:`~.modes.WHY_TWO_CONTACT`); a leading vertex above the wall's top hands over to :mod:`.wall_lean`
     where its edge meets the top corner. At rest against the wall it stays if arm and wall hold gravity
-    (:func:`rest_flat_at_wall`): x = L − u_w (rounded down where needed so that x + u_R ≤ L, the start
+    (:func:`~.wall_statics.rest_flat_at_wall`): x = L − u_w (rounded down where needed so that x + u_R ≤ L, the start
     rule of :func:`throwmap.system.starts.start_interval`); pulled away it slides back; pushed
-    into the wall and not held it is refused (:data:`WHY_LADDER`).
+    into the wall and not held it is refused (:data:`~.modes.WHY_LADDER`).
 
     Returns ``(status, x, t, ω_corner, why)``: status OK or BEHIND_JOINT (at rest or leaving
     behind the joint, x the CM), −1: the part turns about its corner vertex k at (L, h) with

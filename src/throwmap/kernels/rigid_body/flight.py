@@ -97,7 +97,7 @@ def lift(px, h, lj, theta, thdot, va, phi, g, w, ru, rv, c0, jp):
     """Reset ``lift``: pivot vertex ``jp`` at (px, h) leaves the line (PIVOT_* → FLIGHT) with the contact's velocity.
 
     Fills the flight frame and returns ``(x, y, v_x, v_y, ω, excl_t)``: vertex jp is
-    excluded from ``touch`` for ``excl_t`` s (:func:`departure_window`); ``excl_t`` ≤ 0
+    excluded from ``touch`` for ``excl_t`` s (:func:`~throwmap.kernels.flight.departure_window`); ``excl_t`` ≤ 0
     means the free motion would sink it (no consistent contact: INCONSISTENT).
     """
     c = math.cos(theta)

@@ -284,7 +284,7 @@ def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip, alph
 
     In order: ``PIVOT_STICK`` (v_A = 0, N > 0, |F| ≤ μN; not offered right after a
     ``slip``/``lift_off`` guard fired); ``FLIGHT`` if the free motion separates
-    (:func:`departure_window` > 0); ``PIVOT_SLIDE`` with a consistent sense
+    (:func:`~throwmap.kernels.flight.departure_window` > 0); ``PIVOT_SLIDE`` with a consistent sense
     (D > 0, N > 0, and σ ẍ_A > 0 when starting from v_A = 0 — right after ``slip``
     ẍ_A = 0 exactly, so σ = −sgn F is taken); else no consistent motion.
     ``mu_s`` is the coefficient used for sliding (μ, or MU_SKID for μ = ∞).

@@ -475,7 +475,7 @@ def wall_hit_in_flight(vx, vy, om, rx, ry, nx, ny, corner, rho2, mu_w, law, gx, 
     """Reset ``wall_impact`` in FLIGHT at the contact (r_x, r_y) from the CM (m) with normal (n_x, n_y) into the part:
     a vertex on the face (−x̂), or the top corner on an edge (``corner``: the edge's inward normal).
 
-    Refuses (``why`` = :data:`WHY_WALL_SLIDE`) a contact the impact leaves pressed on the wall (no
+    Refuses (``why`` = :data:`~.modes.WHY_WALL_SLIDE`) a contact the impact leaves pressed on the wall (no
     departure window: it would slide along it). Returns ``(vx⁺, vy⁺, ω⁺, P_t, P_n, kind, excl_t, why)``:
     ``excl_t`` (s) how long the contact provably stays open afterwards (:func:`~throwmap.kernels.flight.departure_window`,
     :func:`corner_departure`); kind IMP_INCONSISTENT: no consistent impulse.
