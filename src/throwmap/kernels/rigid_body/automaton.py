@@ -17,7 +17,7 @@ Arm rest angle ``alpha`` (rad, CCW +, |α| < π/2; draft Sec. VI, :mod:`~.tilt`)
 automaton runs in the arm frame with gravity (−g sin α, −g cos α). α = 0 runs the
 horizontal code unchanged (bit for bit); α ≠ 0 uses the tilted sticking phase
 :func:`~.tilt.pivot_stick_tilted` for both sticking-phase variants, and the tilted
-flat slide / rest :func:`~.tilt.settle`.
+flat slide / rest :func:`~.flat.settle`.
 """
 
 import math
@@ -155,7 +155,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
         if n_events > max_events:
             return x, last_side, C.NO_REST
         if mode == MODE_LEAN:
-            # ---------------------------------------------------------- on the arm and the wall (wall_follow.py)
+            # ---------------------------------------------------------- on the arm and the wall (wall_lean.py)
             (res, why, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p, v_a, kc,
              win_c) = lean(ln_a, ln_p, ln_impact, t, x, y, vx, vy, phi, om, w, rho2, mu, wall_mu, gx, gn, h, wall_h,
                          length, back, lref, max_iter, max_events, traj, ts)

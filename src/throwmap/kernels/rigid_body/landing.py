@@ -83,7 +83,7 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
     On an arm at rest angle ``alpha`` ≠ 0 (rad; :mod:`~.tilt`): the departure window
     sees the normal gravity g cos α, the Zeno rule uses the tilted topple barriers
     and swings (:func:`~.tilt.rocking_rest_tilted`), a flat part slides and settles
-    under the tilted gravity (:func:`~.tilt.settle`: rests only where |tan α| ≤ μ),
+    under the tilted gravity (:func:`~.flat.settle`: rests only where |tan α| ≤ μ),
     an unstable side (``stable`` is the table for α) tips about the vertex its CM
     overhangs along gravity, at once, sliding if it still moves.
 
