@@ -20,6 +20,7 @@ import pytest
 import throwmap as tm
 from throwmap.kernels import codes as C
 from throwmap.kernels.rigid_body import tilt as T
+from throwmap.kernels.rigid_body.flat import settle
 from throwmap.models import get_model
 from throwmap.system.catalogue import BUILTIN_PARTS
 from throwmap.system.system import System
@@ -174,7 +175,7 @@ def test_flight_energy_with_the_tilted_potential_is_conserved(model):
 # ---------------------------------------------------------------------------------------------- flat slide
 def _settle(part, k, x, v, mu, alpha, length=math.inf, back=0.0, g=9.81):
     rec = np.zeros(C.NREC)
-    return T.settle(x, v, 0.0, k, mu, g, alpha, -0.01, part.d, part.uL, part.uR, part.beta, length, back,
+    return settle(x, v, 0.0, k, mu, g, alpha, -0.01, part.d, part.uL, part.uR, part.beta, length, back,
                     float(part.beta[k]), np.empty((0, 4)), np.zeros(3), rec), rec
 
 

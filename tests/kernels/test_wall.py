@@ -1,5 +1,6 @@
-"""The wall's guards, resets and statics of model "rigid_body" (kernels/rigid_body/wall.py), by closed forms
-and independent checks (dense sampling of the gaps, scipy's linprog for the cone tests)."""
+"""The wall's guards, resets and statics of model "rigid_body" (kernels/rigid_body/wall.py, wall_statics.py, the
+flat slide into it in flat.py), by closed forms and independent checks (dense sampling of the gaps, scipy's
+linprog for the cone tests)."""
 
 import math
 
@@ -9,17 +10,26 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import linprog
 
+from throwmap.kernels.flight import departure_window
 from throwmap.kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY
-from throwmap.kernels.rigid_body.modes import IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK
-from throwmap.kernels.rigid_body.wall import (WHY_NONE, WHY_WALL_SLIDE, cone_contains, contact_impact,
-                                              contacts_can_supply, corner_inside, corner_pivot_rate,
-                                              corner_touch_time, rest_flat_at_wall, slide_hit, wall_contact_angle,
-                                              wall_departure, wall_hit_in_flight, wall_impact, wall_reach_at_rest,
+from throwmap.kernels.rigid_body.flat import corner_pivot_rate, slide_hit, wall_reach_at_rest
+from throwmap.kernels.rigid_body.impact import contact_impact, coulomb_impact
+from throwmap.kernels.rigid_body.modes import IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, WHY_NONE, WHY_WALL_SLIDE
+from throwmap.kernels.rigid_body.wall import (corner_inside, corner_touch_time, wall_contact_angle, wall_hit_in_flight,
                                               wall_theta, wall_touch_time)
+from throwmap.kernels.rigid_body.wall_statics import cone_contains, contacts_can_supply, rest_flat_at_wall
 from throwmap.system.catalogue import rectangle, triangle_30_60_90
 
 G = 9.81
 finite = dict(allow_nan=False, allow_infinity=False)
+
+
+def wall_impact(vx, vy, w, rx, ry, rho2, mu_w, law):
+    """The impact of a vertex at (r_x, r_y) on the face x = L: the arm's law in the frame (x', y') = (y, −x), a
+    proper rotation by −90° in which the face's inward normal −x̂ is ŷ' (what :func:`contact_impact` computes
+    for the normal −x̂)."""
+    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vy, -vx, w, ry, -rx, rho2, mu_w, law)
+    return -vyp, vxp, wp, pt, pn, kind, jt0, jn0
 
 
 def _state():
@@ -124,10 +134,11 @@ def test_wall_touch_respects_the_horizon_and_the_departure_window():
 
 
 def test_wall_departure_window():
+    # the face's frame: tangent ŷ, normal −x̂, so a vertex at (r_x, r_y) from the CM is at (r_y, −r_x)
     # a spinning vertex right of the CM curves back from the wall: it leaves (positive window)
-    assert wall_departure(0.0, 0.03, 0.0, 10.0, 0.0, -G, 0.03) > 0
+    assert departure_window(0.0, -0.03, 10.0, 0.0, 0.03, G) > 0
     # gravity pushing it into the wall with no spin: it stays pressed (no window)
-    assert wall_departure(0.0, 0.03, 0.0, 0.0, 1.0, -G, 0.03) == 0.0
+    assert departure_window(0.0, -0.03, 0.0, 1.0, 0.03, 1.0 + G) == 0.0
 
 
 def test_wall_hit_in_flight_refuses_a_pressed_vertex():
@@ -140,7 +151,7 @@ def test_wall_hit_in_flight_refuses_a_pressed_vertex():
 
 @settings(max_examples=200, deadline=None)
 @given(_state(), st.floats(0, 2 * math.pi), st.sampled_from([0.0, 0.5, math.inf]))
-def test_contact_impact_on_the_face_is_the_wall_impact(s, ang, mu):
+def test_contact_impact_on_the_face_is_the_arms_law_turned_by_minus_90_degrees(s, ang, mu):
     vx, vy, w, rx, ry, rho2 = s
     a = wall_impact(vx, vy, w, rx, ry, rho2, mu, LAW_ROUTH)
     b = contact_impact(vx, vy, w, rx, ry, -1.0, 0.0, rho2, mu, LAW_ROUTH)

@@ -18,9 +18,9 @@ from scipy.optimize import minimize
 
 import throwmap as tm
 from throwmap.kernels.rigid_body.modes import EV_LIFT_OFF
-from throwmap.kernels.rigid_body.wall_guards import fill_wall_vertices
-from throwmap.kernels.rigid_body.wall_ladder import (C_OPEN, ladder_phase, ladder_pose, ladder_rhs,
-                                                     multi_contact_impact)
+from throwmap.kernels.rigid_body.impact import C_OPEN, multi_contact_impact
+from throwmap.kernels.rigid_body.wall import fill_wall_vertices
+from throwmap.kernels.rigid_body.wall_lean import ladder_phase, ladder_pose, ladder_rhs
 from throwmap.kernels.rigid_body.wall_slide import W_SLIDE, W_STICK, wall_phase, wall_rhs, wall_select
 from throwmap.kernels.rigid_body.wall_statics import contacts_can_supply
 from throwmap.system.catalogue import rectangle, regular_polygon
@@ -344,7 +344,7 @@ def test_corner_slide_matches_a_free_body_integration(mu_w):
 @given(st.integers(0, 2**32 - 1))
 def test_corner_departure_window_is_a_true_lower_bound(seed):
     """Inside the window the corner stays outside the edge's line, on the exact free flight (rotation included)."""
-    from throwmap.kernels.rigid_body.wall_contact import corner_departure
+    from throwmap.kernels.rigid_body.wall import corner_departure
 
     rng = np.random.default_rng(seed)
     q = rng.uniform(-0.05, 0.05, 2)  # Q − CM at t = 0

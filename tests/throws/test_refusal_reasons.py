@@ -5,7 +5,7 @@ import numpy as np
 
 import throwmap as tm
 from throwmap.kernels import codes as C
-from throwmap.kernels.rigid_body.wall_contact import WHY_MESSAGES
+from throwmap.kernels.rigid_body.modes import WHY_MESSAGES
 from throwmap.studies.validation import default_parts
 from throwmap.system.starts import start_interval
 

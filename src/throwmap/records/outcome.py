@@ -87,7 +87,7 @@ def _why(status: int, cap_hit: bool, why: float = math.nan, reason: str = "") ->
     if status != C.UNRESOLVED:
         return ""
     if why == why and why > 0:
-        from ..kernels.rigid_body.wall_contact import WHY_MESSAGES
+        from ..kernels.rigid_body.modes import WHY_MESSAGES
 
         return WHY_MESSAGES.get(int(why), f"refused by the model (reason code {int(why)})")
     if cap_hit:
@@ -107,7 +107,7 @@ def spin_reason() -> str:
 
 def _why_code(message: str) -> float:
     """The reason code (:data:`throwmap.kernels.codes.WHY`) of a refusal message; 0 for the generic ones."""
-    from ..kernels.rigid_body.wall_contact import WHY_MESSAGES
+    from ..kernels.rigid_body.modes import WHY_MESSAGES
 
     return float(next((k for k, m in WHY_MESSAGES.items() if m == message), 0))
 

@@ -81,9 +81,9 @@ wall, a landing while on the wall, a third vertex): one velocity-level plastic i
 touching contacts (:mod:`.wall_lean`, the law of the engines). Modes on the wall:
 WALL_CONTACT (a vertex pressed on the face, sliding or sticking: :mod:`.wall_slide`), CORNER (an
 edge pressed on the top corner: :mod:`.wall_corner`), LADDER (a vertex on the arm and one on the
-face sliding at both: :mod:`.wall_ladder`); rests against the wall by exact cone statics, and
+face sliding at both: :mod:`.wall_lean`); rests against the wall by exact cone statics, and
 the Zeno limit of ever smaller impacts (speeds below ``V_STOP`` √(gℓ)) is a stop. What it cannot
-follow ends as UNRESOLVED (reason codes ``WHY_*`` of :mod:`.wall_contact`): an edge on the corner
+follow ends as UNRESOLVED (reason codes ``WHY_*`` of :mod:`.modes`): an edge on the corner
 moving with another contact, an edge flat on the arm or the face sliding while the part touches
 the other surface, a vertex onto the corner or the wall's foot, a flat slide into the wall above
 its top. A rest leaning on arm and wall reports the nearest side and the CM's x, as the engines do.
@@ -130,24 +130,32 @@ Modules (the automaton's pieces)
 --------------------------------
 ``modes``        mode, guard/event and impact codes, numerical constants
 ``flight``       FLIGHT: guards touch (shared first contact) and leave_arm, reset lift
-``impact``       reset impact (Coulomb/Routh) and the impact records
+``impact``       the impact laws: one vertex (Coulomb/Routh or velocity-level), any normal, several
+                 contacts at once; the impact records
+``coulomb``      the guards of a Coulomb contact (lift_off, slip, stick), shared by the integrated modes
+``bracket``      locating a guard inside an integration step, shared by the integrated modes
 ``stick``        PIVOT_STICK forces, and the RK4 sticking phase (reference)
 ``swing``        the closed-form swing: path, guard roots, elapsed time
 ``stick_exact``  PIVOT_STICK in closed form (the default)
 ``slide``        PIVOT_SLIDE, and the contact-mode selection (slip_start, stick_start)
-``landing``      reset land_side, FLAT_SLIDE, rocking_rest, rest
+``landing``      reset land_side and rocking_rest
+``flat``         FLAT_SLIDE and REST (a side flat on the arm)
 ``trajectory``   trajectory rows
 ``automaton``    one throw: the loop over modes
 ``batch``        many throws: parallel kernels and their serial twins, chosen by batch size
 ``tilt``         an arm at rest angle α: tilted sticking phase, flat slides and rests
-``wall``         a wall at the arm's end: FLIGHT with a wall, the pivot's wall reset (and
-                 ``wall_contact``, ``wall_guards``, ``wall_statics``: contacts, guards, statics)
+``wall``         a wall at the arm's end: its geometry, the guards wall_touch and corner_touch,
+                 the departure windows, the pivot's wall reset
+``wall_statics`` rests against the wall by exact cone statics
+``wall_slide``   WALL_CONTACT (a vertex pressed on the face)
+``wall_corner``  CORNER (an edge pressed on the top corner)
+``wall_lean``    LEAN and its LADDER (a vertex on the arm and one on the face)
 """
 
 from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4
 from .batch import (PARALLEL_MIN, pick, throw_many_rigid_body, throw_many_rigid_body_rk4,
                     throw_many_rigid_body_rk4_serial, throw_many_rigid_body_serial)
-from .flight import departure_window
+from ..flight import departure_window
 from .impact import LAW_ROUTH, LAW_VELOCITY, coulomb_impact
 from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE,
                     EV_OFF_END, EV_SLIP, EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_SLIDE, IMP_STICK,

@@ -17,7 +17,7 @@ Arm rest angle ``alpha`` (rad, CCW +, |α| < π/2; draft Sec. VI, :mod:`~.tilt`)
 automaton runs in the arm frame with gravity (−g sin α, −g cos α). α = 0 runs the
 horizontal code unchanged (bit for bit); α ≠ 0 uses the tilted sticking phase
 :func:`~.tilt.pivot_stick_tilted` for both sticking-phase variants, and the tilted
-flat slide / rest :func:`~.tilt.settle`.
+flat slide / rest :func:`~.flat.settle`.
 """
 
 import math
@@ -27,25 +27,37 @@ from numba import njit
 
 from .. import codes as C
 from ..roll import theta_a, theta_b
-from ..flight import UNRESOLVED_J, gap_constants, release_state, rest_offsets
+from ..flight import UNRESOLVED_J, departure_window, gap_constants, release_state, rest_offsets
 from ..rows import start_record
-from .flight import departure_window, flight_frame, fly, leave_arm, lift
+from .flat import nearest_side, rest, settle
+from .flight import flight_frame, fly, leave_arm, lift, refresh_frame
 from .impact import coulomb_impact, record_first_contact, record_first_impact, record_impact
-from .landing import land_side, rest
+from .landing import land_side
 from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE, EV_OFF_END, EV_SLIP,
-                    EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST,
-                    MODE_LEAN, MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID)
+                    EV_STEP_CAP, EV_STICK, EV_WALL, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST,
+                    MODE_LEAN, MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID, WC_ARM, WC_CAP, WC_FACE, WC_FLIGHT,
+                    WC_INCONSISTENT, WHY_CORNER, WHY_SLIDE_WALL, WHY_WALL_SLIDE, WHY_WALL_TOP, refuse)
 from .slide import pivot_slide, pivot_slide_walled, select_contact_mode
 from .stick import pivot_stick
 from .stick_exact import pivot_stick_exact
-from .tilt import pivot_stick_tilted, settle
+from .tilt import pivot_stick_tilted
 from .trajectory import _put, _put_final, clear
-from .wall import (EV_WALL, WHY_CORNER, WHY_SLIDE_WALL, WHY_WALL_SLIDE, WHY_WALL_TOP, corner_inside, fill_wall_vertices,
-                   fly_walled, nearest_side, refresh_frame, refuse, wall_contact_angle, wall_hit_in_flight)
-from .wall_follow import WC_ARM, WC_CAP, WC_FACE, WC_FLIGHT, WC_INCONSISTENT, follow
+from .wall import corner_inside, fill_wall_vertices, fly_walled, wall_contact_angle, wall_hit_in_flight
+from .wall_corner import corner_contact
 from .wall_lean import (LN_BEHIND, LN_CAP, LN_CORNER, LN_FLIGHT, LN_INCONSISTENT, LN_PIVOT, LN_REST, LN_WALL, lean,
                         offsets)
+from .wall_slide import wall_contact
 
+
+@njit(cache=True)
+def follow(wj, ce, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until, max_steps,
+           max_events, wv, traj, ts, rec):
+    """:func:`~.wall_slide.wall_contact` for face vertex ``wj`` ≥ 0, else :func:`~.wall_corner.corner_contact` for corner edge ``ce``."""
+    if wj >= 0:
+        return wall_contact(wj, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until,
+                            max_steps, max_events, wv, traj, ts, rec)
+    return corner_contact(ce, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until,
+                          max_steps, max_events, traj, ts)
 
 
 @njit(cache=True, inline='always')
@@ -143,7 +155,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
         if n_events > max_events:
             return x, last_side, C.NO_REST
         if mode == MODE_LEAN:
-            # ---------------------------------------------------------- on the arm and the wall (wall_follow.py)
+            # ---------------------------------------------------------- on the arm and the wall (wall_lean.py)
             (res, why, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p, v_a, kc,
              win_c) = lean(ln_a, ln_p, ln_impact, t, x, y, vx, vy, phi, om, w, rho2, mu, wall_mu, gx, gn, h, wall_h,
                          length, back, lref, max_iter, max_events, traj, ts)
@@ -281,7 +293,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                 excl_j = jc
                 # a departing normal velocity at rounding level (relative to the motion's speed) gets the window
                 vscale = max(1.0, abs(vx) + abs(vy) + abs(om) * ell[jc])
-                excl_t = departure_window(un, rx, ry, om, gn, ell[jc]) if un <= 1e-12 * vscale else 0.0
+                excl_t = departure_window(rx, ry, om, gn, ell[jc], gn) if un <= 1e-12 * vscale else 0.0
                 flight_frame(phi, y, h, w, ru, rv, c0, jc)
                 continue
             jp = jc
@@ -445,7 +457,7 @@ def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, l
     the default of the model, or :data:`~.impact.LAW_VELOCITY`; :func:`~.impact.coulomb_impact`),
     ``max_iter`` caps the contact-search and integration steps of one mode,
     ``max_events`` the mode changes (status NO_REST beyond). The caller has
-    checked the start. The sticking phase is closed form (:func:`pivot_stick_exact`).
+    checked the start. The sticking phase is closed form (:func:`~.stick_exact.pivot_stick_exact`).
     ``wall_h`` (m, > 0) puts a :class:`~throwmap.system.fixtures.Wall` that high at x = ``length``
     (finite) with Coulomb ``wall_mu`` (:mod:`~.wall`); 0: no wall.
     """
@@ -456,7 +468,7 @@ def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, l
 @njit(cache=True)
 def throw_one_rigid_body_rk4(x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
                              tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
-    """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`pivot_stick`): the reference it is checked against."""
+    """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`~.stick.pivot_stick`): the reference it is checked against."""
     return run_throw(pivot_stick, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
                      tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu, np.empty(0))
 

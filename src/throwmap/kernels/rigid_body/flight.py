@@ -16,7 +16,7 @@ import math
 from numba import njit
 
 from .. import codes as C
-from ..flight import first_contact
+from ..flight import SNAP, departure_window, first_contact
 from .trajectory import _put
 
 
@@ -30,6 +30,18 @@ def flight_frame(phi, y, h, w, ru, rv, c0, j_on):
         rv[j] = sp * w[j, 0] + cp * w[j, 1]
         c0[j] = (y - h) + rv[j]
     c0[j_on] = 0.0
+
+
+@njit(cache=True)
+def refresh_frame(phi, y, h, w, ell, ru, rv, c0):
+    """Flight frame at orientation φ and CM height y (m): offsets R(φ) w_j and arm gaps (tiny ones snapped to 0)."""
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    for j in range(w.shape[0]):
+        ru[j] = cp * w[j, 0] - sp * w[j, 1]
+        rv[j] = sp * w[j, 0] + cp * w[j, 1]
+        c = (y - h) + rv[j]
+        c0[j] = 0.0 if abs(c) <= SNAP * ell[j] else c
 
 
 @njit(cache=True)
@@ -81,39 +93,11 @@ def fly(t, x, y, vx, vy, phi, om, c0, ru, rv, g, ell, excl_j, excl_t, tol, max_i
 
 
 @njit(cache=True)
-def departure_window(un, rx, ry, w, g, lj):
-    """Time for which a vertex that just left the line (gap 0, rate un ≥ 0) stays above it.
-
-    Exact Taylor bound of its gap G(s) ≥ G' s + ½G'' s² + G''' s³/6 − ω⁴ℓ s⁴/24
-    with G' = un, G'' = −g − ω² r_y, G''' = −ω³ r_x; returns 0.9 × the positive
-    root of ½G'' + G''' s/6 − ω⁴ℓ s²/24 (G' ≥ 0 only helps), or 0 if none.
-    """
-    g2 = -g - w * w * ry
-    g3 = -w * w * w * rx
-    if g2 < 0.0 and g2 > -1e-9 * g:
-        g2 = 0.0
-    if g2 < 0.0:
-        return 0.0
-    a = w * w * w * w * lj / 24.0
-    b = g3 / 6.0
-    c = 0.5 * g2
-    if a <= 0.0:
-        if b > 0.0 or c > 0.0:
-            return 1.0
-        return 0.0
-    disc = b * b + 4.0 * a * c
-    root = (b + math.sqrt(disc)) / (2.0 * a)
-    if root <= 0.0:
-        return 0.0
-    return 0.9 * root
-
-
-@njit(cache=True)
 def lift(px, h, lj, theta, thdot, va, phi, g, w, ru, rv, c0, jp):
     """Reset ``lift``: pivot vertex ``jp`` at (px, h) leaves the line (PIVOT_* → FLIGHT) with the contact's velocity.
 
     Fills the flight frame and returns ``(x, y, v_x, v_y, ω, excl_t)``: vertex jp is
-    excluded from ``touch`` for ``excl_t`` s (:func:`departure_window`); ``excl_t`` ≤ 0
+    excluded from ``touch`` for ``excl_t`` s (:func:`~throwmap.kernels.flight.departure_window`); ``excl_t`` ≤ 0
     means the free motion would sink it (no consistent contact: INCONSISTENT).
     """
     c = math.cos(theta)
@@ -123,8 +107,7 @@ def lift(px, h, lj, theta, thdot, va, phi, g, w, ru, rv, c0, jp):
     vx = va - thdot * lj * s
     vy = thdot * lj * c
     rx = -lj * c
-    un = vy + thdot * rx
-    excl_t = departure_window(un if un > 0.0 else 0.0, rx, -lj * s, thdot, g, lj)
+    excl_t = departure_window(rx, -lj * s, thdot, g, lj, g)  # leaves with normal rate v_y + θ̇ r_x = 0
     if excl_t > 0.0:
         flight_frame(phi, y, h, w, ru, rv, c0, jp)
     return x, y, vx, vy, thdot, excl_t

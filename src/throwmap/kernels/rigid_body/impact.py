@@ -1,7 +1,12 @@
-"""Reset ``impact`` of model "rigid_body": a plastic one-vertex impact with Coulomb friction.
+"""The impact laws of model "rigid_body": plastic impacts with Coulomb friction (resets ``impact``,
+``wall_impact`` and the multi-contact impact of LEAN).
 
-The no-slip impulse is paper Eq. (4) (:func:`~throwmap.kernels.impact.plastic_impact`);
-outside the friction cone, Routh's compression-only process in impulse space.
+One vertex on the arm (:func:`coulomb_impact`): the no-slip impulse is paper Eq. (4)
+(:func:`~throwmap.kernels.impact.plastic_impact`); outside the friction cone, Routh's
+compression-only process in impulse space (or the velocity-level law, below). One contact with
+any normal — a vertex on the wall's face, the wall's top corner on an edge — is the same law in a
+turned frame (:func:`contact_impact`). Several contacts at once (the arm and the wall): the
+velocity-level law of time-stepping engines, solved exactly (:func:`multi_contact_impact`).
 
 Which impact law, and when to trust it
 --------------------------------------
@@ -44,10 +49,22 @@ contact lies between. So at μ ≥ 1 either; at μ ≤ 0.6 read the difference
 between rigid_body and the engine as the model's uncertainty in the final x
 (mm, occasionally cm), and prefer the engine only when the question is what a
 time-stepping simulator will do.
+
+Several contacts at once
+------------------------
+Where the part meets the arm and the wall together (mode LEAN, :mod:`.wall_lean`) the impact is
+velocity-level (Moreau): one impulse per contact with Coulomb's law on the *post-impact*
+velocities — at each contact either open (no impulse, normal velocity ≥ 0), sticking (normal and
+tangential velocity 0, impulse inside the cone) or sliding (normal velocity 0, impulse on the
+cone's edge against the slip). The linear complementarity problem is solved exactly by trying
+every combination (:func:`multi_contact_impact`); this is the law of time-stepping engines
+(pymunk, Siconos' Moreau–Jean). For one contact the automaton keeps Routh's law; where several
+meet, a process in impulse space has no unique form.
 """
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .. import codes as C
@@ -221,3 +238,178 @@ def record_first_impact(rec, vx, vy, w, pt, pn, jt0, jn0, k_post):
     else:
         rec[C.MU_IMPACT] = math.inf if jt0 != 0.0 else 0.0
     rec[C.K_POST] = k_post
+
+
+@njit(cache=True)
+def contact_impact(vx, vy, om, rx, ry, nx, ny, rho2, mu_c, law):
+    """Reset ``impact`` at a contact with unit normal (n_x, n_y) into the part: the arm's law in the frame (t, n),
+    t = n turned by −90° (a proper rotation). Returns as :func:`coulomb_impact`, with P_n along n and P_t along t."""
+    tx = ny
+    ty = -nx
+    vxp, vyp, wp, pt, pn, kind, jt0, jn0 = coulomb_impact(vx * tx + vy * ty, vx * nx + vy * ny, om,
+                                                          rx * tx + ry * ty, rx * nx + ry * ny, rho2, mu_c, law)
+    return vxp * tx + vyp * nx, vxp * ty + vyp * ny, wp, pt, pn, kind, jt0, jn0
+
+
+C_OPEN = 0
+C_STICK = 1
+C_SLIDE = 2
+"""Contact states after :func:`multi_contact_impact`."""
+
+
+@njit(cache=True)
+def multi_contact_impact(vx, vy, om, pts, nrm, mus, m, rho2, st):
+    """Velocity-level plastic impact at ``m`` contacts (module docstring): CM → contact i = ``pts[i]`` (m), unit
+    normal ``nrm[i]`` into the part, Coulomb ``mus[i]`` (``inf``: no slip, 0: frictionless).
+
+    Every assignment of the contacts to open / sticking / sliding (each sense) is tried, those with the
+    fewest open contacts first and sticking before sliding, and the first whose impulses and post-impact
+    velocities satisfy every condition to 1e-10 of the velocity scale is returned: ``(ok, vx⁺, vy⁺, ω⁺)``,
+    with the states in ``st`` (m,) (C_OPEN, C_STICK, C_SLIDE); ok False: none is consistent.
+    """
+    rows = np.empty((2 * m, 3))  # normal and tangent (t = n turned by −90°) rows in (v_x, v_y, ω)
+    u = np.empty(2 * m)
+    scale = abs(vx) + abs(vy) + 1e-300
+    for i in range(m):
+        nx = nrm[i, 0]
+        ny = nrm[i, 1]
+        rx = pts[i, 0]
+        ry = pts[i, 1]
+        rows[2 * i, 0] = nx
+        rows[2 * i, 1] = ny
+        rows[2 * i, 2] = rx * ny - ry * nx
+        rows[2 * i + 1, 0] = ny
+        rows[2 * i + 1, 1] = -nx
+        rows[2 * i + 1, 2] = -rx * nx - ry * ny
+        scale += abs(om) * math.hypot(rx, ry)
+    for q in range(2 * m):
+        u[q] = rows[q, 0] * vx + rows[q, 1] * vy + rows[q, 2] * om
+    tol = 1e-10 * scale
+    code = np.empty(m, dtype=np.int64)
+    total = 4 ** m
+    for n_open in range(m + 1):
+        for n_slide in range(m - n_open + 1):
+            for c in range(total):
+                r = c
+                no = 0
+                ns = 0
+                for i in range(m):
+                    code[i] = r % 4  # 0 open, 1 stick, 2 slide +, 3 slide −
+                    r //= 4
+                    if code[i] == 0:
+                        no += 1
+                    elif code[i] >= 2:
+                        ns += 1
+                if no != n_open or ns != n_slide:
+                    continue
+                ok, vxp, vyp, wp = _try(rows, u, vx, vy, om, rho2, code, mus, m, tol)
+                if ok:
+                    for i in range(m):
+                        st[i] = C_OPEN if code[i] == 0 else (C_STICK if code[i] == 1 else C_SLIDE)
+                    return True, vxp, vyp, wp
+    return False, vx, vy, om
+
+
+@njit(cache=True)
+def _try(rows, u, vx, vy, om, rho2, code, mus, m, tol):  # noqa: C901
+    """One assignment ``code`` (0 open, 1 stick, 2/3 sliding with post-impact slip +/−) of
+    :func:`multi_contact_impact`. Returns ``(ok, vx⁺, vy⁺, ω⁺)``."""
+    dirs = np.empty((2 * m, 3))
+    eqs = np.empty(2 * m, dtype=np.int64)
+    k = 0
+    for i in range(m):
+        ci = code[i]
+        mu = mus[i]
+        if ci == 0:
+            continue
+        if ci == 1 and mu == 0.0:
+            return False, vx, vy, om
+        if ci >= 2 and math.isinf(mu):
+            return False, vx, vy, om
+        if ci == 1:
+            for q in range(2):
+                dirs[k, 0] = rows[2 * i + q, 0]
+                dirs[k, 1] = rows[2 * i + q, 1]
+                dirs[k, 2] = rows[2 * i + q, 2] / rho2
+                eqs[k] = 2 * i + q
+                k += 1
+        else:
+            f = -(1.0 if ci == 2 else -1.0) * mu
+            dirs[k, 0] = rows[2 * i, 0] + f * rows[2 * i + 1, 0]
+            dirs[k, 1] = rows[2 * i, 1] + f * rows[2 * i + 1, 1]
+            dirs[k, 2] = (rows[2 * i, 2] + f * rows[2 * i + 1, 2]) / rho2
+            eqs[k] = 2 * i
+            k += 1
+    A = np.empty((k, k))
+    b = np.empty(k)
+    for a in range(k):
+        e = eqs[a]
+        for c in range(k):
+            A[a, c] = rows[e, 0] * dirs[c, 0] + rows[e, 1] * dirs[c, 1] + rows[e, 2] * dirs[c, 2]
+        b[a] = -u[e]
+    p = _solve(A, b, k) if k > 0 else np.empty(0)
+    if k > 0 and p.shape[0] == 0:
+        return False, vx, vy, om
+    vxp = vx
+    vyp = vy
+    wp = om
+    for c in range(k):
+        vxp += p[c] * dirs[c, 0]
+        vyp += p[c] * dirs[c, 1]
+        wp += p[c] * dirs[c, 2]
+    j = 0
+    for i in range(m):
+        ci = code[i]
+        un = rows[2 * i, 0] * vxp + rows[2 * i, 1] * vyp + rows[2 * i, 2] * wp
+        ut = rows[2 * i + 1, 0] * vxp + rows[2 * i + 1, 1] * vyp + rows[2 * i + 1, 2] * wp
+        if ci == 0:
+            if un < -tol:
+                return False, vx, vy, om
+            continue
+        pn = p[j]
+        if pn < -tol:
+            return False, vx, vy, om
+        if ci == 1:
+            if abs(p[j + 1]) > mus[i] * max(pn, 0.0) + tol:
+                return False, vx, vy, om
+            j += 2
+        else:
+            if (1.0 if ci == 2 else -1.0) * ut < -tol:
+                return False, vx, vy, om
+            j += 1
+    return True, vxp, vyp, wp
+
+
+@njit(cache=True)
+def _solve(A, b, k):
+    """Gaussian elimination with partial pivoting of the k × k system; an empty array if it is singular."""
+    M = np.empty((k, k + 1))
+    M[:, :k] = A
+    M[:, k] = b
+    big = 0.0
+    for i in range(k):
+        for j in range(k):
+            big = max(big, abs(A[i, j]))
+    for c in range(k):
+        piv = c
+        for r in range(c + 1, k):
+            if abs(M[r, c]) > abs(M[piv, c]):
+                piv = r
+        if abs(M[piv, c]) <= 1e-13 * big:
+            return np.empty(0)
+        if piv != c:
+            for q in range(k + 1):
+                tmp = M[c, q]
+                M[c, q] = M[piv, q]
+                M[piv, q] = tmp
+        for r in range(c + 1, k):
+            f = M[r, c] / M[c, c]
+            for q in range(c, k + 1):
+                M[r, q] -= f * M[c, q]
+    x = np.empty(k)
+    for c in range(k - 1, -1, -1):
+        sacc = M[c, k]
+        for q in range(c + 1, k):
+            sacc -= M[c, q] * x[q]
+        x[c] = sacc / M[c, c]
+    return x

@@ -20,16 +20,14 @@ import math
 from numba import njit
 
 from .. import codes as C
+from ..flight import departure_window
 from ..roll import theta_a, theta_b
-from .flight import departure_window, flight_frame, leave_arm
+from .flat import flat_slide, rest, settle, settle_at_wall, slide_away, tip_from_rest
+from .flight import flight_frame, leave_arm
 from .impact import coulomb_impact, record_impact
-from .modes import (HALF_PI, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_LEAN, MODE_REST, MODE_SELECT,
-                    MODE_STICK, N_ARC, TWO_PI)
+from .modes import HALF_PI, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST, MODE_SELECT, MODE_STICK, N_ARC, TWO_PI
 from .stick import _n_min_range, _n_stick
-from .tilt import rocking_rest_tilted, settle, tip_vertex, topple_barrier
-from .trajectory import _put, _put_final
-from .wall import refuse, settle_walled
-from .wall_statics import flat_offsets
+from .tilt import rocking_rest_tilted, topple_barrier
 
 
 @njit(cache=True)
@@ -62,22 +60,6 @@ def arc_ok(th_from, E, lj, I, g, mu, towards_peak):
 
 
 @njit(cache=True)
-def rest(x, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec):
-    """Terminal mode REST flat on side k with the CM at x (m): status BEHIND_JOINT if the left support
-    vertex is at x ≤ −back, OFF_END if the right one is beyond ``length`` (x + u_R > length), else OK
-    (the rest rule of :func:`throwmap.system.starts.start_interval`)."""
-    rec[C.E_FINAL] = g * d[k]
-    rec[C.T_REST] = t
-    m = round((phi - beta[k]) / TWO_PI)
-    _put_final(traj, ts, t, x, h + d[k], beta[k] + TWO_PI * m)
-    if x + uL[k] <= -back:
-        return x, k, C.BEHIND_JOINT
-    if x + uR[k] > length:
-        return x, k, C.OFF_END
-    return x, k, C.OK
-
-
-@njit(cache=True)
 def rocking_rest(th_new, th_A, k_after, lA, lB, rho2, dk, g, mu, land_dir):
     """Guard ``rocking_rest`` (Zeno) after a sticking landing on a stable side, kinetic energy ``k_after`` (J/kg).
 
@@ -94,126 +76,6 @@ def rocking_rest(th_new, th_A, k_after, lA, lB, rho2, dk, g, mu, land_dir):
 
 
 @njit(cache=True)
-def flat_slide(x_cm, vx, t, mu, g, y, phi, traj, ts, rec):
-    """Mode FLAT_SLIDE: a side flat on the line slides from speed ``vx`` (m/s) at deceleration μ g to rest.
-
-    Closed form (tipping over the leading edge is not checked). Returns ``(x_cm, t)`` at rest.
-    """
-    rec[C.N_SLIPS] += 1.0
-    sgn = 1.0 if vx > 0.0 else -1.0
-    dec = mu * g
-    t_slide = abs(vx) / dec
-    dist = 0.5 * vx * vx / dec
-    if traj.shape[0] > 0:
-        while ts[1] <= t + t_slide:
-            tq = ts[1] - t
-            _put(traj, ts, ts[1], x_cm + vx * tq - 0.5 * sgn * dec * tq * tq, y, phi)
-            ts[1] += ts[2]
-    rec[C.SLIP_DISTANCE] += dist
-    return x_cm + sgn * dist, t + t_slide
-
-
-@njit(cache=True)
-def slide_away(x_cm, vx, t, k, uL, uR, length, back, y, phi, traj, ts, rec):
-    """Mode FLAT_SLIDE on a frictionless arm (μ = 0): flat on side k at speed ``vx`` ≠ 0 (m/s), for ever.
-
-    Moving inward it reaches the arm's edge behind the joint (left support vertex at
-    x = −back): BEHIND_JOINT; outward it passes the arm's end: OFF_END; on an unbounded
-    arm it never comes to rest: NO_REST (CM where the slide began). Returns ``(x, status, t)``
-    with the CM x (m) and time (s) at the edge.
-    """
-    rec[C.N_SLIPS] += 1.0
-    if vx < 0.0:
-        x_end = -back - uL[k]
-        status = C.BEHIND_JOINT
-    elif length < math.inf:
-        x_end = length - uR[k]
-        status = C.OFF_END
-    else:
-        return x_cm, C.NO_REST, t
-    dist = abs(x_end - x_cm)
-    t_end = t + dist / abs(vx)
-    rec[C.SLIP_DISTANCE] += dist
-    if traj.shape[0] > 0:
-        while ts[1] <= t_end:
-            _put(traj, ts, ts[1], x_cm + vx * (ts[1] - t), y, phi)
-            ts[1] += ts[2]
-        _put_final(traj, ts, t_end, x_end, y, phi)
-    return x_end, status, t_end
-
-
-@njit(cache=True)
-def tip_from_rest(k, x_cm, n, d, uL, uR, alpha=0.0):
-    """Flat on an unstable side k: the pivot the part tips over from rest (the vertex its CM overhangs).
-
-    On an arm at rest angle ``alpha`` the CM overhangs along gravity
-    (:func:`~.tilt.tip_vertex`). Returns ``(j, x_j, θ)``: the pivot vertex, its
-    world x (m) and the angle of pivot→CM.
-    """
-    left = uL[k] >= 0.0
-    if alpha != 0.0:
-        left = tip_vertex(k, n, uL, d, alpha)
-    if left:
-        j = (k + 1) % n
-        return j, x_cm + uL[k], theta_a(j, n, d, uL)
-    return k, x_cm + uR[k], theta_b(k, d, uR)
-
-
-@njit(cache=True)
-def reaches_wall(x, v, gx, fr, x_wall):
-    """Whether a part flat on a side, CM at x (m) moving at v (m/s), ever gets its leading vertex to the wall (CM at
-    ``x_wall``, m) under acceleration g_x − fr sgn v while sliding (fr = μ g_n: friction's largest deceleration)."""
-    if x >= x_wall:
-        return True
-    if v > 0.0:
-        a = gx - fr
-        if a >= 0.0:
-            return True
-        if x - 0.5 * v * v / a >= x_wall:
-            return True
-        return gx > fr  # stopped short: slides on outward only if downhill beats friction
-    if v < 0.0 and gx + fr <= 0.0:
-        return False  # runs inward for ever: leaves behind the joint
-    return gx > fr
-
-
-@njit(cache=True)
-def settle_at_wall(x_cm, v, t, k, phi, last_side, h, g, alpha, length, back, rho2, mu, w, beta, d, uL, uR, wall_h,
-                   wall_mu, traj, ts, rec):
-    """Flat on side k moving at v (m/s) on an arm with a wall, as ``land_side`` returns it: at rest or gone
-    (MODE_REST), refused (MODE_REST, UNRESOLVED), or turning about the corner vertex k at (length, h) (MODE_SELECT).
-
-    A slide that never reaches the wall (:func:`reaches_wall`) is the plain arm's (:func:`flat_slide` and
-    :func:`rest`, or :func:`~.tilt.settle`), to the last bit; one that does is :func:`~.wall.settle_walled`."""
-    dk = d[k]
-    gx = -g * math.sin(alpha)
-    gn = g * math.cos(alpha)
-    u, _v = flat_offsets(k, w, beta)
-    if not reaches_wall(x_cm, v, gx, mu * gn, length - u.max()):
-        if alpha != 0.0:
-            x, k, status, t = settle(x_cm, v, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj, ts,
-                                     rec)
-        elif v != 0.0 and mu == 0.0:  # frictionless, inward (outward reaches the wall)
-            x, status, t = slide_away(x_cm, v, t, k, uL, uR, length, back, h + dk, phi, traj, ts, rec)
-        else:
-            if v != 0.0:
-                x_cm, t = flat_slide(x_cm, v, t, mu, g, h + dk, phi, traj, ts, rec)
-            x, k, status = rest(x_cm, k, t, h, g, d, uL, uR, beta, length, back, phi, traj, ts, rec)
-        return MODE_REST, status, x, h + dk, 0.0, 0.0, 0.0, phi, t, k, length, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
-    st, x, t, wc, why = settle_walled(x_cm, v, t, k, mu, gx, gn, h, length, wall_h, wall_mu, back, rho2, w, beta, d,
-                                      uL, uR, phi, traj, ts, rec)
-    if st == -2:  # an edge met the wall's top corner (wc: the speed then): the multi-contact impact of wall_lean
-        return MODE_LEAN, C.OK, x, h + dk, wc, 0.0, 0.0, phi, t, k, length, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
-    if st == -1:
-        th = theta_b(k, d, uR)
-        return (MODE_SELECT, C.OK, x, h + dk, 0.0, 0.0, wc, phi, t, k, length, th, wc, 0.0, phi - th, -1, 0.0,
-                last_side)
-    if st == C.UNRESOLVED:
-        refuse(rec, why)
-    return MODE_REST, st, x, h + dk, 0.0, 0.0, 0.0, phi, t, k, length, 0.0, 0.0, 0.0, 0.0, -1, 0.0, last_side
-
-
-@njit(cache=True)
 def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
               ell, stable, ta, tb, ru, rv, c0, traj, ts, rec, alpha=0.0, wall_h=0.0, wall_mu=0.0):
     """Reset ``land_side``: pivoting on A = w_jp, θ reached θb (``land_dir`` +1) or θa (−1) and B touches.
@@ -221,7 +83,7 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
     On an arm at rest angle ``alpha`` ≠ 0 (rad; :mod:`~.tilt`): the departure window
     sees the normal gravity g cos α, the Zeno rule uses the tilted topple barriers
     and swings (:func:`~.tilt.rocking_rest_tilted`), a flat part slides and settles
-    under the tilted gravity (:func:`~.tilt.settle`: rests only where |tan α| ≤ μ),
+    under the tilted gravity (:func:`~.flat.settle`: rests only where |tan α| ≤ μ),
     an unstable side (``stable`` is the table for α) tips about the vertex its CM
     overhangs along gravity, at once, sliding if it still moves.
 
@@ -315,8 +177,8 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
             # B bounced: flight again, B excluded from touch while it provably stays above the line
             un = vyp + wp * uB
             vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * ell[jB])
-            excl_t = (departure_window(un if un > 0.0 else 0.0, uB, -dk, wp, g * math.cos(alpha), ell[jB])
-                      if un <= 1e-12 * vscale else 0.0)
+            g_n = g * math.cos(alpha)
+            excl_t = departure_window(uB, -dk, wp, g_n, ell[jB], g_n) if un <= 1e-12 * vscale else 0.0
             flight_frame(phi, h + dk, h, w, ru, rv, c0, jB)
             return (MODE_FLIGHT, C.OK, x_cm, h + dk, vxp, vyp, wp, phi, t, jB, pxB, th_new, wp, 0.0, phi_off, jB,
                     excl_t, last_side)

@@ -4,7 +4,7 @@ One vertex A on the line sliding with slip velocity v_A ≠ 0: 2 DOF (x_A, θ) w
 friction −μσN, σ = sgn v_A (:func:`slide_rhs`), integrated with classical RK4,
 step Δt = DTH/(|θ̇| + Ω); guards ``stick`` (v_A = 0), ``land`` (θa, θb),
 ``lift_off`` (N = 0), ``painleve`` (D ≤ 0) and ``leave_arm`` are checked at step
-ends and located on the step length (:func:`_locate_guard`). μ = ∞ slides with ``MU_SKID``.
+ends and located on the step length (:func:`~.bracket.locate_guard`). μ = ∞ slides with ``MU_SKID``.
 
 On an arm at rest angle α (rad; :mod:`~.tilt`) gravity in the arm frame is
 (−g_t, −g_n) = (−g sin α, −g cos α): ``g`` below is the normal component g_n and
@@ -17,15 +17,14 @@ import numpy as np
 from numba import njit
 
 from .. import codes as C
-from .flight import departure_window
+from ..flight import departure_window
+from .bracket import locate_guard
+from .coulomb import cone_guard, cone_guard_value
 from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_OFF_END,
-                    EV_STEP_CAP, EV_STICK, MODE_FLIGHT, MODE_SLIDE, MODE_STICK, N_BISECT)
+                    EV_STEP_CAP, EV_STICK, EV_WALL, MODE_FLIGHT, MODE_SLIDE, MODE_STICK)
 from .stick import stick_forces
-from .bracket import falsi_point
 from .trajectory import _put
 
-EV_WALL = 10
-"""Guard ``wall_reach`` of a sliding pivot (as :data:`throwmap.kernels.rigid_body.wall.EV_WALL`)."""
 NO_WALL = np.zeros((0, 2))
 """No vertex watched for a wall."""
 
@@ -123,21 +122,25 @@ def _wall_gap(xa, th, wall, wv):
 
 
 @njit(cache=True)
-def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv):
+def _slide_guards(s, p):
+    """Least guard of PIVOT_SLIDE at the state ``s`` = (x_A, θ, v_A, θ̇) and which it is: ``(value, event, −1)``.
+
+    The contact's own guards (:func:`~.coulomb.cone_guard`: ``lift_off`` N/g, ``stick`` σ v_A), then
+    ``land`` (θ − θa, θb − θ), ``leave_arm`` (x_A + back, length − x_A) and ``wall_reach``; ``(-1,
+    EV_INCONSISTENT, -1)`` where D ≤ 0 (``painleve``). ``p``: the phase's parameters (:func:`pivot_slide_walled`).
+    """
+    xa, th, va, w = s
+    sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv = p
     _a, _b, N, D = slide_rhs(th, w, lj, rho2, g, musig, gt)
-    gmin = sig * va
-    which = EV_STICK
+    if D <= 0.0:
+        return -1.0, EV_INCONSISTENT, -1
+    gmin, which = cone_guard(N, 0.0, va, False, sig, abs(musig), g, True)
     if th - ta < gmin:
         gmin = th - ta
         which = EV_LAND_A
     if tb - th < gmin:
         gmin = tb - th
         which = EV_LAND_B
-    if D <= 0.0:
-        return -1.0, EV_INCONSISTENT
-    if N / g < gmin:
-        gmin = N / g
-        which = EV_LIFT_OFF
     if xa + back < gmin:
         gmin = xa + back
         which = EV_BEHIND_JOINT
@@ -149,21 +152,21 @@ def _slide_guards(xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, 
         if gw < gmin:
             gmin = gw
             which = EV_WALL
-    return gmin, which
+    return gmin, which, -1
 
 
 @njit(cache=True)
-def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv):
+def _guard_value(which, k, s, p):
     """The value of one guard of :func:`_slide_guards` (a smooth function of the state)."""
-    if which == EV_STICK:
-        return sig * va
+    xa, th, va, w = s
+    sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv = p
+    if which == EV_STICK or which == EV_LIFT_OFF:
+        _a, _b, N, _D = slide_rhs(th, w, lj, rho2, g, musig, gt)
+        return cone_guard_value(which, N, 0.0, va, sig, abs(musig), g)
     if which == EV_LAND_A:
         return th - ta
     if which == EV_LAND_B:
         return tb - th
-    if which == EV_LIFT_OFF:
-        _a, _b, N, _D = slide_rhs(th, w, lj, rho2, g, musig, gt)
-        return N / g
     if which == EV_BEHIND_JOINT:
         return xa + back
     if which == EV_OFF_END:
@@ -173,48 +176,11 @@ def _guard_value(which, xa, th, va, w, sig, ta, tb, lj, rho2, g, musig, length, 
     return math.nan
 
 
-@njit(cache=True)
-def _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall,
-                  wv):
-    """Smallest RK4 step length τ ∈ (0, dt] at which the guard function (:func:`_slide_guards`) is ≤ 0.
-
-    Bracket [lo, hi] with min-guard G(lo) > 0 ≥ G(hi). Each trial point is a
-    false-position step on the guard that fired at hi (its own values at both
-    ends: one smooth function), kept at least half the tolerance inside the
-    bracket, while the previous step halved the bracket; bisection otherwise
-    (a stiff step: μ ≫ 1, or the step's RK4 polynomial far from linear). The
-    sign of G itself decides each step, so the result is the bisection's
-    bracket limit; stops when the bracket is below 1e-16 (t + τ), as bisection
-    did, and returns its upper end.
-    """
-    lo = 0.0
-    hi = dt
-    x_lo, th_lo, v_lo, w_lo = xa, theta, va, thdot
-    x_hi, th_hi, v_hi, w_hi = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig, gt)
-    falsi = True
-    for _ in range(4 * N_BISECT):
-        width = hi - lo
-        tol = 1e-16 * (t + hi)
-        if width <= tol:
-            break
-        mid = lo + 0.5 * width
-        if falsi:
-            c_lo = _guard_value(which, x_lo, th_lo, v_lo, w_lo, sig, ta, tb, lj, rho2, g, musig, length, back, gt,
-                                wall, wv)
-            c_hi = _guard_value(which, x_hi, th_hi, v_hi, w_hi, sig, ta, tb, lj, rho2, g, musig, length, back, gt,
-                                wall, wv)
-            mid = falsi_point(lo, hi, tol, c_lo, c_hi)
-        xm, thm, vm, wm = _rk4_slide(xa, theta, va, thdot, mid, lj, rho2, g, musig, gt)
-        gmid, wh = _slide_guards(xm, thm, vm, wm, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv)
-        if gmid <= 0.0:
-            hi = mid
-            which = wh
-            x_hi, th_hi, v_hi, w_hi = xm, thm, vm, wm
-        else:
-            lo = mid
-            x_lo, th_lo, v_lo, w_lo = xm, thm, vm, wm
-        falsi = hi - lo <= 0.5 * width
-    return hi
+@njit(cache=True, inline="always")
+def _advance(s, tau, p):
+    """The RK4 step of length ``tau`` (s) from ``s`` = (x_A, θ, v_A, θ̇) (:func:`_slide_guards`' ``p``)."""
+    sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv = p
+    return _rk4_slide(s[0], s[1], s[2], s[3], tau, lj, rho2, g, musig, gt)
 
 
 @njit(cache=True)
@@ -237,9 +203,8 @@ def pivot_slide_walled(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, lengt
     Guards ``stick`` (σ v_A = 0), ``land`` (θa, θb), ``lift_off`` (N = 0),
     ``painleve`` (D ≤ 0), ``leave_arm`` (x_A ≤ −back or > length), and with a wall at x = ``wall``
     (:mod:`~.wall`) ``wall_reach``: a vertex of ``wv`` (rows ℓ_j, δ_j relative to A) reaches it
-    (``EV_WALL``). RK4, the guard
-    located inside a step by :func:`_locate_guard`. Updates N_MIN, MU_MAX, SLIP_DISTANCE. Returns
-    ``(event, x_A, θ, v_A, θ̇, t)``.
+    (``EV_WALL``). RK4, the guard located inside a step by :func:`~.bracket.locate_guard`.
+    Updates N_MIN, MU_MAX, SLIP_DISTANCE. Returns ``(event, x_A, θ, v_A, θ̇, t)``.
     """
     musig = mu * sig
     gt = g * math.sin(alpha)
@@ -249,17 +214,19 @@ def pivot_slide_walled(xa, theta, va, thdot, sig, ta, tb, lj, rho2, g, mu, lengt
     if mu > rec[C.MU_MAX]:
         rec[C.MU_MAX] = mu
     sample = traj.shape[0] > 0
+    p = (sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv)
     for _ in range(max_steps):
         dt = DTH / (abs(thdot) + om)
-        x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, dt, lj, rho2, g, musig, gt)
-        gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv)
+        s0 = (xa, theta, va, thdot)
+        s1 = _advance(s0, dt, p)
+        gm, which, _k = _slide_guards(s1, p)
         step = dt
         if gm <= 0.0:
-            hi = _locate_guard(xa, theta, va, thdot, dt, which, t, sig, ta, tb, lj, rho2, g, musig, length, back, gt,
-                               wall, wv)
+            hi, _w, _k, _s = locate_guard(_advance, _slide_guards, _guard_value, s0, s1, dt, which, -1, t, p)
             step = hi
-            x1, th1, v1, w1 = _rk4_slide(xa, theta, va, thdot, hi, lj, rho2, g, musig, gt)
-            gm, which = _slide_guards(x1, th1, v1, w1, sig, ta, tb, lj, rho2, g, musig, length, back, gt, wall, wv)
+            s1 = _advance(s0, hi, p)
+            gm, which, _k = _slide_guards(s1, p)
+        x1, th1, v1, w1 = s1
         if sample:
             while ts[1] <= t + step:
                 xq, thq, _v, _w = _rk4_slide(xa, theta, va, thdot, ts[1] - t, lj, rho2, g, musig, gt)
@@ -317,7 +284,7 @@ def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip, alph
 
     In order: ``PIVOT_STICK`` (v_A = 0, N > 0, |F| ≤ μN; not offered right after a
     ``slip``/``lift_off`` guard fired); ``FLIGHT`` if the free motion separates
-    (:func:`departure_window` > 0); ``PIVOT_SLIDE`` with a consistent sense
+    (:func:`~throwmap.kernels.flight.departure_window` > 0); ``PIVOT_SLIDE`` with a consistent sense
     (D > 0, N > 0, and σ ẍ_A > 0 when starting from v_A = 0 — right after ``slip``
     ẍ_A = 0 exactly, so σ = −sgn F is taken); else no consistent motion.
     ``mu_s`` is the coefficient used for sliding (μ, or MU_SKID for μ = ∞).
@@ -335,13 +302,13 @@ def select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, from_slip, alph
         _a, _x, N, D = slide_rhs(theta, thdot, lj, rho2, gn, mu_s * sig, gt)
         if D > 0.0 and N > 0.0:
             return MODE_SLIDE, sig
-        if departure_window(0.0, -lj * c, -lj * s, thdot, gn, lj) > 0.0:
+        if departure_window(-lj * c, -lj * s, thdot, gn, lj, gn) > 0.0:
             return MODE_FLIGHT, 0.0
         return -1, 0.0
     nf, ff = stick_forces(theta, thdot, lj, I, g, alpha)
     if not from_slip and nf > 0.0 and abs(ff) <= mu * nf:
         return MODE_STICK, 0.0
-    if departure_window(0.0, -lj * c, -lj * s, thdot, gn, lj) > 0.0:
+    if departure_window(-lj * c, -lj * s, thdot, gn, lj, gn) > 0.0:
         return MODE_FLIGHT, 0.0
     sig = -1.0 if ff > 0.0 else 1.0
     for _ in range(2):

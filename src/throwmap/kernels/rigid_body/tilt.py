@@ -32,22 +32,14 @@ contact state is feasible or not throughout, decided at the midpoint
 (:func:`first_exit`). The first infeasible interval starts at the event. (A guard
 function that only touches zero without changing sign is not an event, as for α = 0.)
 
-Resting and sliding flat
-------------------------
+Resting flat
+------------
 Flat on side k (CM at height d_k above the line, support vertices at u_L ≤ u_R from
-the CM along the arm) the part is
-
-* statically stable against tipping iff the line of gravity through the CM meets the
-  support segment inside: u_L < −d_k tan α < u_R (the ``stable`` table the model
-  passes for α; :func:`tilted_stable`); else it tips from rest about the vertex its CM
-  overhangs (:func:`tip_vertex`);
-* held by friction iff |tan α| ≤ μ (Coulomb, ``Arm.mu``).
-
-A flat slide (:func:`settle`) moves at acceleration −g_t − μ g_n sgn v: it stops
-where it decelerates (then rests, or slides downhill at once if |tan α| > μ), or
-runs down for ever: it leaves the arm behind the joint (BEHIND_JOINT), off the end
-(OFF_END), or slides on for ever on an unbounded arm (NO_REST). As for α = 0, tipping
-over the leading edge while sliding is not checked.
+the CM along the arm) the part is statically stable against tipping iff the line of
+gravity through the CM meets the support segment inside: u_L < −d_k tan α < u_R (the
+``stable`` table the model passes for α; :func:`tilted_stable`); else it tips from rest
+about the vertex its CM overhangs (:func:`tip_vertex`). Flat slides and rests on the
+tilted arm: :func:`~.flat.settle`.
 """
 
 import math
@@ -56,11 +48,11 @@ import numpy as np
 from numba import njit
 
 from .. import codes as C
-from .modes import EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_SLIP, HALF_PI, N_ARC, TWO_PI
+from .modes import EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_SLIP, HALF_PI, N_ARC
 from .stick import tilted_forces
 from .swing import _dpoly_roots, _poly4, swing_pieces, swing_time, theta_on_piece
 from ..roll import swing_sense
-from .trajectory import _put, _put_final
+from .trajectory import _put
 
 
 @njit(cache=True)
@@ -352,108 +344,3 @@ def rocking_rest_tilted(th_new, th_A, k_after, lA, lB, rho2, g, mu, land_dir, al
     if not arc_ok_tilted(pB, k_after + g * lB * math.sin(pB), lB, rho2 + lB * lB, g, mu, land_dir, ca, sa):
         return False
     return arc_ok_tilted(pA, k_after + g * lA * math.sin(pA), lA, rho2 + lA * lA, g, mu, -land_dir, ca, sa)
-
-
-@njit(cache=True)
-def _edge(direction, k, uL, uR, length, back):
-    """The CM x (m) at which a part flat on side k sliding in ``direction`` leaves the arm, and the status."""
-    if direction < 0.0:
-        return -back - uL[k], C.BEHIND_JOINT
-    if length < math.inf:
-        return length - uR[k], C.OFF_END
-    return math.inf, C.NO_REST
-
-
-@njit(cache=True)
-def _slide_rows(x0, v0, a, t0, t1, y, phi, traj, ts):
-    while ts[1] <= t1:
-        tq = ts[1] - t0
-        _put(traj, ts, ts[1], x0 + v0 * tq + 0.5 * a * tq * tq, y, phi)
-        ts[1] += ts[2]
-
-
-@njit(cache=True)
-def settle(x, v, t, k, mu, g, alpha, h, d, uL, uR, beta, length, back, phi, traj, ts, rec):
-    """Flat on side k (statically stable), the CM at x moving at v (m/s) along a tilted arm: slide, then rest or leave.
-
-    Mode FLAT_SLIDE under gravity (−g sin α, −g cos α): acceleration −g_t − μ g_n sgn v
-    while sliding. A slide that decelerates stops after |v|/|a|; a part at rest stays
-    iff |tan α| ≤ μ, else it slides downhill at g_t ∓ μ g_n for ever. Leaving the arm:
-    the left support vertex at x ≤ −back (BEHIND_JOINT) or the right one beyond the
-    length (OFF_END); on an unbounded arm an outward slide for ever is NO_REST (CM where
-    the endless slide began). Returns ``(x, side, status, t)``.
-    """
-    gt = g * math.sin(alpha)
-    gn = g * math.cos(alpha)
-    fr = mu * gn  # largest friction deceleration
-    y = h + d[k]
-    sample = traj.shape[0] > 0
-    slid = False
-    for _ in range(2):
-        if v != 0.0:
-            slid = True
-            sv = 1.0 if v > 0.0 else -1.0
-            a = -gt - fr * sv
-            if a * sv < 0.0:  # decelerates: stops after |v|/|a| unless it leaves the arm first
-                t_stop = -v / a
-                x_stop = x - 0.5 * v * v / a
-                x_edge, st_edge = _edge(sv, k, uL, uR, length, back)
-                past = (x_stop + uL[k] <= -back) if sv < 0.0 else (x_stop + uR[k] > length)
-                if past:
-                    dist = abs(x_edge - x)
-                    disc = v * v + 2.0 * a * (x_edge - x)
-                    t_e = (-v + sv * math.sqrt(disc if disc > 0.0 else 0.0)) / a if a != 0.0 else dist / abs(v)
-                    if sample:
-                        _slide_rows(x, v, a, t, t + t_e, y, phi, traj, ts)
-                        _put_final(traj, ts, t + t_e, x_edge, y, phi)
-                    rec[C.SLIP_DISTANCE] += dist
-                    rec[C.N_SLIPS] += 1.0
-                    return x_edge, k, st_edge, t + t_e
-                if sample:
-                    _slide_rows(x, v, a, t, t + t_stop, y, phi, traj, ts)
-                rec[C.SLIP_DISTANCE] += abs(x_stop - x)
-                x = x_stop
-                t += t_stop
-                v = 0.0
-                continue
-            # accelerates (or keeps its speed) for ever: leaves the arm in the sense of v
-            x_edge, st_edge = _edge(sv, k, uL, uR, length, back)
-            rec[C.N_SLIPS] += 1.0
-            if st_edge == C.NO_REST:
-                return x, k, C.NO_REST, t
-            dist = abs(x_edge - x)
-            disc = v * v + 2.0 * a * (x_edge - x)
-            t_e = (-v + sv * math.sqrt(disc if disc > 0.0 else 0.0)) / a if a != 0.0 else dist / abs(v)
-            if sample:
-                _slide_rows(x, v, a, t, t + t_e, y, phi, traj, ts)
-                _put_final(traj, ts, t + t_e, x_edge, y, phi)
-            rec[C.SLIP_DISTANCE] += dist
-            return x_edge, k, st_edge, t + t_e
-        # at rest: does friction hold it?
-        if abs(gt) <= fr:
-            if slid:
-                rec[C.N_SLIPS] += 1.0
-            rec[C.E_FINAL] = gn * d[k] + gt * x
-            rec[C.T_REST] = t
-            m = round((phi - beta[k]) / TWO_PI)
-            _put_final(traj, ts, t, x, y, beta[k] + TWO_PI * m)
-            if x + uL[k] <= -back:
-                return x, k, C.BEHIND_JOINT, t
-            if x + uR[k] > length:
-                return x, k, C.OFF_END, t
-            return x, k, C.OK, t
-        # slides downhill from rest, for ever
-        sv = -1.0 if gt > 0.0 else 1.0
-        a = -gt + fr * (1.0 if gt > 0.0 else -1.0)
-        x_edge, st_edge = _edge(sv, k, uL, uR, length, back)
-        rec[C.N_SLIPS] += 1.0
-        if st_edge == C.NO_REST:
-            return x, k, C.NO_REST, t
-        dist = abs(x_edge - x)
-        t_e = math.sqrt(2.0 * dist / abs(a))
-        if sample:
-            _slide_rows(x, 0.0, a, t, t + t_e, y, phi, traj, ts)
-            _put_final(traj, ts, t + t_e, x_edge, y, phi)
-        rec[C.SLIP_DISTANCE] += dist
-        return x_edge, k, st_edge, t + t_e
-    return x, k, C.NO_REST, t  # not reached

@@ -1,9 +1,9 @@
-"""A wall at the arm's end in model "rigid_body": its guards, resets and statics (issue 11, item 2).
+"""The end wall in model "rigid_body": its geometry and its guards and resets in FLIGHT and for a pivot.
 
 The wall (:class:`throwmap.system.fixtures.Wall`) is the face x = L (the arm's
-``length``, arm frame) from the arm surface y = h up to y = h + H; its normal
-into the part is −x̂, its Coulomb coefficient μ_w (``inf``: no slip), and every
-impact with it is plastic (zero restitution), as on the arm. Gravity is a
+``length``, arm frame) from the arm surface y = h up to y = h + H, with its top corner
+Q = (L, h + H); its normal into the part is −x̂, its Coulomb coefficient μ_w (``inf``: no
+slip), and every impact with it is plastic (zero restitution), as on the arm. Gravity is a
 general vector (g_x, g_y) in the arm frame; an arm at rest angle α gives
 (g_x, g_y) = (−g sin α, −g cos α) (α < 0 tilts the end down: g_x > 0 pushes the
 part towards the wall). Unit mass, inertia ρ² about the CM, as the rest of the
@@ -12,85 +12,382 @@ automaton (:mod:`throwmap.kernels.rigid_body`).
 Guards
 ------
 ``wall_touch``   FLIGHT: the earliest time a vertex reaches x = L moving outward
-                 (:func:`wall_touch_time`, the lower-bound stepping of
-                 :func:`throwmap.kernels.flight.touch_time` applied to the wall
-                 gap; it cannot miss a crossing). A vertex crossing x = L above
-                 the wall top has passed over it: an edge then meets the wall's
-                 top corner, which is not modelled (refused, :data:`WHY_WALL_TOP`).
+                 (:func:`wall_touch_time`: the first contact with a line,
+                 :func:`throwmap.kernels.flight.line_touch`, in the face's frame; it cannot
+                 miss a crossing). A vertex crossing x = L above the top passes over the wall
+                 and is watched no more: its edges meet the top corner.
+``corner_touch`` FLIGHT: the top corner enters the flying part through an edge
+                 (:func:`corner_touch_time`, lower-bound stepping on the edges' distances).
 ``wall_reach``   PIVOT_* about A = (p_x, h): every vertex above the line moves
                  outward as θ decreases, so the wall is a lower bound θ ≥ θ_w on the
-                 pivot angle (:func:`wall_theta`, closed form); the swinging part
-                 touches the wall when θ reaches θ_w.
-``slide_hit``    FLAT_SLIDE at constant acceleration: the leading vertex reaches the
-                 wall (:func:`slide_hit`, closed form).
+                 pivot angle, face or corner (:func:`wall_theta`, :func:`wall_contact_angle`,
+                 closed form); a sliding pivot watches the gap of :func:`fill_wall_vertices`'
+                 vertices (:func:`~.slide.pivot_slide_walled`).
 
 Resets
 ------
-``wall_impact``  one vertex against the wall: the impact law of the arm
-                 (:func:`~.impact.coulomb_impact`: Eq. 4 inside the friction cone,
-                 else Routh's process or the velocity-level law) in a frame turned by
-                 −90° so that the wall's normal −x̂ is that law's normal ŷ
-                 (:func:`wall_impact`). The normal velocity after it is 0.
-``all_stop``     several contacts (arm vertices and wall vertices) at once: the part
-                 stops if the impulse that removes its whole momentum is a sum of
-                 impulses inside the contacts' friction cones
-                 (:func:`cone_contains`, exact: Carathéodory's theorem, every basis of
-                 ≤ 3 cone edges is tried).
+``wall_impact``  one vertex against the face, or the corner against an edge: the impact law of
+                 the arm along the contact's normal (:func:`~.impact.contact_impact`) with μ_w;
+                 the contact then stays open for its exact departure window
+                 (:func:`throwmap.kernels.flight.departure_window` in the face's frame,
+                 :func:`corner_departure`), or stays pressed (modes WALL_CONTACT, CORNER)
+                 (:func:`wall_hit_in_flight`).
 
-Statics
--------
-``rest_against_wall`` a part at rest touching the arm and the wall stays if gravity
-                 is balanced by forces inside the contacts' cones (:func:`cone_contains`
-                 with the gravity wrench), the same exact test.
-
-Modules: :mod:`.wall_contact` (reason codes, the impact along any normal, departure windows),
-:mod:`.wall_guards` (``wall_touch``, ``corner_touch``, ``wall_reach``), :mod:`.wall_statics`
-(cone tests, the flat slide into the wall), :mod:`.wall_slide` / :mod:`.wall_corner` /
-:mod:`.wall_ladder` (the modes WALL_CONTACT, CORNER, LADDER), :mod:`.wall_follow` and
-:mod:`.wall_lean` (their entries and exits, the multi-contact impact); this module holds FLIGHT
-with a wall and the impact of a flight on it, and re-exports the rest. A pivot that meets the
-wall is resolved with one impact at both contacts (:func:`~.wall_lean.lean`).
-
-What is still refused (status UNRESOLVED, reason code ``WHY_*``) is listed in
-:data:`~.wall_contact.WHY_MESSAGES`.
+What follows on the wall: :mod:`.wall_slide` (WALL_CONTACT, a vertex pressed on the face),
+:mod:`.wall_corner` (CORNER, an edge pressed on the top corner), :mod:`.wall_lean` (LEAN, the
+arm and the wall at once, and its LADDER); statics against the wall: :mod:`.wall_statics`;
+flat slides into the wall: :mod:`.flat`. What is still refused (status UNRESOLVED, reason code
+``WHY_*``) is listed in :data:`~.modes.WHY_MESSAGES`.
 """
 
 import math
 
+import numpy as np
 from numba import njit
 
-from ..flight import SNAP, first_contact
-from .modes import IMP_INCONSISTENT
+from ..flight import SNAP, departure_window, first_contact, line_touch, lower_bound_step, separating_window
+from .impact import contact_impact
+from .modes import IMP_INCONSISTENT, WHY_NONE, WHY_WALL_SLIDE
 from .trajectory import _put
-from .wall_contact import (CONE_TOL, EV_WALL, WHY_COL,
-                           WHY_CORNER, WHY_LADDER, WHY_MESSAGES, WHY_NONE, WHY_SLIDE_WALL, WHY_TWO_CONTACT,
-                           WHY_WALL_SLIDE, WHY_WALL_TOP, contact_impact, corner_departure, refuse, separating_window,
-                           wall_departure,
-                           wall_impact)
-from .wall_guards import (_edge_frame, corner_inside, corner_touch_time, fill_wall_vertices, wall_contact_angle,
-                          wall_theta, wall_touch_time)
-from .wall_statics import (cone_contains, contacts_can_supply, corner_pivot_rate, flat_contacts, rest_flat_at_wall,
-                           settle_walled, slide_hit, wall_reach_at_rest)
 
-__all__ = ["CONE_TOL", "EV_WALL", "WHY_COL",
-           "WHY_CORNER", "WHY_LADDER", "WHY_MESSAGES", "WHY_NONE", "WHY_SLIDE_WALL", "WHY_TWO_CONTACT",
-           "WHY_WALL_SLIDE", "WHY_WALL_TOP", "cone_contains", "contact_impact", "contacts_can_supply",
-           "corner_departure", "corner_inside", "corner_pivot_rate", "corner_touch_time", "fill_wall_vertices",
-           "flat_contacts", "fly_walled", "nearest_side", "refresh_frame", "refuse",
-           "rest_flat_at_wall", "settle_walled", "slide_hit", "wall_contact_angle", "wall_departure",
-           "wall_hit_in_flight", "wall_impact", "wall_reach_at_rest", "wall_theta", "wall_touch_time"]
+@njit(cache=True)
+def wall_touch_time(c, ru, rv, vx, om, gx, ell, excl_j, excl_t, t_max, tol, max_iter, off):
+    """Guard ``wall_touch``: earliest t ∈ [0, t_max] (s) at which a vertex reaches the wall x = L moving outward.
+
+    ``c`` the gaps L − x_j at t = 0 (m; exactly 0 for a vertex on the wall), ``(ru, rv)``
+    the vertex offsets from the CM at t = 0 (m), ``vx`` the CM's velocity along the arm (m/s),
+    ``om`` the spin (rad/s), ``gx`` gravity along the arm (m/s²), ``ell`` the vertex
+    distances from the CM (m). Vertex ``excl_j`` (−1: none) just left the wall and stays
+    off it for t < ``excl_t``; vertices with ``off[j]`` ≠ 0 are not watched (they passed above the top).
+
+    The first contact with a line (:func:`throwmap.kernels.flight.line_touch`) in the face's frame:
+    tangent ŷ, normal −x̂ into the part, so the offsets are (r_y, −r_x), the normal velocity −v_x and
+    gravity against the normal g_x; a vertex resting on the face at t = 0 is held off for its departure
+    window (a part may rest against the wall). Not polished (the arm's search is). Returns ``(t, j)``:
+    j = −1 no wall contact before t_max, −3 ``max_iter`` steps without a decision, −2 past the spin
+    angle the search resolves.
+    """
+    n = ru.shape[0]
+    rt = np.empty(n)
+    rn = np.empty(n)
+    b = np.empty(n)
+    for j in range(n):
+        rt[j] = rv[j]
+        rn[j] = -ru[j]
+        b[j] = -vx + om * rv[j]
+    t, j, _g, _dg = line_touch(c, b, rt, rn, -vx, om, gx, ell, excl_j, excl_t, t_max, tol, max_iter, off,
+                               abs(gx) + 1e-300)
+    return t, j
 
 
 @njit(cache=True)
-def refresh_frame(phi, y, h, w, ell, ru, rv, c0):
-    """Flight frame at orientation φ and CM height y (m): offsets R(φ) w_j and arm gaps (tiny ones snapped to 0)."""
+def _edge_frame(ru, rv, e):
+    """Outward unit normal (n_x, n_y) of edge e (vertex e → e + 1, offsets from the CM at t = 0) and its support c_e (m)."""
+    n = ru.shape[0]
+    e2 = (e + 1) % n
+    ex = ru[e2] - ru[e]
+    ey = rv[e2] - rv[e]
+    le = math.hypot(ex, ey)
+    nx = ey / le
+    ny = -ex / le
+    c = nx * ru[e] + ny * rv[e]
+    if c < 0.0:  # the CM (origin) is inside: the outward normal has n·a > 0
+        nx = -nx
+        ny = -ny
+        c = -c
+    return nx, ny, c
+
+
+@njit(cache=True)
+def corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max):
+    """Bounds (M2, M3) on the second and third time derivatives of every edge's corner distance f_e
+    (:func:`corner_touch_time`) over a flight of ``t_max`` s from Q − CM = (q_x, q_y) (m) and CM velocity (v_x, v_y)."""
+    ga = math.hypot(gx, gn)
+    v0 = math.hypot(vx, vy)
+    D = math.hypot(qx, qy) + v0 * t_max + 0.5 * ga * t_max * t_max
+    vm = v0 + ga * t_max
+    aw = abs(om)
+    return om * om * D + 2.0 * aw * vm + ga, aw * aw * aw * D + 3.0 * om * om * vm + 3.0 * aw * ga
+
+
+@njit(cache=True)
+def corner_touch_time(qx, qy, vx, vy, om, gx, gn, ru, rv, excl_e, excl_t, t_max, tol, max_iter):
+    """Guard ``corner_touch``: earliest t ∈ [0, t_max] (s) at which the wall's top corner Q enters the flying part.
+
+    ``(q_x, q_y)`` = Q − CM at t = 0 (m), CM velocity (v_x, v_y), spin ω, gravity (g_x, −g_n);
+    ``(ru, rv)`` the vertex offsets at t = 0. Edge e (outward normal n_e, support c_e) has the
+    signed distance f_e(t) = R(ωt) n_e · (Q − X(t)) − c_e of Q beyond it; Q is inside the convex
+    part iff every f_e < 0, so the part stays clear while some f_e > 0, and a step is safe if
+    it is safe for one positive edge: the largest of the edges' lower-bound steps (the second
+    derivatives are bounded by M2 of :func:`corner_bounds`) is taken. Edge ``excl_e`` stays
+    positive for t < ``excl_t``. Returns ``(t, e)``: e the edge Q meets, −1 none before t_max,
+    −3 ``max_iter`` steps.
+    """
+    n = ru.shape[0]
+    M2, _m3 = corner_bounds(qx, qy, vx, vy, om, gx, gn, t_max)
+    t = 0.0
+    for _ in range(max_iter):
+        if t > t_max:
+            return t_max, -1
+        c = math.cos(om * t)
+        s = math.sin(om * t)
+        px = qx - vx * t - 0.5 * gx * t * t  # Q − X(t)
+        py = qy - vy * t + 0.5 * gn * t * t
+        wx = vx + gx * t
+        wy = vy - gn * t
+        scale = math.hypot(px, py) + math.hypot(ru[0], rv[0])
+        fmax = -math.inf
+        emax = -1
+        dfmax = 0.0
+        step = 0.0
+        clear = False  # the excluded edge still provably keeps Q out
+        for e in range(n):
+            nx0, ny0, ce = _edge_frame(ru, rv, e)
+            nx = c * nx0 - s * ny0
+            ny = s * nx0 + c * ny0
+            f = nx * px + ny * py - ce
+            df = om * (-ny * px + nx * py) - (nx * wx + ny * wy)
+            if e == excl_e and t < excl_t:
+                se = excl_t - t
+                if f > 0.0 or df > 0.0:
+                    se = max(se, lower_bound_step(f, df, M2))
+                step = max(step, se)
+                clear = True
+                continue
+            if f > fmax:
+                fmax = f
+                emax = e
+                dfmax = df
+            if f > 0.0 or (t == 0.0 and df > 0.0 and f >= -tol * scale):
+                step = max(step, lower_bound_step(f, df, M2))
+        if not clear and fmax <= tol * scale and (t > 0.0 or dfmax <= 0.0):
+            return t, emax  # (at t = 0 only if Q is closing in: an edge through Q that opens is no contact)
+        if t + step == t:
+            return t, emax if not clear else -3
+        t += step
+    return t, -3
+
+
+@njit(cache=True)
+def corner_departure(qx, qy, vx, vy, om, gx, gn, nx, ny, t_max):
+    """Time (s) for which an edge that just stopped on the wall's top corner (normal velocity 0) stays off it.
+
+    With Q − CM = (q_x, q_y) (m), CM velocity V, gravity g = (g_x, −g_n) and the edge's outward normal n
+    (J: turn by +90°), the gap's Taylor bound f(s) ≥ ½ f2 s² + f3 s³/6 − M4 s⁴/24 holds for s ≤ ``t_max`` with
+    f2 = −ω² n·(Q − X) − 2ω (Jn)·V − n·g, f3 = −ω³ (Jn)·(Q − X) + 3ω² n·V − 3ω (Jn)·g and
+    M4 = ω⁴ D + 4|ω|³ v + 6ω² |g| (D, v: bounds on |Q − X| and |V| over ``t_max``). Returns 0.9 × the positive
+    root of ½ f2 + f3 s/6 − M4 s²/24 (at most ``t_max``), or 0 if f2 < 0 (the edge is pressed on the corner) or
+    f2 = 0 with f3 ≤ 0 (a tangency that does not open). f3 matters where the edge just let go of the corner
+    (CORNER's lift-off, λ = 0: f2 = 0).
+    """
+    jx = -ny
+    jy = nx
+    ga = math.hypot(gx, gn)
+    f2 = -om * om * (nx * qx + ny * qy) - 2.0 * om * (jx * vx + jy * vy) - (nx * gx - ny * gn)
+    if f2 < 0.0 and f2 > -1e-9 * ga:
+        f2 = 0.0
+    if f2 < 0.0:
+        return 0.0
+    f3 = -om * om * om * (jx * qx + jy * qy) + 3.0 * om * om * (nx * vx + ny * vy) - 3.0 * om * (jx * gx - jy * gn)
+    if f2 == 0.0 and f3 <= 0.0:
+        return 0.0
+    v0 = math.hypot(vx, vy)
+    D = math.hypot(qx, qy) + v0 * t_max + 0.5 * ga * t_max * t_max
+    vm = v0 + ga * t_max
+    aw = abs(om)
+    M4 = om * om * om * om * D + 4.0 * aw * aw * aw * vm + 6.0 * om * om * ga
+    if M4 <= 0.0:
+        return t_max
+    a = M4 / 24.0
+    b = f3 / 6.0
+    c = 0.5 * f2
+    root = (b + math.sqrt(b * b + 4.0 * a * c)) / (2.0 * a)
+    return min(0.9 * root, t_max) if root > 0.0 else 0.0
+
+
+@njit(cache=True)
+def wall_theta(px, L, top, theta, phi, w, jp):
+    """Guard ``wall_reach`` of a pivot on vertex ``jp`` at (p_x, h): the least pivot angle θ_w the wall allows.
+
+    Vertex j sits at A + ℓ_j (cos ψ_j, sin ψ_j), ψ_j = θ + δ_j, with ψ_j ∈ [0, π] while the
+    part pivots (every vertex above the line), so x_j decreases with θ and x_j ≤ L ⟺
+    θ ≥ arccos((L − p_x)/ℓ_j) − δ_j. ``theta``/``phi`` (rad) are the current pivot angle and
+    orientation (δ_j follows from them), ``w`` the body vertices (m), ``top`` = H the wall's
+    height above the line (m). Returns ``(θ_w, j_w, y_w)``: the bound (−inf: none), the vertex
+    that sets it and its height above the line there (m; > ``top``: it passes above the wall).
+    """
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    ax = cp * w[jp, 0] - sp * w[jp, 1]
+    ay = sp * w[jp, 0] + cp * w[jp, 1]
+    gap = L - px
+    best = -math.inf
+    jb = -1
+    yb = 0.0
+    for j in range(w.shape[0]):
+        if j == jp:
+            continue
+        ex = cp * w[j, 0] - sp * w[j, 1] - ax
+        ey = sp * w[j, 0] + cp * w[j, 1] - ay
+        lj = math.hypot(ex, ey)
+        if lj <= gap:
+            continue
+        delta = math.atan2(ey, ex) - theta
+        psi_w = math.acos(max(-1.0, min(1.0, gap / lj)))
+        th = psi_w - delta
+        if th > best:
+            best = th
+            jb = j
+            yb = lj * math.sin(psi_w)
+    return best, jb, yb
+
+
+@njit(cache=True)
+def wall_contact_angle(px, L, top, theta, phi, w, jp):
+    """Guard ``wall_reach`` with the wall's top corner: the least pivot angle θ_c at which the part meets the wall.
+
+    Pivoting on vertex ``jp`` at (p_x, h), the part meets the wall either with a vertex on its face
+    below the top (:func:`wall_theta`'s bound, for the vertices that cross x = L below ``top``) or
+    with an edge on the top corner Q = (L, h + H): turned by Δ about A an edge with outward normal
+    n_e and support c_e = n_e·(a − A) touches Q when |q| cos(∠n_e + Δ − ∠q) = c_e, q = Q − A, with
+    the touching point inside the edge. The largest such angle θ ≤ θ (the part moves outward as θ
+    decreases) is the bound. Returns ``(θ_c, corner, j, c_x, c_y, n_x, n_y)``: the bound (−inf: none),
+    whether it is the corner, the vertex on the face or the edge (vertex j → j + 1) on the corner, the contact point relative to A (m) and the unit normal of the contact
+    into the part (world frame at θ_c): −x̂ on the face, the edge's inward normal on the corner.
+    """
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    n = w.shape[0]
+    ax = cp * w[jp, 0] - sp * w[jp, 1]
+    ay = sp * w[jp, 0] + cp * w[jp, 1]
+    gap = L - px
+    best = -math.inf
+    corner = False
+    jb = -1
+    cx = 0.0
+    cy = 0.0
+    nx = -1.0
+    ny = 0.0
+    # vertices on the face, below the top
+    for j in range(n):
+        if j == jp:
+            continue
+        ex = cp * w[j, 0] - sp * w[j, 1] - ax
+        ey = sp * w[j, 0] + cp * w[j, 1] - ay
+        lj = math.hypot(ex, ey)
+        if lj <= gap:
+            continue
+        psi_w = math.acos(max(-1.0, min(1.0, gap / lj)))
+        yw = lj * math.sin(psi_w)
+        if yw >= top:
+            continue  # passes above the top: the corner decides
+        th = psi_w - (math.atan2(ey, ex) - theta)
+        if th > best:
+            best = th
+            corner = False
+            jb = j
+            cx = gap
+            cy = yw
+            nx = -1.0
+            ny = 0.0
+    # edges on the top corner
+    qx = gap
+    qy = top
+    rq = math.hypot(qx, qy)
+    aq = math.atan2(qy, qx)
+    gx_ = -ax  # the CM relative to A (for the outward sense of the normals)
+    gy_ = -ay
+    for j in range(n):
+        j2 = (j + 1) % n
+        pax = cp * w[j, 0] - sp * w[j, 1] - ax
+        pay = sp * w[j, 0] + cp * w[j, 1] - ay
+        pbx = cp * w[j2, 0] - sp * w[j2, 1] - ax
+        pby = sp * w[j2, 0] + cp * w[j2, 1] - ay
+        ex = pbx - pax
+        ey = pby - pay
+        le = math.hypot(ex, ey)
+        if le == 0.0:
+            continue
+        enx = ey / le
+        eny = -ex / le
+        if enx * (gx_ - pax) + eny * (gy_ - pay) > 0.0:  # make it outward
+            enx = -enx
+            eny = -eny
+        ce = enx * pax + eny * pay
+        if abs(ce) > rq:
+            continue
+        an = math.atan2(eny, enx)
+        base = math.acos(ce / rq)
+        for sgn in (1.0, -1.0):
+            dlt = aq - an + sgn * base
+            dlt = (dlt + math.pi) % (2.0 * math.pi) - math.pi  # (−π, π]
+            if dlt > 1e-15:
+                dlt -= 2.0 * math.pi
+            th = theta + dlt
+            if th <= best:
+                continue
+            # the edge at that angle: is Q inside the segment?
+            c = math.cos(dlt)
+            s = math.sin(dlt)
+            rax = c * pax - s * pay
+            ray = s * pax + c * pay
+            rex = c * ex - s * ey
+            rey = s * ex + c * ey
+            u = ((qx - rax) * rex + (qy - ray) * rey) / (le * le)
+            if u < 0.0 or u > 1.0:
+                continue
+            best = th
+            corner = True
+            jb = j
+            cx = qx
+            cy = qy
+            nx = -(c * enx - s * eny)
+            ny = -(s * enx + c * eny)
+    return best, corner, jb, cx, cy, nx, ny
+
+
+@njit(cache=True)
+def fill_wall_vertices(theta, phi, w, jp, wv):
+    """Rows (ℓ_j, δ_j) of ``wv`` (n, 2): vertex j at A + ℓ_j (cos(θ + δ_j), sin(θ + δ_j)) while pivoting on ``jp``
+    (ℓ = 0 for jp itself), for the sliding phase's guard ``wall_reach``."""
     cp = math.cos(phi)
     sp = math.sin(phi)
     for j in range(w.shape[0]):
-        ru[j] = cp * w[j, 0] - sp * w[j, 1]
-        rv[j] = sp * w[j, 0] + cp * w[j, 1]
-        c = (y - h) + rv[j]
-        c0[j] = 0.0 if abs(c) <= SNAP * ell[j] else c
+        ex = cp * (w[j, 0] - w[jp, 0]) - sp * (w[j, 1] - w[jp, 1])
+        ey = sp * (w[j, 0] - w[jp, 0]) + cp * (w[j, 1] - w[jp, 1])
+        wv[j, 0] = 0.0 if j == jp else math.hypot(ex, ey)
+        wv[j, 1] = math.atan2(ey, ex) - theta
+
+
+@njit(cache=True)
+def corner_inside(px, h, theta, phi, w, jp, L, top):
+    """Whether the wall's top corner (L, h + top) lies inside the part pivoting on ``jp`` at (p_x, h) (by more than
+    1e-12 of its size): an edge has passed it."""
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    n = w.shape[0]
+    qx = L - px
+    qy = top
+    sgn = 0.0
+    size = 0.0
+    for j in range(n):
+        size = max(size, abs(w[j, 0]) + abs(w[j, 1]))
+    for j in range(n):
+        j2 = (j + 1) % n
+        ax = cp * (w[j, 0] - w[jp, 0]) - sp * (w[j, 1] - w[jp, 1])
+        ay = sp * (w[j, 0] - w[jp, 0]) + cp * (w[j, 1] - w[jp, 1])
+        bx = cp * (w[j2, 0] - w[jp, 0]) - sp * (w[j2, 1] - w[jp, 1])
+        by = sp * (w[j2, 0] - w[jp, 0]) + cp * (w[j2, 1] - w[jp, 1])
+        cr = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax)
+        le = math.hypot(bx - ax, by - ay)
+        if abs(cr) <= 1e-12 * size * le:
+            return False
+        s = 1.0 if cr > 0.0 else -1.0
+        if sgn == 0.0:
+            sgn = s
+        elif s != sgn:
+            return False
+    return True
 
 
 @njit(cache=True)
@@ -178,9 +475,9 @@ def wall_hit_in_flight(vx, vy, om, rx, ry, nx, ny, corner, rho2, mu_w, law, gx, 
     """Reset ``wall_impact`` in FLIGHT at the contact (r_x, r_y) from the CM (m) with normal (n_x, n_y) into the part:
     a vertex on the face (−x̂), or the top corner on an edge (``corner``: the edge's inward normal).
 
-    Refuses (``why`` = :data:`WHY_WALL_SLIDE`) a contact the impact leaves pressed on the wall (no
+    Refuses (``why`` = :data:`~.modes.WHY_WALL_SLIDE`) a contact the impact leaves pressed on the wall (no
     departure window: it would slide along it). Returns ``(vx⁺, vy⁺, ω⁺, P_t, P_n, kind, excl_t, why)``:
-    ``excl_t`` (s) how long the contact provably stays open afterwards (:func:`wall_departure`,
+    ``excl_t`` (s) how long the contact provably stays open afterwards (:func:`~throwmap.kernels.flight.departure_window`,
     :func:`corner_departure`); kind IMP_INCONSISTENT: no consistent impulse.
     """
     vxp, vyp, wp, pt, pn, kind, _jt0, _jn0 = contact_impact(vx, vy, om, rx, ry, nx, ny, rho2, mu_w, law)
@@ -191,21 +488,8 @@ def wall_hit_in_flight(vx, vy, om, rx, ry, nx, ny, corner, rho2, mu_w, law, gx, 
     else:
         un = -(vxp - wp * ry)  # the wall gap's rate: 0 after a plastic impact (> 0 if it was leaving)
         vscale = max(1.0, abs(vxp) + abs(vyp) + abs(wp) * lj)
-        excl = wall_departure(un if un > 0.0 else 0.0, rx, ry, wp, gx, -g, lj) if un <= 1e-12 * vscale else \
+        excl = departure_window(ry, -rx, wp, gx, lj, abs(gx) + g) if un <= 1e-12 * vscale else \
             separating_window(un, abs(gx) + wp * wp * lj)
     if excl <= 0.0:
         return vxp, vyp, wp, pt, pn, kind, 0.0, WHY_WALL_SLIDE
     return vxp, vyp, wp, pt, pn, kind, excl, WHY_NONE
-
-
-@njit(cache=True)
-def nearest_side(phi, beta):
-    """The side whose rest orientation β_k is nearest to φ (rad), as the engines read a tilted rest."""
-    best = 0
-    dmin = math.inf
-    for k in range(beta.shape[0]):
-        dd = abs((phi - beta[k] + math.pi) % (2.0 * math.pi) - math.pi)
-        if dd < dmin:
-            dmin = dd
-            best = k
-    return best

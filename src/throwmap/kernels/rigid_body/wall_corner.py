@@ -12,13 +12,19 @@ f = −μ_w σ λ, σ = sgn s): g'' = 0 gives λ D = −f₂ with f₂ = −ω²
 D = 1 + ((r × n)² + μ_w σ (r × n)(r × t))/ρ² (D ≤ 0: Painlevé, INCONSISTENT). Sticking (s = 0: the
 part turns about Q, p = X − Q): (ρ² + |p|²) ω̇ = p × g, A = ω̇ J p − ω² p, and the contact force is
 A − g, valid while λ ≥ 0 and |f| ≤ μ_w λ. f₂ ≤ 0 is exactly the condition under which
-:func:`~.wall_contact.corner_departure` finds no departure window (the edge stays pressed).
+:func:`~.wall.corner_departure` finds no departure window (the edge stays pressed).
 
-Integration: classical RK4 in (x, y, φ, v_x, v_y, ω), step DTH/(|ω| + Ω), after every step the pose and
-velocity projected back onto g = 0, g' = 0 (along n); guards located inside the step by bracketing as
-:func:`~.slide._locate_guard`. Guards: ``lift_off`` (λ = 0), ``stick``/``slip`` (μ_w > 0), ``end`` (Q at
-an end of the edge: a vertex on the corner), ``arm`` (a vertex reaches y = h), ``wall`` (a vertex reaches
-the wall's solid: its face x = L below the top, or its top y = h + H beyond the face).
+Integration: classical RK4 in (x, y, φ, v_x, v_y, ω), step DTH/(|ω| + Ω), after every step the pose
+and velocity projected back onto g = 0, g' = 0 (along n); guards located inside the step by
+:func:`~.bracket.locate_guard`. Guards: the contact's own (:func:`~.coulomb.cone_guard`: ``lift_off``
+λ = 0, ``stick``/``slip`` for μ_w > 0), ``end`` (Q at an end of the edge: a vertex on the corner),
+``arm`` (a vertex reaches y = h), ``wall`` (a vertex reaches the wall's solid: its face x = L below the
+top, or its top y = h + H beyond the face).
+
+The automaton enters the mode through :func:`corner_contact`, which follows the sub-mode changes
+(:func:`corner_select`, :func:`corner_phase`) to the first event it continues from: the edge lets go
+(FLIGHT, the edge excluded from ``corner_touch`` for its departure window :func:`~.wall.corner_departure`),
+or another vertex reaches the arm or the face (the multi-contact impact of :mod:`.wall_lean`).
 """
 
 import math
@@ -26,10 +32,12 @@ import math
 import numpy as np
 from numba import njit
 
-from .modes import DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, N_BISECT
-from .bracket import falsi_point
+from .bracket import locate_guard
+from .coulomb import cone_guard
+from .modes import (DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, WC_ARM, WC_CAP, WC_FACE,
+                    WC_FLIGHT, WC_INCONSISTENT, WC_REFUSE, WHY_CORNER_VERTEX, WHY_NONE, WHY_WALL_SLIDE)
 from .trajectory import _put
-from .wall_contact import corner_departure
+from .wall import corner_departure
 
 EV_END = 30
 """Guard ``end``: the corner reached an end of the edge (a vertex on the corner)."""
@@ -139,23 +147,15 @@ def _rk4(s, dt, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick):
 
 
 @njit(cache=True)
-def _cguards(s, w, e, le, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, arm_skip):
-    """Least CORNER guard ``(value, which, k)`` (module docstring); ``(-1, EV_INCONSISTENT, -1)`` at D ≤ 0."""
+def _cguards(s, p):
+    """Least CORNER guard ``(value, which, k)`` (module docstring) at the state ``s`` (6,); ``(-1, EV_INCONSISTENT, -1)``
+    at D ≤ 0. The contact's own guards are :func:`~.coulomb.cone_guard`'s; ``p`` the parameters of :func:`corner_phase`."""
+    w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, arm_skip = p
     _ax, _ay, _wd, lam, f, D, slip = corner_rhs(s, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick)
     if not D > 0.0:
         return -1.0, EV_INCONSISTENT, -1
-    gmin = lam / ga
-    which = EV_LIFT_OFF
+    gmin, which = cone_guard(lam, f, slip, stick, sig, mu_w, ga, mu_w > 0.0)
     kk = -1
-    if stick:
-        if math.isfinite(mu_w):
-            v = (mu_w * lam - abs(f)) / ga
-            if v < gmin:
-                gmin = v
-                which = EV_SLIP
-    elif mu_w > 0.0 and sig * slip < gmin:
-        gmin = sig * slip
-        which = EV_STICK
     c = math.cos(s[2])
     sn = math.sin(s[2])
     tx = c * tb[0] - sn * tb[1]
@@ -186,6 +186,20 @@ def _cguards(s, w, e, le, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick, h, L, 
     return gmin, which, kk
 
 
+@njit(cache=True, inline="always")
+def _advance(s, tau, p):
+    """The RK4 step of length ``tau`` (s) from the state ``s`` (6,), projected back onto the corner (:func:`_rk4`)."""
+    w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, arm_skip = p
+    return _rk4(s, tau, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick)
+
+
+@njit(cache=True, inline="always")
+def _least_guard(which, k, s, p):
+    """The least guard's value at ``s``: the value :func:`~.bracket.locate_guard` narrows in CORNER (its guards are
+    located on their minimum, whose pieces switch as the projected state moves)."""
+    return _cguards(s, p)[0]
+
+
 @njit(cache=True)
 def corner_phase(s, e, stick, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip, arm_skip_until, max_steps, traj,
                  ts):
@@ -207,44 +221,15 @@ def corner_phase(s, e, stick, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip
     _project(s, qx, qy, nb, db)
     for _ in range(max_steps):
         skip = arm_skip if t < arm_skip_until else -1
+        p = (w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, skip)
         dt = DTH / (abs(s[5]) + om0)
-        s1 = _rk4(s, dt, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick)
-        gm, which, k = _cguards(s1, w, e, le, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, skip)
+        s1 = _advance(s, dt, p)
+        gm, which, k = _cguards(s1, p)
         if which == EV_INCONSISTENT:
             return EV_INCONSISTENT, -1, s, t
         step = dt
         if gm <= 0.0:
-            lo = 0.0
-            hi = dt
-            s_lo = s
-            s_hi = s1
-            falsi = True
-            for _i in range(4 * N_BISECT):
-                width = hi - lo
-                tol = 1e-16 * (t + hi)
-                if width <= tol:
-                    break
-                mid = lo + 0.5 * width
-                if falsi:
-                    c_lo = _cguards(s_lo, w, e, le, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga,
-                                    skip)[0]
-                    c_hi = _cguards(s_hi, w, e, le, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga,
-                                    skip)[0]
-                    mid = falsi_point(lo, hi, tol, c_lo, c_hi)
-                sm = _rk4(s, mid, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick)
-                gmid, wh, km = _cguards(sm, w, e, le, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga,
-                                        skip)
-                if gmid <= 0.0:
-                    hi = mid
-                    which = wh
-                    k = km
-                    s_hi = sm
-                else:
-                    lo = mid
-                    s_lo = sm
-                falsi = hi - lo <= 0.5 * width
-            step = hi
-            s1 = s_hi
+            step, which, k, s1 = locate_guard(_advance, _cguards, _least_guard, s, s1, dt, which, k, t, p)
         if sample:
             while ts[1] <= t + step:
                 sq = _rk4(s, ts[1] - t, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick)
@@ -299,3 +284,71 @@ def corner_select(s, e, w, rho2, gx, gn, mu_w, L, h, top, from_slip):
                         1.0) > 0.0:
         return -1, 0.0
     return -2, 0.0
+
+
+@njit(cache=True)
+def corner_contact(e, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until,
+                   max_steps, max_events, traj, ts):
+    """Mode CORNER (:mod:`.wall_corner`) from the flight state with edge ``e`` pressed on the wall's top corner after a
+    plastic impact, until: ``lift_off`` (WC_FLIGHT, with the edge's departure window
+    :func:`~.wall.corner_departure`); a vertex k reaches the arm (WC_ARM) or the face below the top (WC_FACE);
+    a vertex reaches the corner or the wall's top beyond the face (WHY_CORNER_VERTEX); Painlevé or no consistent
+    sub-mode (WC_INCONSISTENT); the step or event caps (WC_CAP). Returns as :func:`wall_contact`.
+    """
+    s = np.array([x, y, phi, vx, vy, om])
+    from_slip = False
+    for _ in range(max_events):
+        mode, sig = corner_select(s, e, w, rho2, gx, gn, mu_w, L, h, top, from_slip)
+        if mode == -2:
+            return _cout(WC_INCONSISTENT, -1, t, s, w, 0.0, WHY_NONE)
+        if mode == -1:
+            return _corner_lift(e, t, s, w, gx, gn, h, top, L)
+        ev, k, s, t = corner_phase(s, e, mode == 1, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip,
+                                   arm_skip_until, max_steps, traj, ts)
+        if ev == EV_STICK:
+            from_slip = False
+            continue
+        if ev == EV_SLIP:
+            from_slip = True
+            continue
+        if ev == EV_LIFT_OFF:
+            return _corner_lift(e, t, s, w, gx, gn, h, top, L)
+        if ev == EV_CARM:
+            return _cout(WC_ARM, k, t, s, w, 0.0, WHY_NONE)
+        if ev == EV_FACE:
+            return _cout(WC_FACE, k, t, s, w, 0.0, WHY_NONE)
+        if ev == EV_INCONSISTENT:
+            return _cout(WC_INCONSISTENT, -1, t, s, w, 0.0, WHY_NONE)
+        if ev == EV_STEP_CAP:
+            return _cout(WC_CAP, -1, t, s, w, 0.0, WHY_NONE)
+        return _cout(WC_REFUSE, -1, t, s, w, 0.0, WHY_CORNER_VERTEX)  # EV_END, EV_TOPS
+    return _cout(WC_CAP, -1, t, s, w, 0.0, WHY_NONE)
+
+
+@njit(cache=True)
+def _cout(res, k, t, s, w, win, why):
+    rx = 0.0
+    ry = 0.0
+    if k >= 0:
+        c = math.cos(s[2])
+        sn = math.sin(s[2])
+        rx = c * w[k, 0] - sn * w[k, 1]
+        ry = sn * w[k, 0] + c * w[k, 1]
+    return (res, k, t, s[0], s[1], s[3], s[4], s[2], s[5], rx, ry, win, why)
+
+
+@njit(cache=True)
+def _corner_lift(e, t, s, w, gx, gn, h, top, L):
+    """The edge lets go of the corner (λ = 0): FLIGHT with its departure window, or refused at a tangency, or
+    refused (WHY_CORNER_VERTEX) when the CM is past the face: the part tips over the wall, whose top (its
+    thickness) rigid_body does not model."""
+    if s[0] >= L:
+        return _cout(WC_REFUSE, -1, t, s, w, 0.0, WHY_CORNER_VERTEX)
+    nx, ny, _tx, _ty, _le = edge_body(w, e)
+    c = math.cos(s[2])
+    sn = math.sin(s[2])
+    win = corner_departure(L - s[0], h + top - s[1], s[3], s[4], s[5], gx, gn, c * nx - sn * ny, sn * nx + c * ny,
+                           1.0)
+    if win <= 0.0:
+        return _cout(WC_REFUSE, -1, t, s, w, 0.0, WHY_WALL_SLIDE)
+    return _cout(WC_FLIGHT, -1, t, s, w, win, WHY_NONE)

@@ -1,12 +1,12 @@
-"""Mode LEAN of model "rigid_body": a part touching the arm and the wall's face at once.
+"""Mode LEAN of model "rigid_body": a part touching the arm and the wall's face at once, and its LADDER.
 
 :func:`lean` takes the part from the moment a vertex A on the arm and a vertex P on the face
 touch together (a landing while P slides on the face, a swinging pivot that meets the face) to the
 first state the automaton continues from. In order: the plastic impact at every touching vertex
-(:func:`~.wall_ladder.multi_contact_impact`, velocity-level); then, with the contacts it leaves
+(:func:`~.impact.multi_contact_impact`, velocity-level); then, with the contacts it leaves
 closed (:func:`_dispatch`): one arm vertex and one face vertex moving — LADDER
-(:func:`~.wall_ladder.ladder_phase`); only one arm vertex — a pivot (the automaton's PIVOT modes);
-only one face vertex — WALL_CONTACT (:mod:`.wall_follow`); only an edge on the wall's top corner —
+(:func:`ladder_phase`); only one arm vertex — a pivot (the automaton's PIVOT modes);
+only one face vertex — WALL_CONTACT (:mod:`.wall_slide`); only an edge on the wall's top corner —
 CORNER (:mod:`.wall_corner`); none — FLIGHT; the part stopped — at rest
 if its contacts hold gravity inside their cones (:func:`~.wall_statics.contacts_can_supply`), else
 it starts from rest as a ladder (the sense with σ ω̇ > 0 and both normal forces > 0) or swings back
@@ -16,6 +16,21 @@ motion with two closed contacts on one surface (an edge flat on the arm or on th
 WHY_TWO_CONTACT), the corner and another contact moving together (WHY_WALL_SLIDE), a stopped
 part that none of the motions above can start (WHY_LADDER), P at the wall's top (WHY_WALL_TOP),
 a vertex at the wall's foot (WHY_CORNER).
+
+LADDER (A on the line y = h, P on the face x = L, both sliding): one degree of freedom, the
+orientation φ; with the CM offsets r_A = R(φ) w_A and r_P = R(φ) w_P the CM is
+(L − r_Px, h − r_Ay). With d = P − A, A slips at d_y φ̇ along +x̂ and P at d_x φ̇ along +ŷ, so
+both slip senses are σ = sgn φ̇ (d_x, d_y > 0). Forces (F_A, N_A) at A with F_A = −μσ N_A and
+(−N_P, F_P) at P with F_P = −μ_w σ N_P; unit mass, inertia ρ², gravity (g_x, −g_n)::
+
+    r_Py ω̇ + μσ N_A + N_P                           = g_x − r_Px ω²
+   −r_Ax ω̇ − N_A + μ_w σ N_P                        = −g_n − r_Ay ω²
+    ρ² ω̇ − (r_Ax + μσ r_Ay) N_A − (r_Py − μ_w σ r_Px) N_P = 0
+
+(:func:`ladder_rhs`, Cramer's rule; a non-positive determinant of the normal-force block —
+Painlevé — is INCONSISTENT). Integration: RK4 in (φ, ω), step DTH/(|ω| + Ω); guards (:func:`_lguards`:
+A's own as any Coulomb contact's, :func:`~.coulomb.cone_guard`, then P's lift-off and the geometric
+ones) located in the step by :func:`~.bracket.locate_guard`.
 """
 
 import math
@@ -23,12 +38,14 @@ import math
 import numpy as np
 from numba import njit
 
-from .flight import departure_window
-from .modes import EV_INCONSISTENT, MU_SKID
-from .wall_contact import (WHY_CORNER, WHY_LADDER, WHY_NONE, WHY_TWO_CONTACT, WHY_WALL_SLIDE, WHY_WALL_TOP,
-                           corner_bounds, corner_departure, separating_window, wall_departure)
-from .wall_ladder import (C_OPEN, EV_A_OFF, EV_BEHIND, EV_FOOT, EV_LAND, EV_P_OFF, EV_P_TOP, EV_PLANE, EV_STOP,
-                          ladder_phase, ladder_pose, ladder_rhs, multi_contact_impact)
+from ..flight import departure_window, separating_window
+from .bracket import locate_guard
+from .coulomb import cone_guard, cone_guard_value
+from .impact import C_OPEN, multi_contact_impact
+from .modes import (DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_STEP_CAP, EV_STICK, MU_SKID, WHY_CORNER, WHY_LADDER,
+                    WHY_NONE, WHY_TWO_CONTACT, WHY_WALL_SLIDE, WHY_WALL_TOP)
+from .trajectory import _put
+from .wall import corner_bounds, corner_departure
 from .wall_statics import contacts_can_supply
 
 LN_REST = 0
@@ -48,6 +65,24 @@ V_STOP = 1e-6
 limit of a Zeno sequence of ever smaller impacts against the arm and the wall (measured: such sequences decay by
 ≈ 0.57 per impact, then stall near 1e-8 m/s, where gravity between impacts adds what each impact removes). A stop
 that its contacts cannot hold starts again from rest (a ladder, a swing back)."""
+
+
+EV_A_OFF = EV_LIFT_OFF
+"""LADDER guard: N_A = 0 (A lifts off the arm)."""
+EV_P_OFF = 20
+"""LADDER guard: N_P = 0 (P leaves the wall)."""
+EV_STOP = EV_STICK
+"""LADDER guard: ω = 0 (both slips stop together)."""
+EV_LAND = 21
+"""LADDER guard: another vertex (returned) reaches the arm."""
+EV_PLANE = 22
+"""LADDER guard: another vertex reaches the wall's plane."""
+EV_P_TOP = 23
+"""LADDER guard: P reaches the wall's top."""
+EV_FOOT = 24
+"""LADDER guard: A reaches the wall or P the arm (a vertex at the wall's foot)."""
+EV_BEHIND = 25
+"""LADDER guard: A slides behind the joint (x ≤ −back)."""
 
 
 @njit(cache=True)
@@ -170,14 +205,14 @@ def _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m, pts, nr
             lj = math.hypot(rx, ry)
             if kind[i] == 0:
                 un = vy + om * rx
-                wv = departure_window(max(un, 0.0), rx, ry, om, gn, lj) if un <= 1e-12 * scale else \
+                wv = departure_window(rx, ry, om, gn, lj, gn) if un <= 1e-12 * scale else \
                     separating_window(un, gn + abs(gx) + om * om * lj)
                 if wv < win_a:
                     win_a = wv
                     oa = idx[i]
             elif kind[i] == 1:
                 un = -(vx - om * ry)
-                wv = wall_departure(max(un, 0.0), rx, ry, om, gx, -gn, lj) if un <= 1e-12 * scale else \
+                wv = departure_window(ry, -rx, om, gx, lj, abs(gx) + gn) if un <= 1e-12 * scale else \
                     separating_window(un, abs(gx) + gn + om * om * lj)
                 if wv < win_p:
                     win_p = wv
@@ -285,7 +320,7 @@ def lean(ja, jp, impact, t, x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, h,
         if ev == EV_P_OFF:
             return LN_PIVOT, WHY_NONE, t, x, y, vx, vy, phi, om, ja, jp, 0.0, 0.0, vx - om * ray, -1, 0.0
         if ev == EV_A_OFF:
-            win = departure_window(0.0, rax, ray, om, gn, math.hypot(rax, ray))
+            win = departure_window(rax, ray, om, gn, math.hypot(rax, ray), gn)
             if win <= 0.0:
                 return LN_INCONSISTENT, WHY_NONE, t, x, y, vx, vy, phi, om, -1, -1, 0.0, 0.0, 0.0, -1, 0.0
             return LN_WALL, WHY_NONE, t, x, y, vx, vy, phi, om, ja, jp, win, 0.0, 0.0, -1, 0.0
@@ -333,3 +368,183 @@ def _from_rest(phi, w, ja, jp, rho2, mu, mu_w, gx, gn, lref):
     if (rax * gn + ray * gx) / lj > 0.0:  # (CM − A) × g / ℓ = (−r_A) × (g_x, −g_n) / ℓ: θ̈ about A
         return 2, 0.0
     return 3, 0.0
+
+
+@njit(cache=True)
+def ladder_rhs(phi, om, wa, wp, rho2, mu, mu_w, sig, gx, gn):
+    """LADDER dynamics (module docstring) at orientation φ and rate ω with body offsets ``wa`` = w_A, ``wp`` = w_P.
+
+    Returns ``(ω̇, N_A, N_P, D)``: D the determinant of the normal-force block (≤ 0: Painlevé,
+    ``(nan, nan, nan, D)``).
+    """
+    c = math.cos(phi)
+    s = math.sin(phi)
+    rax = c * wa[0] - s * wa[1]
+    ray = s * wa[0] + c * wa[1]
+    rpx = c * wp[0] - s * wp[1]
+    rpy = s * wp[0] + c * wp[1]
+    ms = mu * sig
+    mws = mu_w * sig
+    # unknowns (ω̇, N_A, N_P)
+    a11, a12, a13, b1 = rpy, ms, 1.0, gx - rpx * om * om
+    a21, a22, a23, b2 = -rax, -1.0, mws, -gn - ray * om * om
+    a31, a32, a33, b3 = rho2, -(rax + ms * ray), -(rpy - mws * rpx), 0.0
+    det = a11 * (a22 * a33 - a23 * a32) - a12 * (a21 * a33 - a23 * a31) + a13 * (a21 * a32 - a22 * a31)
+    # frictionless: det = ρ² + r_Ax² + r_Py² > 0; friction that drives det to 0 makes the forces unbounded
+    D = det / rho2
+    if not D > 0.0:
+        return math.nan, math.nan, math.nan, D
+    wd = (b1 * (a22 * a33 - a23 * a32) - a12 * (b2 * a33 - a23 * b3) + a13 * (b2 * a32 - a22 * b3)) / det
+    na = (a11 * (b2 * a33 - a23 * b3) - b1 * (a21 * a33 - a23 * a31) + a13 * (a21 * b3 - b2 * a31)) / det
+    npw = (a11 * (a22 * b3 - b2 * a32) - a12 * (a21 * b3 - b2 * a31) + b1 * (a21 * a32 - a22 * a31)) / det
+    return wd, na, npw, D
+
+
+@njit(cache=True)
+def ladder_pose(phi, w, ja, jp, h, L):
+    """CM (x, y) (m) of the part with vertex ``ja`` on the line y = h and ``jp`` on the face x = L at orientation φ."""
+    c = math.cos(phi)
+    s = math.sin(phi)
+    return L - (c * w[jp, 0] - s * w[jp, 1]), h - (s * w[ja, 0] + c * w[ja, 1])
+
+
+@njit(cache=True)
+def _rk4(phi, om, dt, wa, wp, rho2, mu, mu_w, sig, gx, gn):
+    a1, _n, _m, _d = ladder_rhs(phi, om, wa, wp, rho2, mu, mu_w, sig, gx, gn)
+    a2, _n, _m, _d = ladder_rhs(phi + 0.5 * dt * om, om + 0.5 * dt * a1, wa, wp, rho2, mu, mu_w, sig, gx, gn)
+    w2 = om + 0.5 * dt * a1
+    a3, _n, _m, _d = ladder_rhs(phi + 0.5 * dt * w2, om + 0.5 * dt * a2, wa, wp, rho2, mu, mu_w, sig, gx, gn)
+    w3 = om + 0.5 * dt * a2
+    a4, _n, _m, _d = ladder_rhs(phi + dt * w3, om + dt * a3, wa, wp, rho2, mu, mu_w, sig, gx, gn)
+    w4 = om + dt * a3
+    return (phi + dt * (om + 2.0 * w2 + 2.0 * w3 + w4) / 6.0,
+            om + dt * (a1 + 2.0 * a2 + 2.0 * a3 + a4) / 6.0)
+
+
+@njit(cache=True, inline="always")
+def _advance(s, tau, p):
+    """The RK4 step of length ``tau`` (s) from ``s`` = (φ, ω) (parameters ``p`` of :func:`ladder_phase`)."""
+    w, ja, jp, rho2, mu, mu_w, sig, gx, gn, h, L, top, back, ga, wa, wpv = p
+    return _rk4(s[0], s[1], tau, wa, wpv, rho2, mu, mu_w, sig, gx, gn)
+
+
+@njit(cache=True)
+def _lguard(which, k, s, p):
+    """Value of one LADDER guard (> 0: not fired) at ``s`` = (φ, ω); see :func:`_lguards`."""
+    phi, om = s
+    w, ja, jp, rho2, mu, mu_w, sig, gx, gn, h, L, top, back, ga, wa, wpv = p
+    if which == EV_STOP or which == EV_A_OFF or which == EV_P_OFF:
+        _a, na, npw, _d = ladder_rhs(phi, om, w[ja], w[jp], rho2, mu, mu_w, sig, gx, gn)
+        if which == EV_P_OFF:
+            return cone_guard_value(EV_LIFT_OFF, npw, 0.0, om, sig, mu_w, ga)
+        return cone_guard_value(which, na, 0.0, om, sig, mu, ga)
+    x, y = ladder_pose(phi, w, ja, jp, h, L)
+    c = math.cos(phi)
+    s = math.sin(phi)
+    if which == EV_P_TOP:
+        return h + top - (y + s * w[jp, 0] + c * w[jp, 1])
+    if which == EV_BEHIND:
+        return x + c * w[ja, 0] - s * w[ja, 1] + back
+    if which == EV_LAND or (which == EV_FOOT and k == jp):
+        return y + s * w[k, 0] + c * w[k, 1] - h
+    if which == EV_PLANE or which == EV_FOOT:
+        return L - (x + c * w[k, 0] - s * w[k, 1])
+    return math.nan
+
+
+@njit(cache=True)
+def _lguards(s, p):
+    """Least LADDER guard at ``s`` = (φ, ω): ``(value, which, k)``; ``(-1, EV_INCONSISTENT, -1)`` at D ≤ 0 (Painlevé).
+
+    Guards: A's own as a Coulomb contact (:func:`~.coulomb.cone_guard`: ``a_off`` N_A/|g|, ``stop`` σω, both
+    slips stop together); ``p_off`` N_P/|g|; ``land`` y_k − h (k ≠ A, P); ``plane`` L − x_k (k ≠ A, P);
+    ``foot`` y_P − h or L − x_A; ``p_top`` h + H − y_P; ``behind`` x_A + back.
+    """
+    phi, om = s
+    w, ja, jp, rho2, mu, mu_w, sig, gx, gn, h, L, top, back, ga, wa, wpv = p
+    _a, na, npw, D = ladder_rhs(phi, om, w[ja], w[jp], rho2, mu, mu_w, sig, gx, gn)
+    if not D > 0.0:
+        return -1.0, EV_INCONSISTENT, -1
+    gmin, which = cone_guard(na, 0.0, om, False, sig, mu, ga, True)
+    kk = -1
+    if npw / ga < gmin:
+        gmin = npw / ga
+        which = EV_P_OFF
+    x, y = ladder_pose(phi, w, ja, jp, h, L)
+    c = math.cos(phi)
+    s = math.sin(phi)
+    for k in range(w.shape[0]):
+        xk = x + c * w[k, 0] - s * w[k, 1]
+        yk = y + s * w[k, 0] + c * w[k, 1]
+        if k == jp:
+            if yk - h < gmin:
+                gmin = yk - h
+                which = EV_FOOT
+                kk = k
+            if h + top - yk < gmin:
+                gmin = h + top - yk
+                which = EV_P_TOP
+                kk = k
+        elif k == ja:
+            if L - xk < gmin:
+                gmin = L - xk
+                which = EV_FOOT
+                kk = k
+            if xk + back < gmin:
+                gmin = xk + back
+                which = EV_BEHIND
+                kk = k
+        else:
+            if yk - h < gmin:
+                gmin = yk - h
+                which = EV_LAND
+                kk = k
+            if L - xk < gmin:
+                gmin = L - xk
+                which = EV_PLANE
+                kk = k
+    return gmin, which, kk
+
+
+@njit(cache=True)
+def ladder_phase(phi, om, sig, t, w, ja, jp, rho2, mu, mu_w, gx, gn, h, L, top, back, max_steps, traj, ts):
+    """Mode LADDER from orientation φ and rate ω (slip sense σ = sgn ω) until a guard fires (:func:`_lguards`).
+
+    Returns ``(event, k, φ, ω, t)`` (k: the vertex of ``land``/``plane``/``foot``, else −1).
+    """
+    ga = abs(gx) + gn
+    lmax = 0.0
+    for k in range(w.shape[0]):
+        lmax = max(lmax, math.hypot(w[k, 0], w[k, 1]))
+    om0 = math.sqrt(ga / lmax)
+    wa = w[ja]
+    wpv = w[jp]
+    sample = traj.shape[0] > 0
+    p = (w, ja, jp, rho2, mu, mu_w, sig, gx, gn, h, L, top, back, ga, wa, wpv)
+    for _ in range(max_steps):
+        dt = DTH / (abs(om) + om0)
+        s0 = (phi, om)
+        s1 = _advance(s0, dt, p)
+        gm, which, k = _lguards(s1, p)
+        if which == EV_INCONSISTENT:
+            return EV_INCONSISTENT, -1, phi, om, t
+        step = dt
+        if gm <= 0.0:
+            step, which, k, s1 = locate_guard(_advance, _lguards, _lguard, s0, s1, dt, which, k, t, p)
+        p1, w1 = s1
+        if sample:
+            while ts[1] <= t + step:
+                pq, _wq = _rk4(phi, om, ts[1] - t, wa, wpv, rho2, mu, mu_w, sig, gx, gn)
+                xq, yq = ladder_pose(pq, w, ja, jp, h, L)
+                _put(traj, ts, ts[1], xq, yq, pq)
+                ts[1] += ts[2]
+        phi, om = p1, w1
+        t += step
+        if gm <= 0.0:
+            if which == EV_STOP:
+                om = 0.0
+            if sample:
+                xq, yq = ladder_pose(phi, w, ja, jp, h, L)
+                _put(traj, ts, t, xq, yq, phi)
+            return which, k, phi, om, t
+    return EV_STEP_CAP, -1, phi, om, t

@@ -1,10 +1,10 @@
 """Mode WALL_CONTACT of model "rigid_body": one vertex pressed on the wall's face, the part otherwise free.
 
-After a plastic impact with the wall (:func:`~.wall.wall_hit_in_flight`, or a swinging pivot that
-a pivot that meets the wall, :func:`~.wall_lean.lean`), a vertex P can stay
-pressed on the face x = L: the motion that gravity and the part's rotation impose would carry it
-into the wall (W'' < 0 in :func:`~.wall_contact.wall_departure`). The part then moves with P on
-the face — sliding along it (the wall's Coulomb μ_w, 0 included) or sticking to it — until P lets
+After a plastic impact with the wall (:func:`~.wall.wall_hit_in_flight`, or a swinging pivot
+that meets the wall, :func:`~.wall_lean.lean`), a vertex P can stay pressed on the face x = L:
+the motion that gravity and the part's rotation impose would carry it into the wall (G″ < 0 in
+:func:`~throwmap.kernels.flight.departure_window`, in the face's frame). The part then moves with P
+on the face — sliding along it (the wall's Coulomb μ_w, 0 included) or sticking to it — until P lets
 go (N = 0), another vertex reaches the arm (a landing with P still on the wall), P reaches the
 arm or the wall's top, or another vertex reaches the wall's plane (an edge flush on the face).
 
@@ -30,7 +30,14 @@ gravity's component normal to the wall (g_x) may be of either sign or zero.
 
 Integration: classical RK4 in (y_P, θ, ẏ_P, θ̇), step Δt = DTH/(|θ̇| + Ω), Ω² = (|g_x| + g_n)/ℓ;
 guards checked at step ends and located inside the step by bracketing (false position kept
-inside the bracket, bisection otherwise), as :func:`~.slide._locate_guard`.
+inside the bracket, bisection otherwise; :func:`~.bracket.locate_guard`), the contact's guards those of any
+Coulomb contact (:func:`~.coulomb.cone_guard`).
+
+The automaton enters the mode through :func:`wall_contact`, which follows the sub-mode changes from the
+flight state right after the wall impact to the first event it continues from: P lets go (FLIGHT, P
+excluded from the wall guards for its exact departure window), or another vertex A reaches the arm (the
+automaton then applies the arm's impact, and where that alone would drive P into the wall, the
+two-contact impact of :mod:`.wall_lean`).
 """
 
 import math
@@ -38,10 +45,13 @@ import math
 from numba import njit
 
 from .. import codes as C
-from .modes import DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, N_BISECT
-from .bracket import falsi_point
+from ..flight import departure_window
+from .bracket import locate_guard
+from .coulomb import cone_guard, cone_guard_value
+from .modes import (DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, WC_ARM, WC_CAP, WC_FLIGHT,
+                    WC_INCONSISTENT, WC_REFUSE, WHY_CORNER, WHY_NONE, WHY_WALL_EDGE, WHY_WALL_SLIDE, WHY_WALL_TOP)
 from .trajectory import _put
-from .wall_contact import wall_departure
+from .wall import fill_wall_vertices
 
 EV_ARM = 11
 """Guard ``arm``: a vertex (returned) reaches the arm's line y = h while P is on the face."""
@@ -101,16 +111,21 @@ def _rk4(yp, th, vp, thd, dt, lj, rho2, gx, gn, musig, stick):
     return yp1, th1, vp1, w1
 
 
+@njit(cache=True, inline="always")
+def _advance(s, tau, p):
+    """The RK4 step of length ``tau`` (s) from ``s`` = (y_P, θ, ẏ_P, θ̇) (parameters ``p`` of :func:`wall_phase`)."""
+    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip = p
+    return _rk4(s[0], s[1], s[2], s[3], tau, lj, rho2, gx, gn, musig, stick)
+
+
 @njit(cache=True)
-def _guard_value(which, k, yp, th, vp, thd, lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga):
+def _guard_value(which, k, s, p):
     """One guard's value (> 0: not fired): see :func:`_guards`."""
-    if which == EV_STICK:
-        return sig * vp
-    if which == EV_SLIP or which == EV_LIFT_OFF:
+    yp, th, vp, thd = s
+    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip = p
+    if which == EV_STICK or which == EV_SLIP or which == EV_LIFT_OFF:
         _a, _b, N, F, _D = wall_rhs(th, thd, lj, rho2, gx, gn, musig, stick)
-        if which == EV_LIFT_OFF:
-            return N / ga
-        return (mu_w * N - abs(F)) / ga
+        return cone_guard_value(which, N, F, vp, sig, mu_w, ga)
     if which == EV_TOP:
         return h + top - yp
     if which == EV_ARM:
@@ -121,28 +136,21 @@ def _guard_value(which, k, yp, th, vp, thd, lj, rho2, gx, gn, mu_w, musig, stick
 
 
 @njit(cache=True)
-def _guards(yp, th, vp, thd, lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip):
+def _guards(s, p):
     """Least guard value and which guard (and vertex) it is; ``(-1, EV_INCONSISTENT, -1)`` if D ≤ 0.
 
-    Guards: ``stick`` σ ẏ_P (sliding with μ_w > 0), ``slip`` (μ_w N − |F|)/|g| (sticking, finite μ_w),
-    ``lift_off`` N/|g|, ``top`` h + H − y_P, ``arm`` y_k − h (every vertex but ``arm_skip``; P's own
-    row in ``wv`` has ℓ = 0), ``edge`` L − x_k (every other vertex).
+    Guards: the contact's own (:func:`~.coulomb.cone_guard`: ``lift_off`` N/|g|, ``slip`` (μ_w N − |F|)/|g|
+    while sticking with finite μ_w, ``stick`` σ ẏ_P while sliding with μ_w > 0), ``top`` h + H − y_P,
+    ``arm`` y_k − h (every vertex but ``arm_skip``; P's own row in ``wv`` has ℓ = 0), ``edge`` L − x_k
+    (every other vertex). ``s`` = (y_P, θ, ẏ_P, θ̇), ``p`` the parameters of :func:`wall_phase`.
     """
+    yp, th, vp, thd = s
+    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip = p
     _a, _b, N, F, D = wall_rhs(th, thd, lj, rho2, gx, gn, musig, stick)
     if D <= 0.0:
         return -1.0, EV_INCONSISTENT, -1
-    gmin = N / ga
-    which = EV_LIFT_OFF
+    gmin, which = cone_guard(N, F, vp, stick, sig, mu_w, ga, mu_w > 0.0)
     kk = -1
-    if stick:
-        if math.isfinite(mu_w):
-            v = (mu_w * N - abs(F)) / ga
-            if v < gmin:
-                gmin = v
-                which = EV_SLIP
-    elif mu_w > 0.0 and sig * vp < gmin:
-        gmin = sig * vp
-        which = EV_STICK
     if h + top - yp < gmin:
         gmin = h + top - yp
         which = EV_TOP
@@ -163,53 +171,14 @@ def _guards(yp, th, vp, thd, lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, 
 
 
 @njit(cache=True)
-def _locate(yp, th, vp, thd, dt, which, k, t, lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip):
-    """Smallest step τ ∈ (0, dt] at which the least guard is ≤ 0 (bracket [lo, hi], G(lo) > 0 ≥ G(hi)).
-
-    False position on the guard that fired at hi, kept half the tolerance inside the bracket while the
-    previous step halved it, bisection otherwise; stops at a bracket below 1e-16 (t + τ). Returns
-    ``(τ, which, k)`` at the bracket's upper end.
-    """
-    lo = 0.0
-    hi = dt
-    s_lo = (yp, th, vp, thd)
-    s_hi = _rk4(yp, th, vp, thd, dt, lj, rho2, gx, gn, musig, stick)
-    falsi = True
-    for _ in range(4 * N_BISECT):
-        width = hi - lo
-        tol = 1e-16 * (t + hi)
-        if width <= tol:
-            break
-        mid = lo + 0.5 * width
-        if falsi:
-            c_lo = _guard_value(which, k, s_lo[0], s_lo[1], s_lo[2], s_lo[3], lj, rho2, gx, gn, mu_w, musig, stick,
-                                sig, h, top, wv, ga)
-            c_hi = _guard_value(which, k, s_hi[0], s_hi[1], s_hi[2], s_hi[3], lj, rho2, gx, gn, mu_w, musig, stick,
-                                sig, h, top, wv, ga)
-            mid = falsi_point(lo, hi, tol, c_lo, c_hi)
-        sm = _rk4(yp, th, vp, thd, mid, lj, rho2, gx, gn, musig, stick)
-        gm, wh, km = _guards(sm[0], sm[1], sm[2], sm[3], lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga,
-                             arm_skip)
-        if gm <= 0.0:
-            hi = mid
-            which = wh
-            k = km
-            s_hi = sm
-        else:
-            lo = mid
-            s_lo = sm
-        falsi = hi - lo <= 0.5 * width
-    return hi, which, k
-
-
-@njit(cache=True)
 def wall_phase(yp, th, vp, thd, stick, sig, t, lj, rho2, gx, gn, mu_w, h, top, wv, arm_skip, arm_skip_until, L,
                phi_off, max_steps, traj, ts, rec):
     """Integrate one sub-mode of WALL_CONTACT (``stick``, or sliding with sense ``sig``) until a guard fires.
 
     ``wv`` (n, 2) rows (ℓ_k, δ_k): vertex k at P + ℓ_k (cos(θ + δ_k), sin(θ + δ_k)) (ℓ = 0: P itself,
-    :func:`~.wall_guards.fill_wall_vertices`); ``arm_skip`` a vertex the arm guard ignores until
+    :func:`~.wall.fill_wall_vertices`); ``arm_skip`` a vertex the arm guard ignores until
     ``arm_skip_until`` (s, absolute: a vertex that just left the arm, provably above it meanwhile).
+    Guards located inside a step by :func:`~.bracket.locate_guard`.
     Updates N_MIN (the wall's N/|g| is not the arm's: only MU_MAX), samples ``traj``.
     Returns ``(event, k, y_P, θ, ẏ_P, θ̇, t)`` with k the vertex of ``arm``/``edge`` (else −1).
     """
@@ -221,17 +190,17 @@ def wall_phase(yp, th, vp, thd, stick, sig, t, lj, rho2, gx, gn, mu_w, h, top, w
         rec[C.MU_MAX] = mu_w
     for _ in range(max_steps):
         skip = arm_skip if t < arm_skip_until else -1
+        p = (lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, skip)
         dt = DTH / (abs(thd) + om0)
-        s1 = _rk4(yp, th, vp, thd, dt, lj, rho2, gx, gn, musig, stick)
-        gm, which, k = _guards(s1[0], s1[1], s1[2], s1[3], lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga,
-                               skip)
+        s0 = (yp, th, vp, thd)
+        s1 = _advance(s0, dt, p)
+        gm, which, k = _guards(s1, p)
         if which == EV_INCONSISTENT:
             return EV_INCONSISTENT, -1, yp, th, vp, thd, t
         step = dt
         if gm <= 0.0:
-            step, which, k = _locate(yp, th, vp, thd, dt, which, k, t, lj, rho2, gx, gn, mu_w, musig, stick, sig, h,
-                                     top, wv, ga, skip)
-            s1 = _rk4(yp, th, vp, thd, step, lj, rho2, gx, gn, musig, stick)
+            step, which, k, _s = locate_guard(_advance, _guards, _guard_value, s0, s1, dt, which, k, t, p)
+            s1 = _advance(s0, step, p)
         if sample:
             while ts[1] <= t + step:
                 q = _rk4(yp, th, vp, thd, ts[1] - t, lj, rho2, gx, gn, musig, stick)
@@ -255,7 +224,7 @@ def wall_select(th, thd, vp, lj, rho2, gx, gn, mu_w, from_slip):
     contact is not pressed: N ≤ 0 — the caller lets it go) or −2 (no consistent motion).
     μ_w = 0 always slides; μ_w = ∞ sticks (ẏ_P is 0 after its impact). Where neither sticking (|F| > μ_w N) nor
     sliding (N ≤ 0 in the sense friction allows) keeps the vertex pressed, it lets go (−1) if the free motion
-    leaves the face (:func:`~.wall_contact.wall_departure` > 0), as the arm's contact-mode selection does."""
+    leaves the face (:func:`~throwmap.kernels.flight.departure_window` > 0), as the arm's contact-mode selection does."""
     if mu_w == 0.0:
         _a, _b, N, _f, D = wall_rhs(th, thd, lj, rho2, gx, gn, 0.0, False)
         if D <= 0.0:
@@ -286,6 +255,89 @@ def wall_select(th, thd, vp, lj, rho2, gx, gn, mu_w, from_slip):
     # neither sticking nor sliding keeps it pressed: it lets go if the free motion leaves the face
     c = math.cos(th)
     s = math.sin(th)
-    if wall_departure(0.0, -lj * c, -lj * s, thd, gx, -gn, lj) > 0.0:
+    if departure_window(-lj * s, lj * c, thd, gx, lj, abs(gx) + gn) > 0.0:
         return -1, 0.0
     return -2, 0.0
+
+
+@njit(cache=True)
+def wall_contact(j, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, arm_skip, arm_skip_until, max_steps,
+                 max_events, wv, traj, ts, rec):
+    """Mode WALL_CONTACT from the flight state (CM (x, y), velocity (v_x, v_y), φ, ω; SI) with vertex ``j``
+    (body offsets ``w``) on the face x = ``L`` after a plastic impact.
+
+    Sub-modes slide/stick (:func:`wall_select`, :func:`wall_phase`) until:
+    ``lift_off`` (N = 0): FLIGHT, with the departure window of P; ``arm``: vertex k reaches the arm
+    (WC_ARM, the caller applies the landing; k = j, P at the wall's foot, is refused: WHY_CORNER);
+    ``top``: WHY_WALL_TOP; ``edge``: WHY_WALL_EDGE; Painlevé (D ≤ 0) or no consistent sub-mode:
+    WC_INCONSISTENT; ``max_steps`` steps in one sub-mode or ``max_events`` sub-mode changes: WC_CAP.
+    ``wv`` (n, 2) is scratch. Returns ``(outcome, k, t, x, y, v_x, v_y, φ, ω, r_x, r_y, window, why)``:
+    the flight state at the event, (r_x, r_y) the CM → vertex k offset (WC_ARM), ``window`` (s) P's
+    departure window (WC_FLIGHT), ``why`` the reason of WC_REFUSE.
+    """
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    rx = cp * w[j, 0] - sp * w[j, 1]
+    ry = sp * w[j, 0] + cp * w[j, 1]
+    lj = math.hypot(rx, ry)
+    th = math.atan2(-ry, -rx)
+    phi_off = phi - th
+    yp = y + ry
+    vp = vy + om * rx
+    thd = om
+    fill_wall_vertices(th, phi, w, j, wv)
+    from_slip = False
+    ev = EV_LIFT_OFF
+    k = -1
+    for _ in range(max_events):
+        mode, sig = wall_select(th, thd, vp, lj, rho2, gx, gn, mu_w, from_slip)
+        if mode == -2:
+            return _out(WC_INCONSISTENT, -1, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_NONE)
+        if mode == -1:
+            ev = EV_LIFT_OFF
+            break
+        ev, k, yp, th, vp, thd, t = wall_phase(yp, th, vp, thd, mode == W_STICK, sig, t, lj, rho2, gx, gn, mu_w, h,
+                                               top, wv, arm_skip, arm_skip_until, L, phi_off, max_steps, traj, ts, rec)
+        if ev == EV_STICK:
+            from_slip = False
+            continue
+        if ev == EV_SLIP:
+            from_slip = True
+            continue
+        break
+    else:
+        return _out(WC_CAP, -1, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_NONE)
+    if ev == EV_LIFT_OFF:
+        c = math.cos(th)
+        s = math.sin(th)
+        win = departure_window(-lj * s, lj * c, thd, gx, lj, abs(gx) + gn)
+        if win <= 0.0:  # N = 0 with no strict departure: a tangency this mode cannot resolve
+            return _out(WC_REFUSE, -1, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_WALL_SLIDE)
+        return _out(WC_FLIGHT, -1, t, L, yp, th, vp, thd, lj, phi_off, w, win, WHY_NONE)
+    if ev == EV_ARM:
+        if k == j:
+            return _out(WC_REFUSE, -1, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_CORNER)
+        return _out(WC_ARM, k, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_NONE)
+    if ev == EV_TOP:
+        return _out(WC_REFUSE, -1, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_WALL_TOP)
+    if ev == EV_EDGE:
+        return _out(WC_REFUSE, -1, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_WALL_EDGE)
+    if ev == EV_INCONSISTENT:
+        return _out(WC_INCONSISTENT, -1, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_NONE)
+    return _out(WC_CAP, -1, t, L, yp, th, vp, thd, lj, phi_off, w, 0.0, WHY_NONE)  # EV_STEP_CAP
+
+
+@njit(cache=True)
+def _out(res, k, t, L, yp, th, vp, thd, lj, phi_off, w, win, why):
+    """The flight state of P on the face at (y_P, θ, ẏ_P, θ̇), and vertex k's offset from the CM."""
+    c = math.cos(th)
+    s = math.sin(th)
+    phi = th + phi_off
+    rx = 0.0
+    ry = 0.0
+    if k >= 0:
+        cp = math.cos(phi)
+        sp = math.sin(phi)
+        rx = cp * w[k, 0] - sp * w[k, 1]
+        ry = sp * w[k, 0] + cp * w[k, 1]
+    return (res, k, t, L + lj * c, yp + lj * s, -lj * s * thd, vp + lj * c * thd, phi, thd, rx, ry, win, why)

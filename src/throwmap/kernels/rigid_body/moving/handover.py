@@ -10,11 +10,11 @@ at α hands the state to the validated static automaton (:mod:`throwmap.kernels.
   the automaton selects stick / slide / lift as after an impact;
 * FLAT sticking at rest → :func:`~..automaton.throw_one_rigid_body` with ω = 0 (rest, or the tip of
   an unstable side, exactly as a throw with ω = 0);
-* FLAT sliding → the static flat slide (:func:`~..tilt.settle` on a tilted arm, :func:`~..landing.slide_away`
-  at μ = 0, else :func:`~..landing.flat_slide` and :func:`~..landing.rest`), as ``land_side`` ends a landing.
+* FLAT sliding → the static flat slide (:func:`~..flat.settle` on a tilted arm, :func:`~..flat.slide_away`
+  at μ = 0, else :func:`~..flat.flat_slide` and :func:`~..flat.rest`), as ``land_side`` ends a landing.
 
 What the handover cannot take ends the throw as status UNRESOLVED with a reason (record WHY,
-:data:`~..wall_contact.WHY_MESSAGES`); the moving phase's own terminal statuses (BEHIND_JOINT,
+:data:`~..modes.WHY_MESSAGES`); the moving phase's own terminal statuses (BEHIND_JOINT,
 OFF_END, INCONSISTENT) are returned as they are. Records: the static automaton's, with the moving
 phase's impacts, lift-offs and slips added to N_IMPACTS, N_LIFTOFFS, N_SLIPS; T_REST is from t = 0.
 """
@@ -28,8 +28,7 @@ import numpy as np
 from ... import codes as C
 from ...rows import start_record
 from ..automaton import throw_from_state, throw_one_rigid_body
-from ..landing import flat_slide, rest, slide_away
-from ..tilt import settle
+from ..flat import flat_slide, rest, settle, slide_away
 from ..trajectory import clear
 from .dynamics import Body, offsets
 from .phase import Phase, run_phase
@@ -93,8 +92,8 @@ def throw_moving(part, arm, x0, side, realisation, *, alpha=0.0, law=0, stable=N
 
 
 def _flat_slide(part, arm, p, alpha, length, rec):
-    """A side sliding flat on the arm at rest: :func:`~..tilt.settle` (α ≠ 0), :func:`~..landing.slide_away` (μ = 0,
-    for ever) or :func:`~..landing.flat_slide` and :func:`~..landing.rest`, as land_side ends a landing."""
+    """A side sliding flat on the arm at rest: :func:`~..flat.settle` (α ≠ 0), :func:`~..flat.slide_away` (μ = 0,
+    for ever) or :func:`~..flat.flat_slide` and :func:`~..flat.rest`, as land_side ends a landing."""
     start_record(rec)
     traj = np.empty((0, 4))
     ts = np.zeros(3)
