@@ -124,9 +124,15 @@ def test_every_title_names_part_h_omega_and_model(name):
 
 
 def test_orbit_title_says_what_it_was_not_told():
-    """Without the arm the orbit cannot know h: the title says so rather than leaving it out."""
-    fig = tm.iterate(PART, ARM, (0.12, 0), 4.0, n=3, model="paper").plot(part=PART)
-    assert "h = ?" in _titles(fig)
+    """An orbit remembers its part and arm; one that was not told them (built by hand) says so in its title
+    rather than leaving them out."""
+    import dataclasses
+
+    orbit = tm.iterate(PART, ARM, (0.12, 0), 4.0, n=3, model="paper")
+    assert "h = -0.01 m" in _titles(orbit.plot())
+    bare = dataclasses.replace(orbit, part=None, arm=None)
+    assert "h = ?" in _titles(bare.plot(part=PART))
+    assert "part ?" in _titles(bare.plot())
 
 
 def test_weighted_and_plain_parts_get_different_titles():
