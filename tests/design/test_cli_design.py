@@ -13,9 +13,9 @@ from throwmap.design.examples import feeder_design
 
 runner = CliRunner()
 PNG = b"\x89PNG\r\n\x1a\n"
-POINTS = ["design", "points", "--part", "triangle", "--h", "-0.01", "--length", "0.6", "--omega", "5",
-          "--weight-mass", "0.03", "--weight-at", "0.03,0.03", "--target", "0=0.30", "--target", "1=0.15",
-          "--target", "2=0.15"]
+POINTS = ["design", "points", "--part", "triangle", "--h", "-0.01", "--length", "0.6", "--omega", "4",
+          "--weight-mass", "0.03", "--weight-at", "0.03,0.03", "--target", "0=0.40", "--target", "1=0.25",
+          "--target", "2=0.25"]
 
 
 def test_points_json_and_plot(tmp_path):
@@ -25,7 +25,7 @@ def test_points_json_and_plot(tmp_path):
     doc = json.loads(res.stdout)
     assert doc["success"] is True
     assert doc["jacobian"]["rank"] == 3
-    for s, v in {"0": 0.30, "1": 0.15, "2": 0.15}.items():
+    for s, v in {"0": 0.40, "1": 0.25, "2": 0.25}.items():
         assert abs(doc["achieved_r_m"][s] - v) <= 1e-4
     assert out.read_bytes().startswith(PNG)
 
@@ -34,6 +34,16 @@ def test_points_table():
     res = runner.invoke(app, POINTS)
     assert res.exit_code == 0, res.output
     assert "success: reached" in res.stdout and "rank 3 → 3 of 3" in res.stdout
+
+
+def test_points_that_feed_nothing_exit_1():
+    # the critical points are hit, but at that ω every orbit escapes: not a design
+    escaping = POINTS[:8] + ["--omega", "5", "--weight-mass", "0.03", "--weight-at", "0.03,0.03",
+                             "--target", "0=0.30", "--target", "1=0.15", "--target", "2=0.15"]
+    res = runner.invoke(app, escaping + ["--json"])
+    assert res.exit_code == 1, res.output
+    doc = json.loads(res.stdout)
+    assert doc["success"] is False and doc["targets_reached"] is True and "every orbit escapes" in doc["limit_set"]
 
 
 def test_points_not_reached_exits_1():

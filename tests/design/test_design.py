@@ -26,7 +26,10 @@ def result():
 
 def test_contract(result):
     assert isinstance(result, DesignResult)
-    assert result.success, result.message
+    assert result.targets_reached, result.message
+    # the draft-style targets are hit where every orbit escapes behind the joint: no limit set, no success
+    assert not result.success and "feeds nothing" in result.message
+    assert "every orbit escapes" in result.limit_set_note
     assert set(result.achieved) == set(TARGET)
     for s, r in TARGET.items():
         assert abs(result.achieved[s] - r) <= 1e-4
@@ -109,12 +112,12 @@ def test_energy_test_agrees_with_the_small_angle_model():
 def test_small_angle_design_is_a_fast_first_guess_that_misses_on_the_exact_map():
     res = design(PLATE, ARM, 5.6, {0: 0.20, 1: 0.10, 2: 0.10}, weight_mass=0.115, weight_at=(0.008, 0.0378),
                  model=SMALL_ANGLE_F)
-    assert res.success, res.message
+    assert res.targets_reached, res.message
     r = exact_r(res.part, ARM, res.omega).r
     miss = max(abs(r[s] - v) for s, v in {0: 0.20, 1: 0.10, 2: 0.10}.items())
     assert miss > 0.005  # centimetres off on the exact model
     fin = design(PLATE, ARM, res.omega, {0: 0.20, 1: 0.10, 2: 0.10}, weight_mass=0.115, weight_at=res.weight_at)
-    assert fin.success and fin.n_steps <= res.n_steps + 3
+    assert fin.targets_reached and fin.n_steps <= res.n_steps + 3
 
 
 def test_separation_target_on_the_limit_set():
@@ -156,7 +159,7 @@ def test_wall_window_target_widens_the_end_wall_window():
 def test_weight_mass_and_omega_vary():
     res = design(PLATE, ARM, 5.0, {0: 0.31, 2: 0.20}, weight_mass=0.02, weight_at=(0.02, 0.02),
                  vary=("weight_mass", "omega"))
-    assert res.success, res.message
+    assert res.targets_reached, res.message
     assert res.part.mass == pytest.approx(PLATE.mass + res.weight_mass)
     assert res.weight_mass != 0.02 and res.jacobian_rank == 2
 

@@ -23,7 +23,7 @@ from ..system.part import Part
 from .result import DesignResult, DesignStep
 from .small_angle import energy_critical_points
 from .solver import LMSettings, damped_lm
-from .space import DEFAULT_STEPS, DesignSpace
+from .space import DEFAULT_STEPS, PARAMETERS, DesignSpace
 from .targets import Evaluation, Separation, Target, WallWindow, as_targets, evaluate
 
 __all__ = ["design", "design_critical_points", "SpaceOptions", "SolveOptions", "SMALL_ANGLE_F", "DEFAULT_MARGIN", "DEFAULT_TOL"]
@@ -98,6 +98,36 @@ class SolveOptions:
     limit_options: dict | None = None
 
 
+MAX_ESCAPE = 0.10
+"""A design succeeds only if its limit set holds the part on the arm: at most this share of the starts over the
+searched range may escape (behind the joint or off the end) — a limit set that does not exist feeds nothing."""
+MAX_WEIGHT = 10.0
+"""The heaviest lead weight a design takes, kg (a heavier one is a unit slip: grams typed as kg)."""
+N_GRID_RANGE = (8, 100_000)
+"""The critical points' grid per side a design accepts (:func:`~throwmap.analysis.critical_points`)."""
+
+
+def _holds_on_arm(st, model, reach, limit_options) -> tuple[bool, str]:
+    """Whether the designed part keeps a limit set on the arm over the starts ``0 < x ≤ reach`` (m): at least one
+    attractor, and at most :data:`MAX_ESCAPE` of the starts escaping. Returns ``(holds, what the limit set is)``."""
+    from ..analysis.limitset import limit_set
+
+    ls_model = "rigid_body" if model == SMALL_ANGLE_F else model
+    opts = {"n_starts": 32, "rng": 0, **dict(limit_options or {})}
+    try:
+        ls = limit_set(st.part, st.arm, st.omega, ls_model, x_max=reach, **opts)
+    except ThrowmapError as err:
+        return False, f"its limit set could not be found ({err})"
+    escaped = float(sum(ls.escapes.values()))
+    fates = ", ".join(f"{k} {100 * v:.1f} %" for k, v in ls.escapes.items()) or "none"
+    if not ls.attractors:
+        return False, f"no attractor on the arm: every orbit escapes ({fates} of the starts, x ≤ {reach:g} m)"
+    if escaped > MAX_ESCAPE:
+        return False, (f"{100 * escaped:.1f} % of the starts escape ({fates}, x ≤ {reach:g} m; at most "
+                       f"{100 * MAX_ESCAPE:.0f} % may)")
+    return True, f"{len(ls.attractors)} attractor(s) on the arm, escapes {fates} (x ≤ {reach:g} m)"
+
+
 def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 0.0, weight_at=None,
            vary=("weight_x", "weight_y", "omega"), model: str = "rigid_body", alpha=None,
            space: SpaceOptions = SpaceOptions(), solve: SolveOptions = SolveOptions()) -> DesignResult:
@@ -133,7 +163,9 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         (:class:`SolveOptions`).
 
     Returns a :class:`~throwmap.design.result.DesignResult`; ``success`` False with a
-    ``message`` when the targets are not reached. Raises only on invalid input.
+    ``message`` when the targets are not reached, or when they are but the designed part keeps no limit set
+    on the arm (no attractor, or more than :data:`MAX_ESCAPE` of the starts over the searched range escape:
+    a limit set that does not exist feeds nothing). Raises only on invalid input.
     """
     if not isinstance(plate, Part):
         raise InvalidStateError("part", f"must be a Part, got {type(plate).__name__}")
@@ -159,6 +191,23 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         raise InvalidStateError("tol", f"tol and xtol must be > 0, got {tol}, {xtol}")
     if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
         raise InvalidStateError("max_iter", f"must be an integer ≥ 1, got {shown(max_iter)}")
+    lo_g, hi_g = N_GRID_RANGE
+    if isinstance(n_grid, bool) or not isinstance(n_grid, (int, np.integer)) or not lo_g <= n_grid <= hi_g:
+        raise InvalidStateError("n_grid", f"must be an integer from {lo_g} to {hi_g:,} (grid points per side), "
+                                          f"got {shown(n_grid)}")
+    if x_max is not None:
+        x_max = _check_float("x_max", x_max)
+        if not x_max > 0:
+            raise InvalidStateError("x_max", f"must be > 0 m, got {x_max}")
+        if arm.length is not None and x_max > arm.length:
+            raise InvalidStateError("x_max", f"{x_max:g} m is beyond the arm's end at {arm.length:g} m")
+    if weight_mass > MAX_WEIGHT:
+        raise InvalidStateError("weight_mass", f"{weight_mass:g} kg is over {MAX_WEIGHT:g} kg: give the lead weight "
+                                               f"in kg (30 g is 0.03)")
+    unknown = sorted(set(dict(bounds or {})) - set(PARAMETERS))
+    if unknown:
+        raise InvalidStateError("bounds", f"unknown parameter {unknown[0]!r} (bounds are given for "
+                                          f"{', '.join(PARAMETERS)})")
     targets = as_targets(target)
     start = {"weight_x": wx, "weight_y": wy, "weight_mass": weight_mass, "omega": omega, "h": arm.h,
              "alpha": None if alpha is None else _check_float("alpha", alpha)}
@@ -220,8 +269,16 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
     jac = rep.jacobian_end
     j0 = rep.jacobian_start
     v = st.values
+    success, message, what = bool(rep.success), rep.message, ""
+    if success:
+        reach = x_max if x_max is not None else (st.arm.length if st.arm.length is not None else 0.6)
+        holds, what = _holds_on_arm(st, model, reach, limit_options)
+        if not holds:
+            success, message = False, f"targets reached, but the design feeds nothing: {what}"
+        else:
+            message = f"{message}; limit set: {what}"
     return DesignResult(
-        success=bool(rep.success), message=rep.message, part=st.part, arm=st.arm, omega=st.omega,
+        success=success, message=message, part=st.part, arm=st.arm, omega=st.omega,
         weight_at=(v["weight_x"], v["weight_y"]), weight_mass=v["weight_mass"], alpha=v.get("alpha"),
         achieved={t.side: final.achieved[t.label] for t in targets if isinstance(t, Target) and t.kind == "r"},
         features=dict(final.achieved), targets=targets, vary=space.vary,
@@ -231,7 +288,8 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         jacobian=jac.matrix if jac else np.zeros((len(labels), len(space.vary))),
         singular_values=jac.singular_values if jac else (), rank_tol=jac.rank_tol if jac else math.nan,
         scales={k: space.scales[k] for k in space.vary}, history=tuple(hist), model=model, tol=tol, xtol=xtol,
-        n_evaluations=len(cache), margin=space.margin, x_max=x_max)
+        n_evaluations=len(cache), margin=space.margin, x_max=x_max, targets_reached=bool(rep.success),
+        limit_set_note=what)
 
 
 def _step(space, p, st, ev, targets, labels, residual, norm, hits) -> DesignStep:

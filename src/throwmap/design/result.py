@@ -115,6 +115,10 @@ class DesignResult:
     n_evaluations: int
     margin: float
     x_max: float | None
+    targets_reached: bool = False
+    """The solver hit every target within ``tol`` (``success`` also needs the limit set on the arm)."""
+    limit_set_note: str = ""
+    """What the designed part's limit set is over the searched starts (attractors, escapes), when checked."""
 
     def __repr__(self) -> str:
         ach = ", ".join(f"{k}: {100 * v:.3f}" for k, v in self.features.items())
@@ -176,6 +180,7 @@ class DesignResult:
 
         return {
             "success": self.success, "message": self.message, "model": self.model,
+            "targets_reached": self.targets_reached, "limit_set": self.limit_set_note,
             "part": {"name": self.part.name, "vertices_m": [list(v) for v in self.part.vertices],
                      "mass_kg": self.part.mass, "com_m": list(self.part.com),
                      "radius_of_gyration_m": self.part.radius_of_gyration,

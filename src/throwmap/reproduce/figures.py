@@ -112,7 +112,10 @@ def capture(path, size, ctx) -> dict:
     d = evaluate_cavity(build_design(cfg), verify=True)
     _save(d.plot(), path)
     doc = d.to_dict()
-    return {"numbers": {"success": bool(d.success)}, "parameters": {k: doc[k] for k in list(doc)[:12]}}
+    out = {"numbers": {"success": bool(d.success)}, "parameters": {k: doc[k] for k in list(doc)[:12]}}
+    if not d.success:
+        out["failure"] = str(getattr(d, "message", "") or doc.get("message", "") or "no engine capture")
+    return out
 
 
 def lean(path, size, ctx) -> dict:
@@ -162,8 +165,10 @@ def assembly_episode(path, size, ctx) -> dict:
 def assembly_snapshots(path, size, ctx) -> dict:
     ep = _episode(ctx)
     _save(ep.plot_snapshots(), path)
-    return {"numbers": {"snapshots": [[label, int(ep.throw_no[r])] for label, r in ep.snapshot_runs()]},
-            "parameters": {"seed": ep.seed, "index": ep.index}}
+    shots = [[label, int(ep.throw_no[r])] for label, r in ep.snapshot_runs()]
+    drawn = ", ".join(f"{label} (throw {k})" for label, k in shots) or "no snapshot"
+    return {"numbers": {"snapshots": shots}, "parameters": {"seed": ep.seed, "index": ep.index},
+            "caption": f"The same trial, {len(shots)} panel{'s' if len(shots) != 1 else ''}: the pair {drawn}."}
 
 
 MAKERS = {"throw_map": throw_map, "funnels": funnels, "limit_set": limit_set, "position_episode": position_episode,

@@ -82,6 +82,11 @@ def _figure(spec, out: Path, size, ctx) -> dict:
     try:
         got = MAKERS[spec.maker](path, size, ctx)
         row["numbers"], row["parameters"] = got.get("numbers", {}), got.get("parameters", {})
+        if got.get("caption"):  # a caption that depends on what was drawn comes from the result
+            row["caption"] = got["caption"]
+        if row["numbers"].get("success") is False:  # the figure shows a result that failed: a failed piece
+            row["error"] = "its result failed (success: false)" + (f": {got['failure']}" if got.get("failure") else "")
+            row["caption"] = "Not reproduced — the result failed. " + row["caption"]
     except Exception as err:  # noqa: BLE001 - reported in the report, never dropped
         row["error"], row["file"] = _one_line(err), None
     row["seconds"] = time.perf_counter() - t0
