@@ -232,3 +232,10 @@ def test_the_result_has_to_dict_like_every_result(tmp_path):
 
     r = run_experiment("settle", {"part": "triangle"}, n=2, seed=1, workers=1, out=tmp_path)
     assert r.to_dict() == r.to_json() and r.to_dict()["n"] == 2
+
+
+def test_a_shorter_rerun_keeps_exactly_its_first_n_stored_trials(tmp_path, reference):
+    run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
+    short = run_experiment("settle", CFG, n=5, seed=7, workers=1, out=tmp_path)
+    assert short.n == 5 and short.resumed == 5 and [t.index for t in short.trials] == [0, 1, 2, 3, 4]
+    assert short.trials == reference.trials[:5]

@@ -21,7 +21,7 @@ from throwmap.kernels.rigid_body.wall_statics import cone_contains, contacts_can
 from throwmap.system.catalogue import rectangle, triangle_30_60_90
 
 G = 9.81
-finite = dict(allow_nan=False, allow_infinity=False)
+finite = dict(allow_nan=False, allow_infinity=False, allow_subnormal=False)  # offsets of 1e-308 m are not a part
 
 
 def wall_impact(vx, vy, w, rx, ry, rho2, mu_w, law):
