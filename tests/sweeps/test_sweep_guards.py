@@ -108,3 +108,15 @@ def test_ctrl_c_exits_quietly(tmp_path):
     assert proc.returncode == 130, (proc.returncode, stderr)
     lines = stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("interrupted: ") and "rerun to resume" in lines[0], stderr
+
+
+@pytest.mark.parametrize("address", ["tcp://127.0.0.1:9", "tcp://127.0.0.1:99999"])
+def test_an_unreachable_scheduler_fails_before_the_out_folder_is_written(tmp_path, address):
+    f = tmp_path / "s.toml"
+    f.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nx = [0.1, 0.2]\n')
+    res = subprocess.run([str(BIN / "throwmap"), "sweep", str(f), "--out", str(tmp_path / "o"), "--scheduler",
+                          address, "--connect-timeout", "2"], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 2, res.stderr
+    assert res.stderr.startswith("error: scheduler: cannot connect to"), res.stderr
+    assert len(res.stderr.strip().splitlines()) == 1, res.stderr
+    assert not (tmp_path / "o").exists()

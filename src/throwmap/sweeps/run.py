@@ -223,11 +223,18 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
         raise InvalidStateError("stop_after", f"must be an integer ≥ 1, got {shown(stop_after)}")
     if isinstance(connect_timeout, bool) or not isinstance(connect_timeout, (int, float)) or not connect_timeout > 0:
         raise InvalidStateError("connect_timeout", f"must be a number of seconds > 0, got {shown(connect_timeout)}")
+    early = None
     if scheduler is not None and client is None:
         _check_address(scheduler)  # before ``out`` is created
+        early = _client(scheduler, workers, connect_timeout)  # an unreachable scheduler fails before out is written
     t0 = time.perf_counter()
     out = Path(out)
-    design, columns, done = _plan(spec, out)
+    try:
+        design, columns, done = _plan(spec, out)
+    except BaseException:
+        if early is not None:
+            early[0].close()
+        raise
     rows_before = count_rows(out)
     todo = [c for c in range(design.n_chunks) if c not in done]
     digest = spec_hash(spec)
@@ -236,13 +243,15 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
         progress(n_done, design.n_points)
     computed = chunks = n_workers = 0
     where = "local" if scheduler is None and client is None else (scheduler or "client")
+    if not todo and early is not None:
+        early[0].close()
     if todo:
         from distributed import as_completed
 
         own = client is None
         cluster = None
         if own:
-            client, cluster = _client(scheduler, workers, connect_timeout)
+            client, cluster = early if early is not None else _client(scheduler, workers, connect_timeout)
         try:
             if client.scheduler is not None and where == "client":
                 where = client.scheduler.address
