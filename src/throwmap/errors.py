@@ -6,6 +6,7 @@ breaks, as ``"<field>: <reason>"``; the CLI prints exactly that line and exits 2
 
 from __future__ import annotations
 
+import math
 import re
 
 __all__ = [
@@ -101,3 +102,27 @@ class ThrowmapWarning(UserWarning):
 
 class RegimeWarning(ThrowmapWarning):
     """The arm is outside the paper's regime 0 > h > -min_i d_i (Sec. III-D)."""
+
+
+class ScaleWarning(ThrowmapWarning):
+    """A value far outside what a hand-sized part on a one-joint arm has: most likely a unit slip (cm for m,
+    g for kg, degrees for rad, deg/s for rad/s). The value is used as given."""
+
+
+SCALES = {"length": (2.0, "m", "cm typed as m?"), "mass": (10.0, "kg", "g typed as kg?"),
+          "omega": (30.0, "rad/s", "deg/s or rpm typed as rad/s?"), "alpha": (math.radians(60.0), "rad",
+                                                                              "degrees typed as rad? write e.g. 10deg")}
+"""Plausible magnitudes: a value above these (in SI) gets a :class:`ScaleWarning` naming the field."""
+
+
+def warn_scale(field: str, value: float, kind: str) -> None:
+    """Warn (:class:`ScaleWarning`) when ``|value|`` exceeds the plausible magnitude of ``kind`` (:data:`SCALES`)."""
+    limit, unit, hint = SCALES[kind]
+    try:
+        big = abs(float(value)) > limit
+    except (TypeError, ValueError):
+        return
+    if big:
+        import warnings
+
+        warnings.warn(f"{field} = {float(value):g} {unit} is over {limit:g} {unit}: {hint}", ScaleWarning, stacklevel=3)

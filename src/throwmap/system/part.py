@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InvalidPartError, InvalidStateError, shown
+from ..errors import InvalidPartError, InvalidStateError, shown, warn_scale
 from .geometry import (
     as_finite_array,
     check_convex_polygon,
@@ -120,6 +120,8 @@ class Part:
         rho = self.radius_of_gyration
         if not (math.isfinite(rho) and rho > 0):
             raise InvalidPartError("part.radius_of_gyration", f"must be a positive finite number, got {rho}")
+        warn_scale("part.vertices", float(np.max(np.abs(v))), "length")
+        warn_scale("part.mass", self.mass, "mass")
         idx = clockwise_order(v)
         w = v[idx] - c[None, :]
         tab = side_table(w)

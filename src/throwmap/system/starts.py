@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from ..errors import InvalidStateError, shown
+from ..errors import InvalidStateError, shown, warn_scale
 from .arm import Arm
 from .part import Part
 
@@ -35,6 +35,7 @@ def check_omega(omega, field: str = "omega") -> float:
     w = _check_scalar(omega, field)
     if w < 0:
         raise InvalidStateError(field, f"must be ≥ 0 (the arm throws upward), got {w}")
+    warn_scale(field, w, "omega")
     return w
 
 
@@ -81,6 +82,7 @@ def check_start(part: Part, arm: Arm, x: float, side: int, omega: float) -> tupl
         raise InvalidStateError("arm", f"must be an Arm, got {type(arm).__name__}")
     k = part.check_side(side)
     x = _check_scalar(x, "x")
+    warn_scale("x", x, "length")
     omega = check_omega(omega)
     if not x + float(part.uL[k]) > -arm.back:
         x_min = -float(part.uL[k]) - arm.back

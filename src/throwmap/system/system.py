@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..errors import InvalidStateError, shown
+from ..errors import InvalidStateError, shown, warn_scale
 from .arm import Arm
 from .fixtures import Cavity, Wall
 
@@ -25,7 +25,9 @@ def check_alpha(value, field: str = "alpha") -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise InvalidStateError(field, f"must be a finite angle in rad, got {shown(value)}")
     if not abs(value) < 0.5 * math.pi:
-        raise InvalidStateError(field, f"must be an angle with |α| < π/2 rad (the arm below vertical), got {value}")
+        raise InvalidStateError(field, f"must be an angle with |α| < π/2 rad (the arm below vertical), got {value} "
+                                       f"(= {math.degrees(value):.4g}°; for degrees write e.g. {value:g}deg)")
+    warn_scale(field, value, "alpha")
     return float(value)
 
 
