@@ -189,3 +189,9 @@ def test_cli_compare_force_runs():
 def test_cli_validate_refused(n, tmp_path):
     _refused(["validate", "--n", n, "--out", str(tmp_path / "v")], "n")
     assert not (tmp_path / "v").exists()
+
+
+def test_the_suite_has_a_per_test_timeout(request):
+    """A hang (an uncapped search) fails its test instead of stalling CI: pytest-timeout with a stated limit."""
+    assert request.config.pluginmanager.hasplugin("timeout")
+    assert float(request.config.getini("timeout")) == 900.0
