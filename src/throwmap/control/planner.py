@@ -29,6 +29,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, ThrowmapError, shown
 from ..models import DEFAULT_MODEL
+from ..models._checks import finite_float
 from .inverse import ESCAPES, inverse_jog, realisation_factory
 
 __all__ = ["Plan", "PlanStep", "Reachability", "plan_throws", "reachability"]
@@ -96,12 +97,6 @@ def _rest_check(part, arm, x_f: float, side_f: int) -> tuple[bool, str]:
     return True, ""
 
 
-def _finite(value, name: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) or not math.isfinite(value):
-        raise InvalidStateError(name, f"must be a finite number, got {shown(value)}")
-    return float(value)
-
-
 def check_rates(omegas, field: str = "omegas") -> tuple:
     """Release rates (rad/s) as a tuple of floats: one number or a sequence, each finite and > 0 (a throw at
     ω = 0 does not move the part); else :class:`~throwmap.errors.InvalidStateError` on ``field``."""
@@ -121,7 +116,7 @@ def _x_range(arm, x_max) -> float:
     finite, > 0 and on the arm."""
     if x_max is None:
         return 0.6 if arm.length is None else float(arm.length)
-    xm = _finite(x_max, "x_max")
+    xm = finite_float(x_max, "x_max")
     if xm <= 0:
         raise InvalidStateError("x_max", f"must be > 0 m (the far end of the starts searched), got {xm}")
     if arm.length is not None and xm > arm.length:
@@ -141,7 +136,7 @@ def reachability(part, arm, x_f: float, side_f: int, omegas, model: str = DEFAUL
     factory = realisation_factory(realisation)
 
     side_f = part.check_side(side_f, field="side_f")
-    x_f = _finite(x_f, "x_f")
+    x_f = finite_float(x_f, "x_f")
     omegas = check_rates(omegas)
     xm = _x_range(arm, x_max)
     ok, why = _rest_check(part, arm, x_f, side_f)
@@ -227,7 +222,7 @@ def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, om
     side0 = part.check_side(side0, field="side0")
     side_f = part.check_side(side_f, field="side_f")
     for value, name in ((x0, "x0"), (x_f, "x_f"), (tol, "tol"), (jog_omega_max, "jog_omega_max")):
-        _finite(value, name)
+        finite_float(value, name)
     if tol <= 0:
         raise InvalidStateError("tol", f"must be > 0 m (the final |x − x_f|), got {tol}")
     if jog_omega_max <= 0:

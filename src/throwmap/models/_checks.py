@@ -4,7 +4,16 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..errors import InvalidStateError, shown
+
+
+def finite_float(value, field: str) -> float:
+    """A finite number (an int, a float or a NumPy scalar; booleans and text refused) as a float."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) or not math.isfinite(value):
+        raise InvalidStateError(field, f"must be a finite number, got {shown(value)}")
+    return float(value)
 
 
 def positive_float(value, field: str) -> float:

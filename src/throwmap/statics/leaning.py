@@ -32,6 +32,7 @@ import math
 import numpy as np
 
 from ..errors import InvalidStateError, shown
+from ..models._checks import finite_float
 from ..system.system import check_alpha
 from .rest import Body, Contact
 
@@ -89,12 +90,6 @@ BETA_TOL = 1e-12
 """Bisection tolerance of :func:`lean_free_beta` (rad)."""
 
 
-def _finite(value, field: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not math.isfinite(value):
-        raise InvalidStateError(field, f"must be a finite number, got {shown(value)}")
-    return float(value)
-
-
 def lean_free_beta(a: float, b: float, alpha: float, mu: float, n: int = 20001) -> float:
     """The largest β* (rad) such that no lean angle in (0, β*] is possible (π/2 if none is): the part
     given less than β* of lean falls back (the draft's "β < 0.25 rad").
@@ -103,7 +98,7 @@ def lean_free_beta(a: float, b: float, alpha: float, mu: float, n: int = 20001) 
     the arm's friction (≥ 0, inf: no slip). A grid of ``n`` (≥ 3) angles over (0, π/2] finds the first
     lean; the boundary below it is then bisected to :data:`BETA_TOL` (a lean window narrower than the
     grid's step π/(2(n − 1)) below it is not seen)."""
-    a, b = _finite(a, "a"), _finite(b, "b")
+    a, b = finite_float(a, "a"), finite_float(b, "b")
     alpha = check_alpha(alpha, "alpha")
     if isinstance(mu, bool) or not isinstance(mu, (int, float, np.floating)) or math.isnan(mu) or mu < 0:
         raise InvalidStateError("mu", f"must be a number ≥ 0 (inf: no slip), got {shown(mu)}")
