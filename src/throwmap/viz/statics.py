@@ -89,22 +89,32 @@ def partial_figure(data):
                   f"μ = {data.mu_show:g}: {'rests' if an.can_rest else 'cannot rest'} (needs μ ≥ {an.mu_needed:.3g})",
                   fontsize=9)
     g, m = data.gammas_deg, data.mus
-    _region(ax1, g, m, data.rests, data.mu_needed)
+    _region(ax1, g, m, data.mu_needed)
     ax1.set_title(f"where the partial assembly rests, α = {math.degrees(alpha):.0f}° (frictionless wall and parts)",
                   fontsize=9)
     layout(fig)
     return fig
 
 
-def _region(ax, g, m, rests, mu_needed) -> None:
-    """Where the partial assembly rests over (γ deg, μ) and the μ it needs against γ, on ``ax``."""
-    G, M = np.meshgrid(g, m, indexing="ij")
-    ax.contourf(G, M, np.asarray(rests).astype(float), levels=[-0.5, 0.5, 1.5], colors=["white", "tab:green"],
-                alpha=0.5)
-    ax.plot(g, mu_needed, "k-", label="arm μ needed (LP)")
+def _region(ax, g, m, mu_needed) -> None:
+    """Where the partial assembly rests over (γ deg, μ) and the μ it needs against γ, on ``ax``.
+
+    The region is drawn from ``mu_needed`` itself: it rests where μ ≥ μ needed (the LP is monotone in the arm's μ),
+    between the samples on the same straight segments as the line, so its edge is the line. (A contour of the
+    rests-grid would put the edge half-way between two grid μ, off the line by up to half a grid step.) A γ that
+    no arm μ holds (μ needed ∞) shows no rest."""
+    g = np.asarray(g, dtype=float)
+    need = np.asarray(mu_needed, dtype=float)
+    top = float(np.max(m))
+    finite = np.isfinite(need)
+    ax.fill_between(g, np.where(finite, np.minimum(need, top), top), top, where=finite, color="tab:green",
+                    alpha=0.5, lw=0, label="rests (LP): arm μ ≥ μ needed")
+    ax.plot(g, need, "k-", label="arm μ needed (LP)")
     ax.set_xlabel("γ (deg; −30 assembled, 0 flat)")
     ax.set_ylabel("arm μ")
-    ax.set_ylim(0, float(np.max(m)))
+    if g.size > 1:
+        ax.set_xlim(float(np.min(g)), float(np.max(g)))
+    ax.set_ylim(0, top)
     ax.legend(fontsize=8)
 
 
@@ -120,7 +130,7 @@ def plot_partial_region(region, ax=None):
     """A :class:`~throwmap.statics.assembly.PartialRegion`: where it rests over (γ, μ) and the μ it needs.
     Returns the Figure."""
     fig, ax = _axes(ax)
-    _region(ax, np.degrees(region.gamma), region.mu, region.rests, region.mu_needed)
+    _region(ax, np.degrees(region.gamma), region.mu, region.mu_needed)
     ax.set_title(f"partial assembly, α = {math.degrees(region.alpha):.0f}°: where it rests (LP)", fontsize=9)
     layout(fig)
     return fig
