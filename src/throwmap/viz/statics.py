@@ -71,7 +71,7 @@ def lean_figure(data):
     ax1.plot([], [], "k--", label="draft's printed boundary")
     ax1.set_xlabel("lean angle β (rad)")
     ax1.set_ylabel("arm μ")
-    ax1.set_title(f"{data.part_name}: where a lean rests, α = {math.degrees(alpha):.0f}°, frictionless wall",
+    ax1.set_title(f"{data.part_name}:\nwhere a lean rests, α = {math.degrees(alpha):.0f}°, frictionless wall",
                   fontsize=9)
     ax1.legend(fontsize=8, loc="upper right")
     layout(fig)
