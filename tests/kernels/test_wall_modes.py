@@ -57,7 +57,7 @@ def _energy(s, yp, th, vp, thd):
 
 def _run(s, mu_w, stick=False, sig=0.0):
     return wall_phase(s["yp"], s["th"], s["vp"], s["thd"], stick, sig, 0.0, s["lj"], s["rho2"], s["gx"], s["gn"],
-                      mu_w, s["h"], s["top"], s["wv"], -1, 0.0, s["L"], s["phi_off"], 100000, NO_TRAJ, np.zeros(3),
+                      mu_w, s["h"], s["top"], s["wv"], -1, 0.0, 0.0, s["L"], s["phi_off"], 100000, NO_TRAJ, np.zeros(3),
                       _rec())
 
 
@@ -302,7 +302,7 @@ def test_corner_slide_matches_a_free_body_integration(mu_w):
     L, h, top = 0.3, 0.0, 0.05
     mode, sig = corner_select(s0, 0, w, rho2, gx, G, mu_w, L, h, top, False)
     assert mode == 0
-    ev, k, s1, t = corner_phase(s0, 0, False, sig, 0.0, w, rho2, gx, G, mu_w, h, L, top, -1, 0.0, 100000, NO_TRAJ,
+    ev, k, s1, t = corner_phase(s0, 0, False, sig, 0.0, w, rho2, gx, G, mu_w, h, L, top, -1, 0.0, 0.0, 100000, NO_TRAJ,
                                 np.zeros(3))
     assert t > 0.01
     Q = np.array([L, h + top])

@@ -10,7 +10,9 @@ from dataclasses import dataclass
 
 from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
+from ..records.outcome import Status
 from .base import BatchArrays, Features
+from .engine_oracle import ENDED, ORACLE_TOL, disagrees, engine_settings_at, oracle_options, settle_disagreement
 from .registry import register
 
 __all__ = ["EngineOptions", "EngineModel", "MODEL"]
@@ -73,23 +75,70 @@ class EngineModel:
         return {"fixtures": system.fixtures, "alpha": system.alpha, **o.engine_keywords()}
 
     def throw_one(self, part, system, x, side, omega, o: EngineOptions):
+        out = self.outcome(part, system, x, side, omega, o)
+        return out.x, out.side, int(out.status), out.record
+
+    def outcome(self, part, system, x, side, omega, o: EngineOptions):
+        """The engine's own :class:`~throwmap.ThrowOutcome` (its record carries engine-only fields), checked
+        against the exact model where it applies (:mod:`.engine_oracle`)."""
         from ..engine import engine_run
 
         run = engine_run(part, system.arm, x, side, omega, **self._keywords(system, o))
-        return run.states[0][0], run.states[0][1], int(run.statuses[0]), run.records[0]
+        out = run.outcome(0, x0=x, side0=side, omega=omega)
+        oracle = oracle_options(system, o)
+        if oracle is None or run.verified or int(out.status) not in ENDED:
+            return out
+        xr, kr, sr, _rr = oracle[0].throw_one(part, system, x, side, omega, oracle[1])
+        first = (out.x, out.side, int(out.status), run)
+        if int(sr) not in ENDED or not disagrees(first[:3], (xr, kr, sr), ORACLE_TOL):
+            return out
+        xs, ks, ss, chosen, why = settle_disagreement(first, self._rerun(part, system, x, side, omega, o),
+                                                      o.settings)
+        if not why:
+            return out
+        return chosen.outcome(0, x0=x, side0=side, omega=omega).replace(status=Status(ss), message=why)
 
-    def outcome(self, part, system, x, side, omega, o: EngineOptions):
-        """The engine's own :class:`~throwmap.ThrowOutcome` (its record carries engine-only fields)."""
-        from ..engine import engine_throw
+    def _rerun(self, part, system, x, side, omega, o: EngineOptions):
+        """``(dt, coarse_dt) → (x, side, status, run)``: the same engine throw at another step."""
+        from ..engine import engine_run
 
-        return engine_throw(part, system.arm, x, side, omega, **self._keywords(system, o))
+        def rerun(dt, coarse_dt):
+            kw = self._keywords(system, o)
+            kw["settings"] = engine_settings_at(o.settings, dt, coarse_dt)
+            r = engine_run(part, system.arm, x, side, omega, **kw)
+            return r.states[0][0], r.states[0][1], int(r.statuses[0]), r
+
+        return rerun
 
     def throw_batch(self, part, system, x, side, omega, valid, o: EngineOptions, progress=None):
         from ..engine import engine_batch
 
         res = engine_batch(part, system.arm, x, side, omega, valid=valid, workers=o.workers, progress=progress,
                            **self._keywords(system, o))
-        return BatchArrays(res.x, res.side, res.status, res.records)
+        out = BatchArrays(res.x, res.side, res.status, res.records)
+        oracle = oracle_options(system, o)
+        if oracle is not None:
+            self._check_batch(part, system, x, side, omega, valid, o, oracle, out)
+        return out
+
+    def _check_batch(self, part, system, x, side, omega, valid, o, oracle, out):
+        """:meth:`outcome`'s check for every throw of a batch: the exact model's batch at once, the engine's reruns
+        one by one where it disagrees (in place on ``out``)."""
+        import numpy as np
+
+        rb, ro = oracle
+        ex = rb.throw_batch(part, system, x, side, omega, valid, ro)
+        for i in np.flatnonzero(np.asarray(valid, dtype=bool)):
+            first = (out.x[i], out.side[i], int(out.status[i]), None)
+            if first[2] not in ENDED or int(ex.status[i]) not in ENDED:
+                continue
+            if not disagrees(first[:3], (ex.x[i], ex.side[i], ex.status[i]), ORACLE_TOL):
+                continue
+            xs, ks, ss, chosen, why = settle_disagreement(
+                first, self._rerun(part, system, float(x[i]), int(side[i]), float(omega[i]), o), o.settings)
+            out.x[i], out.side[i], out.status[i] = xs, ks, ss
+            if why and chosen is not None:
+                out.records[i] = chosen.records[0]
 
     def session(self, parts, system, states, o: EngineOptions):
         """An :class:`~throwmap.engine.session.EngineSession`: ``states`` are rests ``(x, side)`` (one per part) or

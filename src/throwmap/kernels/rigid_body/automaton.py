@@ -30,7 +30,7 @@ from ..roll import theta_a, theta_b
 from ..flight import UNRESOLVED_J, departure_window, gap_constants, release_state, rest_offsets
 from ..rows import start_record
 from .flat import nearest_side, rest, settle
-from .flight import flight_frame, fly, leave_arm, lift, refresh_frame
+from .flight import flight_frame, fly, leave_arm, lift, rearm_window, refresh_frame
 from .impact import coulomb_impact, record_first_contact, record_first_impact, record_impact
 from .landing import land_side
 from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE, EV_OFF_END, EV_SLIP,
@@ -38,11 +38,13 @@ from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_L
                     MODE_LEAN, MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID, WC_ARM, WC_CAP, WC_FACE, WC_FLIGHT,
                     WC_INCONSISTENT, WHY_CORNER, WHY_SLIDE_WALL, WHY_WALL_SLIDE, WHY_WALL_TOP, refuse)
 from .slide import pivot_slide, pivot_slide_walled, select_contact_mode
+from .foot import foot_holds, foot_impact
 from .stick import pivot_stick
 from .stick_exact import pivot_stick_exact
 from .tilt import pivot_stick_tilted
 from .trajectory import _put, _put_final, clear
-from .wall import corner_inside, fill_wall_vertices, fly_walled, wall_contact_angle, wall_hit_in_flight
+from .wall import (corner_inside, fill_wall_vertices, fly_walled, rearm_wall_window, wall_contact_angle,
+                   wall_hit_in_flight)
 from .wall_corner import corner_contact
 from .wall_lean import (LN_BEHIND, LN_CAP, LN_CORNER, LN_FLIGHT, LN_INCONSISTENT, LN_PIVOT, LN_REST, LN_WALL, lean,
                         offsets)
@@ -253,7 +255,19 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                         cexcl_e = jc
                         cexcl_until = t + wex
                     if excl_j >= 0:
-                        excl_t -= t - t_seg
+                        # the wall's impulse voids the window the vertex got when it left the arm
+                        excl_t = rearm_window(y, vx, vy, phi, om, w, excl_j, h, gn, gx, 1e-9 * lref)
+                        if excl_t < 0.0:  # pressed back onto the arm: both contacts at once (LEAN)
+                            ln_a = excl_j
+                            ln_p = wj
+                            ln_impact = True
+                            wj = ce = -1
+                            excl_j = -1
+                            excl_t = 0.0
+                            mode = MODE_LEAN
+                            continue
+                        if excl_t == 0.0:
+                            excl_j = -1
                     refresh_frame(phi, y, h, w, ell, ru, rv, c0)
                     continue
             else:
@@ -295,6 +309,25 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                 vscale = max(1.0, abs(vx) + abs(vy) + abs(om) * ell[jc])
                 excl_t = departure_window(rx, ry, om, gn, ell[jc], gn) if un <= 1e-12 * vscale else 0.0
                 flight_frame(phi, y, h, w, ru, rv, c0, jc)
+                # the arm's impulse voids the windows a vertex (an edge) got when it left the wall
+                if walled and wexcl_j >= 0 and wexcl_until > t:
+                    win = rearm_wall_window(False, x, y, vx, vy, phi, om, w, wexcl_j, length, h, wall_h, gx, gn,
+                                            1e-9 * lref)
+                    if win < 0.0:  # pressed back on the face: both contacts at once (LEAN)
+                        ln_a, ln_p, ln_impact = jc, wexcl_j, True
+                        wexcl_j = cexcl_e = -1
+                        mode = MODE_LEAN
+                        continue
+                    wexcl_j, wexcl_until = (wexcl_j, t + win) if win > 0.0 else (-1, 0.0)
+                if walled and cexcl_e >= 0 and cexcl_until > t:
+                    win = rearm_wall_window(True, x, y, vx, vy, phi, om, w, cexcl_e, length, h, wall_h, gx, gn,
+                                            1e-9 * lref)
+                    if win < 0.0:  # pressed back on the corner
+                        ln_a, ln_p, ln_impact = jc, -1, True
+                        wexcl_j = cexcl_e = -1
+                        mode = MODE_LEAN
+                        continue
+                    cexcl_e, cexcl_until = (cexcl_e, t + win) if win > 0.0 else (-1, 0.0)
                 continue
             jp = jc
             px = pxc
@@ -325,6 +358,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
             # (a sliding pivot's contact on the wall approaches it only if its velocity points into the wall;
             # one that slides along it at rounding level, as a ladder whose wall force fell to 0, leaves)
             ev = EV_WALL  # a vertex is on the wall and the part turns into it
+        elif mode == MODE_SELECT and foot_holds(walled, px, length, va, theta, thdot, lj, I, g, mu, alpha):
+            mode = MODE_STICK  # at the wall's foot, pressed towards the wall: the wall holds it
         elif mode == MODE_SELECT:
             mode, sig = select_contact_mode(theta, thdot, va, lj, rho2, g, mu, mu_s, False, alpha)
             if mode < 0:
@@ -336,9 +371,9 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
         if ev == EV_WALL:
             pass
         elif mode == MODE_STICK:
-            if tilted:
+            if tilted or (walled and px >= length):
                 ev, theta, thdot, t = pivot_stick_tilted(theta, thdot, ta_w, tb, lj, I, g, mu, t, px, h, phi_off, traj,
-                                                         ts, rec, alpha)
+                                                         ts, rec, alpha, walled and px >= length)
             else:
                 ev, theta, thdot, t = stick_phase(theta, thdot, ta_w, tb, lj, I, g, mu, t, max_iter, px, h, phi_off,
                                                   traj, ts, rec)
@@ -358,6 +393,16 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
             if ev == EV_BEHIND_JOINT:
                 return px + lj * math.cos(theta), last_side, C.BEHIND_JOINT
+            if ev == EV_OFF_END and walled:
+                # ---------------------------------------------------------- reset foot: slid into the wall's foot
+                ok, thdot, pt, pn, k_pre, k_post = foot_impact(theta, thdot, va, lj, rho2)
+                if not ok:
+                    return px + lj * math.cos(theta), last_side, refuse(rec, WHY_CORNER)
+                record_impact(pt, pn, k_pre, k_post, rec)  # (the wall takes the tangential impulse: pt = 0)
+                px = length
+                va = 0.0
+                mode = MODE_SELECT
+                continue
             if ev == EV_OFF_END:
                 return px + lj * math.cos(theta), last_side, C.OFF_END
             if walled and ev != EV_WALL and corner_inside(px, h, theta, theta + phi_off, w, jp, length, wall_h):
@@ -370,6 +415,9 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
                 return px + lj * math.cos(theta), last_side, C.INCONSISTENT
             if new_mode == MODE_SLIDE:
                 if walled and sig > 0.0 and px >= length:
+                    if ev != EV_SLIP and foot_holds(walled, px, length, 0.0, theta, thdot, lj, I, g, mu, alpha):
+                        mode = MODE_STICK
+                        continue
                     return px + lj * math.cos(theta), last_side, refuse(rec, WHY_CORNER)
                 rec[C.N_SLIPS] += 1.0
                 mode = MODE_SLIDE

@@ -16,7 +16,7 @@ import math
 from numba import njit
 
 from .. import codes as C
-from ..flight import SNAP, departure_window, first_contact
+from ..flight import SNAP, departure_window, first_contact, separating_window
 from .trajectory import _put
 
 
@@ -111,3 +111,26 @@ def lift(px, h, lj, theta, thdot, va, phi, g, w, ru, rv, c0, jp):
     if excl_t > 0.0:
         flight_frame(phi, y, h, w, ru, rv, c0, jp)
     return x, y, vx, vy, thdot, excl_t
+
+
+@njit(cache=True)
+def rearm_window(y, vx, vy, phi, om, w, j, h, gn, gx, tol):
+    """The exclusion window (s) of arm vertex ``j`` after an impact elsewhere (on the wall) changed the velocity.
+
+    The window a vertex got when it left the arm holds for the free flight it was computed on; an impulse
+    from the wall invalidates it. From the new state (CM height y, velocity (v_x, v_y), orientation φ,
+    spin ω; SI): 0 when the vertex is more than ``tol`` (m) above the line (the flight's own touch search
+    watches it), the departure or separating window when it is on the line and leaving, −1 when it is on
+    the line and not leaving (the wall's impulse pressed it back: a second contact at the same instant)."""
+    c = math.cos(phi)
+    s = math.sin(phi)
+    rx = c * w[j, 0] - s * w[j, 1]
+    ry = s * w[j, 0] + c * w[j, 1]
+    if y + ry - h > tol:
+        return 0.0
+    lj = math.hypot(rx, ry)
+    un = vy + om * rx
+    if un > 1e-12 * (abs(vx) + abs(vy) + abs(om) * lj):
+        return separating_window(un, gn + abs(gx) + om * om * lj)
+    win = departure_window(rx, ry, om, gn, lj, gn)
+    return win if win > 0.0 else -1.0

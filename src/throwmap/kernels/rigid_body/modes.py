@@ -20,6 +20,9 @@ N_BISECT = 56
 """Bisection steps locating a guard inside an RK4 step (≈ 1e-17 of the step)."""
 N_ARC = 16
 """Points per arc at which the Zeno rule checks the friction demand, and the sticking phase samples |F|/N."""
+SINK_TOL = 1e-9
+"""How far (relative to the part's size) a vertex that just left the arm may sink below where it started while
+the part moves on the wall before its arm guard fires: rounding, not motion (:func:`~.wall.sink_slack`)."""
 MU_SKID = 1e6
 """Friction coefficient standing in for μ = ∞ in PIVOT_SLIDE (the μ → ∞ limit)."""
 

@@ -146,9 +146,10 @@ def _quartic_roots(lo, hi, p0, p1, p2, p3, p4, out, m):
 
 
 @njit(cache=True)
-def first_exit(s_a, s_b, sig_c, e, k, ca, sa, mu):
+def first_exit(s_a, s_b, sig_c, e, k, ca, sa, mu, foot=False):
     """First s from ``s_a`` towards ``s_b`` (a piece of monotone s = sin ψ, cos ψ of sign ``sig_c``) where the
-    sticking contact stops being feasible (N > 0, |F| ≤ μN in the arm frame).
+    sticking contact stops being feasible (N > 0, |F| ≤ μN in the arm frame; at the wall's ``foot`` the wall
+    holds any F < 0, so only F ≤ μN).
 
     Returns ``(s, event)``: EV_LIFT_OFF or EV_SLIP, or ``(nan, -1)`` if it stays feasible.
     Breakpoints: all roots on the piece of the quartics of the guards N = 0 and F = ±μN
@@ -183,7 +184,7 @@ def first_exit(s_a, s_b, sig_c, e, k, ca, sa, mu):
         N, F = tilted_forces(mid, cps, e, k, ca, sa)
         if N <= 0.0:
             return prev, EV_LIFT_OFF
-        if abs(F) > mu * N:
+        if (F if foot else abs(F)) > mu * N:
             return prev, EV_SLIP
         prev = r
     return math.nan, -1
@@ -232,11 +233,13 @@ def _sample_piece(a, b, t0, t1, e, c, px, h, lj, alpha, phi_off, traj, ts):
 
 
 @njit(cache=True)
-def pivot_stick_tilted(theta, thdot, ta, tb, lj, I, g, mu, t, px, h, phi_off, traj, ts, rec, alpha):
+def pivot_stick_tilted(theta, thdot, ta, tb, lj, I, g, mu, t, px, h, phi_off, traj, ts, rec, alpha, foot=False):
     """Mode PIVOT_STICK on a tilted arm (α ≠ 0), closed form: the swing in ψ = θ + α, guards as in the module docstring.
 
     Arguments as :func:`~.stick_exact.pivot_stick_exact` (θ, θa, θb in the arm frame,
-    rad). Returns ``(event, θ, θ̇, t)`` with θ in the arm frame.
+    rad). Returns ``(event, θ, θ̇, t)`` with θ in the arm frame. ``foot``: the pivot is at the wall's foot
+    (any α, 0 included), where the wall takes every friction force F < 0 (towards the wall's face is +x, so F < 0
+    pushes the vertex back from it): ``slip`` only at F > μN.
     """
     ca = math.cos(alpha)
     sa = math.sin(alpha)
@@ -252,7 +255,7 @@ def pivot_stick_tilted(theta, thdot, ta, tb, lj, I, g, mu, t, px, h, phi_off, tr
         if N0 < rec[C.N_MIN]:
             rec[C.N_MIN] = N0
         return EV_LIFT_OFF, theta, thdot, t
-    if abs(F0) > mu * N0:
+    if (F0 if foot else abs(F0)) > mu * N0:
         return EV_SLIP, theta, thdot, t
     sample = traj.shape[0] > 0
     npc, th0, th1, th2, d0, d1 = swing_pieces(psi, swing_sense(psi, thdot), pa, pb, E, g, lj)
@@ -263,7 +266,7 @@ def pivot_stick_tilted(theta, thdot, ta, tb, lj, I, g, mu, t, px, h, phi_off, tr
         sig_c = 1.0 if 0.5 * (a + b) < HALF_PI else -1.0
         s_a = math.sin(a)
         s_b = math.sin(b)
-        s_ev, ev = first_exit(s_a, s_b, sig_c, e, k, ca, sa, mu)
+        s_ev, ev = first_exit(s_a, s_b, sig_c, e, k, ca, sa, mu, foot)
         if ev < 0:
             th_ev = b
             s_ev = s_b

@@ -47,7 +47,7 @@ from numba import njit
 
 from ..flight import SNAP, departure_window, first_contact, line_touch, lower_bound_step, separating_window
 from .impact import contact_impact
-from .modes import IMP_INCONSISTENT, WHY_NONE, WHY_WALL_SLIDE
+from .modes import IMP_INCONSISTENT, SINK_TOL, WHY_NONE, WHY_WALL_SLIDE
 from .trajectory import _put
 
 @njit(cache=True)
@@ -344,6 +344,67 @@ def wall_contact_angle(px, L, top, theta, phi, w, jp):
             nx = -(c * enx - s * eny)
             ny = -(s * enx + c * eny)
     return best, corner, jb, cx, cy, nx, ny
+
+
+@njit(cache=True)
+def rearm_wall_window(corner, x, y, vx, vy, phi, om, w, k, L, h, top, gx, gn, tol):
+    """The exclusion window (s) of face vertex ``k`` (``corner`` False) or of edge ``k`` on the wall's top corner
+    (``corner`` True) after an impact on the arm changed the velocity (the window it got when it left the wall
+    holds only for the free flight it was computed on). From the new state (CM (x, y), velocity (v_x, v_y),
+    orientation φ, spin ω; SI): 0 when the vertex (edge) is more than ``tol`` (m) off the wall, the separating or
+    departure window when it touches and leaves, −1 when it touches and does not leave (pressed back on the wall:
+    a second contact at the same instant)."""
+    c = math.cos(phi)
+    s = math.sin(phi)
+    ax = c * w[k, 0] - s * w[k, 1]
+    ay = s * w[k, 0] + c * w[k, 1]
+    ga = abs(gx) + gn
+    if not corner:
+        if L - (x + ax) > tol:
+            return 0.0
+        lj = math.hypot(ax, ay)
+        un = -(vx - om * ay)  # the vertex's velocity away from the face
+        if un > 1e-12 * (abs(vx) + abs(vy) + abs(om) * lj):
+            return separating_window(un, ga + om * om * lj)
+        win = departure_window(ay, -ax, om, gx, lj, ga)
+        return win if win > 0.0 else -1.0
+    n = w.shape[0]
+    bx = c * w[(k + 1) % n, 0] - s * w[(k + 1) % n, 1]
+    by = s * w[(k + 1) % n, 0] + c * w[(k + 1) % n, 1]
+    le = math.hypot(bx - ax, by - ay)
+    nx = (by - ay) / le  # the edge's outward normal (n·a > 0)
+    ny = -(bx - ax) / le
+    if nx * ax + ny * ay < 0.0:
+        nx = -nx
+        ny = -ny
+    qx = L - x
+    qy = h + top - y
+    if nx * (qx - ax) + ny * (qy - ay) > tol:
+        return 0.0
+    un = -(nx * (vx - om * qy) + ny * (vy + om * qx))  # the gap's rate: the part's point at Q moving along −n
+    if un > 1e-12 * (abs(vx) + abs(vy) + abs(om) * math.hypot(qx, qy)):
+        m2, _m3 = corner_bounds(qx, qy, vx, vy, om, gx, gn, 1.0)
+        return separating_window(un, m2)
+    win = corner_departure(qx, qy, vx, vy, om, gx, gn, nx, ny, 1.0)
+    return win if win > 0.0 else -1.0
+
+
+@njit(cache=True)
+def sink_slack(x, y, phi, w, k, h):
+    """How far (m) below the arm's line y = ``h`` vertex ``k`` (body offsets ``w``, CM (x, y), orientation φ) may
+    sink before its arm guard fires in a wall mode it enters just after leaving the arm: its depth now (0 when
+    above) plus :data:`~.modes.SINK_TOL` of the part's size. The vertex's departure window is estimated for free
+    flight; on the wall's face or corner the wall's force can press it back into the arm, which this guard
+    catches (the mode then ends as a second contact, never a vertex inside the arm). 0 for ``k`` < 0: none."""
+    if k < 0:
+        return 0.0
+    c = math.cos(phi)
+    s = math.sin(phi)
+    yk = y + s * w[k, 0] + c * w[k, 1]
+    size = 0.0
+    for i in range(w.shape[0]):
+        size = max(size, math.hypot(w[i, 0], w[i, 1]))
+    return max(h - yk, 0.0) + SINK_TOL * size
 
 
 @njit(cache=True)

@@ -37,7 +37,7 @@ from .coulomb import cone_guard
 from .modes import (DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, WC_ARM, WC_CAP, WC_FACE,
                     WC_FLIGHT, WC_INCONSISTENT, WC_REFUSE, WHY_CORNER_VERTEX, WHY_NONE, WHY_WALL_SLIDE)
 from .trajectory import _put
-from .wall import corner_departure
+from .wall import corner_departure, sink_slack
 
 EV_END = 30
 """Guard ``end``: the corner reached an end of the edge (a vertex on the corner)."""
@@ -150,7 +150,7 @@ def _rk4(s, dt, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick):
 def _cguards(s, p):
     """Least CORNER guard ``(value, which, k)`` (module docstring) at the state ``s`` (6,); ``(-1, EV_INCONSISTENT, -1)``
     at D ≤ 0. The contact's own guards are :func:`~.coulomb.cone_guard`'s; ``p`` the parameters of :func:`corner_phase`."""
-    w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, arm_skip = p
+    w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, arm_skip, slack = p
     _ax, _ay, _wd, lam, f, D, slip = corner_rhs(s, qx, qy, nb, tb, rho2, gx, gn, mu_w, sig, stick)
     if not D > 0.0:
         return -1.0, EV_INCONSISTENT, -1
@@ -173,8 +173,9 @@ def _cguards(s, p):
     for k in range(n):
         xk = s[0] + c * w[k, 0] - sn * w[k, 1]
         yk = s[1] + sn * w[k, 0] + c * w[k, 1]
-        if k != arm_skip and yk - h < gmin:
-            gmin = yk - h
+        v = yk - h + slack if k == arm_skip else yk - h
+        if v < gmin:
+            gmin = v
             which = EV_CARM
             kk = k
         if k != e and k != (e + 1) % n:
@@ -189,7 +190,7 @@ def _cguards(s, p):
 @njit(cache=True, inline="always")
 def _advance(s, tau, p):
     """The RK4 step of length ``tau`` (s) from the state ``s`` (6,), projected back onto the corner (:func:`_rk4`)."""
-    w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, arm_skip = p
+    w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, arm_skip, slack = p
     return _rk4(s, tau, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick)
 
 
@@ -201,10 +202,12 @@ def _least_guard(which, k, s, p):
 
 
 @njit(cache=True)
-def corner_phase(s, e, stick, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip, arm_skip_until, max_steps, traj,
-                 ts):
+def corner_phase(s, e, stick, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip, arm_skip_until, arm_slack,
+                 max_steps, traj, ts):
     """Integrate one sub-mode of CORNER (``stick``, or sliding with sense ``sig``) from state ``s`` (6,) until a
-    guard fires. Returns ``(event, k, s, t)`` (k: the vertex of ``arm``/``wall``, else −1)."""
+    guard fires. Returns ``(event, k, s, t)`` (k: the vertex of ``arm``/``wall``, else −1). Vertex ``arm_skip``
+    just left the arm: until ``arm_skip_until`` (s) its arm guard fires only ``arm_slack`` (m) below the line
+    (:func:`~.wall.sink_slack`)."""
     nx, ny, tx, ty, le = edge_body(w, e)
     nb = np.array([nx, ny])
     tb = np.array([tx, ty])
@@ -221,7 +224,7 @@ def corner_phase(s, e, stick, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip
     _project(s, qx, qy, nb, db)
     for _ in range(max_steps):
         skip = arm_skip if t < arm_skip_until else -1
-        p = (w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, skip)
+        p = (w, e, le, qx, qy, nb, tb, db, rho2, gx, gn, mu_w, sig, stick, h, L, top, ga, skip, arm_slack)
         dt = DTH / (abs(s[5]) + om0)
         s1 = _advance(s, dt, p)
         gm, which, k = _cguards(s1, p)
@@ -296,6 +299,7 @@ def corner_contact(e, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L
     sub-mode (WC_INCONSISTENT); the step or event caps (WC_CAP). Returns as :func:`wall_contact`.
     """
     s = np.array([x, y, phi, vx, vy, om])
+    slack = sink_slack(x, y, phi, w, arm_skip, h)
     from_slip = False
     for _ in range(max_events):
         mode, sig = corner_select(s, e, w, rho2, gx, gn, mu_w, L, h, top, from_slip)
@@ -304,7 +308,7 @@ def corner_contact(e, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L
         if mode == -1:
             return _corner_lift(e, t, s, w, gx, gn, h, top, L)
         ev, k, s, t = corner_phase(s, e, mode == 1, sig, t, w, rho2, gx, gn, mu_w, h, L, top, arm_skip,
-                                   arm_skip_until, max_steps, traj, ts)
+                                   arm_skip_until, slack, max_steps, traj, ts)
         if ev == EV_STICK:
             from_slip = False
             continue

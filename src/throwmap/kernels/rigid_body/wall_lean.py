@@ -220,7 +220,7 @@ def _dispatch(x, y, vx, vy, phi, om, w, rho2, mu, mu_w, gx, gn, lref, m, pts, nr
             else:  # the corner let go of edge idx[i] (outward normal −nrm[i])
                 qx = pts[i, 0]
                 qy = pts[i, 1]
-                un = -(nrm[i, 0] * (vx - om * qy) + nrm[i, 1] * (vy + om * qx))  # the gap's rate, > 0: opening
+                un = nrm[i, 0] * (vx - om * qy) + nrm[i, 1] * (vy + om * qx)  # the gap's rate, > 0: opening
                 if un <= 1e-12 * scale:
                     wv = corner_departure(qx, qy, vx, vy, om, gx, gn, -nrm[i, 0], -nrm[i, 1], 1.0)
                 else:

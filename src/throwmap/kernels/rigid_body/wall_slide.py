@@ -51,7 +51,7 @@ from .coulomb import cone_guard, cone_guard_value
 from .modes import (DTH, EV_INCONSISTENT, EV_LIFT_OFF, EV_SLIP, EV_STEP_CAP, EV_STICK, WC_ARM, WC_CAP, WC_FLIGHT,
                     WC_INCONSISTENT, WC_REFUSE, WHY_CORNER, WHY_NONE, WHY_WALL_EDGE, WHY_WALL_SLIDE, WHY_WALL_TOP)
 from .trajectory import _put
-from .wall import fill_wall_vertices
+from .wall import fill_wall_vertices, sink_slack
 
 EV_ARM = 11
 """Guard ``arm``: a vertex (returned) reaches the arm's line y = h while P is on the face."""
@@ -114,7 +114,7 @@ def _rk4(yp, th, vp, thd, dt, lj, rho2, gx, gn, musig, stick):
 @njit(cache=True, inline="always")
 def _advance(s, tau, p):
     """The RK4 step of length ``tau`` (s) from ``s`` = (y_P, θ, ẏ_P, θ̇) (parameters ``p`` of :func:`wall_phase`)."""
-    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip = p
+    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip, slack = p
     return _rk4(s[0], s[1], s[2], s[3], tau, lj, rho2, gx, gn, musig, stick)
 
 
@@ -122,14 +122,15 @@ def _advance(s, tau, p):
 def _guard_value(which, k, s, p):
     """One guard's value (> 0: not fired): see :func:`_guards`."""
     yp, th, vp, thd = s
-    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip = p
+    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip, slack = p
     if which == EV_STICK or which == EV_SLIP or which == EV_LIFT_OFF:
         _a, _b, N, F, _D = wall_rhs(th, thd, lj, rho2, gx, gn, musig, stick)
         return cone_guard_value(which, N, F, vp, sig, mu_w, ga)
     if which == EV_TOP:
         return h + top - yp
     if which == EV_ARM:
-        return yp - h if wv[k, 0] == 0.0 else yp + wv[k, 0] * math.sin(th + wv[k, 1]) - h
+        v = yp - h if wv[k, 0] == 0.0 else yp + wv[k, 0] * math.sin(th + wv[k, 1]) - h
+        return v + slack if k == arm_skip else v
     if which == EV_EDGE:
         return -wv[k, 0] * math.cos(th + wv[k, 1])
     return math.nan
@@ -145,7 +146,7 @@ def _guards(s, p):
     (every other vertex). ``s`` = (y_P, θ, ẏ_P, θ̇), ``p`` the parameters of :func:`wall_phase`.
     """
     yp, th, vp, thd = s
-    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip = p
+    lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, arm_skip, slack = p
     _a, _b, N, F, D = wall_rhs(th, thd, lj, rho2, gx, gn, musig, stick)
     if D <= 0.0:
         return -1.0, EV_INCONSISTENT, -1
@@ -155,12 +156,13 @@ def _guards(s, p):
         gmin = h + top - yp
         which = EV_TOP
     for k in range(wv.shape[0]):
-        if k != arm_skip:
-            v = yp - h if wv[k, 0] == 0.0 else yp + wv[k, 0] * math.sin(th + wv[k, 1]) - h
-            if v < gmin:
-                gmin = v
-                which = EV_ARM
-                kk = k
+        v = yp - h if wv[k, 0] == 0.0 else yp + wv[k, 0] * math.sin(th + wv[k, 1]) - h
+        if k == arm_skip:
+            v += slack
+        if v < gmin:
+            gmin = v
+            which = EV_ARM
+            kk = k
         if wv[k, 0] > 0.0:
             v = -wv[k, 0] * math.cos(th + wv[k, 1])
             if v < gmin:
@@ -171,13 +173,15 @@ def _guards(s, p):
 
 
 @njit(cache=True)
-def wall_phase(yp, th, vp, thd, stick, sig, t, lj, rho2, gx, gn, mu_w, h, top, wv, arm_skip, arm_skip_until, L,
-               phi_off, max_steps, traj, ts, rec):
+def wall_phase(yp, th, vp, thd, stick, sig, t, lj, rho2, gx, gn, mu_w, h, top, wv, arm_skip, arm_skip_until,
+               arm_slack, L, phi_off, max_steps, traj, ts, rec):
     """Integrate one sub-mode of WALL_CONTACT (``stick``, or sliding with sense ``sig``) until a guard fires.
 
     ``wv`` (n, 2) rows (ℓ_k, δ_k): vertex k at P + ℓ_k (cos(θ + δ_k), sin(θ + δ_k)) (ℓ = 0: P itself,
-    :func:`~.wall.fill_wall_vertices`); ``arm_skip`` a vertex the arm guard ignores until
-    ``arm_skip_until`` (s, absolute: a vertex that just left the arm, provably above it meanwhile).
+    :func:`~.wall.fill_wall_vertices`); ``arm_skip`` a vertex that just left the arm: until
+    ``arm_skip_until`` (s, absolute) its arm guard fires only once it sinks ``arm_slack`` (m) below the line
+    (:func:`~.wall.sink_slack`: the departure window was estimated for free flight, and the wall's force can
+    press the vertex back).
     Guards located inside a step by :func:`~.bracket.locate_guard`.
     Updates N_MIN (the wall's N/|g| is not the arm's: only MU_MAX), samples ``traj``.
     Returns ``(event, k, y_P, θ, ẏ_P, θ̇, t)`` with k the vertex of ``arm``/``edge`` (else −1).
@@ -190,7 +194,7 @@ def wall_phase(yp, th, vp, thd, stick, sig, t, lj, rho2, gx, gn, mu_w, h, top, w
         rec[C.MU_MAX] = mu_w
     for _ in range(max_steps):
         skip = arm_skip if t < arm_skip_until else -1
-        p = (lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, skip)
+        p = (lj, rho2, gx, gn, mu_w, musig, stick, sig, h, top, wv, ga, skip, arm_slack)
         dt = DTH / (abs(thd) + om0)
         s0 = (yp, th, vp, thd)
         s1 = _advance(s0, dt, p)
@@ -286,6 +290,7 @@ def wall_contact(j, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, 
     vp = vy + om * rx
     thd = om
     fill_wall_vertices(th, phi, w, j, wv)
+    slack = sink_slack(x, y, phi, w, arm_skip, h)
     from_slip = False
     ev = EV_LIFT_OFF
     k = -1
@@ -297,7 +302,8 @@ def wall_contact(j, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, 
             ev = EV_LIFT_OFF
             break
         ev, k, yp, th, vp, thd, t = wall_phase(yp, th, vp, thd, mode == W_STICK, sig, t, lj, rho2, gx, gn, mu_w, h,
-                                               top, wv, arm_skip, arm_skip_until, L, phi_off, max_steps, traj, ts, rec)
+                                               top, wv, arm_skip, arm_skip_until, slack, L, phi_off, max_steps, traj,
+                                               ts, rec)
         if ev == EV_STICK:
             from_slip = False
             continue

@@ -1,0 +1,105 @@
+"""The exact model as the engine's oracle: a throw the engine and "rigid_body" see differently is rerun finer.
+
+Why
+---
+pymunk's result can depend on its step where nothing marks the run as hard (no deep vertex, no repeated
+flips, no energy gain: :mod:`throwmap.engine.pymunk.verify`), so no half-step rerun happens and a wrong
+``ok`` is reported. Measured on random convex parts with lead weights, μ ∈ {0.6, 1, 2, ∞}: see the
+``engine oracle`` table in the README. One part thrown from rest on a bare or tilted arm, with at most an end
+wall and the friction of the arm and wall, is a throw the exact model "rigid_body" takes too, at a small
+fraction of the engine's cost.
+
+What
+----
+After the engine's run, the same throw by "rigid_body" with the engines' velocity-level impact law
+(``impact_law="velocity"``; its default Routh law differs by 1–30 mm at μ ≤ 0.6, a law choice). Where both
+ended (ok, off_end or behind_joint) and they disagree — another status, another side, or rests more than
+:data:`ORACLE_TOL` apart — the engine reruns at half its step. If that agrees with the first run
+(``EngineSettings.agreement``), the first run stands: the step has converged and the difference is between the
+models. Otherwise it reruns at a quarter step; where the half and quarter steps agree the half-step result is
+returned (its message says so), else the throw is refused as ``unconverged``. ``EngineSettings.verify = False``
+turns the oracle off with the half-step check.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ..errors import InvalidStateError
+from ..kernels import codes as C
+from ..records.outcome import Status
+
+__all__ = ["ORACLE_TOL", "oracle_options", "disagrees", "settle_disagreement"]
+
+ORACLE_TOL = 2e-3
+"""m. Rests of the engine and of "rigid_body" (velocity law) further apart than this call for a finer rerun."""
+
+ENDED = (C.OK, C.OFF_END, C.BEHIND_JOINT)
+"""Statuses both models can give for the same throw; any other (a refusal, a timeout) is not compared."""
+
+
+def oracle_options(system, o):
+    """The "rigid_body" options that throw what the engine options ``o`` throw on ``system``, or None where the
+    oracle does not apply: verify off, the pair friction set by hand, a Cavity, a wall on an unbounded arm, a
+    realisation the exact model does not take (a tilt, a moving arm with fixtures)."""
+    from .registry import get_model
+
+    settings = o.settings
+    if settings is not None and not settings.verify:
+        return None
+    if o.friction is not None and (o.friction.arm_part is not None or o.friction.wall_part is not None):
+        return None
+    rb = get_model("rigid_body")
+    try:
+        rb.check_system(system)
+        opts = rb.options_type(impact_law="velocity", realisation=o.realisation)
+        from .rigid_body import realisation_for
+
+        realisation_for(opts, 1.0, system)
+    except InvalidStateError:
+        return None
+    return rb, opts
+
+
+def disagrees(a, b, tol: float) -> bool:
+    """Whether two results ``(x, side, status)`` differ: status, or side and x (beyond ``tol``, m) of rests."""
+    (xa, ka, sa), (xb, kb, sb) = a, b
+    if int(sa) != int(sb):
+        return True
+    return int(sa) == C.OK and (int(ka) != int(kb) or not abs(float(xa) - float(xb)) <= tol)
+
+
+def settle_disagreement(first, rerun, settings):
+    """The engine's answer after the oracle disagreed with ``first`` = ``(x, side, status, run)``.
+
+    ``rerun(dt, coarse_dt)`` runs the same throw at another step and returns ``(x, side, status, run)`` (``run``:
+    whatever the caller keeps of it). Returns ``(x, side, status, run, message)``: the first result and ``""``
+    (the half step agrees with it), the half-step result (the quarter step agrees with it) or the first with
+    status UNCONVERGED; the message names the three results."""
+    from ..engine.settings import EngineSettings
+
+    s = EngineSettings() if settings is None else settings
+    tol = s.agreement
+    half = rerun(s.dt / 2, max(s.coarse_dt / 2, s.dt / 2))
+    if not disagrees(first[:3], half[:3], tol):
+        return (*first, "")
+    quarter = rerun(s.dt / 4, max(s.coarse_dt / 4, s.dt / 4))
+
+    def show(r, dt):
+        return f"{Status(int(r[2])).label} side {int(r[1])} x = {float(r[0]):.5f} m at dt = {dt:g} s"
+
+    seen = f"{show(first, s.dt)}, {show(half, s.dt / 2)}, {show(quarter, s.dt / 4)}"
+    if not disagrees(half[:3], quarter[:3], tol):
+        return (*half, f"the exact model disagreed with the engine at dt = {s.dt:g} s; rerun: {seen}; "
+                       f"the dt = {s.dt / 2:g} s result stands")
+    return (first[0], first[1], C.UNCONVERGED, first[3],
+            f"the exact model disagreed and finer steps do not converge: {seen}; result refused")
+
+
+def engine_settings_at(settings, dt: float, coarse_dt: float):
+    """``settings`` (None: the defaults) at step ``dt`` and ``coarse_dt`` (s), the half-step check off (the
+    oracle compares the reruns itself)."""
+    from ..engine.settings import EngineSettings
+
+    s = EngineSettings() if settings is None else settings
+    return replace(s, dt=dt, coarse_dt=coarse_dt, verify=False)

@@ -1,0 +1,90 @@
+"""Contact with the arm and with the end wall holds through every phase on a tilted arm at low μ.
+
+Two throws an audit found: on the triangle (hypotenuse 17 cm), h = −1 cm, arm 0.35 m long, μ = 0.3, a 5 cm
+end wall with μ 0.5, "rigid_body" let a vertex sink 0.58 mm and 6.3 mm into the arm (a free-flight exclusion
+window kept after the wall's impulse; a corner guard with its rate's sign flipped) and reported ``off_end`` past
+a wall the part cannot cross. The engine at its converged step rests both on side 0 near 0.279 m. Checked here:
+the rest agrees with the engine, and no recorded vertex is deeper than 0.1 mm inside the arm or the wall.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import throwmap as tm
+from throwmap.kernels.rigid_body.foot import foot_holds, foot_impact
+from throwmap.system.fixtures import Wall
+from throwmap.throws.orbit_trajectory import throw_trajectory
+
+CASES = [
+    (math.radians(-15.562638283870395), 0.2590497482283082, 2, 5.0808360238956025),
+    (-0.27876147344524876, 0.24107875587934002, 2, 5.53980366191929),
+]
+
+
+def depth(traj, length, h, wall):
+    """Deepest recorded vertex inside the arm (over 0 ≤ x ≤ length) or inside the wall (m)."""
+    worst = 0.0
+    for i in range(traj.n_samples):
+        a = float(traj.arm_angle[i])
+        c, s = math.cos(a), math.sin(a)
+        V = traj.vertices(i)
+        xa, ya = c * V[:, 0] + s * V[:, 1], -s * V[:, 0] + c * V[:, 1]
+        on = (xa >= 0.0) & (xa <= length)
+        worst = max(worst, float(np.max(np.where(on, h - ya, 0.0))))
+        inw = (xa > length) & (xa < length + wall.thickness) & (ya < h + wall.height) & (ya > h - 0.05)
+        d = np.minimum(np.minimum(xa - length, h + wall.height - ya), length + wall.thickness - xa)
+        worst = max(worst, float(np.max(np.where(inw, d, 0.0))))
+    return worst
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return tm.triangle_30_60_90(0.17), tm.Arm(h=-0.01, mu=0.3, length=0.35), Wall(height=0.05, mu=0.5)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", CASES, ids=["corner-impulse", "wall-slide"])
+def test_the_rest_agrees_with_the_engine_and_no_vertex_sinks(scene, case):
+    part, arm, wall = scene
+    alpha, x, k, om = case
+    out, traj = throw_trajectory(part, arm, x, k, om, "rigid_body", fixtures=(wall,), alpha=alpha)
+    eng = tm.throw(part, arm, x, k, om, "engine", fixtures=(wall,), alpha=alpha)
+    assert eng.status == tm.Status.OK and eng.side == 0
+    assert out.status == tm.Status.OK, out.message
+    assert out.side == eng.side and abs(out.x - eng.x) < 2e-3
+    assert out.x < arm.length  # never past the wall
+    assert depth(traj, arm.length, arm.h, wall) <= 1e-4
+
+
+def test_the_foot_impact_keeps_angular_momentum_about_the_foot():
+    """Reset at the wall's foot: the vertex stops, angular momentum about it is kept, energy is lost, the arm pushes."""
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        theta = rng.uniform(0.2, math.pi - 0.2)
+        thdot, va = rng.uniform(-3, 3), rng.uniform(0.0, 1.0)
+        lj, rho2 = rng.uniform(0.01, 0.1), rng.uniform(1e-4, 3e-3)
+        ok, th1, pt, pn, k0, k1 = foot_impact(theta, thdot, va, lj, rho2)
+        # angular momentum about the foot (unit mass): ρ² θ̇ + r × v_cm with r = ℓ(cos θ, sin θ)
+        vx, vy = va - thdot * lj * math.sin(theta), thdot * lj * math.cos(theta)
+        before = rho2 * thdot + lj * (math.cos(theta) * vy - math.sin(theta) * vx)
+        after = (rho2 + lj * lj) * th1
+        assert after == pytest.approx(before, rel=1e-12, abs=1e-15)
+        assert k1 <= k0 * (1 + 1e-12)
+        # the normal impulse is the change of the CM's vertical velocity
+        assert pn == pytest.approx(max(lj * math.cos(theta) * (th1 - thdot), 0.0), abs=1e-15)
+        assert ok == (lj * math.cos(theta) * (th1 - thdot) >= -1e-12 * (abs(va) + abs(thdot) * lj))
+
+
+def test_the_foot_holds_only_at_the_wall_at_rest_inside_the_cone():
+    # a pivot short of the wall, a moving pivot or no wall: not the foot
+    args = dict(theta=1.0, thdot=0.0, lj=0.05, I=0.004, g=9.81, mu=0.5, alpha=0.0)
+    assert not foot_holds(False, 0.35, 0.35, 0.0, *args.values())
+    assert not foot_holds(True, 0.34, 0.35, 0.0, *args.values())
+    assert not foot_holds(True, 0.35, 0.35, 0.1, *args.values())
+    assert foot_holds(True, 0.35, 0.35, 0.0, *args.values())
+    # an arm too slippery to hold the pull away from the wall: the pivot slips back
+    slippery = dict(args, mu=0.0, theta=0.6)
+    assert not foot_holds(True, 0.35, 0.35, 0.0, *slippery.values())
+    assert foot_holds(True, 0.35, 0.35, 0.0, *dict(slippery, mu=5.0).values())
