@@ -61,27 +61,46 @@ def _ok(x, side):
     return (x, side, C.OK, f"run at {x}")
 
 
-def test_settle_keeps_the_first_run_when_the_half_step_agrees():
+DT = EngineSettings().dt
+
+
+def _ladder(results):
+    """A rerun that answers ``results[f]`` at dt / f and records the steps asked for."""
     calls = []
 
     def rerun(dt, coarse):
-        calls.append(dt)
-        return _ok(0.2002, 1)
+        f = round(DT / dt)
+        calls.append(f)
+        assert coarse >= dt
+        return results[f]
 
+    return rerun, calls
+
+
+def test_settle_keeps_the_first_run_when_the_half_and_quarter_steps_agree():
+    rerun, calls = _ladder({2: _ok(0.2002, 1), 4: _ok(0.2001, 1)})
     x, k, st, run, why = settle_disagreement(_ok(0.2, 1), rerun, None)
-    assert (x, k, st, why) == (0.2, 1, C.OK, "") and calls == [EngineSettings().dt / 2]
+    assert (x, k, st, why) == (0.2, 1, C.OK, "") and calls == [2, 4]
 
 
 def test_settle_takes_the_half_step_when_the_quarter_step_confirms_it():
-    steps = {EngineSettings().dt / 2: _ok(0.31, 2), EngineSettings().dt / 4: _ok(0.3102, 2)}
-    x, k, st, run, why = settle_disagreement(_ok(0.2, 1), lambda dt, c: steps[dt], None)
-    assert (x, k, st, run) == (0.31, 2, C.OK, "run at 0.31") and "result stands" in why
+    rerun, calls = _ladder({2: _ok(0.31, 2), 4: _ok(0.3102, 2)})
+    x, k, st, run, why = settle_disagreement(_ok(0.2, 1), rerun, None)
+    assert (x, k, st, run) == (0.31, 2, C.OK, "run at 0.31") and "result stands" in why and calls == [2, 4]
+
+
+def test_settle_goes_to_an_eighth_when_the_half_step_agrees_with_the_first_but_not_the_quarter():
+    """Seen on a random part: the default and the half step rest 3 mm from the quarter and the eighth step."""
+    rerun, calls = _ladder({2: _ok(0.19246, 0), 4: _ok(0.18937, 0), 8: _ok(0.18936, 0)})
+    x, k, st, run, why = settle_disagreement(_ok(0.19246, 0), rerun, None)
+    assert (x, k, st) == (0.18937, 0, C.OK) and calls == [2, 4, 8] and f"dt = {DT / 4:g} s result stands" in why
 
 
 def test_settle_refuses_when_finer_steps_do_not_converge():
-    steps = {EngineSettings().dt / 2: _ok(0.31, 2), EngineSettings().dt / 4: _ok(0.25, 0)}
-    x, k, st, run, why = settle_disagreement(_ok(0.2, 1), lambda dt, c: steps[dt], None)
-    assert st == C.UNCONVERGED and "do not converge" in why and "side 0" in why
+    rerun, calls = _ladder({2: _ok(0.31, 2), 4: _ok(0.25, 0), 8: _ok(0.27, 1)})
+    x, k, st, run, why = settle_disagreement(_ok(0.2, 1), rerun, None)
+    assert st == C.UNCONVERGED and "do not converge" in why and "side 0" in why and calls == [2, 4, 8]
+    assert (x, k) == (0.2, 1)
 
 
 def test_disagreement_is_status_then_side_then_x():

@@ -26,6 +26,13 @@ def test_cases_cover_every_stable_side_and_are_admissible():
     assert all(np.array_equal(a.x, b.x) for a, b in zip(cases, again))
 
 
+@pytest.mark.parametrize("n", [0, 3, 7, 12, 400])
+def test_n_random_cases_are_exactly_n(n):
+    cases = make_cases(default_parts(), n, seed=2, grid=False)
+    assert sum(len(c.x) for c in cases) == n
+    assert all(np.all(c.kind == "random") for c in cases)
+
+
 def test_compare_counts_matching_escapes_as_agreement():
     ref = {"x": np.array([0.1, 0.2, 0.3]), "side": np.array([0, 1, 0]), "status": np.array([0, 0, 1])}
     res = {"x": np.array([0.1002, 0.2, 0.5]), "side": np.array([0, 2, 0]), "status": np.array([0, 0, 1])}

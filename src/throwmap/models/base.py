@@ -20,6 +20,7 @@ model's name: they ask its :class:`Features`.
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import functools
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
@@ -138,6 +139,12 @@ def _default_options(typ: type):
     return typ()
 
 
+CALL_KEYWORDS = ("n_starts", "starts", "x_max", "rng", "caps", "limits", "progress", "fixtures", "alpha", "options",
+                 "horizon", "n_grid", "omega", "model", "seed", "dt", "max_throws")
+"""Keywords of the analysis and throw functions that pass the rest to the model: a slip in one of them arrives here
+as an unknown model option, and the error suggests the nearest (``n_start`` → ``n_starts``)."""
+
+
 def _same(a, b) -> bool:
     """Whether an option given twice (in ``options`` and as a keyword) agrees."""
     try:
@@ -165,7 +172,9 @@ def build_options(model: ThrowModel, options=None, overrides: dict | None = None
         for key in overrides:
             if key not in names:
                 known = ", ".join(sorted(names)) or "none"
-                raise InvalidStateError(key, f"unknown keyword for model {model.name!r} (its options: {known})")
+                near = difflib.get_close_matches(key, sorted(names) + list(CALL_KEYWORDS), n=1)
+                hint = f"; did you mean {near[0]!r}?" if near else ""
+                raise InvalidStateError(key, f"unknown keyword for model {model.name!r} (its options: {known}){hint}")
         if options is not None:
             for key, val in overrides.items():
                 given = getattr(options, key)

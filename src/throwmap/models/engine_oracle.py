@@ -14,10 +14,12 @@ What
 After the engine's run, the same throw by "rigid_body" with the engines' velocity-level impact law
 (``impact_law="velocity"``; its default Routh law differs by 1–30 mm at μ ≤ 0.6, a law choice). Where both
 ended (ok, off_end or behind_joint) and they disagree — another status, another side, or rests more than
-:data:`ORACLE_TOL` apart — the engine reruns at half its step. If that agrees with the first run
-(``EngineSettings.agreement``), the first run stands: the step has converged and the difference is between the
-models. Otherwise it reruns at a quarter step; where the half and quarter steps agree the half-step result is
-returned (its message says so), else the throw is refused as ``unconverged``. ``EngineSettings.verify = False``
+:data:`ORACLE_TOL` apart — the engine reruns at a half and a quarter of its step (and an eighth where those two
+disagree). Where the first run, the half and the quarter step agree (``EngineSettings.agreement``), the first run
+stands: the step has converged and the difference is between the models. Otherwise the coarsest rerun that the
+next finer one confirms is returned (its message says so), else the throw is refused as ``unconverged``. (A
+half step alone is not enough: on random parts a throw whose default and half step agree 3 mm from the quarter
+step was seen.) ``EngineSettings.verify = False``
 turns the oracle off with the half-step check.
 """
 
@@ -73,25 +75,32 @@ def settle_disagreement(first, rerun, settings):
     """The engine's answer after the oracle disagreed with ``first`` = ``(x, side, status, run)``.
 
     ``rerun(dt, coarse_dt)`` runs the same throw at another step and returns ``(x, side, status, run)`` (``run``:
-    whatever the caller keeps of it). Returns ``(x, side, status, run, message)``: the first result and ``""``
-    (the half step agrees with it), the half-step result (the quarter step agrees with it) or the first with
-    status UNCONVERGED; the message names the three results."""
+    whatever the caller keeps of it). The throw is rerun at 1/2 and 1/4 of the step, and at 1/8 where those two
+    disagree; the answer is the coarsest run that a finer one confirms (two successive steps agree within
+    ``EngineSettings.agreement``). Returns ``(x, side, status, run, message)``: the first result and ``""`` (it,
+    the half and the quarter step agree: the step has converged and the difference is between the models), the
+    half- or quarter-step result with a message naming the runs, or the first with status UNCONVERGED (no two
+    successive steps agree)."""
     from ..engine.settings import EngineSettings
 
     s = EngineSettings() if settings is None else settings
     tol = s.agreement
-    half = rerun(s.dt / 2, max(s.coarse_dt / 2, s.dt / 2))
-    if not disagrees(first[:3], half[:3], tol):
+    runs = [(s.dt, first)]
+    for f in (2, 4):
+        runs.append((s.dt / f, rerun(s.dt / f, max(s.coarse_dt / f, s.dt / f))))
+    if not disagrees(runs[1][1][:3], runs[2][1][:3], tol) and not disagrees(first[:3], runs[1][1][:3], tol):
         return (*first, "")
-    quarter = rerun(s.dt / 4, max(s.coarse_dt / 4, s.dt / 4))
+    if disagrees(runs[1][1][:3], runs[2][1][:3], tol):
+        runs.append((s.dt / 8, rerun(s.dt / 8, max(s.coarse_dt / 8, s.dt / 8))))
 
     def show(r, dt):
         return f"{Status(int(r[2])).label} side {int(r[1])} x = {float(r[0]):.5f} m at dt = {dt:g} s"
 
-    seen = f"{show(first, s.dt)}, {show(half, s.dt / 2)}, {show(quarter, s.dt / 4)}"
-    if not disagrees(half[:3], quarter[:3], tol):
-        return (*half, f"the exact model disagreed with the engine at dt = {s.dt:g} s; rerun: {seen}; "
-                       f"the dt = {s.dt / 2:g} s result stands")
+    seen = ", ".join(show(r, dt) for dt, r in runs)
+    for (dt, a), (_, b) in zip(runs[1:], runs[2:]):
+        if not disagrees(a[:3], b[:3], tol):
+            return (*a, f"the exact model disagreed with the engine at dt = {s.dt:g} s; rerun: {seen}; "
+                        f"the dt = {dt:g} s result stands")
     return (first[0], first[1], C.UNCONVERGED, first[3],
             f"the exact model disagreed and finer steps do not converge: {seen}; result refused")
 

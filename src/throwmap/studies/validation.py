@@ -91,13 +91,15 @@ class ValidationCase:
 
 def make_cases(parts: dict[str, Part], n: int, seed=0, *, grid: bool = True, hs=DEFAULT_H,
                omega_range=DEFAULT_OMEGA, x_max: float = X_MAX) -> list[ValidationCase]:
-    """``n`` random cases spread over ``parts`` plus, with ``grid``, a grid per part
+    """``n`` random cases spread over ``parts`` (exactly ``n``: the first ``n mod len(parts)`` parts take one more)
+    plus, with ``grid``, a grid per part
     (x at 4 points on every stable side × ω ∈ {min, mid, max} at h = hs[0]); the random ones drawn from
     ``seed`` (an int or a Generator, :func:`throwmap.rng.as_generator`)."""
     rng = as_generator(seed, "seed")
     out = []
-    per_part = max(1, n // max(len(parts), 1))
-    for name, part in parts.items():
+    n_parts = max(len(parts), 1)
+    for i, (name, part) in enumerate(parts.items()):
+        per_part = n // n_parts + (1 if i < n % n_parts else 0)
         sides = np.flatnonzero(part.stable)
         xs, ss, oms, hh, kind = [], [], [], [], []
         if grid:
