@@ -39,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kernels import codes as C
+from ..serial import fields_equal
 from .attractors import fate_label, map_short, nan_to_none, none_to_nan
 from .budget import Limits, guard_work
 from .caps import check_int, check_length
@@ -92,6 +93,12 @@ class CriticalPoints:
     xtol: float
     n_throws: int
     map_info: dict
+
+    def __eq__(self, other):
+        """Equal when every field holds the same values (NaN equal to NaN, arrays element-wise)."""
+        return fields_equal(self, other)
+
+    __hash__ = None
 
     def __repr__(self) -> str:
         def cm(d):

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import shown
+from ..serial import fields_equal
 from ..kernels import codes as C
 
 __all__ = ["Status", "ThrowOutcome", "ThrowStart", "ThrowEnd", "ThrowRecord", "ThrowSystem", "BatchOutcome", "FLAT_FIELDS"]
@@ -396,7 +397,7 @@ class ThrowOutcome:
         return "\n".join(lines)
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)
 class BatchOutcome:
     """Results of :func:`throwmap.throw_batch`: arrays in the broadcast shape of the inputs.
 
@@ -412,6 +413,12 @@ class BatchOutcome:
     model: str
     alpha: float = 0.0
     fixtures: tuple = ()
+
+    def __eq__(self, other):
+        """Equal when every array and field holds the same values (NaN equal to NaN)."""
+        return fields_equal(self, other)
+
+    __hash__ = None
 
     def __repr__(self) -> str:
         counts = ", ".join(f"{k} {v}" for k, v in self.counts().items()) or "none"
