@@ -4,7 +4,8 @@ Throws ``--n`` random impulse throws of the canonical triangle (h = −0.01 m,
 μ = 1.5, x uniform on random stable sides up to 0.45 m, ω ∈ [3, 7] rad/s) with
 the default :class:`throwmap.engine.EngineSettings` (0.125 ms step near
 contacts, 0.5 ms in smooth contact phases, exact free flight), first in one
-process (throws/s per core), then over all cores with
+process (throws/s per core), the same throws through the model ``tm.throw(..., "engine")`` (input checks and
+the exact model as oracle, :mod:`throwmap.models.engine_oracle`), then over all cores with
 ``throw_batch(..., model="engine", workers=0)``.
 
 Per throw it prints the run's cost (pymunk steps, fine and coarse; exact-flight
@@ -114,13 +115,17 @@ def main(argv=None) -> dict:
     engine_run(part, arm, float(x[0]), int(k[0]), float(om[0]))  # warm-up
     plain_pymunk_seconds(part, arm, 100, 100, settings)
     tot = dict(steps=0, coarse=0, leaps=0, checks=0, clearance=0, sim=0.0)
-    t_engine = t_ref = t_raw = 0.0
+    tm.throw(part, arm, float(x[0]), int(k[0]), float(om[0]), "engine")  # warm-up of the exact model's kernels
+    t_engine = t_ref = t_raw = t_model = 0.0
     for i in range(args.n):  # engine and references interleaved, so that all see the same machine load
         t0 = time.perf_counter()
         r = engine_run(part, arm, float(x[i]), int(k[i]), float(om[i]))
         t_engine += time.perf_counter() - t0
         t_ref += plain_pymunk_seconds(part, arm, r.n_steps - r.n_coarse, r.n_coarse, settings)
         t_raw += plain_pymunk_seconds(part, arm, r.n_steps - r.n_coarse, r.n_coarse, settings, raw=True)
+        t0 = time.perf_counter()
+        tm.throw(part, arm, float(x[i]), int(k[i]), float(om[i]), "engine")
+        t_model += time.perf_counter() - t0
         tot["steps"] += r.n_steps
         tot["coarse"] += r.n_coarse
         tot["leaps"] += r.n_leaps
@@ -135,7 +140,8 @@ def main(argv=None) -> dict:
     per = {key: v / n for key, v in tot.items()}
     res = {
         "n": n, "cores": cores, "python": sys.version.split()[0], "machine": platform.machine(),
-        "throws_per_s_one_core": n / t_engine, "throws_per_s_all_cores": n / t_all,
+        "throws_per_s_one_core": n / t_engine, "model_throws_per_s_one_core": n / t_model,
+        "ratio_model_over_engine_run": t_engine / t_model, "throws_per_s_all_cores": n / t_all,
         "reference_throws_per_s": n / t_ref, "ratio_engine_over_reference": t_ref / t_engine,
         "steps_per_throw": per["steps"], "coarse_steps_per_throw": per["coarse"], "leaps_per_throw": per["leaps"],
         "checks_per_throw": per["checks"], "clearances_per_throw": per["clearance"],
@@ -148,6 +154,8 @@ def main(argv=None) -> dict:
     }
     print(f"engine benchmark: {n} throws, {cores} cores, Python {res['python']} ({res['machine']})")
     print(f"  one core : {res['throws_per_s_one_core']:8.1f} throws/s  ({res['ms_per_throw']:.2f} ms/throw)")
+    print(f"  model 'engine' (checks, exact-model oracle): {res['model_throws_per_s_one_core']:8.1f} throws/s on one "
+          f"core, {res['ratio_model_over_engine_run']:.3f} of engine_run's rate")
     print(f"  all cores: {res['throws_per_s_all_cores']:8.1f} throws/s")
     print(f"  reference: {res['reference_throws_per_s']:8.1f} throws/s  (plain pymunk loop, same steps per throw, "
           f"{res['us_per_step_reference']:.2f} µs/step)")

@@ -195,3 +195,19 @@ def test_the_suite_has_a_per_test_timeout(request):
     """A hang (an uncapped search) fails its test instead of stalling CI: pytest-timeout with a stated limit."""
     assert request.config.pluginmanager.hasplugin("timeout")
     assert float(request.config.getini("timeout")) == 900.0
+
+
+def test_a_time_limit_set_by_hand_is_checked_on_small_work_too():
+    """A few hundred throws are not timed under the default limits; a --max-time below the default is always
+    checked (it was ignored below a million throws)."""
+    import throwmap as tm
+    from throwmap.budget import Limits
+    from throwmap.errors import InvalidStateError
+
+    part, arm = tm.triangle_30_60_90(), tm.Arm(h=-0.01)
+    tight = Limits(max_seconds=1e-7)
+    with pytest.raises(InvalidStateError, match="over the limit of"):
+        tm.limit_set(part, arm, 4.5, "paper", n_starts=16, limits=tight)
+    with pytest.raises(InvalidStateError, match="over the limit of"):
+        tm.critical_points(part, arm, 4.5, "paper", limits=tight)
+    assert tm.limit_set(part, arm, 4.5, "paper", n_starts=16, limits=Limits(max_seconds=600)).attractors is not None

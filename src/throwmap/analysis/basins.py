@@ -351,7 +351,7 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
     n_planned = grid_size(cmap, grid)
     planned = "cells" if method == "cells" or (method == "auto" and n_planned > AUTO_CELLS_ABOVE) else "orbits"
     guard_work(f"basins ({planned})", "grid", n_planned, BYTES_PER_CONFIG, limits,
-               throws_per_config=1.0, cmap=cmap, hint="a coarser --grid")
+               throws_per_config=1.0, cmap=cmap, timed_above=0, hint="a coarser --grid")
     x, s, spacing = basin_grid(cmap, grid)
     method = planned
 
@@ -369,7 +369,7 @@ def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000,
         pick = np.linspace(0, x.size - 1, 64).astype(int)
         _, _, t_sample = map_to_attractors(cmap, x[pick], s[pick], attractors, reach_tol, max_throws)
         guard_work("basins (orbits)", "grid", x.size, BYTES_PER_CONFIG, limits,
-                   throws_per_config=max(1.0, float(np.mean(t_sample))), cmap=cmap,
+                   throws_per_config=max(1.0, float(np.mean(t_sample))), cmap=cmap, timed_above=0,
                    hint="a coarser --grid or --method cells")
     if method == "orbits":
         attractors, labels, fates, throws = exact_with_discovery(

@@ -25,6 +25,10 @@ from .maps import ConfigMap
 __all__ = ["DEFAULT_LIMITS", "Limits", "seconds_per_throw", "guard_work", "check_count", "human_bytes",
            "human_seconds"]
 
+TIMED_ABOVE = 10**6
+"""Throws above which the work's time is estimated before it starts (below, only a time limit set by hand is
+checked: measuring costs a few hundred throws)."""
+
 SAMPLE = 256
 """Configurations thrown once to measure the time per throw."""
 
@@ -47,15 +51,19 @@ def seconds_per_throw(cmap: ConfigMap, n: int = SAMPLE) -> float:
 
 
 def guard_work(what: str, field: str, n_configs: int, bytes_per_config: float, limits: Limits | None = None, *,
-               throws_per_config: float = 0.0, cmap: ConfigMap | None = None, hint: str = "a coarser grid") -> dict:
+               throws_per_config: float = 0.0, cmap: ConfigMap | None = None, hint: str = "a coarser grid",
+               timed_above: float = TIMED_ABOVE) -> dict:
     """Refuse work whose estimate exceeds the limits; return the estimate.
 
     :func:`throwmap.budget.guard_work` with the time per throw measured on ``cmap``
-    (:func:`seconds_per_throw`) when it is given. Memory: ``n_configs × bytes_per_config``;
+    (:func:`seconds_per_throw`, a few hundred throws) when it is given and the work is worth timing: over
+    ``timed_above`` throws, or any size when the time limit was set below the default 30 min (``--max-time``). Memory: ``n_configs × bytes_per_config``;
     time: ``n_configs × throws_per_config ×`` the measured time per throw. Raises
     :class:`~throwmap.errors.InvalidStateError` on ``field`` unless ``limits.force``. Returns
     ``{"n_configs", "memory_bytes", "seconds", "seconds_per_throw"}``.
     """
-    timer = None if cmap is None else (lambda: seconds_per_throw(cmap))
+    limits = Limits.of(limits)
+    worth = float(n_configs) * float(throws_per_config) > timed_above or limits.max_seconds < DEFAULT_LIMITS.max_seconds
+    timer = None if cmap is None or not worth else (lambda: seconds_per_throw(cmap))
     return _budget.guard_work(what, field, n_configs, bytes_per_config, limits,
                               throws_per_config=throws_per_config, timer=timer, hint=hint)

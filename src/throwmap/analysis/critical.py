@@ -368,7 +368,7 @@ def critical_points(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, x
     limits = Limits.of(limits)
     n_planned = int(n_grid) * len(cmap.sides)
     guard_work("critical points", "n_grid", n_planned, 100, limits, throws_per_config=1.0,
-               cmap=cmap if n_planned > 10**5 else None, hint="a smaller n_grid")
+               cmap=cmap, timed_above=10**5, hint="a smaller n_grid")
     T = _Counter(cmap)
     r, jog_start, bracket, nxt, flips_beyond, non_flips = _r_points(T, cmap, int(n_grid), int(n_split), float(xtol))
     if limit is not None:

@@ -275,8 +275,7 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
               "transient": rc.transient / max(1, DEFAULT_CAPS["transient"])}
     field = max(ratios, key=lambda k: ratios[k])
     guard_work("limit set", field, n_planned, 16 * rc.n_record + 64, limits,
-               throws_per_config=rc.transient + rc.n_record, cmap=cmap if n_planned * (rc.transient + rc.n_record)
-               > 10**6 else None, hint="fewer starts or a shorter record")
+               throws_per_config=rc.transient + rc.n_record, cmap=cmap, hint="fewer starts or a shorter record")
     if starts is None:
         x0, s0 = start_grid(cmap, n_starts, rng)
     else:

@@ -230,7 +230,7 @@ def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, 
             raise InvalidStateError("n", f"must be an integer ≥ 2 (samples per interval), got {shown(n)}")
         n_planned = int(n) * max(1, len(configs.intervals))
         guard_work("push", "n", n_planned, 24 * (oms.size + 1), limits,
-                   throws_per_config=float(oms.size), cmap=base if n_planned * oms.size > 10**6 else None,
+                   throws_per_config=float(oms.size), cmap=base,
                    hint="fewer samples per interval")
         configs = configs.sample(n)
     try:
