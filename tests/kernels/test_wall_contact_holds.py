@@ -88,27 +88,3 @@ def test_the_foot_holds_only_at_the_wall_at_rest_inside_the_cone():
     slippery = dict(args, mu=0.0, theta=0.6)
     assert not foot_holds(True, 0.35, 0.35, 0.0, *slippery.values())
     assert foot_holds(True, 0.35, 0.35, 0.0, *dict(slippery, mu=5.0).values())
-
-
-def test_a_part_that_passes_over_the_wall_is_never_at_rest_across_it():
-    """A vertex clears the wall's top corner, sinks 2.4 mm into the wall's top (not modelled) and the part came down
-    across the wall: it was reported at rest on side 0 with a vertex 3 cm beyond the arm's end."""
-    part, arm = tm.triangle_30_60_90(0.17), tm.Arm(h=-0.01, mu=0.6, length=0.35)
-    wall = Wall(height=0.08, mu=0.5)
-    args = (part, arm, 0.29852, 2, 5.65621, "rigid_body")
-    kw = dict(fixtures=(wall,), alpha=math.radians(-9.2884))
-    out = tm.throw(*args, **kw)
-    assert out.status == tm.Status.UNRESOLVED and "across the wall" in out.message
-    b = tm.throw_batch(part, arm, np.array([0.29852, 0.16]), np.array([2, 2]), np.array([5.65621, 4.5]), "rigid_body",
-                       **kw)
-    assert int(b.status[0]) == int(tm.Status.UNRESOLVED) and int(b.status[1]) == int(tm.Status.OK)
-    # every rest left is on the arm's side of the wall
-    from throwmap.models.rigid_body import reach_beyond_cm
-
-    reach = reach_beyond_cm(part)
-    assert float(b.x[1]) + reach[int(b.side[1])] <= arm.length
-    # the reach is the rightmost vertex of the resting pose
-    for k in part.stable_sides:
-        V = part.w @ np.array([[math.cos(part.beta[k]), math.sin(part.beta[k])],
-                               [-math.sin(part.beta[k]), math.cos(part.beta[k])]])
-        assert reach[k] == pytest.approx(V[:, 0].max(), abs=1e-15)

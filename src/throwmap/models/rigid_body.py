@@ -22,7 +22,6 @@ import numpy as np
 from ..kernels import codes as C
 from ..errors import InvalidStateError, shown
 from ..kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY, count_samples, pick, throw_one_rigid_body
-from ..kernels.rigid_body.modes import WHY_OVER_WALL
 from ..kernels.rigid_body.tilt import tilted_stable
 from ..system.fixtures import Cavity, Wall
 from ..records.outcome import ThrowOutcome
@@ -111,31 +110,6 @@ def wall_args(arm, fixtures) -> tuple[float, float]:
     return 0.0, 0.0
 
 
-def reach_beyond_cm(part) -> np.ndarray:
-    """Per side k (m): how far the part reaches along the arm beyond its CM when it rests flat on side k (its
-    rightmost vertex's offset, ``max_j (R(β_k) w_j)_x``)."""
-    c, s = np.cos(part.beta), np.sin(part.beta)
-    return np.max(c[:, None] * part.w[None, :, 0] - s[:, None] * part.w[None, :, 1], axis=1)
-
-
-def refuse_across_wall(part, arm, wall_h: float, x, side, status, records) -> None:
-    """Refuse (in place, status UNRESOLVED with reason ``WHY_OVER_WALL``) every rest that lies across the wall: a
-    vertex beyond the arm's end, where the wall stands. The kernel follows a vertex over the wall's top corner but
-    not onto the wall's top surface (its thickness is not modelled), so a part that passes over the wall and comes
-    down across it would otherwise be reported at rest."""
-    if wall_h <= 0.0:
-        return
-    x, side, status = np.atleast_1d(x), np.atleast_1d(side), np.atleast_1d(status)
-    ok = status == C.OK
-    if not ok.any():
-        return
-    reach = reach_beyond_cm(part)
-    k = np.where(ok, side, 0).astype(np.int64)
-    across = ok & (x + reach[k] > arm.length_or_inf + 1e-9 * max(1.0, abs(arm.length_or_inf)))
-    status[across] = C.UNRESOLVED
-    records.reshape(-1, C.NREC)[across, C.WHY] = WHY_OVER_WALL
-
-
 def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt: float = 1.0, alpha: float = 0.0,
                fixtures=()):
     """One kernel call: ``(x', side', status, record)``; ``traj`` (M, 4) receives the sampled motion;
@@ -146,9 +120,7 @@ def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt:
                                       part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d,
                                       part.uL, part.uR, part.ell, stable_at(part, alpha), o.tol, o.max_iter,
                                       o.max_impacts, rec, traj, dt, wall_h, wall_mu)
-    st_ = np.array([st])
-    refuse_across_wall(part, arm, wall_h, np.array([xn]), np.array([kn]), st_, rec)
-    return xn, kn, int(st_[0]), rec
+    return xn, kn, st, rec
 
 
 class RigidBodyModel:
@@ -184,7 +156,6 @@ class RigidBodyModel:
                 part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d, part.uL, part.uR, part.ell,
                 stable_at(part, system.alpha), o.tol, o.max_iter, o.max_impacts, out.x, out.side, out.status,
                 out.records, *wall_args(arm, system.fixtures))
-        refuse_across_wall(part, arm, wall_args(arm, system.fixtures)[0], out.x, out.side, out.status, out.records)
         return out
 
     def assumptions(self, records, mu, status) -> str:
