@@ -352,12 +352,13 @@ def test_plot_unsupported_extension(tmp_path):
     assert_one_error(result, "plot")
 
 
-def test_plot_missing_directory_is_created(tmp_path):
-    """One rule for every output: missing folders are made (after the up-front writability check)."""
+def test_plot_missing_directory_is_refused(tmp_path):
+    """One rule for every output: a missing folder is never made; the figure is refused before any work."""
     target = tmp_path / "no" / "deeper" / "orbit.png"
     result = invoke("iterate", *TRIANGLE, "--x", "0.2", "--side", "0", "--omega", "4", "-n", "2", "--plot", target)
-    assert result.exit_code == 0, result.output
-    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert result.exit_code == 2, result.output
+    assert result.stderr.splitlines() == [f"error: plot: folder {str(target.parent)!r} does not exist"]
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_plot_directory_that_is_a_file(tmp_path):

@@ -19,7 +19,7 @@ POINTS = ["design", "points", "--part", "triangle", "--h", "-0.01", "--length", 
 
 
 def test_points_json_and_plot(tmp_path):
-    out = tmp_path / "fig" / "design.png"
+    out = tmp_path / "design.png"
     res = runner.invoke(app, POINTS + ["--json", "--plot", str(out)])
     assert res.exit_code == 0, res.output
     doc = json.loads(res.stdout)

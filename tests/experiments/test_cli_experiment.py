@@ -76,7 +76,7 @@ def test_bad_config_names_the_field(tmp_path):
 
 
 def test_plot(tmp_path):
-    fig = tmp_path / "figs" / "settle.png"
+    fig = tmp_path / "settle.png"
     r = invoke("experiment", "settle", "--n", 4, "--seed", 1, "--workers", 1, "--json", "--plot", fig)
     assert r.exit_code == 0 and fig.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     json.loads(r.stdout)

@@ -365,7 +365,7 @@ BASE = ["animate", "--part", "triangle", "--h", "-0.01", "--x", "0.3", "--side",
 
 
 def test_cli_animate_writes_a_gif(tmp_path):
-    out = tmp_path / "sub" / "throw.gif"
+    out = tmp_path / "throw.gif"
     result = runner.invoke(_app(), BASE + ["--n", "2", "--out", str(out)])
     assert result.exit_code == 0, result.output
     assert out.is_file()

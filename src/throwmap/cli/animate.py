@@ -99,8 +99,8 @@ def animate_cmd(
         limits = work_limits(max_memory, max_time, force)
         from ..viz.animation import animate, check_animation_path, frame_times
 
-        check_animation_path(out, need_directory=False)  # before any work; the directory is made below
-        check_output(out, "out", create=True)  # its folder writable or creatable
+        check_animation_path(out, need_directory=False)  # before any work; its folder: check_output
+        check_output(out, "out")  # its folder there and writable
         the_part, arm = part_and_arm(part, h, g, length, mu, back)
         system_options(alpha, wall, wall_mu, cavity, arm)  # fixtures need the arm's length
         side = the_part.check_side(side)  # the library's rule for a side, before any work
@@ -120,11 +120,6 @@ def animate_cmd(
             else:
                 reason = f"the {model!r} model needs the optional package {missing!r} (pip install it)"
             raise ThrowmapError("model", reason) from None
-        parent = out.parent if str(out.parent) else Path(".")
-        try:
-            parent.mkdir(parents=True, exist_ok=True)
-        except OSError as err:
-            raise ThrowmapError("out", f"cannot create directory {parent}: {err.strerror or err}") from None
         throws, summary = _summary(traj)
         from ..analysis.maps import system_text
 

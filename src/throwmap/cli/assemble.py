@@ -26,7 +26,7 @@ import typer
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits
 from ..errors import InvalidStateError
 from .options import (ForceOpt, JsonOpt, MaxMemoryOpt, MaxTimeOpt, check_out_dir, check_output, figure_format, guard,
-                      parse_floats, progress_bar, save_figure, strict_int, to_json)
+                      interrupted_line, parse_floats, progress_bar, save_figure, stderr_line, strict_int, to_json)
 from .usage import ThrowmapGroup
 
 __all__ = ["register", "assemble_app", "sensitivity_cmd"]
@@ -123,13 +123,12 @@ def animate_cmd(config: ConfigArg = None, index: IndexOpt = 0, seed: SeedOpt = 0
         from ..viz.animation import animate, check_animation_path
 
         check_animation_path(out, need_directory=False)
-        check_output(out, "out", create=True)
+        check_output(out, "out")
         ep = _episode(config, index, seed, first, tries, motion=True)
         traj = ep.motion(start=start)
         s = ep.summary()
         end = f"assembled at throw {s['assembled_throw']}" if ep.success else f"failed: {ep.trial.failure}"
         title = f"self-assembly, seed {ep.seed} trial {ep.index}: switch after throw {s['switch_throw']}, {end}"
-        Path(out).parent.mkdir(parents=True, exist_ok=True)
         try:
             made = animate(traj, out, fps=fps, speed=speed, title=title, figsize=(8.0, 3.6))
         except OSError as err:
@@ -179,9 +178,13 @@ def sensitivity_cmd(
         if out is not None:
             check_out_dir(out)
         limits = cli_limits(max_memory, max_time, force)
-        with progress_bar(f"{exp.name} × {len(vals)}") as update:
-            res = sensitivity(exp, cfg, fields=tuple(param), values=vals, n=n, seed=seed, workers=workers, out=out,
-                              progress=update, limits=limits)
+        try:
+            with progress_bar(f"{exp.name} × {len(vals)}") as update:
+                res = sensitivity(exp, cfg, fields=tuple(param), values=vals, n=n, seed=seed, workers=workers,
+                                  out=out, progress=update, limits=limits)
+        except KeyboardInterrupt:
+            stderr_line(interrupted_line(out, "trial", "*/trials.jsonl"))
+            raise typer.Exit(130) from None
         if plot is not None:
             os.environ.setdefault("MPLBACKEND", "Agg")
             save_figure(res.plot(goal=goal), plot, fmt, "plot")

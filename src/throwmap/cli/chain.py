@@ -12,14 +12,15 @@ Errors: one ``error: <field>: <reason>`` line, exit 2 (:mod:`throwmap.cli.option
 
 from __future__ import annotations
 
+import glob
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS
-from .options import (ForceOpt, MaxMemoryOpt, MaxTimeOpt, check_finite, figure_format, guard, save_figure, to_json,
-                      write_text)
+from .options import (ForceOpt, MaxMemoryOpt, MaxTimeOpt, check_finite, check_output, figure_format, guard,
+                      save_figure, stderr_line, stored_lines, to_json, write_text)
 from .usage import ThrowmapGroup
 
 __all__ = ["register", "chain_app"]
@@ -149,6 +150,8 @@ def throw_cmd(
             raise InvalidStateError("trials", f"must be an integer ≥ 0 (0: no Monte Carlo), got {trials}")
         limits = cli_limits(max_memory, max_time, force)
         fmt = figure_format(plot, "plot")
+        if out is not None:
+            check_output(out, "out")
         fmt_s = figure_format(plot_stationary, "plot_stationary")
         fmt_q = figure_format(plot_quasi, "plot_quasi")
         from ..models import get_model
@@ -252,6 +255,8 @@ def position_cmd(
         _positive(mu_nodes, "mu_nodes", True)
         limits = cli_limits(max_memory, max_time, force)
         fmt = figure_format(plot, "plot")
+        if out is not None:
+            check_output(out, "out")
         fmt_s = figure_format(plot_stationary, "plot_stationary")
         exp = get_experiment("position")
         if config is not None:
@@ -336,8 +341,17 @@ def assemble_cmd(
     with guard():
         _positive(bin_m, "bin")
         fmt = figure_format(plot, "plot")
+        if out is not None:
+            check_output(out, "out")
         if record > 0:
-            rows = record_episodes(episodes, seed, record)
+            check_output(episodes, "episodes")
+            try:
+                rows = record_episodes(episodes, seed, record)
+            except KeyboardInterrupt:
+                kept = stored_lines(Path(episodes).parent, glob.escape(Path(episodes).name))
+                stderr_line(f"interrupted: {kept} episode(s) "
+                            f"stored in {str(episodes)!r}; the same command resumes from them")
+                raise typer.Exit(130) from None
         elif not Path(episodes).is_file():
             raise InvalidStateError("episodes", f"no file {episodes} (record some with --record N)")
         else:

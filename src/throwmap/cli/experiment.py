@@ -104,15 +104,15 @@ def experiment_cmd(
             with progress_bar(exp.name) as update:
                 result = run_experiment(exp, cfg, n=n, seed=seed, workers=workers, out=out, resume=resume,
                                         progress=update, limits=limits)
+            if plot is not None:
+                save_figure(result.plot(), plot, fmt, "plot")
+            if as_json:
+                typer.echo(to_json(result.to_json()))
+            else:
+                _table(result)
         except KeyboardInterrupt:
             stderr_line(interrupted_line(out, "trial"))
             raise typer.Exit(130) from None
-        if plot is not None:
-            save_figure(result.plot(), plot, fmt, "plot")
-        if as_json:
-            typer.echo(to_json(result.to_json()))
-        else:
-            _table(result)
 
 
 def register(app: typer.Typer) -> None:

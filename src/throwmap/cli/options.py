@@ -9,8 +9,8 @@
 - Writing: :func:`to_json` (strict JSON: non-finite numbers become ``null``), files
   written atomically (:mod:`throwmap.io.files`). Every output path is checked before any
   work (:func:`check_output`, :func:`check_out_dir`, :func:`figure_format`): not a directory
-  where a file goes; its folder (or an ``--out`` directory) writable, or missing and creatable
-  (the nearest existing folder above it writable), and then made when the output is written.
+  where a file goes; its folder there and writable (a missing one is refused, never made); an
+  ``--out`` directory writable, or missing in a folder that is there (then only DIR is made).
 
 Nothing here imports another ``throwmap.cli`` module; the command modules import this one.
 """
@@ -35,7 +35,7 @@ import typer
 from ..conventions import G
 from ..errors import ConfigError, InvalidArmError, InvalidStateError, ThrowmapError, ThrowmapWarning
 from ..io.config import resolve_part
-from ..io.files import atomic_write_bytes, atomic_write_text
+from ..io.files import atomic_write_bytes, atomic_write_text, make_directory
 from ..serial import json_ready
 from ..system.arm import Arm
 from ..throws.throw import DEFAULT_MODEL, MODELS
@@ -44,9 +44,9 @@ __all__ = ["progress_bar",
     "BackOpt", "GOpt", "HOpt", "JsonOpt", "LengthOpt", "ModelOpt", "ModelOptionOpt", "MuOpt", "OmegaOpt", "PartOpt",
     "SideOpt", "XOpt", "ForceOpt", "MaxMemoryOpt", "MaxTimeOpt", "AlphaOpt", "WallOpt", "WallMuOpt", "CavityOpt",
     "model_options", "options_doc", "parse_alpha", "system_options", "system_doc",
-    "arm_dict", "check_directory", "check_finite", "check_out_dir", "check_output", "figure_format", "format_value",
-    "guard", "make_out_dir", "parse_floats", "part_and_arm", "plot_format", "save_figure", "side_value", "stderr_line",
-    "strict_int", "to_json",
+    "WRITTEN", "arm_dict", "check_directory", "check_finite", "check_out_dir", "check_output", "figure_format",
+    "format_value", "guard", "interrupted_line", "kept_line", "make_out_dir", "parse_floats", "part_and_arm",
+    "plot_format", "save_figure", "side_value", "stderr_line", "stored_lines", "strict_int", "to_json",
     "write_bytes", "write_text",
 ]
 
@@ -374,32 +374,28 @@ def _probe_directory(directory: Path, field: str, target: Path) -> None:
     os.unlink(probe)
 
 
+def _missing_folder(folder: Path, field: str) -> None:
+    """Refuse ``folder`` unless it exists: output never creates a missing folder above it."""
+    if not folder.exists():
+        raise ConfigError(field, f"folder {str(folder)!r} does not exist")
+
+
 def check_directory(directory: Path, field: str, target: Path | None = None) -> None:
-    """Refuse, before any work, a directory that output cannot go into: it exists and is not a
-    directory or is not writable, or it is missing and cannot be created (the nearest existing
-    folder above it is a file, or is not writable). Nothing is created here."""
+    """Refuse, before any work, a directory that output cannot go into: it is missing, or it exists and
+    is not a directory or is not writable. Nothing is created here."""
     target = directory if target is None else target
     directory = Path(directory) if str(directory) else Path(".")
-    if directory.exists():
-        if not directory.is_dir():
-            raise ConfigError(field, f"cannot write {target}: {directory} exists and is not a directory")
-        _probe_directory(directory, field, target)
-        return
-    above = directory.parent
-    while not above.exists() and above != above.parent:
-        above = above.parent
-    if not above.is_dir():
-        raise ConfigError(field, f"cannot write {target}: cannot create {directory} because {above} is not a directory")
-    _probe_directory(above, field, target)
+    _missing_folder(directory, field)
+    if not directory.is_dir():
+        raise ConfigError(field, f"cannot write {target}: {directory} exists and is not a directory")
+    _probe_directory(directory, field, target)
 
 
 def check_output(path: Path, field: str, *, create: bool = True) -> None:
     """Refuse, before any work, an output file that cannot be written: a directory where the
-    file should be, or a folder for it that exists as something else, is not writable, or is
-    missing and cannot be created (the nearest existing folder above it is a file or is not
-    writable). A missing folder is made when the file is written — the one rule for every
-    output (figures, result files, animations, ``--out``). ``create`` is accepted for older
-    callers and changes nothing."""
+    file should be, or a folder for it that is missing, exists as something else or is not
+    writable — the one rule for every output file (figures, result files, animations).
+    ``create`` is accepted for older callers and changes nothing."""
     path = Path(path)
     if path.is_dir():
         raise ConfigError(field, f"cannot write {path}: it is a directory")
@@ -407,42 +403,46 @@ def check_output(path: Path, field: str, *, create: bool = True) -> None:
     check_directory(parent, field, path)
 
 
-def check_out_dir(out: Path | None) -> None:
-    """Refuse an ``--out`` directory that exists as something else, or cannot be written or created."""
-    if out is not None:
-        check_directory(Path(out), "out")
+def check_out_dir(out: Path | None, field: str = "out") -> None:
+    """Refuse, before any work, an output directory (``--out DIR``) that exists as something else or is not
+    writable, or that is missing in a folder that is missing (DIR itself is made, never a folder above it)."""
+    if out is None:
+        return
+    out = Path(out)
+    if out.exists():
+        check_directory(out, field)
+        return
+    parent = out.parent if str(out.parent) else Path(".")
+    check_directory(parent, field, out)
 
 
 def make_out_dir(out: Path, field: str = "out") -> None:
-    """Create the ``--out`` directory (and its parents)."""
-    try:
-        Path(out).mkdir(parents=True, exist_ok=True)
-    except OSError as err:
-        raise ConfigError(field, f"cannot create {out}: {err.strerror or err}") from None
+    """Create the ``--out`` directory, and only it (its folder exists: :func:`check_out_dir`;
+    :func:`throwmap.io.files.make_directory`)."""
+    make_directory(out, field)
 
 
-def _make_parent(path: Path, field: str) -> None:
-    parent = Path(path).parent
-    if str(parent) and not parent.is_dir():
-        make_out_dir(parent, field)
+WRITTEN: list[str] = []
+"""The files the running command has written (:func:`write_text`, :func:`write_bytes`, :func:`save_figure`): what
+a Ctrl-C keeps (:func:`kept_line`). The app's command group empties it before each command."""
 
 
 def write_text(path: Path, text: str, field: str) -> None:
     """Write ``text`` atomically; an OS error becomes a :class:`~throwmap.errors.ConfigError` on ``field``."""
-    _make_parent(path, field)
     try:
         atomic_write_text(path, text)
     except OSError as err:
         raise ConfigError(field, f"cannot write {path}: {err.strerror or err}") from None
+    WRITTEN.append(str(path))
 
 
 def write_bytes(path: Path, data: bytes, field: str) -> None:
     """Write ``data`` atomically; an OS error becomes a :class:`~throwmap.errors.ConfigError` on ``field``."""
-    _make_parent(path, field)
     try:
         atomic_write_bytes(path, data)
     except OSError as err:
         raise ConfigError(field, f"cannot write {path}: {err.strerror or err}") from None
+    WRITTEN.append(str(path))
 
 
 def plot_format(path: Path) -> str:
@@ -458,7 +458,7 @@ def plot_format(path: Path) -> str:
 
 
 def figure_format(path: Path | None, field: str) -> str | None:
-    """Check a figure path (its folder writable or creatable, image type known) before any work; its format."""
+    """Check a figure path (its folder there and writable, image type known) before any work; its format."""
     if path is None:
         return None
     check_output(path, field)
@@ -475,8 +475,8 @@ def save_figure(fig, path: Path, fmt: str, field: str) -> None:
     buf = _io.BytesIO()
     fig.savefig(buf, format=fmt, dpi=130)
     try:
-        _make_parent(path, field)
         atomic_write_bytes(path, buf.getvalue())
+        WRITTEN.append(str(path))
     except OSError as err:
         raise ConfigError(field, f"cannot write {path}: {err.strerror or err}") from None
     finally:
@@ -501,14 +501,29 @@ def progress_bar(name: str):
         yield lambda done, total: bar.update(task, completed=done, total=total)
 
 
-def interrupted_line(out: Path | None, what: str = "trial") -> str:
-    """The one line a Ctrl-C leaves: how many trials ``out`` keeps (its ``trials.jsonl`` lines), or that none
-    are; ``what`` names them (``"trial"``, ``"case"``)."""
+def stored_lines(out: Path, pattern: str = "trials.jsonl") -> int:
+    """The records kept under ``out``: the non-empty lines of its files matching ``pattern``."""
+    k = 0
+    for path in sorted(Path(out).glob(pattern)):
+        try:
+            with open(path, encoding="utf-8") as f:
+                k += sum(1 for line in f if line.strip())
+        except OSError:
+            pass
+    return k
+
+
+def interrupted_line(out: Path | None, what: str = "trial", pattern: str = "trials.jsonl") -> str:
+    """The one line a Ctrl-C leaves: how many trials ``out`` keeps (the lines of its files matching ``pattern``,
+    its ``trials.jsonl``), or that none are; ``what`` names them (``"trial"``, ``"case"``)."""
     if out is None:
         return f"interrupted: no --out DIR, so no {what} was kept"
-    try:
-        with open(Path(out) / "trials.jsonl", encoding="utf-8") as f:
-            k = sum(1 for line in f if line.strip())
-    except OSError:
-        k = 0
-    return f"interrupted: {k} {what}(s) stored in {str(out)!r}; the same command resumes from them"
+    return (f"interrupted: {stored_lines(out, pattern)} {what}(s) stored in {str(out)!r}; the same command resumes "
+            f"from them")
+
+
+def kept_line() -> str:
+    """The one line a Ctrl-C leaves in a command that keeps nothing as it goes: the files it wrote (:data:`WRITTEN`)."""
+    if not WRITTEN:
+        return "interrupted: nothing was written"
+    return f"interrupted: kept {', '.join(repr(p) for p in WRITTEN)}; nothing else was written"

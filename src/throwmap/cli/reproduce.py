@@ -3,7 +3,8 @@
 A thin shell over :func:`throwmap.reproduce.reproduce`: every figure with an analogue, the four experiments
 (≥ 200 engine trials each; ``--quick``: 3, a smoke run), ``report.md``/``report.html``/``report.json`` in DIR.
 Prints the experiments table and where the reports went; exit 1 if a piece failed (it is in the report with its
-reason), 2 on bad input (one ``error: <field>: <reason>`` line). A rerun resumes the experiments' kept trials.
+reason), 2 on bad input (one ``error: <field>: <reason>`` line). A rerun resumes the experiments' kept trials;
+Ctrl-C stops with one line ``interrupted: …`` saying what DIR keeps, and exit 130.
 """
 
 from __future__ import annotations
@@ -13,7 +14,8 @@ from typing import Annotated
 
 import typer
 
-from .options import check_out_dir, guard, progress_bar, stderr_line, strict_int
+from .options import (check_out_dir, guard, progress_bar, stderr_line, stored_lines,
+                      strict_int)
 
 __all__ = ["register", "reproduce_cmd"]
 
@@ -39,14 +41,20 @@ def reproduce_cmd(
             from ..errors import InvalidStateError
 
             raise InvalidStateError("only", "is empty: give figure/experiment keys (comma list) or leave it out")
-        with progress_bar("reproduce") as bar:
-            def say(msg, done=None, total=None):
-                if done is None:
-                    stderr_line(f"reproduce: {msg}…")
-                else:
-                    bar(done, total)
+        try:
+            with progress_bar("reproduce") as bar:
+                def say(msg, done=None, total=None):
+                    if done is None:
+                        stderr_line(f"reproduce: {msg}…")
+                    else:
+                        bar(done, total)
 
-            rep = reproduce(out, size="quick" if quick else "full", workers=workers, only=keys, progress=say)
+                rep = reproduce(out, size="quick" if quick else "full", workers=workers, only=keys, progress=say)
+        except KeyboardInterrupt:
+            figures = len(list((out / "figures").glob("*.png")))
+            stderr_line(f"interrupted: {figures} figure(s) and {stored_lines(out, 'experiments/*/trials.jsonl')} "
+                        f"trial(s) stored in {str(out)!r}; the same command resumes the trials")
+            raise typer.Exit(130) from None
         typer.echo(f"reproduced ({rep.size}) in {rep.elapsed_s / 60:.1f} min: {len(rep.figures)} figures, "
                    f"{len(rep.experiments)} experiments")
         for row in experiment_rows(rep):

@@ -23,7 +23,7 @@ from typing import Annotated
 
 import typer
 
-from .options import JsonOpt, guard, stderr_line, strict_int, to_json
+from .options import JsonOpt, check_out_dir, guard, stderr_line, strict_int, to_json
 
 __all__ = ["register", "sweep_cmd"]
 
@@ -73,6 +73,7 @@ def sweep_cmd(
             st = sweep_status(spec, target)
             typer.echo(to_json(st.to_dict()) if as_json else st.table())
             return
+        check_out_dir(target)
         try:
             with _bar(f"sweep {sweep.name}") as update:
                 run = run_sweep(spec, target, scheduler=scheduler, workers=workers, progress=update,

@@ -7,6 +7,9 @@ errors and prints the same single line every other bad input gets,
 ``error: <field>: <reason>`` on stderr, with exit status 2. The field is the option's
 name as the library spells its fields (``h``, ``side``, ``x_max`` for ``--x-max``), ``option`` for an unknown option, ``command``
 for an unknown command, ``arguments`` for anything else.
+
+A Ctrl-C that reaches the group (a command that keeps nothing as it goes) gets one line too,
+``interrupted: …`` naming the files the command had written, and exit status 130.
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ try:  # Typer ≥ 0.25 ships its own copy of Click
 except ImportError:  # pragma: no cover - older Typer on Click
     from click import exceptions as _cx
 
-from .options import stderr_line
+from .options import WRITTEN, kept_line, stderr_line
 
 __all__ = ["ThrowmapGroup", "usage_line"]
 
@@ -128,13 +131,24 @@ def usage_line(err, args: Sequence[str] = (), prog: str = "throwmap") -> tuple[s
 
 
 class ThrowmapGroup(TyperGroup):
-    """The app's command group: usage errors become one ``error: <field>: <reason>`` line, exit 2."""
+    """The app's command group: usage errors become one ``error: <field>: <reason>`` line, exit 2; a Ctrl-C
+    one ``interrupted:`` line, exit 130."""
 
     def resolve_command(self, ctx, args):
         name = args[0] if args else None
         if name is not None and not name.startswith("-") and self.get_command(ctx, name) is None:
             raise UnknownCommand(name, self.list_commands(ctx), ctx)
         return super().resolve_command(ctx, args)
+
+    def invoke(self, ctx):
+        """Run the command; a Ctrl-C that no command handles itself (those keeping work as they go say what
+        they keep) leaves one line on what was written and exit 130, never a traceback."""
+        WRITTEN.clear()
+        try:
+            return super().invoke(ctx)
+        except KeyboardInterrupt:
+            stderr_line(kept_line())
+            raise typer.Exit(130) from None
 
     def main(self, args: Sequence[str] | None = None, prog_name: str | None = None, complete_var: str | None = None,
              standalone_mode: bool = True, **extra: Any) -> Any:

@@ -297,12 +297,10 @@ def view_cmd(
                                   caption="Episode", table_id="episode")
         player = player_data(traj, fps=fps) if traj is not None else None
         page = viewer_html(title=title, subtitle=subtitle, player=player, sections=sections)
-        out.parent.mkdir(parents=True, exist_ok=True)
         write_viewer(out, page)
         if save_trajectory is not None and traj is not None:
             from ..io.trajectory_file import save_trajectory as save
 
-            save_trajectory.parent.mkdir(parents=True, exist_ok=True)
             save(traj, save_trajectory)
             typer.echo(f"wrote {save_trajectory} ({save_trajectory.stat().st_size / 1e3:.0f} kB)")
         what = (f"{player['n']} frames, {len(traj.parts)} part{'s' if len(traj.parts) != 1 else ''}"

@@ -36,12 +36,14 @@ import sys
 import time
 from collections import Counter
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..version import __version__
 from ..budget import Limits, check_count, guard_work, human_seconds
 from ..errors import InvalidStateError, shown
+from ..io.files import make_directory
 from .base import Trial, config_of, trial_generator, trial_seed
 from .registry import get_experiment
 from .stats import wilson_interval
@@ -163,15 +165,49 @@ _CONFIGS: dict = {}
 
 
 def _worker_init() -> None:
-    """In each worker: die with the parent (Linux ``PR_SET_PDEATHSIG``), so that a run killed with
-    SIGKILL leaves no orphaned workers behind; elsewhere a no-op."""
+    """In each worker: ignore SIGINT, and die with the parent (Linux ``PR_SET_PDEATHSIG``), so that a run
+    killed with SIGKILL leaves no orphaned workers behind.
+
+    A terminal's Ctrl-C signals the whole process group: a worker interrupted inside the pool's queues can
+    leave their lock taken and hang the run. Only the parent acts on it (:func:`_stop_workers`); the
+    workers start with SIGINT blocked (:func:`_sigint_blocked`), so none is lost or acted on before this."""
+    import signal
+
+    if hasattr(signal, "pthread_sigmask"):
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C pending from the start is dropped
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     if sys.platform.startswith("linux"):
         try:
             import ctypes
-            import signal
 
             ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGTERM), 0, 0, 0)  # PR_SET_PDEATHSIG = 1
         except (OSError, AttributeError):  # pragma: no cover - exotic libc
+            pass
+
+
+@contextmanager
+def _sigint_blocked():
+    """Block SIGINT in this thread for the block (POSIX), so that a worker process started in it inherits it
+    blocked until :func:`_worker_init`; a Ctrl-C meanwhile reaches this process when the block ends."""
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):  # pragma: no cover - Windows: no process groups to signal
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def _stop_workers(pool) -> None:
+    """After a Ctrl-C: end the pool's workers now, instead of waiting for their running trials (those are not
+    stored, and a resume runs them); the pool then shuts down at once, as after a worker's crash."""
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        try:
+            proc.terminate()
+        except (OSError, ValueError, AttributeError):  # already gone or closed
             pass
 
 
@@ -326,11 +362,7 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     fh = None
     directory = None
     if out is not None:
-        directory = Path(out)
-        try:
-            directory.mkdir(parents=True, exist_ok=True)
-        except OSError as e:
-            raise InvalidStateError("out", f"cannot create directory {str(directory)!r}: {e.strerror}") from None
+        directory = make_directory(out, "out")  # only it: a missing folder above it is refused
         head_path, lines_path = directory / "run.json", directory / "trials.jsonl"
         if resume and head_path.exists():
             _check_header(json.loads(head_path.read_text()), header, directory)
@@ -389,7 +421,8 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
                     # would otherwise spend most of their time in inter-process traffic)
                     size = 1 if counted == 0 else max(1, min(MAX_CHUNK, int(CHUNK_SECONDS * counted / max(spent, 1e-9))))
                     chunk, queue[:] = tuple(queue[:size]), queue[size:]
-                    pending.add(pool.submit(_run_chunk, exp.name, config_json, seed, chunk, type(exp).__module__))
+                    with _sigint_blocked():  # a worker it starts inherits SIGINT blocked (_worker_init)
+                        pending.add(pool.submit(_run_chunk, exp.name, config_json, seed, chunk, type(exp).__module__))
 
                 try:
                     while queue and len(pending) < 2 * n_workers:
@@ -404,9 +437,11 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
                                 finish(Trial.from_json(row), k)
                         while queue and len(pending) < 2 * n_workers:
                             submit()
-                except BaseException:
+                except BaseException as err:
                     for f in pending:
                         f.cancel()
+                    if isinstance(err, KeyboardInterrupt):
+                        _stop_workers(pool)
                     raise
     finally:
         if fh is not None:

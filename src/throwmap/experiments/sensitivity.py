@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InvalidStateError, shown
+from ..io.files import make_directory
 from .base import config_of
 from .registry import get_experiment
 
@@ -136,6 +137,8 @@ def sensitivity(experiment, config=None, *, fields, values, n: int, seed: int, w
             raise InvalidStateError(loc, f"value {v:g}: {first['msg']}") from None
     total = n * len(vals)
     rows, done0 = [], 0
+    if out is not None:
+        make_directory(out, "out")  # only it (a missing folder above it is refused); each run makes its own in it
     for v, cfg in zip(vals, configs):
         sub = None if out is None else Path(out) / f"{paths[0]}={v:g}"
 

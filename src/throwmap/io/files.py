@@ -4,6 +4,9 @@ A result file is either the old one or the complete new one, never half-written:
 the data go to a temporary file in the same directory, are flushed to disk, and
 the temporary file is renamed over the target with :func:`os.replace` (atomic on
 POSIX and Windows when both live on one file system).
+
+No output creates a missing folder: an output directory is made by :func:`make_directory`, which makes
+that directory alone and refuses one whose folder is missing.
 """
 
 from __future__ import annotations
@@ -13,7 +16,7 @@ import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-__all__ = ["atomic_write_bytes", "atomic_write_text"]
+__all__ = ["atomic_write_bytes", "atomic_write_text", "make_directory"]
 
 
 def _new_file_mode() -> int:
@@ -65,3 +68,22 @@ def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> Path:
 def atomic_write_text(path: str | os.PathLike, text: str, encoding: str = "utf-8") -> Path:
     """Write ``text`` to ``path`` atomically (UTF-8 by default); see :func:`atomic_write_bytes`."""
     return atomic_write_bytes(path, text.encode(encoding))
+
+
+def make_directory(path: str | os.PathLike, field: str = "out") -> Path:
+    """Create the output directory ``path`` unless it is there, and only it: a missing folder above it is
+    refused, never made (:class:`~throwmap.errors.InvalidStateError` on ``field``: ``folder '…' does not
+    exist``), as is a path that exists as something else. Returns ``path`` as a :class:`Path`."""
+    from ..errors import InvalidStateError
+
+    path = Path(path)
+    try:
+        path.mkdir(exist_ok=True)
+    except FileNotFoundError:
+        raise InvalidStateError(field, f"folder {str(path.parent)!r} does not exist") from None
+    except FileExistsError:
+        raise InvalidStateError(field, f"cannot create directory {str(path)!r}: it exists and is not a "
+                                       f"directory") from None
+    except OSError as err:
+        raise InvalidStateError(field, f"cannot create directory {str(path)!r}: {err.strerror or err}") from None
+    return path

@@ -24,6 +24,7 @@ from pathlib import Path
 from ..budget import Limits
 from ..version import __version__
 from ..errors import InvalidStateError, ThrowmapError, shown
+from ..io.files import make_directory
 from .plan import EXPERIMENTS, FIGURES, SIZES
 
 __all__ = ["Reproduction", "reproduce"]
@@ -139,7 +140,8 @@ def reproduce(out, *, size: str = "full", workers: int = 0, only=None, progress=
         raise InvalidStateError("only", f"unknown keys {sorted(chosen - keys)} (choose from {sorted(keys)})")
     sz = SIZES[size]
     out = Path(out)
-    (out / "figures").mkdir(parents=True, exist_ok=True)
+    for folder in (out, out / "figures", out / "experiments"):  # out alone: a missing folder above it is refused
+        make_directory(folder, "out")
     say = progress or (lambda msg, done=None, total=None: None)
     started = datetime.now(timezone.utc).isoformat(timespec="seconds")
     t0 = time.perf_counter()

@@ -33,7 +33,7 @@ import numpy as np
 
 from ..system.arm import Arm
 from .compare import compare_models
-from ..io.files import atomic_write_text
+from ..io.files import atomic_write_text, make_directory
 from ..serial import json_ready
 from ..throws.orbit import iterate
 from ..system.catalogue import triangle_30_60_90
@@ -91,7 +91,7 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> DemoResult:
 
     say = progress or (lambda msg: None)
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    make_directory(out, "out")  # only it: a missing folder above it is refused
     part = triangle_30_60_90(DEMO["hypotenuse"])
     arm = Arm(h=DEMO["h"])
     omega = DEMO["omega"]

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import os
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -163,8 +164,6 @@ def _check_address(scheduler: str) -> None:
 def _client(scheduler, workers: int, timeout: float):
     """``(client, cluster or None)``: connect to ``scheduler``, or start a local cluster of worker processes."""
     import logging
-    import signal
-    import threading
 
     from distributed import Client, LocalCluster
 
@@ -175,16 +174,51 @@ def _client(scheduler, workers: int, timeout: float):
         except (OSError, TimeoutError, ValueError) as err:
             raise InvalidStateError("scheduler", f"cannot connect to {shown(scheduler)}: {' '.join(str(err).split())}") from None
     n = (os.cpu_count() or 1) if workers == 0 else workers
-    # The worker processes start with SIGINT ignored (inherited): a Ctrl-C reaches only this process, which
-    # closes the cluster, instead of killing every worker mid-task with a traceback each.
-    old = signal.signal(signal.SIGINT, signal.SIG_IGN) if threading.current_thread() is threading.main_thread() else None
+    cluster = None
     try:
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
-                               silence_logs=logging.CRITICAL)
+        with _sigint_ignored() as interrupted:
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                   silence_logs=logging.CRITICAL)
+        if interrupted():
+            raise KeyboardInterrupt
+        return Client(cluster, set_as_default=False), cluster
+    except BaseException:
+        if cluster is not None:
+            cluster.close()
+        raise
+
+
+@contextmanager
+def _sigint_ignored():
+    """Run the block with SIGINT ignored, so that the worker processes it starts inherit that: a Ctrl-C then
+    reaches only this process, which closes the cluster, instead of killing every worker mid-task with a
+    traceback each. Yields ``interrupted()``: whether a Ctrl-C came meanwhile — a terminal signals the whole
+    process group, so a sentinel child keeping SIGINT's default action dies of it; ignored here, it would be
+    lost and the run would go on to the end. Outside the main thread SIGINT is left as it is."""
+    import signal
+    import subprocess
+    import sys
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield lambda: False
+        return
+    sentinel = None
+    if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:  # already ignored (a background run): no Ctrl-C
+        sentinel = subprocess.Popen([sys.executable, "-c", "import sys; sys.stdin.read()"], stdin=subprocess.PIPE,
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield lambda: sentinel is not None and sentinel.poll() == -signal.SIGINT
     finally:
-        if old is not None:
-            signal.signal(signal.SIGINT, old)
-    return Client(cluster, set_as_default=False), cluster
+        if sentinel is not None:
+            sentinel.stdin.close()  # ends it, unless a Ctrl-C did
+            try:
+                sentinel.wait(timeout=10)
+            except subprocess.TimeoutExpired:  # pragma: no cover - a stuck interpreter
+                sentinel.kill()
+                sentinel.wait()
+        signal.signal(signal.SIGINT, old)
 
 
 def _quiet_close(client, cluster, own: bool) -> None:

@@ -25,6 +25,7 @@ from pathlib import Path
 
 from ..version import __version__
 from ..errors import InvalidStateError, shown
+from ..io.files import make_directory
 from .schema import jsonable
 
 __all__ = ["MANIFEST", "FORMAT", "column_types", "prepare_out", "finished_chunks", "write_chunk", "read_table",
@@ -115,9 +116,9 @@ def _first_difference(a, b, prefix: str = "") -> str:
 
 
 def prepare_out(out, manifest: dict) -> dict:
-    """Create ``out`` with its manifest, or check the one there: the same ``sweep_sha256`` or a one-line
-    :class:`~throwmap.errors.InvalidStateError` on ``out`` naming the first sweep key that differs. Returns the
-    stored manifest (its ``version`` is the first run's)."""
+    """Create ``out`` (never a missing folder above it) with its manifest, or check the one there: the same
+    ``sweep_sha256`` or a one-line :class:`~throwmap.errors.InvalidStateError` on ``out`` naming the first sweep
+    key that differs. Returns the stored manifest (its ``version`` is the first run's)."""
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise InvalidStateError("out", f"{str(out)!r} is a file, not a directory")
@@ -137,7 +138,7 @@ def prepare_out(out, manifest: dict) -> dict:
         return stored
     if out.exists() and any(_PART.match(p.name) for p in out.iterdir()):
         raise InvalidStateError("out", f"{str(out)!r} holds Parquet parts but no {MANIFEST}: not a sweep of this version")
-    out.mkdir(parents=True, exist_ok=True)
+    make_directory(out, "out")  # only it: a missing folder above it is refused
     manifest = {"format": FORMAT, "version": __version__, **manifest}
     _atomic_text(path, json.dumps(manifest, indent=2, allow_nan=False) + "\n")
     return manifest
