@@ -25,6 +25,7 @@ from throwmap.system.fixtures import Cavity, Wall
 TRI = tm.triangle_30_60_90(0.17)
 LEAD = tm.triangle_30_60_90(0.17, point_masses=[(0.03, (0.1, 0.01))])
 PENTAGON = tm.regular_polygon(5, 0.05)
+SQUARE = tm.rectangle(0.06, 0.06)
 
 
 def test_the_helper_is_built_and_used():
@@ -70,6 +71,10 @@ CASES = {
     "two parts, no slip": (Scene(tm.Arm(h=-0.01, mu=math.inf, length=0.4),
                                  (Placement(TRI, x=0.28, side=0), Placement(TRI, pose=(0.14, 0.07, 1.1))),
                                  friction=Friction(part_part=2.0)), ImpulseThrow(3.5)),
+    # a square dropped onto another at μ_pp = 50: the part–part contact's own cap binds (both bodies' terms of K)
+    "two parts stacked, sticky": (Scene(tm.Arm(h=-0.01, mu=1.5, length=0.5),
+                                        (Placement(SQUARE, x=0.25, side=0), Placement(SQUARE, pose=(0.26, 0.09, 0.3))),
+                                        friction=Friction(part_part=50.0)), ImpulseThrow(3.0)),
 }
 
 
