@@ -59,4 +59,21 @@ def test_the_catalogue_has_unique_ids_and_reasons_only_where_equivalent(mutants)
     ids = [m.id for m in mod.MUTANTS]
     assert len(ids) == len(set(ids))
     assert all(m.old != m.new and m.what for m in mod.MUTANTS)
-    assert all(m.path.startswith(("kernels/", "analysis/")) for m in mod.MUTANTS)
+    repo = TOOL.parent.parent
+    for m in mod.MUTANTS:  # every mutant's file exists and has a test subset, every file of which exists
+        assert (repo / "src" / "throwmap" / m.path).is_file(), m.id
+        assert m.tests and all((repo / t).is_file() for t in m.tests), m.id
+
+
+def test_specific_prefixes_come_before_the_generic_ones(mutants):
+    mod, _ = mutants
+    prefixes = [p for p, _ in mod.TESTS]
+    for i, p in enumerate(prefixes):  # first match wins: a prefix listed after a shorter one it extends is never used
+        assert not any(p.startswith(q) for q in prefixes[:i]), p
+
+
+def test_the_kill_files_run_last_in_their_subsets(mutants):
+    mod, _ = mutants
+    for prefix, tests in mod.TESTS:
+        kills = [i for i, t in enumerate(tests) if t in mod.ADDED_BY_THE_PASS]
+        assert kills == list(range(len(tests) - len(kills), len(tests))), prefix

@@ -49,8 +49,24 @@ SRC = ROOT / "src" / "throwmap"
 CLOSED_FORMS = "tests/kernels/test_closed_forms.py"  # the kill tests this pass added, each naming its mutants
 PIVOT_CASCADE = "tests/kernels/test_pivot_cascade.py"
 SYNTHETIC_MAPS = "tests/analysis/test_synthetic_maps.py"
-ADDED_BY_THE_PASS = (CLOSED_FORMS, PIVOT_CASCADE, SYNTHETIC_MAPS)
+# the kill tests of the N block (the oracle, the contact kernels, the input checks, the success rules)
+ORACLE_RULES = "tests/models/test_engine_oracle_rules.py"
+STATICS_EDGES = "tests/statics/test_documented_range_edges.py"
+GOAL_SETS = "tests/stochastic/test_goal_sets_and_starts.py"
+START_RANGE = "tests/control/test_start_range.py"
+CONFIG_BOUNDS = "tests/experiments/test_config_bounds_inclusive.py"
+FEED_SUCCESS = "tests/design/test_feed_success_rule.py"
+NEGATIVE_SLIPS = "tests/system/test_negative_unit_slips.py"
+SNAPSHOT_CAPTIONS = "tests/reproduce/test_snapshot_captions.py"
+CONTACT_WINDOWS = "tests/kernels/test_contact_windows_after_impulses.py"
+ADDED_BY_THE_PASS = (CLOSED_FORMS, PIVOT_CASCADE, SYNTHETIC_MAPS, ORACLE_RULES, STATICS_EDGES, GOAL_SETS, START_RANGE,
+                     CONFIG_BOUNDS, FEED_SUCCESS, NEGATIVE_SLIPS, SNAPSHOT_CAPTIONS, CONTACT_WINDOWS)
+WALL_CONTACT = ("tests/kernels/test_wall_contact_holds.py", "tests/kernels/test_wall_modes.py",
+                "tests/kernels/test_wall.py", CONTACT_WINDOWS)
 TESTS = (  # (path prefix under src/throwmap, test subset run for a mutant there: first match wins)
+    ("kernels/rigid_body/foot.py", WALL_CONTACT),  # the N block's kernels: before the generic kernels/rigid_body/
+    ("kernels/rigid_body/flight.py", WALL_CONTACT),
+    ("kernels/rigid_body/wall", WALL_CONTACT),
     ("kernels/small_angle.py", ("tests/kernels/test_small_angle.py", "tests/kernels/test_mu_zero.py", CLOSED_FORMS)),
     ("kernels/rigid_body/", ("tests/kernels/test_rigid_body.py", "tests/kernels/test_impact_process.py",
                              "tests/kernels/test_rigid_body_stick.py", "tests/kernels/test_mu_zero.py", CLOSED_FORMS)),
@@ -65,6 +81,19 @@ TESTS = (  # (path prefix under src/throwmap, test subset run for a mutant there
     ("analysis/", ("tests/analysis/test_maps_limitset.py", "tests/analysis/test_recurrence_verified.py",
                    "tests/analysis/test_results.py", "tests/analysis/test_orbits.py",
                    "tests/analysis/test_ranges_reprs.py", SYNTHETIC_MAPS)),
+    ("models/engine", ("tests/engine/test_engine_oracle.py", ORACLE_RULES)),
+    ("statics/", ("tests/statics/test_input_checks.py", "tests/statics/test_rest_lp.py",
+                  "tests/statics/test_results.py", STATICS_EDGES)),
+    ("stochastic/", ("tests/stochastic/test_chain_input.py", "tests/stochastic/test_chain.py",
+                     "tests/stochastic/test_build.py", "tests/stochastic/test_mc_curve.py", GOAL_SETS)),
+    ("control/planner.py", ("tests/control/test_plan_input.py", "tests/control/test_planner.py", START_RANGE)),
+    ("io/", ("tests/experiments/test_config_ranges.py", "tests/io/test_spec.py", "tests/io/test_config.py",
+             CONFIG_BOUNDS)),
+    ("experiments/", ("tests/experiments/test_config_ranges.py", CONFIG_BOUNDS)),
+    ("design/api.py", ("tests/design/test_design_honesty.py", FEED_SUCCESS)),
+    ("errors.py", ("tests/system/test_scale_warnings.py", NEGATIVE_SLIPS)),
+    ("system/", ("tests/system/test_scale_warnings.py", "tests/system/test_part.py", NEGATIVE_SLIPS)),
+    ("reproduce/", ("tests/reproduce/test_captions.py", "tests/reproduce/test_reproduce.py", SNAPSHOT_CAPTIONS)),
 )
 """Each mutant runs the test files that mirror its module, then this tool's own kill tests *last*:
 with ``-x`` the "caught by" column then names an existing test whenever one catches the
@@ -276,6 +305,89 @@ MUTANTS: tuple[Mutant, ...] = (
       "funnel edge needs more than the containment share"),
     M("A26", "analysis/funnels.py", "if np.all(goal.contains(xs, ss, 1e-12)):", "if np.any(goal.contains(xs, ss, 1e-12)):",
       "spout inside the goal if any sample is"),
+    # ================================================================== N: code since the last pass
+    # ------------------------------------------------------------------ models/engine_oracle.py, models/engine.py
+    M("N01", "models/engine_oracle.py", "(int(ka) != int(kb) or not abs(", "(int(ka) != int(kb) and not abs(",
+      "disagrees: another side at the same x agrees (or → and)"),
+    M("N02", "models/engine_oracle.py", "not abs(float(xa) - float(xb)) <= tol", "abs(float(xa) - float(xb)) > tol",
+      "disagrees: comparison turned round, a NaN rest agrees"),
+    M("N03", "models/engine_oracle.py", "o.friction.arm_part is not None or o.friction.wall_part is not None",
+      "o.friction.arm_part is not None and o.friction.wall_part is not None",
+      "oracle_options: off only when both pair frictions are set by hand"),
+    M("N04", "models/engine_oracle.py", "half = rerun(s.dt / 2, max(s.coarse_dt / 2, s.dt / 2))",
+      "half = rerun(s.dt / 2, max(s.coarse_dt, s.dt / 2))", "settle: the half-step rerun keeps the coarse step"),
+    M("N05", "models/engine_oracle.py", "if not disagrees(half[:3], quarter[:3], tol):",
+      "if not disagrees(first[:3], quarter[:3], tol):", "settle: the quarter step compared with the first run"),
+    M("N06", "models/engine.py", "if oracle is None or run.verified or int(out.status) not in ENDED:",
+      "if oracle is None or run.verified or int(out.status) in ENDED:",
+      "outcome: the oracle asked only where the engine did not end"),
+    M("N07", "models/engine.py", "if first[2] not in ENDED or int(ex.status[i]) not in ENDED:",
+      "if first[2] not in ENDED and int(ex.status[i]) not in ENDED:",
+      "batch: an exact throw that did not end still compared (or → and)"),
+    # ------------------------------------------------------------------ kernels/rigid_body: foot, rearm windows, slack
+    M("N08", "kernels/rigid_body/foot.py", "if not walled or px < length or va != 0.0:",
+      "if not walled or px <= length or va != 0.0:", "foot_holds: a pivot exactly at the wall is not at the foot"),
+    M("N09", "kernels/rigid_body/foot.py", "th1 = thdot - lj * s * va / I", "th1 = thdot + lj * s * va / I",
+      "foot_impact: sign of the slide's angular momentum about the foot"),
+    M("N10", "kernels/rigid_body/flight.py", "un = vy + om * rx", "un = vy - om * rx",
+      "rearm_window: sign of the spin's share of the vertex's normal velocity"),
+    M("N11", "kernels/rigid_body/wall.py", "un = -(vx - om * ay)  # the vertex's velocity away from the face",
+      "un = (vx - om * ay)  # the vertex's velocity away from the face",
+      "rearm_wall_window (face): velocity into the face taken as leaving"),
+    M("N12", "kernels/rigid_body/wall.py", "return max(h - yk, 0.0) + SINK_TOL * size",
+      "return max(yk - h, 0.0) + SINK_TOL * size", "sink_slack: height above the line instead of depth below"),
+    M("N13", "kernels/rigid_body/wall_lean.py",
+      "un = nrm[i, 0] * (vx - om * qy) + nrm[i, 1] * (vy + om * qx)  # the gap's rate",
+      "un = -(nrm[i, 0] * (vx - om * qy) + nrm[i, 1] * (vy + om * qx))  # the gap's rate",
+      "_dispatch: the corner's opening rate with its sign flipped back"),
+    # ------------------------------------------------------------------ statics
+    M("N14", "statics/rest.py", 'g = positive_float(g, "g")', "g = float(g)", "analyse_rest: g unchecked"),
+    M("N15", "statics/leaning.py", "or math.isnan(mu) or mu < 0:", "or math.isnan(mu) or mu <= 0:",
+      "lean_free_beta: a frictionless arm (μ = 0) refused"),
+    M("N16", "statics/leaning.py", "            lo = mid\n    return lo", "            lo = mid\n    return hi",
+      "lean_free_beta: the bisection returns its lean end"),
+    M("N17", "statics/rest.py", "if steps > MAX_BISECTIONS:", "if steps >= MAX_BISECTIONS:",
+      "least_mu: the bisection cap one step early"),
+    # ------------------------------------------------------------------ stochastic (chains, goals)
+    M("N18", "stochastic/chain.py", "not 0 <= int(s) < self.n:", "not 0 <= int(s) <= self.n:",
+      "goal state index n accepted (off by one)"),
+    M("N19", "stochastic/chain.py", "out[k] = w[held].sum() + nxt[newly].sum()",
+      "out[k] = w[held].sum() + w[newly].sum()",
+      "p_goal_by: a goal stop counted at its own step, not the throw before"),
+    M("N20", "stochastic/montecarlo.py", "if not self.lo <= self.hi:", "if not self.lo < self.hi:",
+      "GoalSet: a one-point goal [x, x] refused"),
+    M("N21", "stochastic/montecarlo.py", "or np.any(w < 0) or w.sum() <= 0:", "or np.any(w < 0) or w.sum() < 0:",
+      "open_loop_trials: all-zero start weights accepted"),
+    # ------------------------------------------------------------------ control/planner.py
+    M("N22", "control/planner.py", "if tol <= 0:", "if tol < 0:", "plan_throws: tol = 0 accepted"),
+    M("N23", "control/planner.py", "if xm <= 0:", "if xm < 0:", "x_max = 0 accepted"),
+    M("N24", "control/planner.py", "if arm.length is not None and xm > arm.length:",
+      "if arm.length is not None and xm >= arm.length:", "x_max at the arm's end refused"),
+    # ------------------------------------------------------------------ experiment configs (io/schema.py, experiments)
+    M("N25", "io/schema.py", "    if lo > hi:\n", "    if lo >= hi:\n", "ordered range: low = high refused"),
+    M("N26", "io/schema.py", "Rate = Annotated[Omega, Field(gt=0, le=MAX_RATE)]",
+      "Rate = Annotated[Omega, Field(gt=0, lt=MAX_RATE)]", "experiment rate: ω = 100 rad/s refused"),
+    M("N27", "experiments/sequential.py", "x_range_second: Range = Field(",
+      "x_range_second: tuple[Finite, Finite] = Field(", "serial: the wedge's drop range not checked for order"),
+    # ------------------------------------------------------------------ design/api.py
+    M("N28", "design/api.py", "if escaped > MAX_ESCAPE:", "if escaped >= MAX_ESCAPE:",
+      "success: exactly 10 % escaping refused"),
+    M("N29", "design/api.py", "escaped = float(sum(ls.escapes.values()))",
+      "escaped = float(max(ls.escapes.values(), default=0.0))",
+      "success: the largest escape kind, not all escapes, against 10 %"),
+    M("N30", "design/api.py", "if weight_mass > MAX_WEIGHT:", "if weight_mass >= MAX_WEIGHT:",
+      "a 10 kg lead weight refused"),
+    # ------------------------------------------------------------------ ScaleWarning (errors.py, system/part.py)
+    M("N31", "errors.py", "big = abs(float(value)) > limit", "big = float(value) > limit",
+      "ScaleWarning: a large negative value not warned"),
+    M("N32", "system/part.py", 'warn_scale("part.vertices", float(np.max(np.abs(v))), "length")',
+      'warn_scale("part.vertices", float(np.max(v)), "length")',
+      "ScaleWarning: vertices far out at negative x, y not warned"),
+    # ------------------------------------------------------------------ reproduce: failed pieces, captions
+    M("N33", "reproduce/run.py", 'if row["numbers"].get("success") is False:', 'if not row["numbers"].get("success"):',
+      "a figure without a success number counted as failed"),
+    M("N34", "reproduce/figures.py", "{'s' if len(shots) != 1 else ''}", "{'s' if len(shots) > 1 else ''}",
+      "snapshots caption: '0 panel' in the singular"),
 )
 
 
