@@ -121,3 +121,11 @@ def test_the_oracle_applies_only_where_the_exact_model_takes_the_system():
     assert oracle_options(System(arm), EngineOptions(friction=Friction(arm_part=0.3))) is None
     assert oracle_options(System(arm, (Cavity(((0.06, 0), (0.06, -0.02), (0, -0.02))),)), plain) is None
     assert oracle_options(System(arm), EngineOptions(realisation=TiltTo(0.1, 1.0))) is None
+
+
+def test_settle_does_not_take_the_first_run_when_only_the_quarter_step_matches_it():
+    """First and quarter agree, the half step differs: not converged at the first step; the quarter stands once the
+    eighth confirms it, and the message says so."""
+    rerun, calls = _ladder({2: _ok(0.3, 1), 4: _ok(0.2001, 1), 8: _ok(0.2002, 1)})
+    x, k, st, run, why = settle_disagreement(_ok(0.2, 1), rerun, None)
+    assert (x, k, st) == (0.2001, 1, C.OK) and calls == [2, 4, 8] and f"dt = {DT / 4:g} s result stands" in why

@@ -19,10 +19,10 @@ def test_the_reruns_halve_and_quarter_both_steps():
 
     def rerun(dt, coarse_dt):
         asked.append((dt, coarse_dt))
-        return (0.3 if len(asked) == 1 else 0.4, 1, C.OK, None)  # half and quarter disagree: both are run
+        return (0.2 + 0.1 * len(asked), 1, C.OK, None)  # every step disagrees with the next: 1/2, 1/4, 1/8 run
 
     settle_disagreement((0.2, 1, C.OK, None), rerun, s)
-    assert asked == [(s.dt / 2, s.coarse_dt / 2), (s.dt / 4, s.coarse_dt / 4)]
+    assert asked == [(s.dt / 2, s.coarse_dt / 2), (s.dt / 4, s.coarse_dt / 4), (s.dt / 8, s.coarse_dt / 8)]
 
 
 def _batch_check(monkeypatch, exact_status):
