@@ -36,3 +36,12 @@ def test_a_unit_slip_is_warned_with_its_field(call, field):
 def test_an_alpha_beyond_vertical_suggests_degrees():
     with pytest.raises(InvalidStateError, match=r"for degrees write e.g. 10deg"):
         check_alpha(10.0)
+
+
+def test_alpha_at_vertical_gets_no_degree_hint():
+    """90° typed as 90deg is π/2 rad: refused (the arm vertical) without suggesting '1.5708deg' (= 1.57°)."""
+    import math
+
+    with pytest.raises(InvalidStateError) as err:
+        check_alpha(math.pi / 2)
+    assert "= 90°" in str(err.value) and "deg)" not in str(err.value) and "write" not in str(err.value)

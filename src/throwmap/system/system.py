@@ -25,8 +25,10 @@ def check_alpha(value, field: str = "alpha") -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise InvalidStateError(field, f"must be a finite angle in rad, got {shown(value)}")
     if not abs(value) < 0.5 * math.pi:
+        # a value of a few units was likely meant in degrees: say how to write it; at ±π/2 (90° already) it was not
+        hint = f"; for degrees write e.g. {value:g}deg" if abs(abs(value) - 0.5 * math.pi) > 1e-9 else ""
         raise InvalidStateError(field, f"must be an angle with |α| < π/2 rad (the arm below vertical), got {value} "
-                                       f"(= {math.degrees(value):.4g}°; for degrees write e.g. {value:g}deg)")
+                                       f"(= {math.degrees(value):.4g}°{hint})")
     warn_scale(field, value, "alpha")
     return float(value)
 
