@@ -60,7 +60,9 @@ def test_bad_limits_are_refused(kwargs, field):
 
 
 def test_guard_returns_its_estimate():
-    est = guard_work("x", "grid", 1000, 100, Limits(1e9, 1e9, False), throws_per_config=2.0, cmap=bistable())
+    # timed_above=0: time it although 2,000 throws are below the size that is timed by default
+    est = guard_work("x", "grid", 1000, 100, Limits(1e9, 1e9, False), throws_per_config=2.0, cmap=bistable(),
+                     timed_above=0)
     assert est["memory_bytes"] == 1e5 and est["seconds"] == pytest.approx(2000 * est["seconds_per_throw"])
 
 

@@ -43,7 +43,7 @@ _CHILD = ("import fcntl, os, sys, termios; fcntl.ioctl(0, termios.TIOCSCTTY, 0);
           "os.execv(sys.executable, [sys.executable, '-m', 'throwmap', *sys.argv[1:]])")
 
 
-def run_in_terminal(args, ready, cwd, limit: float = 240.0) -> tuple[int, str]:
+def run_in_terminal(args, ready, cwd, limit: float = 600.0) -> tuple[int, str]:
     """Run ``python -m throwmap ARGS`` in ``cwd`` on a pseudo-terminal and type Ctrl-C on it once ``ready()``.
 
     Returns the exit status and what the terminal showed, without colours (the progress bars' redraws are lines
