@@ -40,7 +40,7 @@ def test_iterate_and_numbers_are_parsed():
     assert res.exit_code == 0, res.output
     doc = json.loads(res.stdout)
     assert doc["model_options"]["max_impacts"] == 2 and doc["model_options"]["tol"] == 1e-12
-    assert doc["summary"]["status"] == "no_rest"  # two events are not enough to come to rest
+    assert doc["summary"]["status"] == "unresolved"  # two events are not enough to come to rest: refused
 
 
 def test_limitset_takes_model_options():

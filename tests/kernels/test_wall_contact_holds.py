@@ -88,3 +88,17 @@ def test_the_foot_holds_only_at_the_wall_at_rest_inside_the_cone():
     slippery = dict(args, mu=0.0, theta=0.6)
     assert not foot_holds(True, 0.35, 0.35, 0.0, *slippery.values())
     assert foot_holds(True, 0.35, 0.35, 0.0, *dict(slippery, mu=5.0).values())
+
+
+@pytest.mark.slow
+def test_a_throw_that_chatters_to_the_event_cap_is_refused_with_its_reason():
+    """An edge rocking on the wall's top corner while a vertex slides on the arm: rigid_body's mode changes run
+    into ``max_impacts`` at t ≈ 0.447 s without rest (the engine rests it leaning at x ≈ 0.3546 m). Refused,
+    status ``unresolved`` with a reason naming the cap — it was ``no_rest`` with no message."""
+    part = tm.triangle_30_60_90(0.17)
+    arm = tm.Arm(h=-0.01, mu=0.6567309517173876, length=0.38382780871429306)
+    wall = Wall(height=0.05801286385064064)
+    out = tm.throw(part, arm, 0.2530936301966614, 0, 5.728010779044818, "rigid_body", fixtures=(wall,),
+                   alpha=-0.17920436981011884)
+    assert out.status == tm.Status.UNRESOLVED
+    assert "max_impacts" in out.message and "chatter" in out.message

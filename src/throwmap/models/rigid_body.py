@@ -47,7 +47,7 @@ class RigidBodyOptions:
     ``tol`` (dimensionless, 0 < tol ≤ 1e-6): contact tolerance of the first-contact search, relative to
     the size of the gap's terms (:func:`~throwmap.kernels.flight.touch_time`); ``max_iter``: cap on the
     contact-search and integration steps of one mode (beyond: status UNRESOLVED, record ``CAP_HIT`` = 1); ``max_impacts``: cap on mode
-    changes (events) in one throw (status NO_REST beyond). ``impact_law``: the law of
+    changes (events) in one throw (beyond: status UNRESOLVED, the contacts chatter). ``impact_law``: the law of
     the resets ``impact`` and ``land_side`` outside the friction cone (docstring of
     :mod:`throwmap.kernels.rigid_body.impact`): ``"routh"`` (default; Routh's
     compression-only process in impulse space, Stronge 2000 ch. 3–4) or ``"velocity"``

@@ -57,15 +57,13 @@ def leap(w: World, tau: float, arm_angle: float):
     cp.set_angle(w.arm_h, arm_angle)
     cp.set_spin(w.arm_h, 0.0)
     w.space.reindex_shapes_for_body(w.arm)
-    if w.n > 1:
-        # and the parts' shapes: Chipmunk caches a shape's world vertices at each step, and the next clearance
-        # measures part–part distances on them; stale through a run of leaps, two parts flying at each other
-        # were measured apart while they passed into each other (a vertex 3.6 mm deep, refused). One part: left as
-        # it was (its vertices are measured against the fresh arm shapes; only the arm-corner term lags): doing it
-        # there too moved 107 of 250 single-part throws by ≤ 0.05 mm, no side changed; the validated runs stay
-        # bit for bit
-        for body in w.bodies:
-            w.space.reindex_shapes_for_body(body)
+    # and the parts' shapes: Chipmunk caches a shape's world vertices at each step, and the clearance measures the
+    # arm's and the fixtures' corners and the other parts' vertices against them. Stale through a run of leaps, a
+    # part was measured where its last step left it: two parts flying at each other passed into each other (a
+    # vertex 3.6 mm deep, refused), and a wall's top corner passed 10.7 mm into a part flying over it (a wrong
+    # ``ok``, 11 mm from the converged rest)
+    for body in w.bodies:
+        w.space.reindex_shapes_for_body(body)
 
 
 def fixed_steps(w: World, contacts, t: float, n: int, step: float, angle, alpha: float, arm_stop: float,

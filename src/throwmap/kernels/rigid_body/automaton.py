@@ -36,7 +36,7 @@ from .landing import land_side
 from .modes import (EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE, EV_OFF_END, EV_SLIP,
                     EV_STEP_CAP, EV_STICK, EV_WALL, IMP_INCONSISTENT, IMP_SEPARATE, IMP_STICK, MODE_FLIGHT, MODE_REST,
                     MODE_LEAN, MODE_SELECT, MODE_SLIDE, MODE_STICK, MU_SKID, WC_ARM, WC_CAP, WC_FACE, WC_FLIGHT,
-                    WC_INCONSISTENT, WHY_CORNER, WHY_SLIDE_WALL, WHY_WALL_SLIDE, WHY_WALL_TOP, refuse)
+                    WC_INCONSISTENT, WHY_CORNER, WHY_EVENT_CAP, WHY_SLIDE_WALL, WHY_WALL_SLIDE, WHY_WALL_TOP, refuse)
 from .slide import pivot_slide, pivot_slide_walled, select_contact_mode
 from .foot import foot_holds, foot_impact
 from .stick import pivot_stick
@@ -155,7 +155,7 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
     while True:
         n_events += 1
         if n_events > max_events:
-            return x, last_side, C.NO_REST
+            return x, last_side, refuse(rec, WHY_EVENT_CAP)
         if mode == MODE_LEAN:
             # ---------------------------------------------------------- on the arm and the wall (wall_lean.py)
             (res, why, t, x, y, vx, vy, phi, om, ka, kp, win_a, win_p, v_a, kc,
@@ -504,7 +504,7 @@ def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, l
     ``law`` the impact law of resets ``impact`` and ``land_side`` (:data:`~.impact.LAW_ROUTH`,
     the default of the model, or :data:`~.impact.LAW_VELOCITY`; :func:`~.impact.coulomb_impact`),
     ``max_iter`` caps the contact-search and integration steps of one mode,
-    ``max_events`` the mode changes (status NO_REST beyond). The caller has
+    ``max_events`` the mode changes (beyond: status UNRESOLVED, reason WHY_EVENT_CAP). The caller has
     checked the start. The sticking phase is closed form (:func:`~.stick_exact.pivot_stick_exact`).
     ``wall_h`` (m, > 0) puts a :class:`~throwmap.system.fixtures.Wall` that high at x = ``length``
     (finite) with Coulomb ``wall_mu`` (:mod:`~.wall`); 0: no wall.

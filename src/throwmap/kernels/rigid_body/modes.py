@@ -73,6 +73,7 @@ WHY_CORNER = 5
 WHY_SLIDE_WALL = 6
 WHY_WALL_EDGE = 7
 WHY_CORNER_VERTEX = 8
+WHY_EVENT_CAP = 9
 WHY_MESSAGES = {
     WHY_WALL_TOP: ("a vertex reached the wall's plane above its top while the part slid on the arm (a sliding "
                    "pivot) or along the wall: not modelled by rigid_body"),
@@ -93,6 +94,9 @@ WHY_MESSAGES = {
     WHY_CORNER_VERTEX: ("an edge on the wall's top corner brought a vertex onto the corner or onto the wall's top "
                         "beyond its face, or the part tips over the wall (its top and thickness are not modelled): "
                         "not modelled by rigid_body"),
+    WHY_EVENT_CAP: ("the part had not come to rest after max_impacts mode changes (its contacts chatter, e.g. an "
+                    "edge rocking on the wall's top corner while a vertex slides on the arm): not resolved by "
+                    "rigid_body (raise the model option max_impacts, or use model 'engine')"),
     # the moving-arm phase (moving/phase.py: WHY_EVENTS, WHY_STEPS, WHY_NO_MODE, WHY_LAND)
     101: "more events than the cap while the arm moves (e.g. rocking on the moving arm): not resolved by rigid_body",
     102: "more integration steps than the cap while the arm moves: not resolved by rigid_body",
@@ -100,7 +104,8 @@ WHY_MESSAGES = {
           "rigid_body"),
     104: "a vertex not adjacent to the pivot touched the moving arm (a degenerate polygon): not modelled by rigid_body",
 }
-"""Why a throw was refused (status UNRESOLVED), by reason code: the wall's (1–8) and the moving arm's (101–104)."""
+"""Why a throw was refused (status UNRESOLVED), by reason code: the wall's (1–8), the event cap (9) and the moving
+arm's (101–104)."""
 WHY_COL = getattr(C, "WHY", -1)
 """Record column receiving the reason code of a refusal (``kernels.codes.WHY``), if the record has one."""
 

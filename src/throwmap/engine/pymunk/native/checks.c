@@ -240,6 +240,6 @@ void tm_leap(tm_run *r, double tau, double arm_angle) {
     CP.cpBodySetAngle(r->arm, arm_angle);
     CP.cpBodySetAngularVelocity(r->arm, 0.0);
     CP.cpSpaceReindexShapesForBody(r->space, r->arm);
-    if (r->n > 1)
-        for (int i = 0; i < r->n; i++) CP.cpSpaceReindexShapesForBody(r->space, r->body[i]);
+    /* the parts' cached world vertices too: the clearance measures corners and other parts against them */
+    for (int i = 0; i < r->n; i++) CP.cpSpaceReindexShapesForBody(r->space, r->body[i]);
 }
