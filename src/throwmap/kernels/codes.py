@@ -8,7 +8,7 @@ OK = 0  # came to rest on a stable side, on the arm
 BEHIND_JOINT = 1  # a contact or a resting support vertex at x <= -arm.back (x <= 0 by default); on a tilted arm
 # also a part that slides down to the joint
 OFF_END = 2  # a contact beyond the arm's end, or a resting support vertex beyond it (x + u_R > length)
-NO_REST = 3  # the impact cap was reached before rest, or on an unbounded arm the part slides (μ = 0, or tilted with
+NO_REST = 3  # the impact cap was reached before rest (paper; rigid_body: UNRESOLVED), or on an unbounded arm the part slides (μ = 0, or tilted with
 # μ < |tan α|) or rolls outward for ever
 INVALID_START = 4  # the start was not admissible (batch with on_invalid="status"), or on a tilted arm not a rest
 NO_CONTACT = 5  # retired: no model returns it (a search that hits its cap is UNRESOLVED with CAP_HIT = 1)

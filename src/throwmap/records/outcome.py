@@ -24,8 +24,8 @@ class Status(enum.IntEnum):
     resting support vertex, at x ≤ −arm.back (x ≤ 0 by default). ``OFF_END``: a
     contact beyond the arm's length, or a resting support vertex beyond it (x + u_R > length,
     the rule of :func:`~throwmap.system.starts.start_interval`). ``NO_REST``: the
-    impact cap was reached, or (rigid_body, μ = 0 on an unbounded arm) the part slides
-    outward for ever and never comes to rest.
+    impact cap was reached ("paper"; rigid_body refuses that as ``UNRESOLVED``, the contacts chatter), or
+    (rigid_body, μ = 0 on an unbounded arm) the part slides outward for ever and never comes to rest.
     ``INVALID_START``: not thrown (batch with ``on_invalid="status"``).
     ``NO_CONTACT``: retired, no model returns it (kept so that the codes stay fixed); a
     contact search that runs out of steps is ``UNRESOLVED`` with ``cap_hit``.
