@@ -149,3 +149,66 @@ def test_ctrl_c_in_an_experiment_without_out(monkeypatch):
     monkeypatch.setattr(runner_mod, "run_experiment", _interrupt)
     result = CliRunner().invoke(app, ["experiment", "settle", "--n", "5"])
     assert (result.exit_code, result.stderr) == (130, "interrupted: no --out DIR, so no trial was kept\n")
+
+
+# ------------------------------------------------------------------ Ctrl-C while the command line is being imported
+def _console_script() -> tuple[str, str]:
+    """``(module, function)`` of the ``throwmap`` console script, as pyproject.toml declares it."""
+    import tomllib
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    target = tomllib.loads((root / "pyproject.toml").read_text(encoding="utf-8"))["project"]["scripts"]["throwmap"]
+    module, _, func = target.partition(":")
+    return module, func
+
+
+# The child: the console script's own entry point, with one import (``SLOW``) held up until the test sends SIGINT:
+# it prints "importing" and sleeps, so the signal lands while the command line's modules are still being imported.
+_IMPORTING = ("import builtins, sys, time\n"
+              "module, func, slow = sys.argv[1:4]\n"
+              "sys.argv[1:] = sys.argv[4:]\n"
+              "real = builtins.__import__\n"
+              "def held(name, *args, **kwargs):\n"
+              "    if name == slow and not getattr(held, 'done', False):\n"
+              "        held.done = True\n"
+              "        sys.stdout.write('importing\\n'); sys.stdout.flush()\n"
+              "        time.sleep(120)\n"
+              "    return real(name, *args, **kwargs)\n"
+              "builtins.__import__ = held\n"
+              "getattr(__import__(module, fromlist=[func]), func)()\n")
+
+
+@pytest.mark.parametrize("slow", ["numpy", "typer"])
+def test_ctrl_c_while_the_console_script_imports_exits_130_without_a_traceback(slow):
+    """A real SIGINT while ``import throwmap`` (numpy) or ``throwmap.cli`` (typer) is under way: one line, exit
+    130. ``numpy`` is imported by the package's ``__init__``, before any of the command line's own code runs."""
+    module, func = _console_script()
+    proc = subprocess.Popen([sys.executable, "-c", _IMPORTING, module, func, slow, "--version"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline() == "importing\n"
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert (proc.returncode, err, out) == (130, "interrupted: nothing was written\n", ""), (proc.returncode, err)
+
+
+def test_ctrl_c_in_the_entry_point_after_the_imports(monkeypatch, capsys):
+    """An interruption that no command handles (here: as the app starts) still leaves one line and exit 130."""
+    import importlib
+
+    cli_app = importlib.import_module("throwmap.cli.app")  # the module (``throwmap.cli.app`` is also the Typer app)
+    module, func = _console_script()
+    entry = getattr(importlib.import_module(module), func)
+
+    def interrupted_app(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli_app, "main", interrupted_app)
+    with pytest.raises(SystemExit) as exc:
+        entry(["--version"])
+    assert exc.value.code == 130 and capsys.readouterr().err.startswith("interrupted: ")

@@ -279,3 +279,24 @@ def test_library_outputs_make_no_missing_folder(tmp_path):
     (tmp_path / "f").write_text("a file")
     with pytest.raises(ThrowmapError, match="not a directory"):
         make_directory(tmp_path / "f")
+
+
+STUDY_COMMANDS = {
+    "validate-fixtures": ["validate-fixtures", "--n", "1", "--conditions", "wall-0", "--no-fixed-point", "--part",
+                          "square", "--workers", "1"],
+    "validate": ["validate", "--part", "square", "--n", "1", "--no-grid", "--models", "paper", "--workers", "1",
+                 "--realisations", "0"],
+    "validate-recoil": ["validate-recoil", "--n", "1", "--engine-refine", "1", "--workers", "1"],
+}
+"""The validation commands at their smallest sizes."""
+
+
+@pytest.mark.parametrize("cmd", sorted(STUDY_COMMANDS))
+def test_validation_commands_write_nothing_without_out(tmp_path, monkeypatch, cmd):
+    """Without ``--out DIR`` the validation commands print their tables and leave the current directory as it was
+    (no ``./out`` made unasked); with it they write there (the commands' own tests)."""
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(app, STUDY_COMMANDS[cmd])
+    assert result.exit_code == 0, result.output
+    assert "| " in result.stdout and "wrote" not in result.stdout
+    assert list(tmp_path.iterdir()) == []

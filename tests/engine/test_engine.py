@@ -270,6 +270,30 @@ def test_penetration_is_detected_and_refused():
     assert "refused" in run.message
 
 
+def test_the_penetration_refusal_names_what_the_vertex_sank_into():
+    """The refusal says which shape: the arm (one part on a plain arm, and with a wall present), the wall (a part
+    thrown from rest against it)."""
+    s = EngineSettings(penetration_tol=1e-7, retries=0)
+    plain = engine_run(TRI, ARM, 0.3, 0, 4.0, settings=s)
+    assert plain.status == Status.PENETRATION and " mm into the arm at t = " in plain.message, plain.message
+    arm = Arm(h=-0.01, mu=1.5, length=0.3)
+    walled = engine_run(TRI, arm, 0.2, 0, 4.0, settings=s, fixtures=(Wall(0.05, mu=0.0),))
+    assert walled.status == Status.PENETRATION and " mm into the arm at t = " in walled.message, walled.message
+    against = engine_run(TRI, arm, 0.229, 0, 1.0, settings=s, fixtures=(Wall(0.05, mu=0.0),))
+    assert against.status == Status.PENETRATION and " mm into the wall at t = " in against.message, against.message
+
+
+def test_every_shape_a_part_can_touch_has_a_name():
+    from throwmap.engine.pymunk.world import build_world
+
+    arm = Arm(h=-0.01, mu=1.5, length=0.4)
+    two = Scene(arm, (Placement(TRI, x=0.1, side=0), Placement(TRI, x=0.3, side=0)), (Wall(0.05),))
+    w = build_world(two, ImpulseThrow(0.0), EngineSettings())
+    assert [len(n) for n in w.names] == [len(h) for h in w.others_h]
+    assert {n for n in w.names[0]} == {"the arm", "the wall", "part 1"} and w.names[1][-1] == "part 0"
+    assert w.names[0].index("the wall") > max(i for i, n in enumerate(w.names[0]) if n == "the arm")
+
+
 def test_timeout_status():
     s = EngineSettings(t_max=0.1)
     run = engine_run(TRI, ARM, 0.3, 0, 4.0, settings=s)

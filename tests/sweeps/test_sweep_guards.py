@@ -79,6 +79,33 @@ def test_status_creates_nothing(tmp_path):
     assert "rows stored 0, missing 2" in res.stdout and not (tmp_path / "o").exists()
 
 
+SETTLE = 'kind = "grid"\ntarget = "experiment:settle"\nseed = 1\nn = 4\n[parameters]\n"arm.mu" = [0.3, 0.9]\n'
+
+
+def test_a_sweep_over_max_time_is_refused_before_any_work_and_runs_with_force(tmp_path, monkeypatch):
+    """``--max-time`` / ``--force`` as in the other long commands: the missing points' time, from a sample timed
+    in this process, over the limit is one line on ``sweep``, exit 2, before ``--out`` is made or a cluster
+    started; ``--force`` runs the same sweep."""
+    import throwmap.sweeps.run as run_mod
+
+    def no_cluster(*args, **kwargs):
+        raise AssertionError("a cluster was started for a refused sweep")
+
+    f = tmp_path / "s.toml"
+    f.write_text(SETTLE)
+    out = tmp_path / "o"
+    monkeypatch.setattr(run_mod, "_client", no_cluster)
+    res = _cli(f, "--out", out, "--workers", "1", "--max-time", "1e-6")
+    _one_line(res, "sweep")
+    assert "experiment:settle sweep on 2 points needs ≈" in res.stderr and "over the limit of 1e-06 s" in res.stderr
+    assert "--force" in res.stderr and not out.exists()
+    monkeypatch.undo()
+    proc = subprocess.run([sys.executable, "-m", "throwmap", "sweep", str(f), "--out", str(out), "--workers", "1",
+                           "--max-time", "1e-6", "--force"], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert "rows after 2" in proc.stdout and "complete" in proc.stdout
+
+
 def test_a_malformed_scheduler_is_one_line(tmp_path):
     f = tmp_path / "s.toml"
     f.write_text('kind = "grid"\ntarget = "throw"\n[parameters]\nx = [0.1, 0.2]\n')

@@ -36,6 +36,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 from ..rng import as_generator
+from ..system.arm import regime_warnings_once
 from .attractors import (LABEL_ESCAPE, Attractor, attractor_table, domain_of, domain_text, escape_fractions, map_short,
                          range_short)
 from .caps import RecurrenceCaps, check_int, check_length, resolve_caps, split_options
@@ -286,6 +287,7 @@ def _check_cells(cmap, x, s, labels, throws, attractors, reach_tol, max_throws, 
             "disagreeing_side": s[pick][~agree][:20].tolist(), "n_exact_finish": int(n_exact)}
 
 
+@regime_warnings_once()
 def basins(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, grid=1000, method: str = "auto", limit=None,
            n_seeds: int = 64, reach_tol: float = 1e-6, max_throws: int = 500, n_check: int = 1000,
            max_discover: int = 256, trap_samples: int = 400, trap_tol: float = 5e-4, rng=0, x_max=None,

@@ -40,6 +40,7 @@ import numpy as np
 
 from ..kernels import codes as C
 from ..serial import fields_equal
+from ..system.arm import regime_warnings_once
 from .attractors import fate_label, map_short, nan_to_none, none_to_nan
 from .budget import Limits, guard_work
 from .caps import check_int, check_length
@@ -333,6 +334,7 @@ def _l_hull(T, cmap, m, max_iter, xtol, r):
     return l
 
 
+@regime_warnings_once()
 def critical_points(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, x_max=None, n_grid: int = 128,
                     n_split: int = 15, xtol: float = 1e-6, hull_samples: int = 64, hull_max_iter: int = 200,
                     limit=None, limits: Limits | None = None, **throw_options) -> CriticalPoints:

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidStateError, shown
+from ..system.arm import regime_warnings_once
 from .attractors import Attractor, domain_text, system_short
 from .basins import Basins, basins
 from .caps import RecurrenceCaps
@@ -214,6 +215,7 @@ _BASIN_KEYWORDS = frozenset(
 """Keywords that :func:`funnels` hands to :func:`basins` (its own and the recurrence caps); others are throw options."""
 
 
+@regime_warnings_once()
 def funnels(part, arm=None, omegas=None, model: str = DEFAULT_MODEL, *, maps=None, goal=None, grid=400,
             containment: float = 1.0, spout_samples: int = 200, reach_tol: float = 1e-6, max_throws: int = 500,
             rng=0, x_max=None, progress=None, **basin_options) -> FunnelGraph:

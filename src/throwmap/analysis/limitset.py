@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidStateError
+from ..system.arm import regime_warnings_once
 from .attractors import (Attractor, attractor_counts, attractor_table, check_cycles, domain_of, domain_text,
                          escape_fractions, map_short, range_short)
 from .budget import Limits, guard_work
@@ -219,6 +220,7 @@ def dom_hi(map_info: dict, side: int) -> float:
     return dom.get(int(side), (math.nan, math.nan))[1]
 
 
+@regime_warnings_once()
 def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: RecurrenceCaps = RecurrenceCaps(),
               starts=None, n_starts: int = 64, rng=0, x_max=None, progress=None, limits: Limits | None = None,
               **overrides) -> LimitSet:

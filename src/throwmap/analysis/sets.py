@@ -14,6 +14,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 from ..kernels import codes as C
+from ..system.arm import regime_warnings_once
 from .attractors import Attractor, fate_label, merge_intervals
 from .budget import Limits, guard_work
 from .maps import DEFAULT_MODEL, ConfigMap, ThrowMap, as_map
@@ -201,6 +202,7 @@ class SetImage:
                    hulls=tuple(ConfigSet.from_dict(h) for h in d["hulls"]), gap=float(d["gap_m"]))
 
 
+@regime_warnings_once()
 def push(part, arm=None, omegas=None, configs=None, model: str = DEFAULT_MODEL, *, n: int = 200, gap: float = 2e-3,
          x_max=None, limits: Limits | None = None, **throw_options) -> SetImage:
     """Apply a sequence of throws Π T^{ω_j} (ω_1 first) to a set of configurations.

@@ -60,7 +60,9 @@ for _group in (throws, studies, animate, analysis, experiment, design, control, 
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Console entry point (``throwmap``, ``python -m throwmap``)."""
+    """Run the command line on ``argv`` (None: the process's arguments). The ``throwmap`` console script and
+    ``python -m throwmap`` call it through :func:`_throwmap_entry.main`, which also turns a Ctrl-C that comes while
+    this module is still being imported into one line and exit status 130."""
     app(args=argv, prog_name="throwmap")
 
 

@@ -37,7 +37,7 @@ from ..errors import ConfigError, InvalidArmError, InvalidStateError, ThrowmapEr
 from ..io.config import resolve_part
 from ..io.files import atomic_write_bytes, atomic_write_text, make_directory
 from ..serial import json_ready
-from ..system.arm import Arm
+from ..system.arm import Arm, regime_warnings_once
 from ..throws.throw import DEFAULT_MODEL, MODELS
 
 __all__ = ["progress_bar", 
@@ -286,8 +286,9 @@ def stderr_line(text: str) -> None:
 
 @contextmanager
 def guard():
-    """Turn ThrowmapErrors into one ``error:`` line and exit 2; print warnings one line each."""
-    with warnings.catch_warnings(record=True) as caught:
+    """Turn ThrowmapErrors into one ``error:`` line and exit 2; print warnings one line each (a lost guarantee of
+    the paper's regime is warned once per command: :func:`~throwmap.system.arm.regime_warnings_once`)."""
+    with warnings.catch_warnings(record=True) as caught, regime_warnings_once():
         warnings.simplefilter("always", ThrowmapWarning)
         try:
             yield

@@ -6,6 +6,10 @@ A thin shell over :mod:`throwmap.studies`: :func:`~throwmap.studies.compare.comp
 simulation) and :func:`~throwmap.studies.demo.run_demo` (the paper's triangle, figures
 and summary). Errors follow :mod:`throwmap.cli.options`: one ``error: <field>: <reason>``
 line on stderr, exit 2.
+
+The validation commands (``validate``, ``validate-fixtures``, ``validate-recoil``) print their tables; they
+write their JSON and Markdown, and keep their cases for a resume, only in the directory given as ``--out DIR``
+(without it nothing is written, as ``throwmap experiment`` without ``--out``).
 """
 
 from __future__ import annotations
@@ -131,9 +135,9 @@ def _agreement_section(table: str) -> str:
     return f"\n{AGREEMENT_HEADING}\n\n{DEFINITION[0].upper() + DEFINITION[1:]}.\n\n{table}\n" if table else ""
 
 
-def _run_study(name: str, out: Path, call):
+def _run_study(name: str, out: Path | None, call):
     """``call(update)`` with a progress bar on stderr; a Ctrl-C leaves one line saying how many cases ``out`` keeps
-    (the same command resumes from them) and exits 130, as ``throwmap experiment`` does."""
+    (the same command resumes from them; None: that none was kept) and exits 130, as ``throwmap experiment`` does."""
     try:
         with progress_bar(name) as update:
             return call(update)
@@ -193,8 +197,9 @@ def validate_cmd(
     realisations: Annotated[int, typer.Option("--realisations", parser=strict_int, metavar="INTEGER",
                                               help="Also compare finite arm motions with the "
                                                    "impulse on this many throws (0: skip).")] = 40,
-    out: Annotated[Path, typer.Option("--out", help="Directory for validation.json and validation.md, and the "
-                                                    "study's trials (a rerun resumes).")] = Path("out"),
+    out: Annotated[Path | None, typer.Option("--out", help="Directory for validation.json and validation.md, and "
+                                                           "the study's trials (a rerun resumes); without it nothing "
+                                                           "is written.")] = None,
     resume: ResumeOpt = True,
     as_json: JsonOpt = False,
     max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
@@ -219,14 +224,15 @@ def validate_cmd(
         report = _run_study("validate", out, lambda update: validate(
             parts, n=n, seed=seed, grid=grid, models=mods, engines=eng, mu=mu, n_realisations=realisations,
             run=StudyRun(workers=workers, out=out, resume=resume, progress=update, limits=limits)))
-        make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
-        write_text(out / "validation.json", to_json(doc) + "\n", "out")
-        md = (f"# throwmap validation ({report.settings['n_throws']} throws, seed {seed}, μ = {mu:g})\n\n"
-              + report.table() + "\n\n" + "\n".join(f"- {g}" for g in report.goal_lines()) + "\n"
-              + ("\n" + report.realisation_table() + "\n" if report.realisation_rows else "")
-              + _agreement_section(report.agreement_table()))
-        write_text(out / "validation.md", md, "out")
+        if out is not None:
+            make_out_dir(out)
+            write_text(out / "validation.json", to_json(doc) + "\n", "out")
+            md = (f"# throwmap validation ({report.settings['n_throws']} throws, seed {seed}, μ = {mu:g})\n\n"
+                  + report.table() + "\n\n" + "\n".join(f"- {g}" for g in report.goal_lines()) + "\n"
+                  + ("\n" + report.realisation_table() + "\n" if report.realisation_rows else "")
+                  + _agreement_section(report.agreement_table()))
+            write_text(out / "validation.md", md, "out")
         if as_json:
             typer.echo(to_json(doc))
             return
@@ -238,7 +244,8 @@ def validate_cmd(
             typer.echo(report.realisation_table())
         typer.echo("")
         typer.echo(report.agreement_table())
-        typer.echo(f"wrote {out / 'validation.json'}, {out / 'validation.md'}")
+        if out is not None:
+            typer.echo(f"wrote {out / 'validation.json'}, {out / 'validation.md'}")
 
 
 # ------------------------------------------------------------------ validate-fixtures
@@ -257,8 +264,9 @@ def validate_fixtures_cmd(
                                               help="Also find the fixed point at the wall with limit_set and "
                                                    "check its multiplier.")] = True,
     workers: WorkersOpt = 0,
-    out: Annotated[Path, typer.Option("--out", help="Directory for tilt_wall.json and tilt_wall.md, and the study's "
-                                                    "trials (a rerun resumes).")] = Path("out"),
+    out: Annotated[Path | None, typer.Option("--out", help="Directory for tilt_wall.json and tilt_wall.md, and the "
+                                                           "study's trials (a rerun resumes); without it nothing is "
+                                                           "written.")] = None,
     resume: ResumeOpt = True,
     as_json: JsonOpt = False,
     max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
@@ -292,21 +300,23 @@ def validate_fixtures_cmd(
         report = _run_study("validate-fixtures", out, lambda update: validate_tilt_wall(
             parts, n=n, seed=seed, conditions=conds, rigid_body_options=rb, fixed_point=fixed_point,
             run=StudyRun(workers=workers, out=out, resume=resume, progress=update, limits=limits)))
-        make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
-        write_text(out / "tilt_wall.json", to_json(doc) + "\n", "out")
         lines = [report.table(), "", *(f"- {g}" for g in report.goal_lines()), "",
                  *(f"- {c}" for c in report.cap_lines()), "",
                  *(f"- {w}" for w in report.refusal_lines()), "", *report.fixed_point_lines()]
-        md = (f"# throwmap validate-fixtures ({n} throws per condition, seed {seed})\n\n" + "\n".join(lines) + "\n"
-              + _agreement_section(report.agreement_table()))
-        write_text(out / "tilt_wall.md", md, "out")
+        if out is not None:
+            make_out_dir(out)
+            write_text(out / "tilt_wall.json", to_json(doc) + "\n", "out")
+            md = (f"# throwmap validate-fixtures ({n} throws per condition, seed {seed})\n\n" + "\n".join(lines)
+                  + "\n" + _agreement_section(report.agreement_table()))
+            write_text(out / "tilt_wall.md", md, "out")
         if as_json:
             typer.echo(to_json(doc))
             return
         for line in lines + ["", report.agreement_table()]:
             typer.echo(line)
-        typer.echo(f"wrote {out / 'tilt_wall.json'}, {out / 'tilt_wall.md'}")
+        if out is not None:
+            typer.echo(f"wrote {out / 'tilt_wall.json'}, {out / 'tilt_wall.md'}")
 
 
 # ------------------------------------------------------------------ validate-recoil
@@ -321,8 +331,9 @@ def validate_recoil_cmd(
                                                help="The reference engine's steps are its defaults divided by this "
                                                     "(16: converged on impacts against the moving arm).")] = 16,
     workers: WorkersOpt = 0,
-    out: Annotated[Path, typer.Option("--out", help="Directory for recoil_validation.json and .md, and the study's "
-                                                    "trials (a rerun resumes).")] = Path("out"),
+    out: Annotated[Path | None, typer.Option("--out", help="Directory for recoil_validation.json and .md, and the "
+                                                           "study's trials (a rerun resumes); without it nothing is "
+                                                           "written.")] = None,
     resume: ResumeOpt = True,
     as_json: JsonOpt = False,
     max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
@@ -346,19 +357,22 @@ def validate_recoil_cmd(
         report = _run_study("validate-recoil", out, lambda update: validate_recoil(
             n=n, seed=seed, impact_law=impact_law, engine_refine=engine_refine,
             run=StudyRun(workers=workers, out=out, resume=resume, progress=update, limits=limits)))
-        make_out_dir(out)
         doc = {**report.to_dict(), "version": __version__}
-        write_text(out / "recoil_validation.json", to_json(doc) + "\n", "out")
-        md = (f"# throwmap validate-recoil ({n} throws, seed {seed}, impact law {impact_law}, engine steps / "
-              f"{engine_refine})\n\n" + recoil_table(report) + "\n" + _agreement_section(report.agreement_table()))
-        write_text(out / "recoil_validation.md", md, "out")
+        if out is not None:
+            make_out_dir(out)
+            write_text(out / "recoil_validation.json", to_json(doc) + "\n", "out")
+            md = (f"# throwmap validate-recoil ({n} throws, seed {seed}, impact law {impact_law}, engine steps / "
+                  f"{engine_refine})\n\n" + recoil_table(report) + "\n"
+                  + _agreement_section(report.agreement_table()))
+            write_text(out / "recoil_validation.md", md, "out")
         if as_json:
             typer.echo(to_json(doc))
             return
         typer.echo(recoil_table(report))
         typer.echo("")
         typer.echo(report.agreement_table())
-        typer.echo(f"wrote {out / 'recoil_validation.json'}, {out / 'recoil_validation.md'}")
+        if out is not None:
+            typer.echo(f"wrote {out / 'recoil_validation.json'}, {out / 'recoil_validation.md'}")
 
 
 def register(app: typer.Typer) -> None:

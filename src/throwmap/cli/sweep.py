@@ -3,7 +3,7 @@
 ::
 
     throwmap sweep SWEEP.toml [--out DIR] [--scheduler ADDRESS] [--workers N] [--status] [--json]
-                   [--stop-after K] [--connect-timeout S]
+                   [--stop-after K] [--connect-timeout S] [--max-time S] [--max-memory GB] [--force]
 
 A thin shell over :func:`throwmap.sweeps.run_sweep`. ``SWEEP.toml`` is validated first
 (:class:`throwmap.sweeps.SweepSpec`; every design point's config too), then the points missing from
@@ -12,6 +12,8 @@ A thin shell over :func:`throwmap.sweeps.run_sweep`. ``SWEEP.toml`` is validated
 Parquet part per chunk of points. Run it again after an interruption: only the missing points are
 computed; Ctrl-C stops a run with one line ``interrupted: N rows stored …`` and exit 130. ``--status`` prints what is stored and missing and computes nothing. The last line (or, with
 ``--json``, one JSON object) gives the rows before, the points computed now and the rows after.
+Before ``--out`` is written or a cluster started, the missing points' memory and time are estimated (a sample
+of them timed in this process); above ``--max-memory`` / ``--max-time`` the sweep is refused unless ``--force``.
 Errors: one ``error: <field>: <reason>`` line on stderr, exit 2.
 """
 
@@ -23,7 +25,9 @@ from typing import Annotated
 
 import typer
 
-from .options import JsonOpt, check_out_dir, guard, stderr_line, strict_int, to_json
+from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits
+from .options import (ForceOpt, JsonOpt, MaxMemoryOpt, MaxTimeOpt, check_out_dir, guard, stderr_line, strict_int,
+                      to_json)
 
 __all__ = ["register", "sweep_cmd"]
 
@@ -59,12 +63,16 @@ def sweep_cmd(
                                                         "missing for a later run).")] = None,
     connect_timeout: Annotated[float, typer.Option("--connect-timeout", help="Seconds to wait for --scheduler.")] = 20.0,
     as_json: JsonOpt = False,
+    max_memory: MaxMemoryOpt = DEFAULT_MAX_MEMORY / 1e9,
+    max_time: MaxTimeOpt = DEFAULT_MAX_SECONDS,
+    force: ForceOpt = False,
 ) -> None:
     """Run a sweep (grid or random design) of an experiment or an analysis on Dask; results as Parquet."""
     from ..errors import InvalidStateError
     from ..sweeps import read_sweep, run_sweep, sweep_status
 
     with guard():
+        limits = cli_limits(max_memory, max_time, force)
         spec, _ = read_sweep(sweep)
         target = out if out is not None else sweep.with_suffix(".parquet")
         if scheduler is not None and not scheduler.strip():
@@ -77,7 +85,7 @@ def sweep_cmd(
         try:
             with _bar(f"sweep {sweep.name}") as update:
                 run = run_sweep(spec, target, scheduler=scheduler, workers=workers, progress=update,
-                                stop_after=stop_after, connect_timeout=connect_timeout)
+                                stop_after=stop_after, connect_timeout=connect_timeout, limits=limits)
         except KeyboardInterrupt:
             from ..sweeps.store import count_rows
 

@@ -33,6 +33,7 @@ import numpy as np
 
 from ..errors import InvalidStateError, shown
 from ..models import DEFAULT_MODEL
+from ..system.arm import regime_warnings_once
 
 __all__ = ["InverseJog", "inverse_jog", "jog_rate", "jog_size", "realisation_factory"]
 
@@ -151,6 +152,7 @@ def _fate(x, k, status, side) -> str:
     return f"escapes ({status})" if status in ESCAPES else f"is refused ({status})"
 
 
+@regime_warnings_once()
 def inverse_jog(part, arm, x0: float, side: int, x_target: float, model: str = DEFAULT_MODEL, *,
                 omega_max: float = 10.0, tol: float = 1e-6, n_grid: int = N_GRID, realisation=None,
                 **throw_options) -> InverseJog:
@@ -296,6 +298,7 @@ def jog_rate(part, arm, x0: float, side: int, x_target: float, model: str = DEFA
     return inverse_jog(part, arm, x0, side, x_target, model, **kw).omega
 
 
+@regime_warnings_once()
 def jog_size(part, arm, x, side: int, omega: float, model: str = DEFAULT_MODEL, **throw_options) -> np.ndarray:
     """The jog T^ω(x, side) − x (m) at each x (array), nan where the throw does not jog (flip, escape).
 

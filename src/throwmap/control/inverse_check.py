@@ -20,6 +20,7 @@ import numpy as np
 
 from ..errors import ThrowmapError
 from ..rng import as_generator
+from ..system.arm import regime_warnings_once
 from .inverse import inverse_jog
 
 __all__ = ["HEADER", "InverseCheckRow", "check_inverse"]
@@ -46,6 +47,7 @@ class InverseCheckRow:
                 + (f"{self.scatter * 1e6:.3g} |" if math.isfinite(self.scatter) else "— |"))
 
 
+@regime_warnings_once()
 def check_inverse(part, arm, models=("paper", "small_angle", "small_angle2", "rigid_body", "engine"), *, n: int = 20,
                   seed: int = 0, x_hi: float = 0.45, tol: float = 1e-6, omega_max: float = 8.0, progress=None,
                   **throw_options) -> list[InverseCheckRow]:

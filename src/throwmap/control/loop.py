@@ -27,6 +27,7 @@ import numpy as np
 from ..errors import InvalidStateError, shown
 from ..rng import as_generator
 from ..records.outcome import Status
+from ..system.arm import regime_warnings_once
 
 __all__ = ["Step", "Episode", "closed_loop", "MAX_LOOKS_PER_THROW"]
 
@@ -123,6 +124,7 @@ def _read(sensors: dict, x: float, side: int, rng, last: dict) -> dict:
     return out
 
 
+@regime_warnings_once()
 def closed_loop(part, arm, controller, x0, side0=None, *, model: str = "rigid_body", noise=None,
                 max_throws: int = 200, rng=None, **throw_options) -> Episode:
     """Run ``controller`` on ``part`` resting at ``(x0, side0)`` on ``arm`` until it stops or ``max_throws``.

@@ -30,6 +30,7 @@ import numpy as np
 from ..errors import InvalidStateError, ThrowmapError, shown
 from ..models import DEFAULT_MODEL
 from ..models._checks import finite_float
+from ..system.arm import regime_warnings_once
 from .inverse import ESCAPES, inverse_jog, realisation_factory
 
 __all__ = ["Plan", "PlanStep", "Reachability", "plan_throws", "reachability"]
@@ -124,6 +125,7 @@ def _x_range(arm, x_max) -> float:
     return xm
 
 
+@regime_warnings_once()
 def reachability(part, arm, x_f: float, side_f: int, omegas, model: str = DEFAULT_MODEL, *, x_max=None,
                  n_starts: int = 32, realisation=None, **throw_options) -> Reachability:
     """Prop. 4.3's test for each rate in ``omegas`` (rad/s): does S(ω) visit side ``side_f`` below ``x_f`` (m)?
@@ -207,6 +209,7 @@ class Plan:
         return "\n".join(rows)
 
 
+@regime_warnings_once()
 def plan_throws(part, arm, x0: float, side0: int, x_f: float, side_f: int, *, omegas=(4.0,),
                 model: str = DEFAULT_MODEL, max_throws: int = 500, tol: float = 1e-6, jog_omega_max: float = 10.0,
                 check_reachability: bool = True, x_max=None, realisation=None, **throw_options) -> Plan:

@@ -44,6 +44,7 @@ from ..version import __version__
 from ..budget import Limits, check_count, guard_work, human_seconds
 from ..errors import InvalidStateError, shown
 from ..io.files import make_directory
+from ..system.arm import regime_warnings_once
 from .base import Trial, config_of, trial_generator, trial_seed
 from .registry import get_experiment
 from .stats import wilson_interval
@@ -317,6 +318,7 @@ def load_result(directory) -> dict:
 
 
 # ------------------------------------------------------------------- runner
+@regime_warnings_once()
 def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int = 0, out=None, resume: bool = True,
                    progress=None, limits: Limits | None = None, stop_after: int | None = None) -> ExperimentResult:
     """Run trials ``0 … n−1`` of ``experiment`` (a registered name or object) and summarise them.

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..budget import Limits, check_count, guard_work
-from ..system.arm import Arm
+from ..system.arm import Arm, regime_warnings_once
 from ..records.outcome import Status
 from ..system.part import Part
 from ..throws.throw import check_model, throw_batch
@@ -106,6 +106,7 @@ class ModelComparison:
         return plot_model_comparison(self, ax=ax)
 
 
+@regime_warnings_once()
 def compare_models(part: Part, arm: Arm, omegas=(1.0, 2.0, 3.0, 4.0, 5.0, 6.0), n_x: int = 200,
                    x_max: float | None = None, models=("small_angle", "small_angle2"),
                    reference: str = "paper", x_min: float | None = None, *, limits: Limits | None = None) -> ModelComparison:

@@ -12,6 +12,11 @@ so no point is ever duplicated.
 Without ``scheduler`` or ``client`` a :class:`distributed.LocalCluster` is started for the call (worker
 processes, one thread each; ``workers=0``: all cores) and closed at the end. ``import throwmap`` does not
 import dask: it is imported here, inside the functions.
+
+Work guard (:mod:`throwmap.budget`, ``limits``): before ``out`` is written or a cluster started, the points still
+to compute are estimated, their memory in this process (:data:`BYTES_PER_POINT` and each one's config) and their
+time (a sample of the first of them timed now, :func:`~throwmap.sweeps.targets.seconds_per_point`, shared by the
+workers); above the limits the sweep is refused with one line on ``sweep``, unless ``limits.force``.
 """
 
 from __future__ import annotations
@@ -22,13 +27,18 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..budget import Limits, guard_work, human_seconds
 from ..errors import InvalidStateError, shown
 from .design import make_design
 from .schema import SweepSpec, jsonable, spec_hash
-from .store import MANIFEST, column_types, count_rows, finished_chunks, prepare_out, write_chunk
+from .store import MANIFEST, column_types, count_rows, finished_chunks, part_path, prepare_out, write_chunk
 from .targets import RESULT_COLUMNS
 
-__all__ = ["SweepRun", "SweepStatus", "run_sweep", "sweep_status"]
+__all__ = ["SweepRun", "SweepStatus", "run_sweep", "sweep_status", "BYTES_PER_POINT"]
+
+BYTES_PER_POINT = 1024
+"""Memory this process holds per design point still to compute, bytes, besides twice its config's JSON (the
+design's copy and its Dask task's): its future, its row before it is written (an estimate)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -98,10 +108,10 @@ def _manifest(spec: SweepSpec, design, columns: dict) -> dict:
             "columns": columns, "spec": jsonable(spec.model_dump())}
 
 
-def _plan(spec: SweepSpec, out, create: bool = True):
+def _plan(spec: SweepSpec, out, create: bool = True, design=None):
     """``(design, columns, chunks done)``; ``create=False`` (``--status``): ``out`` is checked if it holds a
-    manifest, never created."""
-    design = make_design(spec)
+    manifest, never created. ``design``: :func:`make_design` of ``spec`` if already made."""
+    design = make_design(spec) if design is None else design
     columns = column_types(design.names, design.points, RESULT_COLUMNS[spec.target_kind])
     if create or (Path(out) / MANIFEST).exists() or (Path(out).exists() and not Path(out).is_dir()):
         columns = prepare_out(out, _manifest(spec, design, columns))["columns"]
@@ -140,6 +150,61 @@ def _results(spec: SweepSpec, design, c: int, got: dict) -> list:
         blocks = [got[k] for k in sorted(k for k in got if k[0] == i)]
         out.append(summarise_trials(spec.experiment, design.configs[i], design.seeds[i], spec.n, blocks).to_dict())
     return out
+
+
+def _missing_points(out: Path, design) -> list:
+    """The design points whose chunk ``out`` does not seem to hold yet (no Parquet file of it there; nothing read,
+    nothing deleted): the guard's count, before ``out`` is checked."""
+    names = {p.name for p in out.iterdir()} if out.is_dir() else set()
+    return [i for c in range(design.n_chunks) if part_path(out, c).name not in names for i in design.chunk_points(c)]
+
+
+def _guard(spec: SweepSpec, design, out: Path, limits: Limits, n_workers: int) -> None:
+    """Refuse, with one line on ``sweep``, a sweep whose points still missing from ``out`` would hold more memory
+    than ``limits.max_memory`` or take longer than ``limits.max_seconds`` on ``n_workers`` workers (module
+    docstring); nothing is refused under ``limits.force``, nor timed."""
+    import json
+
+    if limits.force:
+        return
+    todo = _missing_points(out, design)
+    if not todo:
+        return
+    config_bytes = len(json.dumps(design.configs[todo[0]], default=str))
+    per_point = BYTES_PER_POINT + 2 * config_bytes
+    if spec.trials_per_task is not None:  # a point's trials wait in this process until its last task is done
+        from ..experiments.runner import BYTES_PER_TRIAL
+
+        per_point += spec.n * BYTES_PER_TRIAL
+    hint = "a smaller design (fewer values or samples)"
+    guard_work(f"{spec.target} sweep", "sweep", len(todo), per_point, limits, hint=hint, unit="points")
+    from .targets import seconds_per_point
+
+    first = todo[:16]
+    try:
+        each = seconds_per_point(spec.target, [design.configs[i] for i in first], [design.seeds[i] for i in first],
+                                 spec.n)
+    except Exception:  # noqa: BLE001 - a sample the run's own tasks would fail on: no estimate, the run says why
+        each = None
+    if each is None:
+        return
+    secs = each * len(todo) / max(1, n_workers)
+    if secs > limits.max_seconds:
+        raise InvalidStateError(
+            "sweep", f"{spec.target} sweep on {len(todo):,} points needs ≈ {human_seconds(secs)} "
+                     f"({human_seconds(each)} per point measured now, on {n_workers} worker(s)), over the limit of "
+                     f"{human_seconds(limits.max_seconds)}: raise the limits, limits=Limits(max_seconds=…) (CLI "
+                     f"--max-time s), pass limits=Limits(force=True) (--force), or use {hint}")
+
+
+def _workers_of(client, workers: int) -> int:
+    """The workers that will share the points: ``client``'s (at least 1), else the local cluster's."""
+    if client is not None:
+        try:
+            return max(1, len(client.scheduler_info().get("workers", {})))
+        except Exception:  # noqa: BLE001 - a client that cannot say: one worker (the longest estimate)
+            return 1
+    return (os.cpu_count() or 1) if workers == 0 else workers
 
 
 def sweep_status(spec: SweepSpec, out) -> SweepStatus:
@@ -238,7 +303,8 @@ def _quiet_close(client, cluster, own: bool) -> None:
 
 
 def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None, workers: int = 0,
-              progress=None, stop_after: int | None = None, connect_timeout: float = 20.0) -> SweepRun:
+              progress=None, stop_after: int | None = None, connect_timeout: float = 20.0,
+              limits: Limits | None = None) -> SweepRun:
     """Compute every design point of ``spec`` missing from ``out`` on Dask and store it (module docstring).
 
     ``scheduler``: the address of a running Dask scheduler (``tcp://host:8786``); ``client``: a
@@ -246,10 +312,12 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
     cores). ``progress(done, total)`` counts points (stored ones count as done at the start). ``stop_after``:
     write at most this many chunks, then cancel the rest and return (an interruption on purpose).
     ``connect_timeout``: seconds to wait for ``scheduler`` before giving up (one line on ``scheduler``).
+    ``limits`` (a :class:`~throwmap.budget.Limits`; None: 2 GB, 30 min) bound the estimated work of the points
+    still missing (module docstring); ``limits.force`` runs anyway.
 
-    Raises :class:`~throwmap.errors.InvalidStateError` on a bad sweep (before anything runs), a changed
-    sweep in ``out``, an unreachable scheduler, or a task that failed after its retries (chunks already
-    written are kept).
+    Raises :class:`~throwmap.errors.InvalidStateError` on a bad sweep (before anything runs), a sweep over the
+    limits (before ``out`` is written or a cluster started), a changed sweep in ``out``, an unreachable
+    scheduler, or a task that failed after its retries (chunks already written are kept).
     """
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
         raise InvalidStateError("workers", f"must be an integer ≥ 0 (0: all cores), got {shown(workers)}")
@@ -257,6 +325,7 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
         raise InvalidStateError("stop_after", f"must be an integer ≥ 1, got {shown(stop_after)}")
     if isinstance(connect_timeout, bool) or not isinstance(connect_timeout, (int, float)) or not connect_timeout > 0:
         raise InvalidStateError("connect_timeout", f"must be a number of seconds > 0, got {shown(connect_timeout)}")
+    limits = Limits.of(limits)
     early = None
     if scheduler is not None and client is None:
         _check_address(scheduler)  # before ``out`` is created
@@ -264,7 +333,9 @@ def run_sweep(spec: SweepSpec, out, *, scheduler: str | None = None, client=None
     t0 = time.perf_counter()
     out = Path(out)
     try:
-        design, columns, done = _plan(spec, out)
+        design = make_design(spec)
+        _guard(spec, design, out, limits, _workers_of(early[0] if early is not None else client, workers))
+        design, columns, done = _plan(spec, out, design=design)
     except BaseException:
         if early is not None:
             early[0].close()

@@ -31,7 +31,7 @@ from ..budget import Limits
 from ..version import __version__
 from ..errors import ThrowmapError
 
-__all__ = ["run_chunk", "run_trials", "summarise_trials", "PointSummary", "RESULT_COLUMNS"]
+__all__ = ["run_chunk", "run_trials", "summarise_trials", "seconds_per_point", "PointSummary", "RESULT_COLUMNS"]
 
 RESULT_COLUMNS = {
     "experiment": {"n": "int64", "successes": "int64", "success_rate": "float64", "ci95_low": "float64",
@@ -236,3 +236,43 @@ def run_chunk(target: str, configs: list, seeds: list, n: int | None) -> list:
             row["version"] = __version__
             rows.append(row)
         return rows
+
+
+SAMPLE_THROWS = 16
+"""Throw points timed by :func:`seconds_per_point` (after one untimed throw that warms the kernels)."""
+SAMPLE_TRIALS = 2
+"""Trials of an experiment point timed by :func:`seconds_per_point` (after one untimed trial)."""
+
+
+def seconds_per_point(target: str, configs: list, seeds: list, n: int | None) -> float | None:
+    """Seconds one design point of ``target`` takes in this process, measured now on a sample of the first of
+    ``configs`` (with their ``seeds``; ``n``: an experiment's trials per point), each sample run once untimed first
+    (kernels compiled, caches filled): ``throw`` the first :data:`SAMPLE_THROWS` points; ``limit_set`` the first
+    point with one start per side, times its ``n_starts``; an experiment :data:`SAMPLE_TRIALS` of the first point's
+    trials, times ``n``. None where the library refuses the sample (that point gets its ``error`` row when it runs)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the run itself reports nothing of a worker's warnings either
+        if target == "throw":
+            sample = list(configs[:SAMPLE_THROWS])
+            run_chunk(target, sample[:1], list(seeds[:1]), None)
+            t0 = time.perf_counter()
+            rows = run_chunk(target, sample, list(seeds[:len(sample)]), None)
+            dt = time.perf_counter() - t0
+            return None if all(r.get("error") for r in rows) else dt / len(sample)
+        cfg, seed = configs[0], seeds[0]
+        if target == "limit_set":
+            one = {**cfg, "n_starts": 1}
+            try:
+                _limit_set_point(one, seed)
+                t0 = time.perf_counter()
+                _limit_set_point(one, seed)
+            except ThrowmapError:
+                return None
+            return (time.perf_counter() - t0) * int(cfg["n_starts"])
+        name = target.split(":", 1)[1]
+        k = max(1, min(SAMPLE_TRIALS, int(n)))
+        if run_trials(name, cfg, seed, 0, 1)[3] is not None:
+            return None
+        t0 = time.perf_counter()
+        run_trials(name, cfg, seed, 0, k)
+        return (time.perf_counter() - t0) / k * int(n)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 import numbers
 import warnings
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 
 import numpy as np
@@ -12,7 +14,8 @@ import numpy as np
 from ..conventions import G
 from ..errors import InvalidArmError, RegimeWarning, shown
 
-__all__ = ["Arm", "check_back", "check_g", "check_length", "check_mu", "regime_problems", "warn_if_outside_regime"]
+__all__ = ["Arm", "check_back", "check_g", "check_length", "check_mu", "regime_problems", "regime_warnings_once",
+           "warn_if_outside_regime"]
 
 
 def _is_real(value) -> bool:
@@ -131,9 +134,33 @@ def regime_problems(part, arm: Arm) -> list[str]:
     return out
 
 
+_WARNED: ContextVar[tuple] = ContextVar("throwmap_regime_warned", default=())
+"""The registries of the :func:`regime_warnings_once` blocks open now (innermost last): the messages warned in each."""
+
+
+@contextmanager
+def regime_warnings_once():
+    """Within the block each lost guarantee (each distinct :class:`RegimeWarning` message) is warned once: the
+    first throw that loses it warns, the rest of the block's throws do not. Works as a decorator too, a fresh
+    registry per call, so a function that throws in a loop (a limit set, basins, an experiment's trials) warns once
+    per call, and a later call warns again. Blocks nest (what an outer block warned, an inner one does not warn
+    again); the registry is the context's (threads and tasks each have their own), never global."""
+    token = _WARNED.set(_WARNED.get() + (set(),))
+    try:
+        yield
+    finally:
+        _WARNED.reset(token)
+
+
 def warn_if_outside_regime(part, arm: Arm, stacklevel: int = 3) -> None:
-    """Issue a :class:`RegimeWarning` per lost guarantee (see :func:`regime_problems`)."""
+    """Issue a :class:`RegimeWarning` per lost guarantee (see :func:`regime_problems`), once per
+    :func:`regime_warnings_once` block where one is open."""
     if arm.h < 0 and arm.h > -part.min_d:
         return
+    seen = _WARNED.get()
     for msg in regime_problems(part, arm):
+        if any(msg in s for s in seen):
+            continue
+        for s in seen:
+            s.add(msg)
         warnings.warn(msg, RegimeWarning, stacklevel=stacklevel)

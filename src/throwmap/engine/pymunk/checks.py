@@ -25,7 +25,8 @@ from ..rest import EDGE_EPS
 from .contacts import nearest_side
 from .world import BOX_TOL, World
 
-__all__ = ["BOX_TOL", "GONE", "all_slow", "body_state", "clearance", "energy", "escape", "inspect", "probe"]
+__all__ = ["BOX_TOL", "GONE", "all_slow", "body_state", "clearance", "energy", "escape", "inspect", "probe",
+           "sunk_into"]
 
 
 def body_state(w: World, i: int) -> tuple:
@@ -117,6 +118,25 @@ def inspect(w: World, i: int, arm_angle: float, ca: float, sa: float, horizon: f
 
 GONE = (None, Status.BEHIND_JOINT, Status.OFF_END)
 """The status of each escape code of :func:`probe`."""
+
+
+def sunk_into(w: World, i: int) -> str:
+    """What part i's deepest vertex has sunk into now, for the penetration refusal's message: ``"the arm"``,
+    ``"the wall"`` or ``"part j"`` (:attr:`World.names`), ``"a shape"`` where no vertex is inside any (m; the
+    same shapes :func:`inspect` measures the depth against). One part on a plain arm: the depth is below the
+    arm's surface, so the arm."""
+    if w.plain_arm:
+        return "the arm"
+    cp = w.cp
+    b = w.bodies_h[i]
+    deepest, name = 0.0, "a shape"
+    for v in w.wlists[i]:
+        q = cp.to_world(b, v)
+        for sh, what in zip(w.others_h[i], w.names[i]):
+            d = cp.distance(sh, q, cp.NULL)
+            if d < deepest:
+                deepest, name = d, what
+    return name
 
 
 def probe(w: World, i: int, horizon: float = 0.0, flips: bool = False):

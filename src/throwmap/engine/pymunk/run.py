@@ -14,7 +14,7 @@ from ...system.motion import ImpulseThrow, angle_function, check_realisation
 from ..rest import UNCONVERGED
 from ..scene import Scene
 from ..settings import EngineSettings
-from .checks import GONE, clearance, probe
+from .checks import GONE, clearance, probe, sunk_into
 from .contacts import Contacts
 from .interrupt import check as check_interrupt
 from .interrupt import deferred_interrupts
@@ -331,7 +331,8 @@ def _run_world(w, scene, realisation, settings, record, progress, run_for, t_max
                 if pen > pen_tol:
                     tr.status = Status.PENETRATION
                     status = Status.PENETRATION
-                    message = (f"part {i}: a vertex sank {pen * 1e3:.2f} mm into a shape at t = {t:.4f} s "
+                    message = (f"part {i}: a vertex sank {pen * 1e3:.2f} mm into {sunk_into(w, i)} "
+                               f"at t = {t:.4f} s "
                                f"(> penetration_tol {pen_tol * 1e3:g} mm); result refused")
                     done = True
                     break

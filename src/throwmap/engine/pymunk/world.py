@@ -104,7 +104,8 @@ class World:
     arm frame and ``reach`` their largest distance from the joint,
     ``rho2[i]`` part i's squared radius of gyration (m²), ``R[i]`` part
     i's largest vertex distance from its CM, ``others_h[i]`` the handles of every
-    shape part i can touch and ``boxes[i]`` their bounding boxes ``(x0, x1, y0, y1)``
+    shape part i can touch, ``names[i]`` what each of them is (``"the arm"``, ``"the wall"``, ``"part j"``: for
+    messages), and ``boxes[i]`` their bounding boxes ``(x0, x1, y0, y1)``
     in the arm frame (m; None for another part's shape, which moves; ``boxes_tol`` the same
     inflated by :data:`.checks.BOX_TOL`), ``clear_hint[i]``
     the pair that gave part i's last clearance (:func:`.checks.clearance`). ``plain_arm``: one part and no fixtures (the
@@ -116,7 +117,7 @@ class World:
     """
 
     __slots__ = ("pm", "cp", "space", "space_h", "arm", "arm_h", "arm_w", "bodies", "bodies_h", "shapes", "shapes_h",
-                 "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h",
+                 "parts", "static_shapes", "corners", "reach", "L", "h", "g", "betas", "R", "wlists", "others_h", "names",
                  "plain_arm", "index", "mu_pp", "mu_arm", "mu_wall", "back", "thickness", "margin", "rho2", "boxes",
                  "boxes_tol", "clear_hint", "settle", "end_wall", "arm_thickness", "native")
 
@@ -143,9 +144,10 @@ def _geometry_cache(compute):
 @_geometry_cache
 def _static_geometry(h: float, L: float, thickness: float, fixtures: tuple, back: float):
     """The arm's solid pieces as built for pymunk, and what the checks read off them (SI, arm frame):
-    ``(pieces, thickness, boxes, corners, reach)``, ``pieces`` as ``(vertices, is_fixture)``, ``thickness``
+    ``(pieces, thickness, boxes, corners, reach, n_arm)``, ``pieces`` as ``(vertices, is_fixture)``, ``thickness``
     the solid's depth below the surface, ``boxes`` each piece's ``(x0, x1, y0, y1)``, ``corners`` every
-    piece's vertices, ``reach`` their largest distance from the joint (computed once per geometry)."""
+    piece's vertices, ``reach`` their largest distance from the joint (computed once per geometry), ``n_arm`` how
+    many of the pieces, the first ones, are the arm's own (a cavity's floor included); the rest are the wall's."""
     arm_pieces, fixture_pieces = arm_solids(h, L, thickness, fixtures)
     if back > 0.0:  # the surface continues behind the joint to x = -back (Arm.back): widen the first piece
         first = np.array(arm_pieces[0], dtype=float)
@@ -163,7 +165,7 @@ def _static_geometry(h: float, L: float, thickness: float, fixtures: tuple, back
         pieces.append((piece, fixture))
         corners.extend(piece)
     reach = float(np.max(np.hypot(*np.array(corners).T))) if corners else math.nan
-    return tuple(pieces), depth, tuple(boxes), tuple(corners), reach
+    return tuple(pieces), depth, tuple(boxes), tuple(corners), reach, len(arm_pieces)
 
 
 @_geometry_cache
@@ -201,7 +203,7 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     a0 = scene.alpha + realisation.angle(0.0)
     arm_body.angle = a0
     back = arm.back
-    pieces, thickness, static_boxes, corners, arm_reach = _static_geometry(arm.h, L, settings.arm_thickness,
+    pieces, thickness, static_boxes, corners, arm_reach, n_arm = _static_geometry(arm.h, L, settings.arm_thickness,
                                                                           tuple(scene.fixtures), back)
     w.back = back
     w.thickness = thickness
@@ -253,6 +255,8 @@ def build_world(scene, realisation, settings, *, raw: bool = True, length: float
     w.shapes_h = [cp.shape(s) for s in shapes]
     static_h = [cp.shape(s) for s in static_shapes]
     w.others_h = [static_h + [w.shapes_h[j] for j in range(len(shapes)) if j != i] for i in range(len(shapes))]
+    static_names = ["the arm"] * n_arm + ["the wall"] * (len(static_shapes) - n_arm)
+    w.names = [static_names + [f"part {j}" for j in range(len(shapes)) if j != i] for i in range(len(shapes))]
     w.boxes = [list(static_boxes) + [None] * (len(shapes) - 1) for _ in shapes]
     tol = 0.0 + BOX_TOL  # as checks.inspect inflates them for horizon 0
     w.boxes_tol = [[None if bx is None else (bx[0] - tol, bx[1] + tol, bx[2] - tol, bx[3] + tol)
