@@ -1,5 +1,5 @@
 """``throwmap assemble …`` and ``throwmap sensitivity``: one self-assembly trial as figures and an animation
-(paper Sec. VI, Figs. 15 and 16), and any experiment's success against one parameter (issue 13).
+(paper Sec. VI, Figs. 15 and 16), and any experiment's success against one parameter.
 
 ::
 

@@ -1,4 +1,4 @@
-"""``throwmap chain …``: stochastic throw maps as Markov chains, checked against the Monte Carlo (issue 14).
+"""``throwmap chain …``: stochastic throw maps as Markov chains, checked against the Monte Carlo.
 
 ``throwmap chain throw``     one part, open loop at a fixed ω: the chain (ω jitter, μ per trial, realisation),
                              P(goal by k) against a Monte Carlo of the same model, the long-run distribution

@@ -1,4 +1,4 @@
-"""``throwmap experiment``: every Monte Carlo experiment behind one contract (issue 11, item 3).
+"""``throwmap experiment``: every Monte Carlo experiment behind one contract.
 
 ::
 

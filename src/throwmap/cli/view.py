@@ -1,4 +1,4 @@
-"""``throwmap view``: one self-contained HTML page that plays a motion beside its orbit plot (issue 14, item 4).
+"""``throwmap view``: one self-contained HTML page that plays a motion beside its orbit plot.
 
 ::
 

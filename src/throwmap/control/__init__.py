@@ -1,4 +1,4 @@
-"""Feedback throwing (paper Sec. IV; issue 12 item 3): one-bit sensors, controllers and the closed loop.
+"""Feedback throwing (paper Sec. IV): one-bit sensors, controllers and the closed loop.
 
 * :mod:`.sensors` — :class:`SideSensor`, :class:`BeyondSensor`, :class:`WithinSensor` (one bit, with
   false-positive/negative rates and hysteresis) and :class:`PositionSensor` (a noisy estimate);

@@ -1,4 +1,4 @@
-"""The inverse throws checked against forward throws, on every model (issue 12, "Done means").
+"""The inverse throws checked against forward throws, on every model.
 
 For each model, ``n`` random problems: a start (x0, side) drawn uniformly over the side's rests with
 x0 ≤ ``x_hi``, the jog branch there measured (:func:`~throwmap.control.inverse.inverse_jog` towards

@@ -1,4 +1,4 @@
-"""One-bit sensors for feedback throwing (paper Sec. IV-A; issue 12 item 3).
+"""One-bit sensors for feedback throwing (paper Sec. IV-A).
 
 The draft's controller needs two one-bit sensors — "the part is on side i_f" and "the part is
 within ε of x_f" — which its camera provided. Here a sensor is an immutable value that, given the

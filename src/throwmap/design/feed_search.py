@@ -1,4 +1,4 @@
-"""A feeder for the recoil arm: random search screened by first passage (Sec. V-C, corrected; issue 11).
+"""A feeder for the recoil arm: random search screened by first passage (Sec. V-C, corrected).
 
 The critical-point design (:func:`throwmap.design.design`, the exact impulse map) does not carry over
 to the draft's recoiling arm with 3 % ω jitter: there the end stop of the impulse feeder design is

@@ -5,7 +5,7 @@ The feeder design of :mod:`throwmap.design.examples` places critical points on t
 jitters ω by σ = 3 % per throw, and on that map the side that reaches an end stop first is what
 an end stop captures: a vertical stop holds *every* side that reaches it, because the flips that
 would free a wrong side roll outward over its end vertex and the stop blocks them (measured:
-issue 11, ``throwmap experiment feed``, 46/200 wrong-side captures of the impulse design).
+``throwmap experiment feed``, 46/200 wrong-side captures of the impulse design).
 
 This module measures, for a part on a plain arm:
 

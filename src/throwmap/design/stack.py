@@ -1,7 +1,7 @@
 """The second part of the draft's sequential assembly (Sec. V-D, Fig. 10): a four-sided part that fills the
 cavity on top of the captured triangle.
 
-The first part is the recoil feeder of issue 11 (:mod:`throwmap.experiments.feed`'s built-in example: the 17 cm
+The first part is the recoil feeder (:mod:`throwmap.experiments.feed`'s built-in example: the 17 cm
 30-60-90 triangle with 80 g of lead, captured on side 0, its hypotenuse, in the 1 cm pocket ending at the end wall,
 L = 0.38 m). Captured, it lies with its 60° vertex in the corner of the pocket's floor and the end wall; its exposed
 top is two legs meeting at the right angle 6.4 cm above the arm: the short leg (8.5 cm) rising at 60° from the wall

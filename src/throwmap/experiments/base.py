@@ -1,4 +1,4 @@
-"""The experiment contract (STYLE §13, "experiments are declared, then run"; issue 11, item 3).
+"""The experiment contract (STYLE §13, "experiments are declared, then run").
 
 An experiment is a named, registered object with a pydantic config type (SI units,
 ``extra="forbid"``; ``config_type()`` is the built-in example) and one method,

@@ -1,4 +1,4 @@
-"""Random initial conditions by *dropping* the part onto the arm in the engine (issue 11, item 3).
+"""Random initial conditions by *dropping* the part onto the arm in the engine.
 
 The draft's experiments started each trial by dropping the part by hand onto the arm
 (Sec. V-C). :func:`drop_part` does the same in the pymunk engine: it draws

@@ -1,4 +1,4 @@
-"""The Monte Carlo runner every experiment shares (issue 11, item 3; STYLE §13).
+"""The Monte Carlo runner every experiment shares (STYLE §13).
 
 :func:`run_experiment` runs trials ``0 … n−1`` of a registered experiment, each with its
 own generator spawned from the run's seed (:func:`throwmap.experiments.base.trial_generator`),

@@ -1,4 +1,4 @@
-"""Sensitivity of an experiment's success rate to one parameter (issue 13: success against tilt rate, μ, ω noise
+"""Sensitivity of an experiment's success rate to one parameter (e.g. success against tilt rate, μ, ω noise
 and sensor error).
 
 :func:`sensitivity` runs a registered experiment once per value of a config field (or of several fields set to

@@ -6,7 +6,7 @@ assembled parts stayed assembled after the next throw 17/20 = 85 %; its failures
 from the assembled state and stuck in the cavity in a wrong orientation, and it suggested handling the parts
 separately (serially). Here (pymunk engine, :mod:`throwmap.design.stack` for the design):
 
-* the first part is the recoil feeder of issue 11 (``experiment feed``'s built-in example: triangle + 80 g lead,
+* the first part is the recoil feeder (``experiment feed``'s built-in example: triangle + 80 g lead,
   side 0, the 1 cm pocket ending at the end wall, L = 0.38 m, ω = 4.56 rad/s, 3 % jitter, the recoil arm);
 * the second is the wedge of :func:`~throwmap.design.stack.design_stack` (the slot between the captured triangle's
   short leg and the end wall), ``[wedge]`` in the config;

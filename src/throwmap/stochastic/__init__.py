@@ -1,4 +1,4 @@
-"""Stochastic throw maps as Markov chains on cells (issue 14, item 1).
+"""Stochastic throw maps as Markov chains on cells.
 
 ========================  ===============================================================
 :mod:`.cells`             :class:`Cells`: rests ``(x, side)`` cut into intervals per side

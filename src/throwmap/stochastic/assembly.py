@@ -1,4 +1,4 @@
-"""A chain of the self-assembly experiment's low phase on a reduced pair state, from recorded episodes (issue 14).
+"""A chain of the self-assembly experiment's low phase on a reduced pair state, from recorded episodes.
 
 The ``assemble`` experiment runs two parts in the engine; its controller has memory (a stall counter, resets,
 the randomiser's planner), so no chain on one part's rest is exact. What is chained here is the **first low

@@ -1,4 +1,4 @@
-"""Estimating a chain's transition matrix from throws on cells (issue 14, item 1).
+"""Estimating a chain's transition matrix from throws on cells.
 
 Row ``i`` of ``P`` is estimated from ``samples`` throws started at rests drawn uniformly in cell ``i``
 (x uniform on the cell's ``(left, right]``, its side), each with its own noise draw: the chain is Ulam's

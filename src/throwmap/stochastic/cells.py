@@ -1,4 +1,4 @@
-"""Cells on the arm: the finite state space of a stochastic throw map (issue 14, item 1).
+"""Cells on the arm: the finite state space of a stochastic throw map.
 
 A part resting flat is ``(x, side)`` (m, stable side). :class:`Cells` cuts each stable side's
 admissible starts ``lo < x ≤ hi`` (:func:`throwmap.system.starts.start_interval`, or a given span)

@@ -1,4 +1,4 @@
-"""A stochastic throw map as a finite Markov chain (issue 14, item 1).
+"""A stochastic throw map as a finite Markov chain.
 
 One step of the chain is one decision of the thrower: a throw (the part goes from its cell to the cell
 it comes to rest in, or leaves the arm), or — for a feedback policy — a stop. States ``0 … n−1`` are

@@ -1,4 +1,4 @@
-"""The chain against the Monte Carlo: P(goal by throw k) inside the pointwise Wilson 95 % band (issue 14).
+"""The chain against the Monte Carlo: P(goal by throw k) inside the pointwise Wilson 95 % band.
 
 For trials with hitting throws ``T_j`` (the throw after which trial j reached the goal; −1 or None when it
 never did), the Monte Carlo estimate is p̂_k = #{j : 0 ≤ T_j ≤ k} / n with the Wilson 95 % interval

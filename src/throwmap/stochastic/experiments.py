@@ -1,4 +1,4 @@
-"""The chains of the Monte Carlo experiments: ``position`` (issue 14, item 1).
+"""The chains of the Monte Carlo experiments: ``position``.
 
 **position** (:mod:`throwmap.experiments.position`) on an analytic model: the chain's state is the rest
 ``(x, side)`` alone. That is exact for the draft's controller as configured by default — one-bit sensors

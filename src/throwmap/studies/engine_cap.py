@@ -1,4 +1,4 @@
-"""How much the engine's answer depends on its friction cap: where the reference itself is uncertain (issue 11).
+"""How much the engine's answer depends on its friction cap: where the reference itself is uncertain.
 
 pymunk's solver needs the per-contact friction cap min(μ, CAP K_nn/|K_nt|) (:mod:`throwmap.engine.pymunk.friction`,
 CAP = 0.7) to converge; where a contact slides at the cap while the true μ would hold it, the engine answers for

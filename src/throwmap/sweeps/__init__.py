@@ -1,4 +1,4 @@
-"""Sweeps on Dask (issue 14, item 2): a grid or a seeded random design over the parameters of an experiment
+"""Sweeps on Dask: a grid or a seeded random design over the parameters of an experiment
 or an analysis, run on a local or an existing Dask cluster, stored as partitioned Parquet, resumable.
 
 ====================  ==============================================================================

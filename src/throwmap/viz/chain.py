@@ -1,4 +1,4 @@
-"""Figures of a stochastic throw map's chain (issue 14, item 1): arrays in, figures out.
+"""Figures of a stochastic throw map's chain: arrays in, figures out.
 
 * :func:`plot_goal_curve` — P(goal by throw k): the chain's curve over the Monte Carlo's points and their
   pointwise Wilson 95 % band, with the fraction of k inside the band in the legend;

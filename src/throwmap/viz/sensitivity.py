@@ -1,4 +1,4 @@
-"""Success rate against one parameter, with Wilson 95 % intervals (issue 13's sensitivity figures).
+"""Success rate against one parameter, with Wilson 95 % intervals: the sensitivity figures.
 
 :func:`plot_sensitivity` draws a :class:`throwmap.experiments.sensitivity.Sensitivity` (or its ``to_dict()``):
 the success rate of each run as a point with its interval as an error bar, the runs joined by a line, an optional

@@ -1,4 +1,4 @@
-"""Exact Coulomb contact solves for the steps where Chipmunk's own solver cannot converge (issue 11, item 2).
+"""Exact Coulomb contact solves for the steps where Chipmunk's own solver cannot converge.
 
 Why
 ---

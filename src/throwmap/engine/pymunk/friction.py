@@ -1,7 +1,7 @@
 """Friction as Chipmunk can solve it: the per-contact cap that keeps its solver convergent.
 
-Root cause (issue 10, item 3)
------------------------------
+Root cause
+----------
 Chipmunk's solver (sequential impulses) updates each contact's normal and
 tangential impulse together from the same relative velocity, each with its own
 diagonal effective mass: ``Δj_n = −v_n / K_nn``, ``Δj_t = −v_t / K_tt``, the
@@ -30,8 +30,8 @@ falls towards lift-off) and changes final x by ≲ 2 mm against model
 < 0.3 mm between CAP = 0.7 and 0.9, by up to 8 mm at 0.5. ``n_capped`` counts
 the solves where the cap was below the pair's μ.
 
-One part: the exact solve (issue 11, item 2)
---------------------------------------------
+One part: the exact solve
+-------------------------
 The cap is a change of model, not a discretisation error: a pivot at μ = 2–3 on a
 tilted arm slipped earlier and faster and landed 0.5–1.1 mm away from "rigid_body"
 and from an independent reference (tests/kernels/test_tilt_landing.py), and a
@@ -58,7 +58,7 @@ __all__ = ["CAP", "EXACT", "FrictionCap", "NativeCap", "attach_raw", "cap_bound"
 
 EXACT = True
 """One part: solve the steps where the cap would bind exactly (:mod:`.exact`) instead of capping μ (read when a
-run's hook is installed; False: the cap alone, as before issue 11)."""
+run's hook is installed; False: the cap alone, without the exact solve)."""
 CAP = 0.7
 """Largest μ |K_nt| / K_nn allowed: the solver's error shrinks by at least this factor per iteration."""
 

@@ -1,4 +1,4 @@
-"""Does an engine run's result hold at half the step? Flags for hard runs and the comparison (issue 10, item 1).
+"""Does an engine run's result hold at half the step? Flags for hard runs and the comparison.
 
 pymunk resolves an impact in one velocity solve per step; on hard contacts (a
 landing that drives a vertex deep into the arm, a part that flips from side to
