@@ -80,9 +80,9 @@ def reference():
     x, k, om = np.linspace(0.1, 0.3, n), np.zeros(n, np.int64), np.full(n, 4.0)
     out = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64), np.empty((n, C.NREC))
     for fn in (RB.throw_many_rigid_body_rk4, RB.throw_many_rigid_body):
-        fn(x, k, om, np.ones(n, bool), arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2,
-           1.5, RB.LAW_ROUTH, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, 1e-14, 200, 200, *out,
-           0.0, 0.0)
+        fn(x, k, om, np.ones(n, bool), RB.part_arrays(part),
+           RB.arm_arrays(arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, 1.5, RB.LAW_ROUTH), RB.run_limits(1e-14, 200, 200),
+           *out)
 
 
 def moving():

@@ -24,6 +24,7 @@ from throwmap.errors import InvalidStateError
 from throwmap.kernels import codes as C
 from throwmap.kernels.flight import release_state
 from throwmap.kernels.rigid_body.automaton import throw_from_state, throw_one_rigid_body
+from throwmap.kernels.rigid_body.inputs import arm_arrays, part_arrays, run_limits
 from throwmap.kernels.rigid_body.moving import arm_motion, throw_moving
 from throwmap.kernels.rigid_body.moving.dynamics import Body, applied, offsets, solve
 from throwmap.kernels.rigid_body.moving.handover import start_pose
@@ -60,10 +61,10 @@ def test_handover_from_release_is_todays_throw_bit_for_bit():
             k = int(rng.choice(np.flatnonzero(PART.stable)))
             x = rng.uniform(-PART.uL[k] + 1e-4, 0.4)
             om = rng.uniform(3, 7)
-            args = (arm.h, arm.g, 0.0, math.inf, arm.back, PART.radius_of_gyration ** 2, arm.mu, 0, PART.w, PART.beta,
-                    PART.d, PART.uL, PART.uR, PART.ell, PART.stable, 1e-14, 100000, 10000)
+            args = (part_arrays(PART), arm_arrays(arm.h, arm.g, 0.0, math.inf, arm.back, arm.mu, 0),
+                    run_limits(1e-14, 100000, 10000))
             r1, r2 = np.empty(C.NREC), np.empty(C.NREC)
-            a = throw_one_rigid_body(x, k, om, *args, r1, np.empty((0, 4)), 0.0, 0.0, 0.0)
+            a = throw_one_rigid_body(x, k, om, *args, r1, np.empty((0, 4)), 0.0)
             vx, vy, w = release_state(x, PART.d[k], arm.h, om)
             st = np.array([0.0, 0.0, x, arm.h + PART.d[k], vx, vy, w, PART.beta[k], k, 0, 0, 0, 0, 1.0])
             b = throw_from_state(st, *args, r2, np.empty((0, 4)), 0.0)

@@ -21,12 +21,16 @@ MAX_EVENTS = 10_000
 VALID = {C.OK, C.BEHIND_JOINT, C.OFF_END, C.NO_REST, C.NO_CONTACT, C.INCONSISTENT}
 
 
+def records(part, arm, mu):
+    """The kernels' records of ``part`` on ``arm`` at α = 0 with Coulomb ``mu``, the Routh law, no wall."""
+    return (RB.part_arrays(part), RB.arm_arrays(arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, mu, RB.LAW_ROUTH),
+            RB.run_limits(TOL, MAX_ITER, MAX_EVENTS))
+
+
 def rb(part, arm, x, k, om, mu, m=0, dt=0.005):
     rec = np.empty(C.NREC)
     traj = np.empty((m, 4))
-    x1, k1, st_ = RB.throw_one_rigid_body(
-        x, k, om, arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta,
-        part.d, part.uL, part.uR, part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, rec, traj, dt, 0.0, 0.0)
+    x1, k1, st_ = RB.throw_one_rigid_body(x, k, om, *records(part, arm, mu), rec, traj, dt)
     return x1, k1, st_, rec, traj
 
 
@@ -53,9 +57,7 @@ def batch(part, arm, x, k, om, mu):
     so = np.empty(n, np.int64)
     sto = np.empty(n, np.int64)
     rec = np.empty((n, C.NREC))
-    RB.throw_many_rigid_body(x, k, om, np.ones(n, bool), arm.h, arm.g, 0.0, arm.length_or_inf, arm.back,
-                             part.radius_of_gyration**2, mu, RB.LAW_ROUTH, part.w, part.beta, part.d, part.uL, part.uR,
-                             part.ell, part.stable, TOL, MAX_ITER, MAX_EVENTS, xo, so, sto, rec, 0.0, 0.0)
+    RB.throw_many_rigid_body(x, k, om, np.ones(n, bool), *records(part, arm, mu), xo, so, sto, rec)
     return xo, so, sto, rec
 
 

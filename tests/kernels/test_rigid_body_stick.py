@@ -184,11 +184,15 @@ def _starts(part, n, seed):
     return x, k, rng.uniform(3.0, 7.0, n)
 
 
+def _records(part, arm, mu):
+    return (RB.part_arrays(part), RB.arm_arrays(arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, mu, RB.LAW_ROUTH),
+            RB.run_limits(1e-14, MAX_ITER, MAX_EVENTS))
+
+
 def _batch(fn, part, arm, x, k, om, mu):
     n = len(x)
     xo, so, sto, rec = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64), np.empty((n, C.NREC))
-    fn(x, k, om, np.ones(n, bool), arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, part.radius_of_gyration**2, mu, RB.LAW_ROUTH,
-       part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, 1e-14, MAX_ITER, MAX_EVENTS, xo, so, sto, rec, 0.0, 0.0)
+    fn(x, k, om, np.ones(n, bool), *_records(part, arm, mu), xo, so, sto, rec)
     return xo, so, sto, rec
 
 
@@ -216,10 +220,7 @@ def test_batch_equals_single_with_trajectory(triangle, arm):
     for i in range(40):
         rec = np.empty(C.NREC)
         traj = np.empty((3000, 4))
-        out = RB.throw_one_rigid_body(x[i], k[i], om[i], arm.h, arm.g, 0.0, arm.length_or_inf, arm.back,
-                                      triangle.radius_of_gyration**2, 1.5, RB.LAW_ROUTH, triangle.w, triangle.beta, triangle.d,
-                                      triangle.uL, triangle.uR, triangle.ell, triangle.stable, 1e-14, MAX_ITER,
-                                      MAX_EVENTS, rec, traj, 0.002, 0.0, 0.0)
+        out = RB.throw_one_rigid_body(x[i], k[i], om[i], *_records(triangle, arm, 1.5), rec, traj, 0.002)
         assert out == (xb[i], sb[i], stb[i])
         np.testing.assert_array_equal(rec, rb[i])
         ns = RB.count_samples(traj)

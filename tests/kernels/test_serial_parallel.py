@@ -37,14 +37,13 @@ def _same(a, b):
 def test_rigid_body_serial_equals_parallel(triangle, mu):
     arm = tm.Arm(h=-0.01, length=0.6)
     x, side, om, valid = _starts(triangle)
-    args = (x, side, om, valid, arm.h, arm.g, 0.0, arm.length_or_inf, 0.0, triangle.radius_of_gyration**2, mu,
-            RB.LAW_ROUTH, triangle.w, triangle.beta, triangle.d, triangle.uL, triangle.uR, triangle.ell, triangle.stable, 1e-14, 100_000,
-            10_000)
+    args = (x, side, om, valid, RB.part_arrays(triangle),
+            RB.arm_arrays(arm.h, arm.g, 0.0, arm.length_or_inf, 0.0, mu, RB.LAW_ROUTH), RB.run_limits(1e-14, 100_000, 10_000))
     for par, ser in ((RB.throw_many_rigid_body, RB.throw_many_rigid_body_serial),
                      (RB.throw_many_rigid_body_rk4, RB.throw_many_rigid_body_rk4_serial)):
         a, b = _out(x.size), _out(x.size)
-        par(*args, *a, 0.0, 0.0)  # no wall, as the model passes it
-        ser(*args, *b, 0.0, 0.0)
+        par(*args, *a)  # no wall, as the model passes it
+        ser(*args, *b)
         _same(a, b)
         assert np.all(a[2][~valid] == C.INVALID_START)
 

@@ -40,7 +40,7 @@ PARALLEL_MIN = 4096
 """Smallest batch the "paper" model runs on Numba's thread pool (:func:`throw_many`); smaller
 batches run on the calling thread (:func:`throw_many_serial`, same results). A throw takes
 about 1–3 µs, while waking the pool costs tens of µs and, when the cores are busy, can
-cost milliseconds (issue 10: critical_points 108 ms on two threads vs 3.7 ms on one)."""
+cost milliseconds (critical_points: 108 ms on two threads vs 3.7 ms on one)."""
 
 
 @njit(cache=True, inline="always")

@@ -22,6 +22,7 @@ import numpy as np
 from ..kernels import codes as C
 from ..errors import InvalidStateError, shown
 from ..kernels.rigid_body import LAW_ROUTH, LAW_VELOCITY, count_samples, pick, throw_one_rigid_body
+from ..kernels.rigid_body.inputs import arm_record, part_arrays, run_limits
 from ..kernels.rigid_body.tilt import tilted_stable
 from ..system.fixtures import Cavity, Wall
 from ..records.outcome import ThrowOutcome
@@ -115,12 +116,15 @@ def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt:
     """One kernel call: ``(x', side', status, record)``; ``traj`` (M, 4) receives the sampled motion;
     ``alpha`` the arm's rest angle (rad), ``fixtures`` at most one Wall."""
     rec = np.empty(C.NREC)
-    wall_h, wall_mu = wall_args(arm, fixtures)
-    xn, kn, st = throw_one_rigid_body(x, side, omega, arm.h, arm.g, float(alpha), arm.length_or_inf, arm.back,
-                                      part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d,
-                                      part.uL, part.uR, part.ell, stable_at(part, alpha), o.tol, o.max_iter,
-                                      o.max_impacts, rec, traj, dt, wall_h, wall_mu)
+    xn, kn, st = throw_one_rigid_body(x, side, omega, *records(part, arm, alpha, fixtures, o), rec, traj, dt)
     return xn, kn, st, rec
+
+
+def records(part, arm, alpha, fixtures, o: RigidBodyOptions):
+    """The kernels' three records (:mod:`throwmap.kernels.rigid_body.inputs`): the part with its stable sides at
+    ``alpha`` (rad), the arm with the impact law and the wall of ``fixtures``, and the options' limits."""
+    return (part_arrays(part, stable_at(part, alpha)), arm_record(arm, alpha, o.law_code, *wall_args(arm, fixtures)),
+            run_limits(o.tol, o.max_iter, o.max_impacts))
 
 
 class RigidBodyModel:
@@ -152,10 +156,8 @@ class RigidBodyModel:
             return moving_batch(part, system, x, side, omega, valid, o, progress)
         m = x.size
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
-        pick(m)(x, side, omega, valid, arm.h, arm.g, system.alpha, arm.length_or_inf, arm.back,
-                part.radius_of_gyration**2, arm.mu, o.law_code, part.w, part.beta, part.d, part.uL, part.uR, part.ell,
-                stable_at(part, system.alpha), o.tol, o.max_iter, o.max_impacts, out.x, out.side, out.status,
-                out.records, *wall_args(arm, system.fixtures))
+        pick(m)(x, side, omega, valid, *records(part, arm, system.alpha, system.fixtures, o), out.x, out.side,
+                out.status, out.records)
         return out
 
     def assumptions(self, records, mu, status) -> str:

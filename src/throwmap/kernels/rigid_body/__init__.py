@@ -143,6 +143,7 @@ Modules (the automaton's pieces)
 ``trajectory``   trajectory rows
 ``automaton``    one throw: the loop over modes
 ``batch``        many throws: parallel kernels and their serial twins, chosen by batch size
+``inputs``       the records the kernels take: the part, the arm (with its wall) and the run's limits
 ``tilt``         an arm at rest angle α: tilted sticking phase, flat slides and rests
 ``wall``         a wall at the arm's end: its geometry, the guards wall_touch and corner_touch,
                  the departure windows, the pivot's wall reset
@@ -156,6 +157,7 @@ from .automaton import run_throw, throw_one_rigid_body, throw_one_rigid_body_rk4
 from .batch import (PARALLEL_MIN, pick, throw_many_rigid_body, throw_many_rigid_body_rk4,
                     throw_many_rigid_body_rk4_serial, throw_many_rigid_body_serial)
 from ..flight import departure_window
+from .inputs import ArmArrays, PartArrays, RunLimits, arm_arrays, arm_record, part_arrays, run_limits
 from .impact import LAW_ROUTH, LAW_VELOCITY, coulomb_impact
 from .modes import (DTH, EV_BEHIND_JOINT, EV_INCONSISTENT, EV_LAND_A, EV_LAND_B, EV_LIFT_OFF, EV_NONE,
                     EV_OFF_END, EV_SLIP, EV_STEP_CAP, EV_STICK, IMP_INCONSISTENT, IMP_SEPARATE, IMP_SLIDE, IMP_STICK,
@@ -166,7 +168,8 @@ from .stick_exact import pivot_stick_exact
 from .swing import swing_time
 from .trajectory import count_samples
 
-__all__ = ["LAW_ROUTH", "LAW_VELOCITY", "PARALLEL_MIN", "pick", "throw_many_rigid_body_serial",
+__all__ = ["ArmArrays", "PartArrays", "RunLimits", "arm_arrays", "arm_record", "part_arrays", "run_limits",
+           "LAW_ROUTH", "LAW_VELOCITY", "PARALLEL_MIN", "pick", "throw_many_rigid_body_serial",
            "throw_many_rigid_body_rk4_serial",
            "count_samples", "coulomb_impact", "departure_window", "pivot_slide", "pivot_stick",
            "pivot_stick_exact", "run_throw", "select_contact_mode", "slide_rhs", "slide_sense",

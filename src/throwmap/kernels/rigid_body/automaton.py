@@ -63,10 +63,12 @@ def follow(wj, ce, t, x, y, vx, vy, phi, om, w, rho2, gx, gn, mu_w, h, top, L, a
 
 
 @njit(cache=True, inline='always')
-def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-              tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu, start):
+def run_throw(stick_phase, x0, side, omega, part, arm, lim, rec, traj, traj_dt, start):
     """One throw of model "rigid_body" with ``stick_phase`` as mode PIVOT_STICK; see :func:`throw_one_rigid_body`.
     A non-empty ``start`` replaces the release by a handed-over state (:func:`throw_from_state`)."""
+    rho2, w, beta, d, uL, uR, ell, stable = part
+    h, g, alpha, length, back, mu, law, wall_h, wall_mu = arm
+    tol, max_iter, max_events = lim
     n = w.shape[0]
     start_record(rec)
     ts = np.zeros(3)
@@ -470,9 +472,8 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
         # -------------------------------------------------------------- guard land: reset land_side
         land_dir = 1 if ev == EV_LAND_B else -1
         (mode, status, x, y, vx, vy, om, phi, t, jp, px, theta, thdot, va, phi_off, j_ex, t_ex,
-         last_side) = land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length,
-                                back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, ta, tb, ru, rv, c0, traj, ts,
-                                rec, alpha, wall_h, wall_mu)
+         last_side) = land_side(land_dir, jp, px, thdot, va, phi, t, last_side, part, arm, ta, tb, ru, rv, c0, traj,
+                                ts, rec)
         if mode == MODE_REST:
             return x, last_side, status
         if mode == MODE_LEAN:  # a flat slide met the wall's top corner with an edge
@@ -489,41 +490,37 @@ def run_throw(stick_phase, x0, side, omega, h, g, alpha, length, back, rho2, mu,
 
 
 @njit(cache=True)
-def throw_one_rigid_body(x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                         tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
+def throw_one_rigid_body(x0, side, omega, part, arm, lim, rec, traj, traj_dt):
     """One throw from rest at ``(x0, side)`` with release rate ``omega`` (rad/s), model "rigid_body".
 
-    Fills ``rec`` (layout :mod:`~throwmap.kernels.codes`) and ``traj`` (see
-    :mod:`throwmap.kernels.rigid_body`; rows not written are NaN) and returns
-    ``(x, side, status)``. ``g`` (m/s²) is gravity's magnitude and ``alpha`` (rad, CCW +,
+    ``part``, ``arm`` and ``lim`` are the records of :mod:`~.inputs` (:class:`~.inputs.PartArrays`,
+    :class:`~.inputs.ArmArrays`, :class:`~.inputs.RunLimits`). Fills ``rec`` (layout :mod:`~throwmap.kernels.codes`)
+    and ``traj`` (see :mod:`throwmap.kernels.rigid_body`; rows not written are NaN) and returns
+    ``(x, side, status)``. ``arm.g`` (m/s²) is gravity's magnitude and ``arm.alpha`` (rad, CCW +,
     |α| < π/2) the arm's rest angle: gravity is (−g sin α, −g cos α) in the arm frame
-    (:mod:`~.tilt`; ``stable`` must be the table for α, :func:`~.tilt.tilted_stable`).
-    ``length`` (m, inf: unbounded) and ``back`` (m, ``Arm.back``)
+    (:mod:`~.tilt`; ``part.stable`` must be the table for α, :func:`~.tilt.tilted_stable`).
+    ``arm.length`` (m, inf: unbounded) and ``arm.back`` (m, ``Arm.back``)
     bound the arm's surface: a contact at x ≤ −back is BEHIND_JOINT, beyond length
-    OFF_END. ``mu`` is the Coulomb coefficient (``inf``: no slip, 0: frictionless),
-    ``law`` the impact law of resets ``impact`` and ``land_side`` (:data:`~.impact.LAW_ROUTH`,
+    OFF_END. ``arm.mu`` is the Coulomb coefficient (``inf``: no slip, 0: frictionless),
+    ``arm.law`` the impact law of resets ``impact`` and ``land_side`` (:data:`~.impact.LAW_ROUTH`,
     the default of the model, or :data:`~.impact.LAW_VELOCITY`; :func:`~.impact.coulomb_impact`),
-    ``max_iter`` caps the contact-search and integration steps of one mode,
-    ``max_events`` the mode changes (beyond: status UNRESOLVED, reason WHY_EVENT_CAP). The caller has
+    ``lim.max_iter`` caps the contact-search and integration steps of one mode,
+    ``lim.max_events`` the mode changes (beyond: status UNRESOLVED, reason WHY_EVENT_CAP). The caller has
     checked the start. The sticking phase is closed form (:func:`~.stick_exact.pivot_stick_exact`).
-    ``wall_h`` (m, > 0) puts a :class:`~throwmap.system.fixtures.Wall` that high at x = ``length``
-    (finite) with Coulomb ``wall_mu`` (:mod:`~.wall`); 0: no wall.
+    ``arm.wall_h`` (m, > 0) puts a :class:`~throwmap.system.fixtures.Wall` that high at x = ``length``
+    (finite) with Coulomb ``arm.wall_mu`` (:mod:`~.wall`); 0: no wall.
     """
-    return run_throw(pivot_stick_exact, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                     stable, tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu, np.empty(0))
+    return run_throw(pivot_stick_exact, x0, side, omega, part, arm, lim, rec, traj, traj_dt, np.empty(0))
 
 
 @njit(cache=True)
-def throw_one_rigid_body_rk4(x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                             tol, max_iter, max_events, rec, traj, traj_dt, wall_h=0.0, wall_mu=0.0):
+def throw_one_rigid_body_rk4(x0, side, omega, part, arm, lim, rec, traj, traj_dt):
     """:func:`throw_one_rigid_body` with the RK4 sticking phase (:func:`~.stick.pivot_stick`): the reference it is checked against."""
-    return run_throw(pivot_stick, x0, side, omega, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                     tol, max_iter, max_events, rec, traj, traj_dt, wall_h, wall_mu, np.empty(0))
+    return run_throw(pivot_stick, x0, side, omega, part, arm, lim, rec, traj, traj_dt, np.empty(0))
 
 
 @njit(cache=True)
-def throw_from_state(start, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable, tol, max_iter,
-                     max_events, rec, traj, traj_dt):
+def throw_from_state(start, part, arm, lim, rec, traj, traj_dt):
     """The automaton of :func:`throw_one_rigid_body` from a handed-over arm-frame state instead of the release.
 
     ``start`` = (kind, t, x, y, v_x, v_y, ω, φ, side, j, p_x, θ, v_A, first): kind 0 FLIGHT (CM at (x, y) m,
@@ -531,5 +528,4 @@ def throw_from_state(start, h, g, alpha, length, back, rho2, mu, law, w, beta, d
     vertex j at p_x (θ the angle of pivot → CM, v_A its slip velocity; the contact mode is selected);
     ``side`` the last side rested on; ``first`` 1: the first contact is still to come (its record is written).
     Used by the moving-arm phase (:mod:`.moving`) once the arm has stopped; no wall."""
-    return run_throw(pivot_stick_exact, start[2], int(start[8]), 1.0, h, g, alpha, length, back, rho2, mu, law, w,
-                     beta, d, uL, uR, ell, stable, tol, max_iter, max_events, rec, traj, traj_dt, 0.0, 0.0, start)
+    return run_throw(pivot_stick_exact, start[2], int(start[8]), 1.0, part, arm, lim, rec, traj, traj_dt, start)

@@ -21,74 +21,66 @@ PARALLEL_MIN = 1024
 """Smallest batch run on Numba's thread pool; smaller batches run serially (same results).
 
 A "rigid_body" throw takes about 2–20 µs; waking the pool costs tens of µs and, when
-the cores are busy, up to milliseconds per call (issue 10: ``critical_points`` took
+the cores are busy, up to milliseconds per call (``critical_points`` took
 108 ms on two threads and 3.7 ms on one under load)."""
 
 
 @njit(cache=True)
-def throw_many_rigid_body_serial(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                                 stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out, wall_h=0.0, wall_mu=0.0):
+def throw_many_rigid_body_serial(x0, side, omega, valid, part, arm, lim, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
     for i in range(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR,
-                                        ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0, wall_h, wall_mu)
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], part, arm, lim, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
 
 
 @njit(cache=True, parallel=True)
-def throw_many_rigid_body(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell, stable,
-                          tol, max_iter, max_events, x_out, side_out, status_out, rec_out, wall_h=0.0, wall_mu=0.0):
+def throw_many_rigid_body(x0, side, omega, valid, part, arm, lim, x_out, side_out, status_out, rec_out):
     """Batch of independent throws (flat arrays), model "rigid_body"; invalid starts get INVALID_START.
 
     Fills ``x_out``, ``side_out``, ``status_out`` (n,) and ``rec_out`` (n, NREC) in
-    place; each throw as :func:`~.automaton.throw_one_rigid_body` (``law``: the impact-law code,
-    :data:`~.impact.LAW_ROUTH` or :data:`~.impact.LAW_VELOCITY`; ``wall_h``, ``wall_mu``: the wall, 0: none).
+    place; each throw as :func:`~.automaton.throw_one_rigid_body` with the records ``part``, ``arm`` and ``lim``
+    (:mod:`~.inputs`).
     """
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR,
-                                        ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0, wall_h, wall_mu)
+        x, k, st = throw_one_rigid_body(x0[i], side[i], omega[i], part, arm, lim, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
 
 
 @njit(cache=True, parallel=True)
-def throw_many_rigid_body_rk4(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                              stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out, wall_h=0.0, wall_mu=0.0):
+def throw_many_rigid_body_rk4(x0, side, omega, valid, part, arm, lim, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body` with the RK4 sticking phase (:func:`~.automaton.throw_one_rigid_body_rk4`)."""
     no_traj = np.empty((0, 4))
     for i in prange(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL,
-                                            uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0, wall_h, wall_mu)
+        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], part, arm, lim, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st
 
 
 @njit(cache=True)
-def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL, uR, ell,
-                                     stable, tol, max_iter, max_events, x_out, side_out, status_out, rec_out, wall_h=0.0, wall_mu=0.0):
+def throw_many_rigid_body_rk4_serial(x0, side, omega, valid, part, arm, lim, x_out, side_out, status_out, rec_out):
     """:func:`throw_many_rigid_body_rk4` on the calling thread (batches below :data:`PARALLEL_MIN`)."""
     no_traj = np.empty((0, 4))
     for i in range(x0.shape[0]):
         if not valid[i]:
             mark_invalid(i, x0, side, x_out, side_out, status_out, rec_out)
             continue
-        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], h, g, alpha, length, back, rho2, mu, law, w, beta, d, uL,
-                                            uR, ell, stable, tol, max_iter, max_events, rec_out[i], no_traj, 0.0, wall_h, wall_mu)
+        x, k, st = throw_one_rigid_body_rk4(x0[i], side[i], omega[i], part, arm, lim, rec_out[i], no_traj, 0.0)
         x_out[i] = x
         side_out[i] = k
         status_out[i] = st

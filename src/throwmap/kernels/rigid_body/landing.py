@@ -76,21 +76,22 @@ def rocking_rest(th_new, th_A, k_after, lA, lB, rho2, dk, g, mu, land_dir):
 
 
 @njit(cache=True)
-def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back, rho2, mu, law, w, beta, d, uL, uR,
-              ell, stable, ta, tb, ru, rv, c0, traj, ts, rec, alpha=0.0, wall_h=0.0, wall_mu=0.0):
+def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, part, arm, ta, tb, ru, rv, c0, traj, ts, rec):
     """Reset ``land_side``: pivoting on A = w_jp, θ reached θb (``land_dir`` +1) or θa (−1) and B touches.
 
-    On an arm at rest angle ``alpha`` ≠ 0 (rad; :mod:`~.tilt`): the departure window
+    ``part`` and ``arm`` are the kernels' records (:class:`~.inputs.PartArrays`, :class:`~.inputs.ArmArrays`).
+
+    On an arm at rest angle ``arm.alpha`` ≠ 0 (rad; :mod:`~.tilt`): the departure window
     sees the normal gravity g cos α, the Zeno rule uses the tilted topple barriers
     and swings (:func:`~.tilt.rocking_rest_tilted`), a flat part slides and settles
     under the tilted gravity (:func:`~.flat.settle`: rests only where |tan α| ≤ μ),
     an unstable side (``stable`` is the table for α) tips about the vertex its CM
     overhangs along gravity, at once, sliding if it still moves.
 
-    With a wall (``wall_h`` > 0, m; Coulomb ``wall_mu``) every flat slide and rest goes to
+    With a wall (``arm.wall_h`` > 0, m; Coulomb ``arm.wall_mu``) every flat slide and rest goes to
     :func:`settle_at_wall` (:mod:`~.wall`).
 
-    ``law`` is the impact law of the impulse at B (:data:`~.impact.LAW_ROUTH` or
+    ``arm.law`` is the impact law of the impulse at B (:data:`~.impact.LAW_ROUTH` or
     :data:`~.impact.LAW_VELOCITY`, see :func:`~.impact.coulomb_impact`).
 
     Returns ``(mode, status, x, y, v_x, v_y, ω, φ, t, jp, px, θ, θ̇, v_A, phi_off, excl_j, excl_t, last_side)``:
@@ -98,6 +99,8 @@ def land_side(land_dir, jp, px, thdot, va, phi, t, last_side, h, g, length, back
     MODE_FLIGHT (B bounced off: the flight state and frame ``ru``/``rv``/``c0``),
     MODE_SELECT (pivot on B) or MODE_STICK (tip from rest on an unstable side).
     """
+    rho2, w, beta, d, uL, uR, ell, stable = part
+    h, g, alpha, length, back, mu, law, wall_h, wall_mu = arm
     n = d.shape[0]
     if land_dir > 0:  # landed on side jp; A is its right vertex, B = w_{jp+1} its left
         k = jp

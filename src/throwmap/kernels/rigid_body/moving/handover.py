@@ -29,6 +29,7 @@ from ... import codes as C
 from ...rows import start_record
 from ..automaton import throw_from_state, throw_one_rigid_body
 from ..flat import flat_slide, rest, settle, slide_away
+from ..inputs import arm_arrays, part_arrays, run_limits
 from ..trajectory import clear
 from .dynamics import Body, offsets
 from .phase import Phase, run_phase
@@ -62,13 +63,12 @@ def throw_moving(part, arm, x0, side, realisation, *, alpha=0.0, law=0, stable=N
         rec[C.CAP_HIT] = 0.0
         _counts(rec, p)
         return float(p.s[0]), p.side, int(p.status), rec
-    stable = part.stable if stable is None else stable
-    args = (arm.h, arm.g, float(alpha), length, arm.back, rho2, arm.mu, law, part.w, part.beta, part.d, part.uL,
-            part.uR, part.ell, stable, tol, max_iter, max_events)
+    args = (part_arrays(part, stable), arm_arrays(arm.h, arm.g, alpha, length, arm.back, arm.mu, law),
+            run_limits(tol, max_iter, max_events))
     no_traj = np.empty((0, 4))
     s = p.s
     if len(p.act) == 2 and p.tmode == 0:  # flat, sticking, at rest: the static automaton's rest (or tip) from ω = 0
-        xn, kn, st = throw_one_rigid_body(float(s[0]), p.side, 0.0, *args, rec, no_traj, 0.0, 0.0, 0.0)
+        xn, kn, st = throw_one_rigid_body(float(s[0]), p.side, 0.0, *args, rec, no_traj, 0.0)
         rec[C.T_REST] = p.t + (0.0 if math.isnan(rec[C.T_REST]) else rec[C.T_REST])
     elif len(p.act) == 2:  # flat, sliding: the static automaton's flat slide (land_side's, after both vertices stop)
         xn, kn, st = _flat_slide(part, arm, p, float(alpha), length, rec)
