@@ -34,7 +34,8 @@ import throwmap as tm
 from throwmap.kernels import codes as C
 import statistics
 
-from throwmap.kernels.rigid_body import LAW_ROUTH, throw_many_rigid_body, throw_many_rigid_body_rk4
+from throwmap.kernels.rigid_body import (LAW_ROUTH, arm_arrays, part_arrays, run_limits, throw_many_rigid_body,
+                                        throw_many_rigid_body_rk4)
 
 GOAL_RATIO = 100.0
 GOAL_CRITICAL_MS = 10.0
@@ -59,9 +60,9 @@ def run_batch(part, arm, mu, x, sides, omega, kernel=throw_many_rigid_body):
     side_out = np.empty(n, dtype=np.int64)
     status_out = np.empty(n, dtype=np.int64)
     rec_out = np.empty((n, C.NREC))
-    kernel(x, sides, omega, np.ones(n, dtype=np.bool_), arm.h, arm.g, 0.0, arm.length_or_inf, arm.back,
-           part.radius_of_gyration**2, mu, LAW_ROUTH, part.w, part.beta, part.d, part.uL, part.uR, part.ell, part.stable, 1e-14, 100_000, 10_000, x_out,
-           side_out, status_out, rec_out, 0.0, 0.0)  # no wall, passed as the model passes it (one compiled kernel)
+    kernel(x, sides, omega, np.ones(n, dtype=np.bool_), part_arrays(part),
+           arm_arrays(arm.h, arm.g, 0.0, arm.length_or_inf, arm.back, mu, LAW_ROUTH),  # no wall, as the model passes it
+           run_limits(1e-14, 100_000, 10_000), x_out, side_out, status_out, rec_out)
     return x_out, side_out, status_out, rec_out
 
 
