@@ -119,12 +119,12 @@ def test_trajectory_follows_the_law():
 def test_parallel_kernel_equals_serial_with_the_velocity_law():
     x, k, om = _random_starts(200, 9)
     valid = np.ones(x.size, bool)
-    args = (x, k, om, valid, -0.01, 9.81, 0.0, math.inf, 0.0, TRI.radius_of_gyration**2, 0.3, RB.LAW_VELOCITY, TRI.w,
-            TRI.beta, TRI.d, TRI.uL, TRI.uR, TRI.ell, TRI.stable, 1e-14, 100_000, 10_000)
+    args = (x, k, om, valid, RB.part_arrays(TRI), RB.arm_arrays(-0.01, 9.81, 0.0, math.inf, 0.0, 0.3, RB.LAW_VELOCITY),
+            RB.run_limits(1e-14, 100_000, 10_000))
     outs = []
     for fn in (RB.throw_many_rigid_body, RB.throw_many_rigid_body_serial):
         o = (np.empty(x.size), np.empty(x.size, np.int64), np.empty(x.size, np.int64), np.empty((x.size, C.NREC)))
-        fn(*args, *o, 0.0, 0.0)  # no wall, as the model passes it
+        fn(*args, *o)  # no wall, as the model passes it
         outs.append(o)
     for u, w in zip(*outs):
         np.testing.assert_array_equal(u, w)
