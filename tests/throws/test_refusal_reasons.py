@@ -2,6 +2,7 @@
 flight's spin-angle text."""
 
 import numpy as np
+import pytest
 
 import throwmap as tm
 from throwmap.kernels import codes as C
@@ -78,3 +79,16 @@ def test_two_walls_are_refused_naming_fixtures():
     arm = tm.Arm(h=-0.01, length=0.3)
     with pytest.raises(InvalidStateError, match="^fixtures: at most one Wall"):
         tm.throw(tm.triangle_30_60_90(), arm, 0.2, 0, 4.0, fixtures=[tm.Wall(0.05), tm.Wall(0.03)])
+
+
+@pytest.mark.filterwarnings("ignore::throwmap.errors.RegimeWarning")  # h below −min d, as the user's scene had
+def test_inconsistent_says_why():
+    """A walled throw rigid_body finds inconsistent (Painlevé) carries that reason; its message was empty."""
+    import throwmap as tm
+
+    o = tm.throw(tm.triangle_30_60_90(), tm.Arm(h=-0.028540605254305105, mu=1.0, length=0.3574225161685043),
+                 0.2604150972921227, 2, 7.938424011861821, "rigid_body",
+                 fixtures=(tm.Wall(height=0.07964949487141797, mu=0.0),), alpha=-0.14229352001542472,
+                 impact_law="velocity")
+    assert o.status == tm.Status.INCONSISTENT
+    assert "Painlevé" in o.message and o.to_dict()["message"] == o.message

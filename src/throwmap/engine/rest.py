@@ -68,9 +68,14 @@ def rest_status(part, pose_a, x: float, k: int, tilt: float, h: float, L: float,
     if over == Status.BEHIND_JOINT or (flat and x + float(part.uL[k]) <= -back - slack):
         return Status.BEHIND_JOINT
     # with fixtures a part "flat" within FLAT_TILT may be turned about a vertex at the wall's foot (propped on
-    # another part): its reach is read off its vertices, not off the flat side's u_R; and a part pressed into
-    # the end wall (by another part) sits up to WALL_SLACK inside it without having left the arm
-    reach = x + float(part.uR[k]) if plain else float(V[:, 0].max())
+    # another part): its reach is read off its vertices on the surface (within WALL_SLACK of it), not off the flat
+    # side's u_R — a vertex higher up may overhang past L above an end wall's top; and a part pressed into the end
+    # wall (by another part) sits up to WALL_SLACK inside it without having left the arm
+    if plain:
+        reach = x + float(part.uR[k])
+    else:
+        low = V[:, 1] <= h + WALL_SLACK
+        reach = float(V[low, 0].max()) if low.any() else x + float(part.uR[k])
     if over == Status.OFF_END or (flat and reach > L + (slack if plain else WALL_SLACK)) or x > L + slack:
         return Status.OFF_END
     if plain and not flat:

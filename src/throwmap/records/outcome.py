@@ -84,7 +84,14 @@ _STATUS = tuple(Status(c) for c in range(len(Status)))
 def _why(status: int, cap_hit: bool, why: float = math.nan, reason: str = "") -> str:
     """The reason for an UNRESOLVED throw ("" for every other status): the record's reason code
     (:data:`throwmap.kernels.codes.WHY`, e.g. a walled throw rigid_body cannot follow), a search that used its
-    ``max_iter`` steps, else ``reason`` (the model's own text) or the spin-angle limit every exact flight has."""
+    ``max_iter`` steps, else ``reason`` (the model's own text) or the spin-angle limit every exact flight has.
+    ``INCONSISTENT`` and ``NO_REST`` say what they mean; ``ok`` and the escapes say nothing."""
+    if status == C.INCONSISTENT:
+        return ("rigid-body Coulomb contact has no consistent solution here (Painlevé's paradox: the contact can "
+                "neither stick, slide nor lift): no number is given (use model 'engine')")
+    if status == C.NO_REST:
+        return ("the part does not come to rest: it slides or rolls outward for ever on an unbounded arm, or "
+                "(\"paper\") its impacts reached max_impacts")
     if status != C.UNRESOLVED:
         return ""
     if why == why and why > 0:
