@@ -102,3 +102,24 @@ def test_a_throw_that_chatters_to_the_event_cap_is_refused_with_its_reason():
                    alpha=-0.17920436981011884)
     assert out.status == tm.Status.UNRESOLVED
     assert "max_impacts" in out.message and "chatter" in out.message
+
+
+def test_a_part_slid_into_the_wall_rests_on_the_arm_to_the_last_ulp():
+    """A lead-weighted pentagon slides into the wall's foot on a tilted arm: the kernel's x + u_R landed 1 ulp
+    past L and the throw was ``off_end`` at a wall nothing passes. It rests at the last start throw() accepts,
+    in the single throw and in a batch."""
+    from throwmap.system.starts import start_interval
+
+    pm = ((0.036600159664174646, (0.054296599342909806, 0.02461689254532025)),)
+    part = tm.Part.from_vertices([(0.04261978409677654, 0.11387127090709849), (0.0, 0.06643355330464477),
+                                  (0.022682049898273837, 0.02197556534737153), (0.04040465381580416, 0.0),
+                                  (0.08937004082538766, 0.0452424529556376)],
+                                 mass=0.05907393514331355 - pm[0][0], point_masses=pm)
+    arm = tm.Arm(h=-0.01771060281702496, mu=0.4, length=0.20944278900367255)
+    kw = dict(fixtures=(tm.Wall(height=0.03789182472984673),), alpha=-0.33586349969540374, impact_law="velocity")
+    one = tm.throw(part, arm, 0.12152043288847172, 1, 3.0839452176473636, "rigid_body", **kw)
+    batch = tm.throw_batch(part, arm, np.array([0.12152043288847172]), 1, 3.0839452176473636, "rigid_body", **kw)
+    hi = start_interval(part, arm, 1)[1]
+    assert one.status == tm.Status.OK and one.side == 1 and one.x == hi
+    assert int(batch.status[0]) == int(tm.Status.OK) and batch.x[0] == hi
+    tm.throw(part, arm, one.x, 1, 0.5, "rigid_body", **kw)  # a start throw() accepts (it refused 1 ulp past)

@@ -117,7 +117,28 @@ def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt:
     ``alpha`` the arm's rest angle (rad), ``fixtures`` at most one Wall."""
     rec = np.empty(C.NREC)
     xn, kn, st = throw_one_rigid_body(x, side, omega, *records(part, arm, alpha, fixtures, o), rec, traj, dt)
+    if st == C.OFF_END and wall_args(arm, fixtures)[0] > 0.0:
+        xs, ss = at_the_wall(part, arm, np.array([xn]), np.array([kn]), np.array([st]))
+        xn, st = float(xs[0]), int(ss[0])
     return xn, kn, st, rec
+
+
+def at_the_wall(part, arm, x, side, status):
+    """Rests against an end wall read back onto the arm: the kernels put a part slid into the wall at x = L − u_R,
+    and along some paths that sum lands a few ulps past L (``off_end`` at the wall's foot, where nothing can pass).
+    Those — ``off_end`` with x + u_R within 8 ulps of L — become ``ok`` at the last start :func:`start_interval`
+    accepts; every other throw is returned as it is. Arrays ``x`` (m), ``side``, ``status`` (codes); new arrays."""
+    from ..system.starts import start_interval
+
+    x, status = np.array(x, dtype=float), np.array(status)
+    L = float(arm.length_or_inf)
+    for i in np.flatnonzero(status == C.OFF_END):
+        k = int(side[i])
+        excess = x[i] + float(part.uR[k]) - L
+        if 0.0 < excess <= 8.0 * np.spacing(L):
+            x[i] = start_interval(part, arm, k)[1]
+            status[i] = C.OK
+    return x, status
 
 
 def records(part, arm, alpha, fixtures, o: RigidBodyOptions):
@@ -158,6 +179,8 @@ class RigidBodyModel:
         out = BatchArrays(np.empty(m), np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64), np.empty((m, C.NREC)))
         pick(m)(x, side, omega, valid, *records(part, arm, system.alpha, system.fixtures, o), out.x, out.side,
                 out.status, out.records)
+        if wall_args(arm, system.fixtures)[0] > 0.0:
+            out.x[:], out.status[:] = at_the_wall(part, arm, out.x, out.side, out.status)
         return out
 
     def assumptions(self, records, mu, status) -> str:
