@@ -106,11 +106,22 @@ def _iterate_with_progress(part, arm, state, omegas, n, total: int, model: str, 
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-    with Progress(TextColumn("throwing"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                  console=Console(stderr=True), transient=True) as bar:
-        task = bar.add_task("throwing", total=total)
-        return iterate(part, arm, state, omegas, n, model=model, **opts,
-                       progress=lambda done: bar.update(task, completed=done))
+    bar = Progress(TextColumn("throwing"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                   console=Console(stderr=True), transient=True)
+    task = bar.add_task("throwing", total=total)
+    started = []
+
+    def progress(done):
+        if not started:  # shown from the first throw on: a refusal before any work stays one line on stderr
+            bar.start()
+            started.append(True)
+        bar.update(task, completed=done)
+
+    try:
+        return iterate(part, arm, state, omegas, n, model=model, **opts, progress=progress)
+    finally:
+        if started:
+            bar.stop()
 
 
 def _orbit_summary(orbit: Orbit, requested: int) -> dict:
