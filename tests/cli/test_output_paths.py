@@ -300,3 +300,12 @@ def test_validation_commands_write_nothing_without_out(tmp_path, monkeypatch, cm
     assert result.exit_code == 0, result.output
     assert "| " in result.stdout and "wrote" not in result.stdout
     assert list(tmp_path.iterdir()) == []
+
+
+def test_an_interrupt_before_any_trial_says_nothing_was_stored(tmp_path):
+    """Ctrl-C before the first trial ended said "0 trial(s) stored …; the same command resumes from them"."""
+    from throwmap.cli.options import interrupted_line
+
+    assert interrupted_line(tmp_path) == f"interrupted: no trial was finished, nothing stored in {str(tmp_path)!r}"
+    (tmp_path / "trials.jsonl").write_text('{"i": 0}\n')
+    assert interrupted_line(tmp_path).startswith("interrupted: 1 trial(s) stored in")

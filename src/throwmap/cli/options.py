@@ -519,8 +519,10 @@ def interrupted_line(out: Path | None, what: str = "trial", pattern: str = "tria
     its ``trials.jsonl``), or that none are; ``what`` names them (``"trial"``, ``"case"``)."""
     if out is None:
         return f"interrupted: no --out DIR, so no {what} was kept"
-    return (f"interrupted: {stored_lines(out, pattern)} {what}(s) stored in {str(out)!r}; the same command resumes "
-            f"from them")
+    n = stored_lines(out, pattern)
+    if n == 0:
+        return f"interrupted: no {what} was finished, nothing stored in {str(out)!r}"
+    return f"interrupted: {n} {what}(s) stored in {str(out)!r}; the same command resumes from them"
 
 
 def kept_line() -> str:
