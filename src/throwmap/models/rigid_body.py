@@ -124,10 +124,12 @@ def run_kernel(part, arm, x, side, omega, o: RigidBodyOptions, traj=NO_TRAJ, dt:
 
 
 def at_the_wall(part, arm, x, side, status):
-    """Rests against an end wall read back onto the arm: the kernels put a part slid into the wall at x = L − u_R,
-    and along some paths that sum lands a few ulps past L (``off_end`` at the wall's foot, where nothing can pass).
-    Those — ``off_end`` with x + u_R within 8 ulps of L — become ``ok`` at the last start :func:`start_interval`
-    accepts; every other throw is returned as it is. Arrays ``x`` (m), ``side``, ``status`` (codes); new arrays."""
+    """Rests against an end wall read back onto the arm. A side landing at the wall's foot (the kernel's
+    ``land_side``: its second vertex touches at x = L, computed as the pivot's x plus the side's length) can put that
+    vertex a few ulps past L, and ``leave_arm`` then calls the rest ``off_end`` at a wall nothing passes. Those —
+    ``off_end`` with x + u_R within 8 ulps of L — become ``ok`` at the last start :func:`start_interval` accepts;
+    every other throw is returned as it is. Arrays ``x`` (m), ``side``, ``status`` (codes); new arrays. (The kernel
+    itself is left as it is: moving the rule there changes its compiled code, checked bit for bit elsewhere.)"""
     from ..system.starts import start_interval
 
     x, status = np.array(x, dtype=float), np.array(status)
