@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Callable, ClassVar
 
 import numpy as np
 
@@ -61,6 +61,9 @@ class ConfigMap:
     x_hi: dict
     throws_per_step: int
     label: str
+    deterministic: bool = False
+    """Whether one state always maps to the same image, whatever else is in the batch (bit for bit):
+    the recurrence test then stops throwing an orbit once it repeats exactly."""
 
     def step(self, x, side):  # pragma: no cover - interface
         raise NotImplementedError
@@ -169,6 +172,7 @@ class ThrowMap(ConfigMap):
     model: str = DEFAULT_MODEL
     x_max: float | None = None
     throw_options: dict = field(default_factory=dict)
+    deterministic: ClassVar[bool] = True  # every model is: a throw depends on its own start only
 
     def __post_init__(self):
         check_model(self.model)
@@ -241,12 +245,15 @@ class FunctionMap(ConfigMap):
     ``domain`` is ``{side: (x_lo, x_hi)}`` (m); ``f`` receives float and int64 arrays
     of equal length and must return three arrays of that length (``status`` 0 where
     the image rests on the arm, a :class:`~throwmap.records.outcome.Status` code otherwise).
-    Used for synthetic maps with known attractors and for users' own models.
+    ``deterministic=True`` says that ``f`` maps each state to the same image whatever
+    else is in the arrays (no randomness, no coupling), so orbits may stop early once
+    they repeat exactly. Used for synthetic maps with known attractors and for users' own models.
     """
 
     f: Callable
     domain_: dict
     name: str = "function map"
+    deterministic: bool = False
 
     def __post_init__(self):
         if not callable(self.f):

@@ -44,44 +44,9 @@ from .caps import RecurrenceCaps, resolve_caps
 from .cycles import closing as _closing
 from .cycles import cycle_residual, verified_cycles
 from .maps import ConfigMap
+from .tails import run_orbits
 
 __all__ = ["Recurrence", "find_attractors", "run_orbits", "start_grid", "check_starts", "cycle_residual"]
-
-
-def run_orbits(cmap: ConfigMap, x0, s0, n_skip: int, n_record: int, progress=None):
-    """Iterate ``cmap`` ``n_skip + n_record`` times from every start; record the last ``n_record``.
-
-    Returns ``(X, S, fate, fate_step)``: recorded x (m) and sides, shape (M, n_record),
-    nan / −1 after an escape; ``fate`` the escape status (0 if none) and ``fate_step``
-    the step at which it happened (−1 if none). ``progress(done, total)`` after each step.
-    """
-    x = np.array(x0, dtype=float).ravel()
-    s = np.array(s0).ravel().astype(np.int64)
-    m = x.size
-    X = np.full((m, n_record), np.nan)
-    S = np.full((m, n_record), -1, dtype=np.int64)
-    fate = np.zeros(m, dtype=np.int64)
-    fate_step = np.full(m, -1, dtype=np.int64)
-    total = n_skip + n_record
-    for t in range(total):
-        alive = np.flatnonzero(fate == C.OK)
-        if alive.size == 0:
-            if progress is not None:
-                progress(total, total)
-            break
-        xn, sn, st = cmap(x[alive], s[alive])
-        bad = st != C.OK
-        fate[alive[bad]] = st[bad]
-        fate_step[alive[bad]] = t + 1
-        x[alive] = np.where(bad, x[alive], xn)
-        s[alive] = np.where(bad, s[alive], sn)
-        if t >= n_skip:
-            ok = alive[~bad]
-            X[ok, t - n_skip] = x[ok]
-            S[ok, t - n_skip] = s[ok]
-        if progress is not None:
-            progress(t + 1, total)
-    return X, S, fate, fate_step
 
 
 # --- tests on the recorded tails -----------------------------------------------------------------------------

@@ -41,15 +41,14 @@ def passage_cmd(
     as_json: JsonOpt = False,
 ) -> None:
     """Find where an end stop feeds only the target side under the recoil arm (first passage)."""
-    from ..design.passage import first_passage, recoil_table
+    from ..design.passage import check_chains, first_passage, recoil_table
     from ..errors import InvalidStateError
 
     with guard():
         workers = _workers(workers)
         if not 0.0 <= purity <= 1.0:
             raise InvalidStateError("purity", f"must be in [0, 1], got {purity}")
-        if throws < 1:
-            raise InvalidStateError("throws", f"must be ≥ 1, got {throws}")
+        check_chains(n, throws, seed)
         p_obj, arm = part_and_arm(part, h, g, None, mu)
         target = p_obj.check_side(side)
         table = recoil_table(p_obj, arm, omega, sigma=sigma, step=step, x_max=x_max, recoil=recoil, zeta=zeta,

@@ -35,7 +35,7 @@ from ..errors import InvalidStateError
 from ..system.arm import Arm
 from ..system.part import Part
 
-__all__ = ["RecoilTable", "Passage", "recoil_table", "first_passage"]
+__all__ = ["RecoilTable", "Passage", "recoil_table", "first_passage", "check_chains"]
 
 Z_LEVELS = tuple(range(-3, 4))
 """ω levels of the table, in units of the jitter σ."""
@@ -154,6 +154,16 @@ def _holds(part: Part, table: RecoilTable, target: int, X: float) -> bool:
     return True
 
 
+def check_chains(n, throws, seed) -> None:
+    """Refuse chain settings :func:`first_passage` cannot run (checked before a table is built)."""
+    if isinstance(n, bool) or not (isinstance(n, int) and 1 <= n <= 1_000_000):
+        raise InvalidStateError("n", f"must be an integer in [1, 1000000], got {n!r}")
+    if isinstance(throws, bool) or not (isinstance(throws, int) and throws >= 1):
+        raise InvalidStateError("throws", f"must be an integer ≥ 1, got {throws!r}")
+    if isinstance(seed, bool) or not (isinstance(seed, (int, np.integer)) and seed >= 0):
+        raise InvalidStateError("seed", f"must be an integer ≥ 0, got {seed!r}")
+
+
 def first_passage(part: Part, table: RecoilTable, target: int, *, n: int = 3000, throws: int = 60, seed: int = 0,
                   x_range: tuple | None = None, X=None) -> Passage:
     """Markov chains on ``table`` from ``n`` random rests (side uniform, CM x uniform in ``x_range``, m;
@@ -161,12 +171,7 @@ def first_passage(part: Part, table: RecoilTable, target: int, *, n: int = 3000,
     from ..records.outcome import Status
 
     target = part.check_side(target, field="target")
-    if isinstance(n, bool) or not (isinstance(n, int) and 1 <= n <= 1_000_000):
-        raise InvalidStateError("n", f"must be an integer in [1, 1000000], got {n!r}")
-    if isinstance(throws, bool) or not (isinstance(throws, int) and throws >= 1):
-        raise InvalidStateError("throws", f"must be an integer ≥ 1, got {throws!r}")
-    if isinstance(seed, bool) or not (isinstance(seed, (int, np.integer)) and seed >= 0):
-        raise InvalidStateError("seed", f"must be an integer ≥ 0, got {seed!r}")
+    check_chains(n, throws, seed)
     if X is None:  # end stops from 30 cm (5 cm on a short table) to the table's end, every cm
         x_end = float(table.x[-1])
         X = np.arange(0.30 if x_end > 0.35 else 0.05, x_end, 0.01)
