@@ -19,11 +19,13 @@ test: $(STAMP)
 	@# the viewer's browser test needs Chromium; installed where we can (Debian, as root), never failing the target
 	@{ command -v chromium && command -v chromedriver; } >/dev/null || (command -v apt-get >/dev/null && [ "$$(id -u)" = 0 ] && \
 		(apt-get update -qq && apt-get install -y -qq chromium chromium-driver) >/dev/null 2>&1) || true
-	$(PY) -m pytest -q -n auto --dist loadgroup --durations=15
+	@# bytecode caches kept (an environment may ask Python not to write them): every test's subprocess would
+	@# otherwise compile the package's sources again
+	PYTHONDONTWRITEBYTECODE= $(PY) -m pytest -q -n auto --dist loadgroup --durations=15
 
 # the quick tier for development: everything but the tests marked slow (the full suite above runs them all, as CI does)
 test-quick: $(STAMP)
-	$(PY) -m pytest -q -n auto --dist loadgroup -m "not slow"
+	PYTHONDONTWRITEBYTECODE= $(PY) -m pytest -q -n auto --dist loadgroup -m "not slow"
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_throw.py

@@ -9,8 +9,11 @@
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -23,7 +26,13 @@ def _tool():
 
 
 ARCH = _tool()
-REPORT = ARCH.report(ROOT / "src")
+pytestmark = pytest.mark.xdist_group("architecture")  # one worker scans the tree, once
+
+
+@functools.cache
+def _report() -> dict:
+    """The scan of ``src/`` (seconds: made when a test first asks, not while the tests are collected)."""
+    return ARCH.report(ROOT / "src")
 
 
 def test_every_top_level_module_has_a_layer():
@@ -32,22 +41,22 @@ def test_every_top_level_module_has_a_layer():
 
 
 def test_imports_up_the_layers_are_only_plot_delegations():
-    up = REPORT["imports_up"]
+    up = _report()["imports_up"]
     assert len(up) <= 4, up
     assert all(target.split(" -> ")[1].startswith("throwmap.viz.") for target in up), up
 
 
 def test_nothing_below_the_dispatcher_imports_it():
-    assert REPORT["imports_into_dispatcher"] == []
-    assert REPORT["kernel_imports_outside"] == []
+    assert _report()["imports_into_dispatcher"] == []
+    assert _report()["kernel_imports_outside"] == []
 
 
 def test_no_branch_on_a_model_name():
-    assert REPORT["model_name_comparisons"] == []
+    assert _report()["model_name_comparisons"] == []
 
 
 def test_few_wide_functions():
-    assert len(REPORT["wide_functions"]) <= 10, REPORT["wide_functions"]
+    assert len(_report()["wide_functions"]) <= 10, _report()["wide_functions"]
 
 
 def test_the_checker_sees_what_it_counts(tmp_path):

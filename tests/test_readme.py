@@ -1,5 +1,5 @@
-"""The README works as pasted: every ```python block runs (in order, in one session, as a reader
-pasting them into one interpreter would), every part file shown in a ```toml block loads, and
+"""The README works as pasted: every ```python block runs (in order, chapter by chapter, each chapter in one
+session, as a reader pasting them into one interpreter would), every part file shown in a ```toml block loads, and
 every command shown in a ```bash block exists with the options it uses (``throwmap <cmd> --help``).
 
 Shell examples meant to fail (bad input) are in ```console blocks and are not run.
@@ -49,8 +49,21 @@ def test_the_readme_has_the_blocks_this_test_reads():
     assert len(blocks("python")) >= 3 and len(blocks("bash")) >= 3 and blocks("toml")
 
 
-def test_python_blocks_run_as_pasted(tmp_path, monkeypatch):
-    """All blocks in order in one namespace, in an empty folder (files they write go there)."""
+def chapters(code_blocks: list[str]) -> list[tuple[int, int]]:
+    """The README's Python as chapters ``(first, end)`` of block indices: a chapter starts at the first block
+    and at every block that imports ``throwmap as tm`` itself, and runs to the next one."""
+    starts = [i for i, b in enumerate(code_blocks) if i == 0 or re.match(r"import (\w+, )*throwmap as tm\b", b)]
+    return list(zip(starts, starts[1:] + [len(code_blocks)]))
+
+
+CHAPTERS = chapters(blocks("python"))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("first, end", CHAPTERS, ids=[f"blocks {a}-{b - 1}" for a, b in CHAPTERS])
+def test_python_blocks_run_as_pasted(first, end, tmp_path, monkeypatch):
+    """A chapter's blocks in order in one fresh namespace, in an empty folder (files they write go there), as a
+    reader pasting them into a new interpreter would."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -63,13 +76,22 @@ def test_python_blocks_run_as_pasted(tmp_path, monkeypatch):
     module = types.ModuleType("__readme__")  # like __main__ of an interpreter: dataclasses look it up
     monkeypatch.setitem(sys.modules, module.__name__, module)
     namespace = module.__dict__
-    for i, code in enumerate(blocks("python")):
+    code_blocks = blocks("python")
+    for i in range(first, end):
+        code = code_blocks[i]
         try:
             exec(compile(code, f"README.md python block {i}", "exec"), namespace)
         except Exception as err:  # pragma: no cover - the message is the point
             pytest.fail(f"README python block {i} fails: {type(err).__name__}: {err}\n{code}")
         finally:
             plt.close("all")
+
+
+def test_the_chapters_cover_every_block_once():
+    n = len(blocks("python"))
+    assert CHAPTERS[0][0] == 0 and CHAPTERS[-1][1] == n
+    assert all(a < b == c for (a, b), (c, _) in zip(CHAPTERS, CHAPTERS[1:] + [(n, n)]))
+    assert chapters(["x = 1", "import throwmap as tm", "y = 2", "import math, throwmap as tm"]) == [(0, 1), (1, 3), (3, 4)]
 
 
 def test_toml_part_files_load(tmp_path):

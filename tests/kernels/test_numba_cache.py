@@ -40,6 +40,7 @@ def _env(root, locator):
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "NUMBA_DISABLE_JIT")}
     env["PYTHONPATH"] = os.pathsep.join([str(root)] + sys.path)
     env["TINY_LOCATOR"] = "1" if locator else "0"
+    env["PYTHONDONTWRITEBYTECODE"] = "1"  # Python's own .pyc check misses a same-size edit within the second
     return env
 
 
