@@ -93,11 +93,24 @@ def moving():
     tm.throw(part, arm, 0.2, 0, 4.0, "rigid_body", realisation=RecoilThrow.for_release_rate(4.0))
 
 
-GROUPS = {"rigid_body": rigid_body, "reference": reference, "moving": moving, "paper": paper}
+def bench():
+    """``benchmarks/bench_throw.py``'s own kernels (its reference integrator), at the sizes its test uses."""
+    import importlib.util
+    from pathlib import Path
 
-CHAINS = (("rigid_body", "reference", "moving"), ("paper",))
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_throw.py"
+    spec = importlib.util.spec_from_file_location("bench_throw", path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = mod  # as the test loads it: Numba's cache then names an importable module
+    spec.loader.exec_module(mod)
+    mod.main(["--n", "2000", "--n-reference", "5", "--n-single", "50", "--repeat", "1"])
+
+
+GROUPS = {"rigid_body": rigid_body, "reference": reference, "moving": moving, "paper": paper, "bench": bench}
+
+CHAINS = (("rigid_body", "reference", "moving"), ("paper", "bench"))
 """Groups run in one process, in order: "reference" and "moving" call the automaton "rigid_body" compiles (run
-apart they would compile it again). The two chains take about as long (≈ 160 s and ≈ 95 s of one core)."""
+apart they would compile it again). The two chains take about as long (≈ 160 s and ≈ 135 s of one core)."""
 
 
 def warm(chains=CHAINS, workers: int | None = None, stream=sys.stderr) -> float:
