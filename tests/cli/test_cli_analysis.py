@@ -339,7 +339,7 @@ def test_a_huge_basin_grid_is_refused_up_front_in_one_line():
 
 
 def test_a_long_limit_set_is_refused_by_its_time_estimate():
-    result = invoke("limitset", *TRIANGLE, "--omega", "4", "--starts", "100000", "--max-time", "1")
+    result = invoke("limitset", *TRIANGLE, "--omega", "4", "--starts", "80000", "--max-time", "1")
     assert_one_error(result, "starts")
     assert "measured now" in result.stderr and "--max-time" in result.stderr
 

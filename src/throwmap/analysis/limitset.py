@@ -31,6 +31,7 @@ from .budget import Limits, guard_work
 from .caps import DEFAULT_CAPS, RecurrenceCaps, check_caps, resolve_caps, split_options
 from .maps import DEFAULT_MODEL, ConfigMap, as_map
 from .recurrence import check_starts, find_attractors, start_grid
+from .tails import bytes_per_orbit
 
 __all__ = ["LimitSet", "limit_set", "RecurrenceCaps", "DEFAULT_CAPS", "check_caps", "WALL_TOL"]
 
@@ -276,7 +277,7 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
     ratios = {field: per_side / 64, "n_record": rc.n_record / DEFAULT_CAPS["n_record"],
               "transient": rc.transient / max(1, DEFAULT_CAPS["transient"])}
     field = max(ratios, key=lambda k: ratios[k])
-    guard_work("limit set", field, n_planned, 16 * rc.n_record + 64, limits,
+    guard_work("limit set", field, n_planned, bytes_per_orbit(rc.n_record), limits,
                throws_per_config=rc.transient + rc.n_record, cmap=cmap, hint="fewer starts or a shorter record")
     if starts is None:
         x0, s0 = start_grid(cmap, n_starts, rng)

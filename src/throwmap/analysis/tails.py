@@ -12,7 +12,7 @@ import numpy as np
 from ..kernels import codes as C
 from .maps import ConfigMap
 
-__all__ = ["run_orbits", "EXACT_PERIOD_MAX"]
+__all__ = ["run_orbits", "bytes_per_orbit", "EXACT_PERIOD_MAX"]
 
 
 EXACT_PERIOD_MAX = 16
@@ -92,7 +92,7 @@ def run_orbits(cmap: ConfigMap, x0, s0, n_skip: int, n_record: int, progress=Non
 def _find_repeats(idx, n, x, s, hx, hs, period, cyc_x, cyc_s, since):
     """Orbits ``idx`` after ``n`` throws: mark those whose state equals, bit for bit, one of their last P.
 
-    An orbit found to repeat with period p gets its p states (those after throws
+    An orbit found to repeat with period p (the smallest) gets its p states (those after throws
     n − p + 1 … n, in order) in ``cyc_x``/``cyc_s`` and ``since`` = n; the state after
     throw n + j is then entry (j − 1) mod p of them.
     """
@@ -101,19 +101,25 @@ def _find_repeats(idx, n, x, s, hx, hs, period, cyc_x, cyc_s, since):
     P = hx.shape[1]
     bits = x[idx].view(np.int64)
     side = s[idx]
-    found = np.zeros(idx.size, dtype=np.int64)
-    for p in range(1, min(P, n) + 1):
-        slot = (n - p) % P
-        hit = (found == 0) & (hx[idx, slot] == bits) & (hs[idx, slot] == side)
-        found[hit] = p
+    n_back = min(P, n)
+    cols = (n - np.arange(1, n_back + 1)) % P  # column of the state p = 1 … n_back throws back
+    same = (hx[idx][:, cols] == bits[:, None]) & (hs[idx][:, cols] == side[:, None])
     hx[idx, n % P] = bits
     hs[idx, n % P] = side
-    new = np.flatnonzero(found > 0)
-    for j in new:
-        i, p = idx[j], int(found[j])
-        for q in range(p):  # state after throw n − p + 1 + q
-            slot = (n - p + 1 + q) % P
-            cyc_x[i, q] = hx[i, slot:slot + 1].view(np.float64)[0]
-            cyc_s[i, q] = hs[i, slot]
-        period[i] = p
-        since[i] = n
+    hit = np.flatnonzero(same.any(axis=1))
+    if hit.size == 0:
+        return
+    p = same[hit].argmax(axis=1) + 1  # the smallest period
+    rows = idx[hit]
+    q = np.arange(P)
+    slots = (n - p[:, None] + 1 + q[None, :]) % P  # state after throw n − p + 1 + q (used for q < p)
+    cyc_x[rows] = hx[rows[:, None], slots].view(np.float64)
+    cyc_s[rows] = hs[rows[:, None], slots]
+    period[rows] = p
+    since[rows] = n
+
+
+def bytes_per_orbit(n_record: int) -> int:
+    """Memory :func:`run_orbits` holds per start, bytes: the recorded x and sides (16 per recorded throw), the
+    current state and fate (32), and the repeat search's four rings of :data:`EXACT_PERIOD_MAX` (32 each)."""
+    return 16 * int(n_record) + 64 + 32 * EXACT_PERIOD_MAX

@@ -15,14 +15,14 @@ from typing import Annotated
 
 import typer
 
-from .options import GOpt, HOpt, JsonOpt, MuOpt, OmegaOpt, PartOpt, SideOpt, arm_dict, guard, part_and_arm, to_json
+from .options import GOpt, HOpt, JsonOpt, MuOpt, PartOpt, SideOpt, arm_dict, guard, part_and_arm, to_json
 
 __all__ = ["passage_cmd", "feed_search_cmd", "register"]
 
 
 def passage_cmd(
     part: PartOpt,
-    omega: OmegaOpt,
+    omega: Annotated[float, typer.Option("--omega", help="Nominal release rate ω, rad/s (> 0).")],
     side: SideOpt = 0,
     h: HOpt = None,
     g: GOpt = None,
