@@ -50,6 +50,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("control",),
     ("design",),
     ("experiments",),
+    ("feeder",),
     ("stochastic",),
     ("studies",),
     ("sweeps",),
