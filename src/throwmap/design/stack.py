@@ -13,7 +13,7 @@ lies on the triangle's short leg, with a vertical side above the apex and a flat
 (:func:`stack_part`). The pair then fills the end of the cavity: the wall from the floor to the top, the triangle's
 long leg the only slope left, facing the joint.
 
-Why this slot and not the long leg's side (measured in the engine, 2026-11-26, recoil arm, 3 % ω jitter): a part
+Why this slot and not the long leg's side (measured in the engine, recoil arm, 3 % ω jitter): a part
 resting on the arm against the long leg (30° slope) is pushed up the slope by every throw (a throw spins it
 counter-clockwise, its outer lower vertex drives into the slope) and ends leaning on the triangle 0.5 rad after 3
 throws; in the wedge the end wall blocks the same turn (the tip would move into the wall), as it does for the

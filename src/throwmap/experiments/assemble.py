@@ -124,8 +124,8 @@ class AssembleConfig(Spec):
       colliding are chaotic, the rerun at half the step lands them millimetres apart — a test of determinism,
       not of validity; their outcome only has to be a plausible random state), without exact-flight leaps
       (``exact_flight_high``: a leap let the two parts fly into each other, refused for 4–24 mm part–part
-      penetration in 13 of 57 trials of a first run; the same throw stepped sinks 0.33 mm: the engine fault
-      fixed on 2026-11-27, leaps measured part-part distances on stale shape vertices, see
+      penetration in 13 of 57 trials of a first run; the same throw stepped sinks 0.33 mm: an engine fault
+      since fixed: leaps measured part-part distances on stale shape vertices, see
       :mod:`throwmap.engine.pymunk.stepping`; the setting is kept as measured) and with
       ``penetration_tol_high`` 2 mm; the tilt (half-step agreement ``tilt_agreement``) and the low throws
       use the engine's defaults (verified).

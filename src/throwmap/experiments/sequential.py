@@ -17,7 +17,7 @@ separately (serially). Here (pymunk engine, :mod:`throwmap.design.stack` for the
   pocket (at most ``max_first``), then the wedge is dropped onto the arm (``x_range_second``) and both are thrown
   at ``omega_second`` until assembled (at most ``max_second``).
 
-The recovery (:class:`RecoverConfig`, measured 2026-11-27): open loop, 24–34 % of trials ended in one *trap* —
+The recovery (:class:`RecoverConfig`, measured): open loop, 24–34 % of trials ended in one *trap* —
 the wedge, faster outward than the triangle, reaches the wall first and lies flat on its leg side on the pocket
 floor; the triangle arriving then leans 30° on it, and rocks there ±8 mm a throw at every rate from 3.5 to 5.5
 rad/s. A one-bit sensor (both CMs past the lip and neither moved more than 1 cm since the last throw: "stuck")
@@ -96,7 +96,7 @@ class RecoverConfig(BaseModel):
 class SequentialConfig(BaseModel):
     """Config of ``assemble-sequential`` / ``assemble-serial`` (SI units). The pocket and the first part are
     ``experiment feed``'s built-in example (the recoil feeder); see the module docstring. The defaults are the
-    built-in example, chosen as follows (serial, 12 trials each, seed 0, 2026-11-26):
+    built-in example, chosen as follows (serial, 12 trials each, seed 0):
 
     * the wedge: top 2 cm above the apex, 50 g of lead 0.5 cm in from the wall and 3 cm up from the tip — with
       115 g (lead at 0.37/4.35 cm) 6/12 assembled, with 50 g 9/12, with 30 g 8/12, with the 50 g 1.5 cm higher

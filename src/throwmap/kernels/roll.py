@@ -2,7 +2,7 @@
 
 Implements the post-impact phase of paper Sec. III-C, exactly within the
 paper's assumptions (plastic impacts, no slip, the pivot never lifts) and with
-the corrections the issue asks for.
+the corrections listed in the draft's errata (``throwmap/data/errata.md``).
 
 Pivot phase (guard/reset pairs)
 -------------------------------

@@ -28,7 +28,7 @@ class FigureSpec:
 class ExperimentSpec:
     """One of the draft's experiments: ``key``, ``title``, ``section``, the draft's ``draft_successes`` of
     ``draft_n`` hardware trials, the throwmap ``experiment`` name and its ``config`` (None: the built-in example),
-    ``goal`` (the issue's target rate) and ``note`` (what the draft's experiment was)."""
+    ``goal`` (the target success rate) and ``note`` (what the draft's experiment was)."""
 
     key: str
     title: str
@@ -53,7 +53,7 @@ class Size:
 
 
 SIZES = {"full": Size("full", 200, True, 200), "quick": Size("quick", 3, False, 10)}
-"""``full``: ≥ 200 trials per experiment (the issue's size); ``quick``: a smoke run for tests (minutes)."""
+"""``full``: ≥ 200 trials per experiment; ``quick``: a smoke run for tests (minutes)."""
 
 FIGURES = (
     FigureSpec("fig02_throw_map", "Fig. 2", "The throw map T(x) per side at ω = 4 rad/s (\"paper\" model) with the "

@@ -2,7 +2,7 @@
 data, no network), both from a :class:`~throwmap.reproduce.run.Reproduction`.
 
 Sections: the experiments table (the draft's hardware result, 20 trials, against ours with Wilson 95 % intervals,
-the issue's goal, failures by kind), the figures with captions and the numbers they show, the parameters each
+the goal rate, failures by kind), the figures with captions and the numbers they show, the parameters each
 experiment used (every value the draft leaves blank is one of them), and the errata (where we depart from the
 draft).
 """

@@ -1,7 +1,7 @@
 """Noise: what varies from throw to throw and from trial to trial on a real feeder.
 
 * **ω jitter** — each throw's release rate is ω·(1 + σ_ω·N(0, 1)) (clipped at 0), σ_ω
-  relative (the issue's feeding experiment: 3 %, ``omega_rel=0.03``). The draft's arm
+  relative (the feeding experiment's default: 3 %, ``omega_rel=0.03``). The draft's arm
   reached its commanded rate within a few per cent (Sec. IV-A).
 * **μ spread** — the arm–part friction of a trial is drawn once per trial (a part's
   surface, the arm's wear): either relative, μ·(1 + σ_μ·N(0, 1)) clipped at 0
