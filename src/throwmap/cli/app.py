@@ -26,7 +26,7 @@ from typing import Annotated
 import typer
 
 from ..version import __version__
-from . import analysis, animate, assemble, chain, control, design, experiment, plan, reproduce, statics, studies, sweep, throws, view
+from . import analysis, animate, assemble, chain, control, design, experiment, feeder, plan, reproduce, statics, studies, sweep, throws, view
 from .usage import ThrowmapGroup
 
 __all__ = ["app", "main"]
@@ -55,7 +55,7 @@ def _root(
     """Throw maps of planar parts on a one-joint throwing arm (SI units: m, kg, s, rad)."""
 
 
-for _group in (throws, studies, animate, analysis, experiment, design, control, plan, statics, assemble, reproduce, view, sweep, chain):  # the order of `throwmap --help`
+for _group in (throws, studies, animate, analysis, experiment, design, feeder, control, plan, statics, assemble, reproduce, view, sweep, chain):  # the order of `throwmap --help`
     _group.register(app)
 
 
