@@ -96,9 +96,11 @@ def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_pat
 
 
 @pytest.mark.parametrize("args, field", [(["--side", "7"], "side"), (["--budget", "-1"], "budget"),
-                                         (["--n", "0"], "n_verify")])
+                                         (["--budget", "nan"], "budget"), (["--n", "0"], "n:"),
+                                         (["--n-pre", "0"], "n-pre"), (["--seed", "-1"], "seed")])
 def test_bad_command_input_is_one_line_exit_2(tmp_path, args, field):
     res = CliRunner().invoke(app, ["feeder", "design", "triangle", "--out", str(tmp_path / "f"), *args])
     assert res.exit_code == 2, res.output
     lines = [ln for ln in res.output.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith(f"error: {field}"), lines
+    assert res.stdout == ""  # nothing but the error line

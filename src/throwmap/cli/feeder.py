@@ -28,7 +28,8 @@ def design_cmd(
     out: Annotated[Path, typer.Option("--out", help="Folder for the feeder's files and every candidate tried.")],
     side: Annotated[int | None, typer.Option("--side", help="Side to feed (default: the search chooses).")] = None,
     mu: Annotated[float, typer.Option("--mu", help="Arm friction μ (± 10 % per trial).")] = 1.0,
-    budget: Annotated[float, typer.Option("--budget", help="Minutes after which no further candidate is started.")]
+    budget: Annotated[float, typer.Option("--budget", help="Minutes after which no further candidate is started (one "
+                                                           "running is finished).")]
     = 10.0,
     n: Annotated[int, typer.Option("--n", help="Engine trials of a full verification (and of its rerun).")] = 200,
     n_pre: Annotated[int, typer.Option("--n-pre", help="Engine trials a candidate must pass first (90 %).")] = 20,
@@ -44,11 +45,23 @@ def design_cmd(
     from ..io.config import resolve_part
 
     with guard():
-        if budget < 0:
-            raise InvalidStateError("budget", f"must be ≥ 0 minutes, got {budget}")
+        import math
+
+        if not (math.isfinite(budget) and budget >= 0):
+            raise InvalidStateError("budget", f"must be a number of minutes ≥ 0, got {budget}")
+        for name, value in (("n", n), ("n-pre", n_pre)):
+            if value < 1:
+                raise InvalidStateError(name, f"must be ≥ 1, got {value}")
+        if seed < 0:
+            raise InvalidStateError("seed", f"must be ≥ 0, got {seed}")
+        if workers < 0:
+            raise InvalidStateError("workers", f"must be ≥ 0 (0: all cores), got {workers}")
+        if not (math.isfinite(mu) and mu >= 0):
+            raise InvalidStateError("mu", f"must be a finite number ≥ 0, got {mu}")
         p = resolve_part(part).part
         if side is not None:
             p.check_side(side)
+        plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=60.0 * budget)
         with Progress(transient=True, disable=as_json) as bar:
             tasks = {}
 
@@ -57,7 +70,6 @@ def design_cmd(
                     tasks[stage] = bar.add_task(stage, total=total)
                 bar.update(tasks[stage], completed=done)
 
-            plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=60.0 * budget)
             res = design_feeder(p, out, side=side, mu=mu, plan=plan, progress=progress)
         if as_json:
             doc = res.to_dict()

@@ -29,7 +29,7 @@ def feeder_config_text(candidate: Candidate, screen: Screen, *, part_file: str =
     mu = screen.mu
     lines = [
         "# A feeder found by throwmap.feeder.screen (exact impulse model); run it in the engine with",
-        "#   throwmap experiment feed feeder.toml --n 200 --seed 1",
+        "#   throwmap experiment feed feeder.toml --n 200 --seed 7",
         f'part = "{part_file}"  # next to this file',
         f"side = {candidate.side}",
         f"omega = {candidate.omega!r}",
