@@ -52,6 +52,7 @@ def run_orbits(cmap: ConfigMap, x0, s0, n_skip: int, n_record: int, progress=Non
         cyc_x = np.zeros((m, P))  # its p states, in order
         cyc_s = np.zeros((m, P), dtype=np.int64)
         since = np.zeros(m, dtype=np.int64)  # throws done when the repeat was found
+    rep = np.zeros(0, dtype=np.int64)  # the orbits copied from their repeat, not thrown
     for t in range(total):
         if exact:
             rep = np.flatnonzero(period > 0)
@@ -62,7 +63,7 @@ def run_orbits(cmap: ConfigMap, x0, s0, n_skip: int, n_record: int, progress=Non
             alive = np.flatnonzero((fate == C.OK) & (period == 0))
         else:
             alive = np.flatnonzero(fate == C.OK)
-        if alive.size == 0 and not (exact and rep.size):
+        if alive.size == 0 and rep.size == 0:
             if progress is not None:
                 progress(total, total)
             break
@@ -81,7 +82,7 @@ def run_orbits(cmap: ConfigMap, x0, s0, n_skip: int, n_record: int, progress=Non
             ok = alive[~bad]
             X[ok, t - n_skip] = x[ok]
             S[ok, t - n_skip] = s[ok]
-            if exact and rep.size:
+            if rep.size:
                 X[rep, t - n_skip] = x[rep]
                 S[rep, t - n_skip] = s[rep]
         if progress is not None:

@@ -10,8 +10,6 @@ DIR/feeder.toml`` runs it as it is (the part is looked for next to the config).
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 from pathlib import Path
 
 from ..errors import InvalidStateError
@@ -54,28 +52,16 @@ def feeder_config_text(candidate: Candidate, screen: Screen, *, part_file: str =
     return "\n".join(lines)
 
 
-def _atomic_write(path: Path, text: str) -> None:
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def feeder_files(candidate: Candidate, screen: Screen, out, **noise) -> Path:
     """Write ``out/part.toml`` and ``out/feeder.toml`` (atomically) for ``candidate``; returns the config's path.
     ``noise``: ``mu_rel``, ``recoil_deg``, ``zeta`` of :func:`feeder_config_text`."""
-    from ..io.config import part_to_toml
+    from ..io.config import save_part_toml
+    from ..io.files import atomic_write_text
 
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise InvalidStateError("out", f"{str(out)!r} is a file, not a folder")
     out.mkdir(parents=True, exist_ok=True)
     text = feeder_config_text(candidate, screen, **noise)
-    _atomic_write(out / "part.toml", part_to_toml(screen.part))
-    path = out / "feeder.toml"
-    _atomic_write(path, text)
-    return path
+    save_part_toml(screen.part, None, out / "part.toml")
+    return atomic_write_text(out / "feeder.toml", text)

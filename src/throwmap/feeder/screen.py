@@ -164,10 +164,9 @@ def screen(part: Part, *, mu: float = 1.0, g: float = 9.81, sides=None, omegas=D
                             fits = _fits(d)
                             window = ((float(lo), float(hi)) if d.success and fits and math.isfinite(lo)
                                       and math.isfinite(hi) else None)
-                            if d.success and not fits:
-                                d = type("D", (), {"message": "failed: the pocket is longer than the arm", "arm": d.arm})
+                            message = d.message if fits else "failed: the pocket is longer than the arm"
                             out.append(Candidate(side, w, h, depth, window, (window[1] - window[0]) if window else 0.0,
-                                                 float(d.arm.length) if window else math.nan, d.message))
+                                                 float(d.arm.length) if window else math.nan, message))
                         except ThrowmapError as err:  # e.g. the side never jogs on this floor
                             out.append(Candidate(side, w, h, depth, None, 0.0, math.nan, f"{err.field}: {err.reason}"))
                         done += 1

@@ -17,12 +17,13 @@ from __future__ import annotations
 
 import json
 import math
-import shutil
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..budget import check_count
 from ..errors import InvalidStateError, shown
+from ..io.files import atomic_write_text
 from ..system.part import Part
 from .files import feeder_files
 from .screen import DEFAULT_DEPTHS, DEFAULT_HS, DEFAULT_OMEGAS, Candidate, Screen, screen
@@ -92,12 +93,11 @@ def _run_doc(res) -> dict:
             "seed": res.seed, "failures": dict(res.failures), "rate": res.success_rate}
 
 
-def _check(value, name: str, *, lo: float, integer: bool = False):
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or (integer and not isinstance(value, int)):
-        raise InvalidStateError(name, f"must be a{'n integer' if integer else ' number'}, got {shown(value)}")
-    if not math.isfinite(value) or value < lo:
-        raise InvalidStateError(name, f"must be ≥ {lo:g}, got {shown(value)}")
-    return value
+def _share(value, name: str, hi: float = 1.0) -> float:
+    """A finite number in [0, ``hi``] (``hi`` may be ∞), refused on ``name`` otherwise."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (0.0 <= value <= hi) or math.isnan(value):
+        raise InvalidStateError(name, f"must be a number in [0, {hi:g}], got {shown(value)}")
+    return float(value)
 
 
 @dataclass(frozen=True, slots=True)
@@ -116,14 +116,11 @@ class VerifyPlan:
     budget_s: float = 600.0
 
     def __post_init__(self):
-        for name in ("n_pre", "n_verify"):
-            _check(getattr(self, name), name, lo=1, integer=True)
-        for name in ("seed", "workers"):
-            _check(getattr(self, name), name, lo=0, integer=True)
-        _check(self.budget_s, "budget_s", lo=0.0)
-        for name in ("goal", "pre_share"):
-            if not 0.0 <= _check(getattr(self, name), name, lo=0.0) <= 1.0:
-                raise InvalidStateError(name, f"must be ≤ 1, got {getattr(self, name)!r}")
+        for name, minimum in (("n_pre", 1), ("n_verify", 1), ("seed", 0), ("workers", 0)):
+            check_count(name, getattr(self, name), minimum=minimum)
+        _share(self.budget_s, "budget_s", math.inf)
+        _share(self.goal, "goal")
+        _share(self.pre_share, "pre_share")
 
 
 def design_feeder(part: Part, out, *, side: int | None = None, mu: float = 1.0, g: float = 9.81, sigma: float = 0.03,
@@ -203,7 +200,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, mu: float = 1.0, 
             fh.write(json.dumps(tried[-1].to_dict()) + "\n")
         if verdict == "fed":
             for name in ("feeder.toml", "part.toml"):
-                shutil.copyfile(here / name, out / name)
+                atomic_write_text(out / name, (here / name).read_text(encoding="utf-8"))
             return result(True, fed=c, verified=verified, rerun=rerun)
     best = max(tried, key=lambda t: max(r["rate"] for r in t.runs), default=None)
     if best is None:
