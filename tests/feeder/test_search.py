@@ -1,6 +1,7 @@
 """The feeder search's verdict: a feeder is called found only when its verification and an independent rerun
-reach the goal and agree; otherwise the result says why. The engine runs are replaced by stated results here
-(the verdict's logic), and one real command line run checks the JSON and the exit status."""
+reach the goal and agree; otherwise the result says why. The engine screen and the engine runs are replaced by
+stated results here (the verdict's logic: the exact screen stands in for the engine table, the feeding runs feed
+a stated share), and the command line's JSON, exit status and input errors are checked for real."""
 
 from __future__ import annotations
 
@@ -11,20 +12,31 @@ import pytest
 from typer.testing import CliRunner
 
 import throwmap as tm
+import throwmap.feeder.search as search
 from throwmap.cli.app import app
 from throwmap.errors import InvalidStateError
 from throwmap.experiments.stats import wilson_interval
-from throwmap.feeder import VerifyPlan, design_feeder, screen
+from throwmap.feeder import VerifyPlan, design_feeder
 
-GRID = dict(omegas=(4.0, 4.75), hs=(0.0, -0.01), depths=(0.01,))
-SMALL = dict(grid=GRID)
+GRID = dict(omegas=(4.5,), hs=(-0.02, -0.03))
 
 
-def _fake(monkeypatch, rates):
-    """Replace the engine runs: run i of a candidate feeds ``rates[(k, name)]`` (default 0) of its trials."""
+def _fake(monkeypatch, rates, predicted=None):
+    """Replace the engine: the engine screen is the exact screen (its share times ``predicted`` when given); run i of
+    candidate k feeds ``rates[(k, name)]`` (or ``rates[name]``, default 0) of its trials."""
+    import dataclasses
+
     import throwmap.experiments.runner as runner
 
-    calls = []
+    calls, real = [], search.arrival
+
+    def arrival(v, w, arm, **kw):
+        kw["exact"] = True
+        kw.pop("workers", None)
+        a = real(v, w, arm, **kw)
+        if predicted is not None:
+            a = dataclasses.replace(a, predicted=predicted)
+        return dataclasses.replace(a, model="engine")
 
     def run_experiment(name, cfg, *, n, seed, workers, out, progress=None):
         k = int(out.parent.name)
@@ -32,8 +44,9 @@ def _fake(monkeypatch, rates):
         s = int(round(r * n))
         calls.append((k, out.name, n, seed))
         return SimpleNamespace(n=n, successes=s, success_rate=s / n, ci95=wilson_interval(s, n), seed=seed,
-                               failures={} if s == n else {"not_captured": n - s})
+                               failures={} if s == n else {"not_captured": n - s}, trials=())
 
+    monkeypatch.setattr(search, "arrival", arrival)
     monkeypatch.setattr(runner, "run_experiment", run_experiment)
     return calls
 
@@ -44,60 +57,109 @@ def tri():
 
 
 def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_path, monkeypatch):
-    calls = _fake(monkeypatch, {"first": 1.0, "verify": 0.97, "rerun": 0.96})
-    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200, seed=5), **SMALL)
+    calls = _fake(monkeypatch, {"first": 1.0, "verify": 0.97, "rerun": 0.96}, predicted=0.99)
+    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200, seed=5, **GRID))
     assert res.success and res.config == str(tmp_path / "feeder.toml") and (tmp_path / "part.toml").is_file()
     assert [c[1:] for c in calls] == [("first", 20, 5), ("verify", 200, 5), ("rerun", 200, 6)]
     assert res.verified["successes"] == 194 and res.rerun["successes"] == 192
     assert res.side == res.tried[0].candidate.side and res.tried[0].verdict == "fed"
-    assert "reason" not in res.to_dict() and (tmp_path / "candidates.jsonl").read_text().count("\n") == 1
+    doc = res.to_dict()
+    assert "reason" not in doc and set(doc["verified"]) == {"n", "successes", "ci95"} and doc["predicted"] == 0.99
+    assert (tmp_path / "candidates.jsonl").read_text().count("\n") == 1
+    # the files written run as the feeding experiment's config, with the candidate's part, side, ω, h and wall
+    from throwmap.experiments.base import read_config
+    from throwmap.experiments.feed import Feed
+
+    cfg = read_config(Feed(), tmp_path / "feeder.toml")
+    part, arm, _, omega, side, _ = Feed().setup(cfg)
+    f = res.feeder
+    assert (side, omega, arm.h) == (f.side, f.omega, f.h) and cfg.cavity.length == f.X and cfg.cavity.lined
+    assert part.com == pytest.approx(f.variant.part.com, abs=1e-12) and part.mass == pytest.approx(f.variant.part.mass)
 
 
 def test_a_rerun_outside_the_interval_is_not_a_feeder(tri, tmp_path, monkeypatch):
-    _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 0.96})  # 200/200 has Wilson [98.1, 100] %
-    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200), **SMALL)
-    assert not res.success and all(t.verdict == "rerun disagrees" for t in res.tried)
-    assert "rerun disagrees" in res.reason and res.config is None
+    _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 0.96}, predicted=0.99)  # 200/200: Wilson [98.1, 100] %
+    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
+    assert not res.success and res.tried and all(t.verdict == "rerun disagrees" for t in res.tried)
+    assert "rerun disagrees" in res.reason and res.config is None and not (tmp_path / "feeder.toml").exists()
 
 
 def test_weak_candidates_are_dropped_and_the_reason_names_the_best(tri, tmp_path, monkeypatch):
-    ranked = [k for k, c in enumerate(screen(tri, **GRID).candidates) if c.window]
-    rates = {(k, "first"): 0.5 for k in ranked}
-    rates[(ranked[-1], "first")] = 0.95
-    rates[(ranked[-1], "verify")] = 0.9
-    _fake(monkeypatch, rates)
-    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200), **SMALL)
-    assert not res.success and len(res.tried) == len(ranked)
-    assert [t.verdict for t in res.tried].count("dropped after the first trials") == len(ranked) - 1
+    rates = {(k, "first"): 0.5 for k in range(100)}
+    rates[(1, "first")] = 0.95
+    rates[(1, "verify")] = 0.9
+    _fake(monkeypatch, rates, predicted=0.99)
+    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=4, **GRID))
+    assert not res.success and len(res.tried) == 4
+    assert [t.verdict for t in res.tried].count("dropped after the first trials") == 3
     assert "reached 95.0 %" in res.reason and "below the goal" in res.reason
 
 
-def test_a_part_no_pocket_separates_is_refused_before_any_engine_run(tmp_path, monkeypatch):
-    calls = _fake(monkeypatch, {})
-    res = design_feeder(tm.rectangle(0.06, 0.06), tmp_path, grid=dict(omegas=(3.0, 4.0), hs=(-0.01,), depths=(0.01,)))
-    assert not res.success and calls == [] and "no end-wall pocket holds one side alone" in res.reason
+def test_candidates_predicted_below_the_threshold_are_not_run(tri, tmp_path, monkeypatch):
+    calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=0.5)
+    res = design_feeder(tri, tmp_path, plan=VerifyPlan(engine_candidates=3, **GRID))
+    assert not res.success and calls == [] and "no candidate reached the 90 % share" in res.reason
+    assert "best first-arrival shares" in res.reason
+
+
+def test_the_engine_screen_is_read_back_instead_of_run_again(tri, tmp_path, monkeypatch):
+    _fake(monkeypatch, {}, predicted=0.95)
+    first = design_feeder(tri, tmp_path, plan=VerifyPlan(engine_candidates=3, **GRID))
+    lines = (tmp_path / "screen.jsonl").read_text().splitlines()
+    assert len(lines) == 3 and all(json.loads(x)["predicted"] == 0.95 for x in lines)
+    exact = search.arrival
+
+    def no_engine(v, w, arm, **kw):
+        assert kw.get("exact"), "an engine screen ran again"
+        return exact(v, w, arm, **kw)
+
+    monkeypatch.setattr(search, "arrival", no_engine)
+    again = design_feeder(tri, tmp_path, plan=VerifyPlan(engine_candidates=3, **GRID))
+    assert [(a.side, a.X, a.predicted) for a in again.screened] == [(a.side, a.X, a.predicted) for a in first.screened]
 
 
 @pytest.mark.parametrize("kw, field", [({"n_verify": 0}, "n_verify"), ({"goal": 1.5}, "goal"),
-                                       ({"seed": -1}, "seed"), ({"budget_s": -1.0}, "budget_s")])
+                                       ({"seed": -1}, "seed"), ({"budget_s": -1.0}, "budget_s"),
+                                       ({"engine_candidates": 0}, "engine_candidates")])
 def test_bad_search_settings_name_their_field(tri, tmp_path, kw, field):
     with pytest.raises(InvalidStateError) as err:
-        design_feeder(tri, tmp_path, plan=VerifyPlan(**kw), **SMALL)
+        design_feeder(tri, tmp_path, plan=VerifyPlan(**kw, **GRID))
+    assert err.value.field == field
+
+
+@pytest.mark.parametrize("kw, field", [({"weight": "heavy"}, "weight"), ({"weight": -0.1}, "weight"),
+                                       ({"arm_length": 0.0}, "arm_length"), ({"mu": float("nan")}, "mu")])
+def test_bad_search_inputs_name_their_field(tri, tmp_path, kw, field):
+    with pytest.raises(InvalidStateError) as err:
+        design_feeder(tri, tmp_path, plan=VerifyPlan(**GRID), **kw)
+    assert err.value.field == field
+
+
+@pytest.mark.parametrize("kw, field", [({"omegas": ()}, "omegas"), ({"omegas": (-1.0,)}, "omegas"),
+                                       ({"hs": (float("nan"),)}, "hs")])
+def test_bad_grids_name_their_field(kw, field):
+    with pytest.raises(InvalidStateError) as err:
+        VerifyPlan(**kw)
     assert err.value.field == field
 
 
 def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_path):
     res = CliRunner().invoke(app, ["feeder", "design", "triangle", "--out", str(tmp_path / "f"), "--budget", "0",
-                                   "--json"])
+                                   "--omega", "4.5", "--h", "-0.02", "--weight", "none", "--candidates", "1", "--json"])
     assert res.exit_code == 1, res.output
     doc = json.loads(res.stdout)
-    assert doc["success"] is False and doc["config"] is None and doc["verified"] is None
-    assert "budget" in doc["reason"] and doc["time_s"] > 0 and doc["assumptions"]["goal"] == 0.95
+    assert doc["success"] is False and doc["config"] is None and doc["verified"] is None and doc["side"] is None
+    assert "first-arrival shares" in doc["reason"] and doc["time_s"] > 0 and doc["assumptions"]["goal"] == 0.95
+    assert doc["exact_screen"]["candidates"] == 1 and len(doc["engine_screen"]) == 1
 
 
 @pytest.mark.parametrize("args, field", [(["--side", "7"], "side"), (["--budget", "-1"], "budget"),
                                          (["--budget", "nan"], "budget"), (["--n", "0"], "n:"),
-                                         (["--n-pre", "0"], "n-pre"), (["--seed", "-1"], "seed")])
+                                         (["--n-pre", "0"], "n-pre"), (["--seed", "-1"], "seed"),
+                                         (["--weight", "lots"], "weight"), (["--weight", "-1"], "weight"),
+                                         (["--arm-length", "0"], "arm-length"), (["--omega", "-2"], "omega"),
+                                         (["--candidates", "0"], "candidates"), (["--margin-trials", "-1"],
+                                                                                 "margin-trials")])
 def test_bad_command_input_is_one_line_exit_2(tmp_path, args, field):
     res = CliRunner().invoke(app, ["feeder", "design", "triangle", "--out", str(tmp_path / "f"), *args])
     assert res.exit_code == 2, res.output

@@ -1,7 +1,8 @@
 """``throwmap feeder design PART --out DIR``: search a feeder for a part, verify it in the engine, say the verdict.
 
-A thin shell over :func:`throwmap.feeder.search.design_feeder`: the exact-model screen, then engine
-verification of the best candidates (feeding experiment, ≥ ``--n`` trials and an independent rerun).
+A thin shell over :func:`throwmap.feeder.search.design_feeder`: the exact-model screen, the engine screen,
+then engine verification of the best candidates (feeding experiment, ``--n`` trials and an independent
+rerun), and the design sheet of a feeder found.
 Exit 0 with a verified feeder (``DIR/feeder.toml`` runs as ``throwmap experiment feed DIR/feeder.toml``),
 1 without one (the reason says why), 2 on bad input.
 """
@@ -27,6 +28,10 @@ def design_cmd(
     part: Annotated[str, typer.Argument(help="Built-in part name or a .toml/.json part file.")],
     out: Annotated[Path, typer.Option("--out", help="Folder for the feeder's files and every candidate tried.")],
     side: Annotated[int | None, typer.Option("--side", help="Side to feed (default: the search chooses).")] = None,
+    weight: Annotated[str, typer.Option("--weight", help="Lead weight: 'auto' (none or up to 1.7 × the part's mass), "
+                                                          "'none', or the heaviest allowed in kg.")] = "auto",
+    arm_length: Annotated[float | None, typer.Option("--arm-length", help="Longest arm allowed, m (the end wall is at "
+                                                                          "most there; default: 0.55 m).")] = None,
     mu: Annotated[float, typer.Option("--mu", help="Arm friction μ (± 10 % per trial).")] = 1.0,
     budget: Annotated[float, typer.Option("--budget", help="Minutes after which no further candidate is started (one "
                                                            "running is finished).")]
@@ -35,6 +40,14 @@ def design_cmd(
     n_pre: Annotated[int, typer.Option("--n-pre", help="Engine trials a candidate must pass first (90 %).")] = 20,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the verification (the rerun uses seed + 1).")] = 0,
     workers: Annotated[int, typer.Option("--workers", help="Engine processes (0: all cores).")] = 0,
+    omegas: Annotated[list[float] | None, typer.Option("--omega", help="Release rate to search, rad/s (repeat the "
+                                                                       "option for several; default 3.5–6 by 0.5).")]
+    = None,
+    hs: Annotated[list[float] | None, typer.Option("--h", help="Arm surface height to search, m (repeat for several; "
+                                                               "default -0.03, -0.02, -0.01, 0).")] = None,
+    candidates: Annotated[int, typer.Option("--candidates", help="Most candidates screened in the engine.")] = 24,
+    margin_trials: Annotated[int, typer.Option("--margin-trials", help="Engine trials per margin step of the design "
+                                                                       "sheet (0: no margins).")] = 30,
     as_json: JsonOpt = False,
 ) -> None:
     """Search a feeder that feeds one side of PART into a pocket at the arm's end, verified in the engine."""
@@ -49,19 +62,39 @@ def design_cmd(
 
         if not (math.isfinite(budget) and budget >= 0):
             raise InvalidStateError("budget", f"must be a number of minutes ≥ 0, got {budget}")
-        for name, value in (("n", n), ("n-pre", n_pre)):
+        for name, value in (("n", n), ("n-pre", n_pre), ("candidates", candidates)):
             if value < 1:
                 raise InvalidStateError(name, f"must be ≥ 1, got {value}")
+        if margin_trials < 0:
+            raise InvalidStateError("margin-trials", f"must be ≥ 0 (0: no margins), got {margin_trials}")
+        for name, values in (("omega", omegas), ("h", hs)):
+            for value in values or ():
+                if not math.isfinite(value) or (name == "omega" and value <= 0):
+                    raise InvalidStateError(name, f"must be a finite number{' > 0' if name == 'omega' else ''}, "
+                                                  f"got {value}")
         if seed < 0:
             raise InvalidStateError("seed", f"must be ≥ 0, got {seed}")
         if workers < 0:
             raise InvalidStateError("workers", f"must be ≥ 0 (0: all cores), got {workers}")
         if not (math.isfinite(mu) and mu >= 0):
             raise InvalidStateError("mu", f"must be a finite number ≥ 0, got {mu}")
+        if weight not in ("auto", "none"):
+            try:
+                weight_kg = float(weight)
+            except ValueError:
+                raise InvalidStateError("weight", f"must be 'auto', 'none' or a mass in kg, got {weight!r}") from None
+            if not (math.isfinite(weight_kg) and weight_kg >= 0):
+                raise InvalidStateError("weight", f"must be a mass ≥ 0 kg, got {weight!r}")
+        else:
+            weight_kg = weight
+        if arm_length is not None and not (math.isfinite(arm_length) and arm_length > 0):
+            raise InvalidStateError("arm-length", f"must be a length > 0 m, got {arm_length}")
         p = resolve_part(part).part
         if side is not None:
             p.check_side(side)
-        plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=60.0 * budget)
+        grid = {k: tuple(v) for k, v in (("omegas", omegas), ("hs", hs)) if v}
+        plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=60.0 * budget,
+                          engine_candidates=candidates, **grid)
         with Progress(transient=True, disable=as_json) as bar:
             tasks = {}
 
@@ -70,19 +103,20 @@ def design_cmd(
                     tasks[stage] = bar.add_task(stage, total=total)
                 bar.update(tasks[stage], completed=done)
 
-            res = design_feeder(p, out, side=side, mu=mu, plan=plan, progress=progress)
+            res = design_feeder(p, out, side=side, weight=weight_kg, arm_length=arm_length, mu=mu, plan=plan,
+                                progress=progress)
+            if res.success:
+                from ..feeder.sheet import write_sheet
+
+                res = write_sheet(res, out, margin_trials=margin_trials, workers=workers, progress=progress)
         if as_json:
-            doc = res.to_dict()
-            doc["verified"] = (None if res.verified is None else
-                               {k: res.verified[k] for k in ("n", "successes", "ci95")})
-            typer.echo(to_json(doc))
+            typer.echo(to_json(res.to_dict()))
         else:
-            typer.echo(res.screen.table(5))
-            for t in res.tried:
-                rates = ", ".join(f"{r['successes']}/{r['n']}" for r in t.runs)
-                typer.echo(f"  candidate {t.k} (side {t.candidate.side}, ω = {t.candidate.omega:g} rad/s, h = "
-                           f"{t.candidate.h:g} m): {rates}: {t.verdict}")
+            typer.echo(res.table(5))
             typer.echo(res.summary())
+            if res.sheet:
+                typer.echo(f"design sheet: {res.sheet['files']['html']} (and sheet.md, drawing.svg/.png"
+                           + (", fed_trial.html" if "viewer" in res.sheet["files"] else "") + ")")
     if not res.success:
         raise typer.Exit(1)
 

@@ -330,6 +330,23 @@ class Feed:
         return out
 
     def trial(self, cfg: FeedConfig, index: int, rng) -> Trial:
+        return self._run(cfg, index, rng)
+
+    def replay(self, cfg: FeedConfig, seed: int, index: int, *, hold: int = 3):
+        """Trial ``index`` of a run seeded ``seed`` again, its throws recorded: ``(trial, trajectory)``, the
+        trajectory the throws from the settled drop until ``hold`` throws after the capture (or the trial's end)
+        joined (:meth:`~throwmap.records.trajectory.Trajectory.concat`; None when no throw ran). The replay's
+        trial stops there, so it carries the capture, not the hold's verdict."""
+        from .base import trial_generator
+
+        runs: list = []
+        trial = self._run(cfg, index, trial_generator(seed, index), record=runs, stop_after=hold)
+        traj = None
+        for tr in runs:
+            traj = tr if traj is None else traj.concat(tr)
+        return trial, traj
+
+    def _run(self, cfg: FeedConfig, index: int, rng, record: list | None = None, stop_after: int | None = None) -> Trial:
         from ..records.outcome import Status
         from ..throws.session import open_session
 
@@ -353,7 +370,9 @@ class Feed:
             w, real = noise.throw(omega * cfg.clear_factor if clearing else omega, rng)
             w_min, w_max = min(w_min, w), max(w_max, w)
             values.update(throws=t, omega_min=w_min, omega_max=w_max)
-            step = session.throw(w, real)
+            step = session.throw(w, real, record=record is not None)
+            if record is not None and step.trajectory is not None:
+                record.append(step.trajectory)
             st = step.status
             before = state
             after = step.states[0]
@@ -384,6 +403,9 @@ class Feed:
             else:
                 if where != "target":
                     values["hold_breaks"] += 1
+                if stop_after is not None and t - captured_at >= stop_after:
+                    return self._end(index, rng, None if where == "target" else "replay_stopped", values, pose,
+                                     *state, where)
             if captured_at is not None and t - captured_at >= cfg.hold_throws:
                 kind = None if where == "target" else (self._other(state, side) if where == "other" else "ejected")
                 return self._end(index, rng, kind, values, pose, *state, where)

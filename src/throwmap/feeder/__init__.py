@@ -1,14 +1,22 @@
-"""Feeders for any part: the search for a pocket, throw and arm that feed one side, screened on the exact model.
+"""Feeders for any part: a lead weight, a throw and a lined pocket that feed one side, found by search and
+verified in the engine.
 
-:func:`screen` scores candidate feeders (side, ω, h, pocket depth) by their end-wall windows
-(:mod:`throwmap.feeder.screen`); :func:`feeder_files` writes the part file and the ``feed`` experiment config
-of a candidate, which ``throwmap experiment feed`` runs as it is (:mod:`throwmap.feeder.files`);
-:func:`design_feeder` verifies the screened candidates in the engine and gives the verdict
-(:mod:`throwmap.feeder.search`).
+:func:`design_feeder` searches the family of :mod:`throwmap.feeder.family` (the part alone or with a lead
+weight) over ω and h: an exact-model screen, an engine screen of which side arrives first at an end stop
+(:mod:`throwmap.feeder.arrival`), then the feeding experiment in the engine with an independent rerun
+(:mod:`throwmap.feeder.search`). :func:`feeder_files` writes the part file and the ``feed`` config of a
+candidate (:mod:`throwmap.feeder.files`); :func:`write_sheet` the design sheet (:mod:`throwmap.feeder.sheet`);
+:func:`random_plate` draws parts nobody tuned for (:mod:`throwmap.feeder.plates`).
 """
 
+from .arrival import Arrival, arrival
+from .family import Variant, Weight, weight_variants, with_weight
 from .files import feeder_files
-from .screen import Candidate, Screen, screen
+from .plates import random_plate
 from .search import FeederSearch, Tried, VerifyPlan, design_feeder
 
-__all__ = ["Candidate", "Screen", "screen", "feeder_files", "FeederSearch", "Tried", "VerifyPlan", "design_feeder"]
+design = design_feeder
+"""``throwmap.feeder.design(part, out=…)``: the same function as :func:`design_feeder`."""
+
+__all__ = ["Arrival", "arrival", "Variant", "Weight", "weight_variants", "with_weight", "feeder_files",
+           "random_plate", "FeederSearch", "Tried", "VerifyPlan", "design_feeder", "design"]

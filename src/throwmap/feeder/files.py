@@ -1,10 +1,13 @@
 """A screened feeder as files: the part file and the ``feed`` experiment config that runs it.
 
-``DIR/part.toml`` is the part (:func:`throwmap.io.config.save_part_toml`); ``DIR/feeder.toml`` the
-:class:`~throwmap.experiments.feed.FeedConfig` of the closed variant: the candidate's side, ω and h, the
-arm's μ, a pocket of the candidate's depth ending in an end wall at the candidate's L, and the noise
-the experiment throws with (σ of ω jitter, ± arm μ, the recoil arm). ``throwmap experiment feed
-DIR/feeder.toml`` runs it as it is (the part is looked for next to the config).
+``DIR/part.toml`` is the part with its lead weight (:func:`throwmap.io.config.save_part_toml`);
+``DIR/feeder.toml`` the :class:`~throwmap.experiments.feed.FeedConfig` of the closed variant: the
+target side, ω and h, the arm's μ, a pocket ``POCKET_DEPTH_M`` deep ending in an end wall at the
+screened end stop, its floor and wall lined with a low-friction facing (μ ``LINING_MU``, a PTFE sheet:
+a lean against an unlined wall can rest and be flipped out by the next throw), drops over the
+screen's drop zone, and the noise the experiment throws with (σ of ω jitter, ± arm μ, the recoil
+arm). ``throwmap experiment feed DIR/feeder.toml`` runs it as it is (the part is looked for next to
+the config).
 """
 
 from __future__ import annotations
@@ -13,36 +16,52 @@ import math
 from pathlib import Path
 
 from ..errors import InvalidStateError
-from .screen import Candidate, Screen
+from .arrival import DROP_X, Arrival
 
-__all__ = ["feeder_files", "feeder_config_text"]
+__all__ = ["feeder_files", "feeder_config_text", "POCKET_DEPTH_M", "LINING_MU", "MAX_THROWS", "ENGINE_SETTINGS"]
+
+POCKET_DEPTH_M = 0.01
+"""The pocket's floor below the arm's surface, m."""
+LINING_MU = 0.2
+"""Friction of the pocket's lining (floor and end wall; PTFE on plastic, upper value)."""
+MAX_THROWS = 100
+"""Throws a part is given to reach the pocket."""
+ENGINE_SETTINGS = {"agreement": 0.005, "retries": 4}
+"""Engine checks of the feeding runs: a half-step rerun must agree to 5 mm (the pocket's clearance); a lost
+contact is retried 4 times."""
 
 
-def feeder_config_text(candidate: Candidate, screen: Screen, *, part_file: str = "part.toml",
-                       mu_rel: float = 0.1, recoil_deg: float = 3.0, zeta: float = 0.2) -> str:
-    """The TOML text of the ``feed`` config of ``candidate`` (SI units; see the module docstring)."""
-    if candidate.window is None:
-        raise InvalidStateError("candidate", f"side {candidate.side} at ω = {candidate.omega:g} rad/s has no "
-                                             "end-wall window: nothing to feed with")
-    mu = screen.mu
+def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: float = 1.0, g: float = 9.81,
+                       sigma: float = 0.03, mu_rel: float = 0.1, recoil_deg: float = 3.0, zeta: float = 0.2) -> str:
+    """The TOML text of the ``feed`` config of a screened feeder (SI units; see the module docstring)."""
+    if not (found.predicted > 0 and math.isfinite(found.X)):
+        raise InvalidStateError("candidate", f"side {found.side} at ω = {found.omega:g} rad/s has no end stop where "
+                                             "it arrives first and holds: nothing to feed with")
     lines = [
-        "# A feeder found by throwmap.feeder.screen (exact impulse model); run it in the engine with",
+        "# A feeder found by throwmap.feeder.design: the part (part.toml, with its lead weight) thrown by the",
+        "# recoiling arm with ω jitter into a lined pocket at the arm's end. Run it in the engine with",
         "#   throwmap experiment feed feeder.toml --n 200 --seed 7",
         f'part = "{part_file}"  # next to this file',
-        f"side = {candidate.side}",
-        f"omega = {candidate.omega!r}",
+        f"side = {found.side}",
+        f"omega = {found.omega!r}",
+        f"x_range = {list(DROP_X)!r}  # drops: CM abscissa, m (a chute onto the inner arm)",
+        f"max_throws = {MAX_THROWS}",
+        "settings = { " + ", ".join(f"{k} = {v!r}" for k, v in ENGINE_SETTINGS.items()) + " }",
         "",
         "[arm]",
-        f"h = {candidate.h!r}",
-        f"g = {screen.g!r}",
-        f"mu = {mu!r}" if math.isfinite(mu) else 'mu = "inf"',
+        f"h = {found.h!r}",
+        f"g = {float(g)!r}",
+        f"mu = {float(mu)!r}" if math.isfinite(mu) else 'mu = "inf"',
         "",
         "[cavity]",
-        f"depth = {candidate.depth!r}",
-        f"length = {candidate.length!r}  # the middle of the window [{candidate.window[0]!r}, {candidate.window[1]!r}] m",
+        f"length = {found.X!r}  # end wall, m: side {found.side} arrives there first in "
+        f"{100 * found.predicted:.1f} % of screened chains",
+        f"depth = {POCKET_DEPTH_M!r}",
+        f"wall_mu = {LINING_MU!r}",
+        "lined = true  # the floor faced like the end wall",
         "",
         "[noise]",
-        f"omega_rel = {screen.sigma!r}",
+        f"omega_rel = {float(sigma)!r}",
         f"mu_rel = {float(mu_rel)!r}",
         'realisation = "recoil"',
         f"recoil = {math.radians(recoil_deg)!r}",
@@ -52,9 +71,9 @@ def feeder_config_text(candidate: Candidate, screen: Screen, *, part_file: str =
     return "\n".join(lines)
 
 
-def feeder_files(candidate: Candidate, screen: Screen, out, **noise) -> Path:
-    """Write ``out/part.toml`` and ``out/feeder.toml`` (atomically) for ``candidate``; returns the config's path.
-    ``noise``: ``mu_rel``, ``recoil_deg``, ``zeta`` of :func:`feeder_config_text`."""
+def feeder_files(found: Arrival, out, **kw) -> Path:
+    """Write ``out/part.toml`` and ``out/feeder.toml`` (atomically) for a screened feeder; returns the config's path.
+    ``kw``: ``mu``, ``g``, ``sigma``, ``mu_rel``, ``recoil_deg``, ``zeta`` of :func:`feeder_config_text`."""
     from ..io.config import save_part_toml
     from ..io.files import atomic_write_text
 
@@ -62,6 +81,6 @@ def feeder_files(candidate: Candidate, screen: Screen, out, **noise) -> Path:
     if out.exists() and not out.is_dir():
         raise InvalidStateError("out", f"{str(out)!r} is a file, not a folder")
     out.mkdir(parents=True, exist_ok=True)
-    text = feeder_config_text(candidate, screen, **noise)
-    save_part_toml(screen.part, None, out / "part.toml")
+    text = feeder_config_text(found, **kw)
+    save_part_toml(found.variant.part, None, out / "part.toml")
     return atomic_write_text(out / "feeder.toml", text)

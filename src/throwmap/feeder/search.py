@@ -1,16 +1,25 @@
-"""The feeder search: screened candidates verified in the engine, with an honest verdict.
+"""The feeder search: the exact-model screen, the engine screen, engine verification, an honest verdict.
 
-:func:`design_feeder` screens the candidates (:func:`throwmap.feeder.screen.screen`, exact impulse model),
-then takes them widest window first and verifies each in the engine with the feeding experiment
-(``feed``, closed variant: drops from random poses, the recoil arm with ω jitter, μ spread; see
-:mod:`throwmap.experiments.feed`): first ``n_pre`` trials (a candidate with fewer than 90 % successes
-is dropped), then ``n_verify`` trials, and, where those reach ``goal``, an independent rerun of
-``n_verify`` trials with another seed that must land inside the first run's Wilson 95 % interval and
-reach ``goal`` too. The first candidate that passes is the feeder; none passing within the budget is
-``success`` False with the evidence (the screen's reason, or the best rate reached and by whom).
+:func:`design_feeder` searches the family of :mod:`throwmap.feeder.family` (the part alone, or with a
+lead weight placed for a target side) over a grid of release rates ω and arm heights h, in three
+stages of rising cost:
 
-Every candidate tried is kept in ``out``: its files in ``out/candidates/<k>/`` and its trials in the
-runs' folders there, so a rerun of the same search resumes (stored trials are not run again).
+1. **exact screen** — every (variant, ω, h) on the exact impulse model (:func:`~throwmap.feeder.arrival.arrival`
+   with ``model="rigid_body"``, ≈ 0.1 s each): which side arrives first at an end stop, and how often;
+2. **engine screen** — the best of those, widest share first, on the engine's recoil-arm table (5–30 s each),
+   until ``screen_share`` of the budget is spent; a candidate's engine share is its *predicted* feed rate;
+3. **verification** — candidates predicted ≥ ``min_predicted``, best first, run as the feeding experiment in
+   the engine (``feed``: drops from random poses, the recoil arm with ω jitter, μ spread; see
+   :mod:`throwmap.experiments.feed`): ``n_pre`` trials (fewer than ``pre_share`` fed drops the candidate),
+   then ``n_verify`` trials, and where those reach ``goal`` an independent rerun of ``n_verify`` trials with
+   another seed that must reach ``goal`` too and land inside the first run's Wilson 95 % interval.
+
+The first candidate that passes is the feeder; none passing within the budget is ``success`` False with the
+evidence (each side's best share on both screens, the best verified rate and by whom).
+
+Every screened and verified candidate is kept in ``out``: the screens in ``out/screen.jsonl``, each verified
+candidate's files and trials in ``out/candidates/<k>/``; a rerun of the same search reads them back instead of
+computing them again (Ctrl-C loses nothing already written).
 """
 
 from __future__ import annotations
@@ -21,29 +30,38 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from ..budget import check_count
 from ..errors import InvalidStateError, shown
 from ..io.files import atomic_write_text
+from ..system.arm import Arm
 from ..system.part import Part
-from .files import feeder_files
-from .screen import DEFAULT_DEPTHS, DEFAULT_HS, DEFAULT_OMEGAS, Candidate, Screen, screen
+from .arrival import DROP_X, Arrival, arrival
+from .family import Variant, weight_variants
+from .files import LINING_MU, POCKET_DEPTH_M, feeder_files
 
-__all__ = ["Tried", "FeederSearch", "VerifyPlan", "design_feeder", "GOAL", "PRE_SHARE"]
+__all__ = ["Tried", "FeederSearch", "VerifyPlan", "design_feeder", "GOAL", "PRE_SHARE", "OMEGAS", "HS"]
 
 GOAL = 0.95
 """The success rate a feeder must reach in the engine (the draft's hardware fed 19 of 20 = 95 %)."""
 PRE_SHARE = 0.9
 """The share of the first ``n_pre`` trials a candidate must feed to be verified further."""
+OMEGAS = (3.5, 4.0, 4.5, 5.0, 5.5, 6.0)
+"""Release rates searched, rad/s (the draft's arm throws at 3.5–6 rad/s)."""
+HS = (-0.03, -0.02, -0.01, 0.0)
+"""Arm surface heights searched, m (below or through the joint)."""
 
 
 @dataclass(frozen=True, slots=True)
 class Tried:
-    """One candidate verified in the engine: its index ``k`` in the screen's ranking, the ``candidate``, the
-    ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures"}``) and the ``verdict`` (``"fed"``,
-    ``"dropped after the first trials"``, ``"below the goal"``, ``"rerun disagrees"``)."""
+    """One candidate verified in the engine: its index ``k`` in the engine screen's ranking, the screened
+    ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
+    "throws_to_capture"}``) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
+    ``"below the goal"``, ``"rerun disagrees"``)."""
 
     k: int
-    candidate: Candidate
+    candidate: Arrival
     runs: tuple
     verdict: str
 
@@ -54,43 +72,70 @@ class Tried:
 @dataclass(frozen=True, slots=True)
 class FeederSearch:
     """The search's result: ``success`` (a verified feeder), its ``side``, ``config`` (path of ``feeder.toml``; None
-    without one), ``verified`` and ``rerun`` (the two full runs: ``{"n", "successes", "ci95", "seed", …}``),
-    ``predicted`` (the screen's exact-model window of the fed candidate), ``time_s``, ``reason`` (why none,
-    when ``success`` is False), ``tried`` (every candidate verified, in order), ``screen`` and every
-    ``assumption`` (arm, jitter, materials, goal)."""
+    without one), ``feeder`` (the screened candidate fed, or None), ``verified`` and ``rerun`` (the two full runs),
+    ``predicted`` (the engine screen's share for the fed candidate), ``time_s``, ``reason`` (why none, when
+    ``success`` is False), ``tried`` (every candidate verified, in order), ``screened`` (the engine screen's
+    candidates, best first), ``exact`` (the exact screen's count and best per side) and every ``assumption``
+    (arm, jitter, materials, drops, goal)."""
 
     success: bool
     side: int | None
     config: str | None
+    feeder: Arrival | None
     verified: dict | None
     rerun: dict | None
-    predicted: dict | None
+    predicted: float | None
     time_s: float
     reason: str
     tried: tuple
-    screen: Screen = field(repr=False)
+    screened: tuple = field(repr=False)
+    exact: dict = field(default_factory=dict)
     assumptions: dict = field(default_factory=dict)
+    sheet: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
-        out = {"success": self.success, "side": self.side, "config": self.config, "verified": self.verified,
-               "rerun": self.rerun, "predicted": self.predicted, "time_s": self.time_s,
-               "assumptions": self.assumptions, "tried": [t.to_dict() for t in self.tried]}
+        f = self.feeder
+        out = {"success": self.success, "side": self.side, "config": self.config,
+               "verified": None if self.verified is None else {k: self.verified[k] for k in ("n", "successes", "ci95")},
+               "predicted": self.predicted, "time_s": self.time_s,
+               "feeder": None if f is None else f.to_dict(), "verification": self.verified, "rerun": self.rerun,
+               "sheet": self.sheet, "assumptions": self.assumptions, "exact_screen": self.exact,
+               "engine_screen": [a.to_dict() for a in self.screened], "tried": [t.to_dict() for t in self.tried]}
         if not self.success:
             out["reason"] = self.reason
         return out
 
+    def table(self, n: int = 5) -> str:
+        """The engine screen's ``n`` best candidates and every verified one, one line each (cm for lengths)."""
+        rows = [f"{'side':>4}  {'weight':>28}  {'ω rad/s':>7}  {'h cm':>5}  {'wall cm':>7}  {'predicted':>9}  verified"]
+        runs = {t.k: t for t in self.tried}
+        for k, a in enumerate(self.screened):
+            if k >= n and k not in runs:
+                continue
+            t = runs.get(k)
+            v = (", ".join(f"{r['successes']}/{r['n']}" for r in t.runs) + f": {t.verdict}") if t else "-"
+            rows.append(f"{a.side:>4}  {a.variant.label():>28}  {a.omega:>7.3g}  {100 * a.h:>5.3g}  {100 * a.X:>7.3g}  "
+                        f"{100 * a.predicted:>8.1f}%  {v}")
+        return "\n".join(rows)
+
     def summary(self) -> str:
         if self.success:
-            v = self.verified
-            return (f"feeder found: side {self.side}, {v['successes']}/{v['n']} fed "
-                    f"(Wilson 95 % [{100 * v['ci95'][0]:.1f}, {100 * v['ci95'][1]:.1f}] %), rerun "
-                    f"{self.rerun['successes']}/{self.rerun['n']}; config {self.config} ({self.time_s:.0f} s)")
+            v, f = self.verified, self.feeder
+            return (f"feeder found: side {self.side}, {f.variant.label()}, ω = {f.omega:.4g} rad/s, h = {100 * f.h:.3g} "
+                    f"cm, end wall at {100 * f.X:.3g} cm; {v['successes']}/{v['n']} fed (Wilson 95 % "
+                    f"[{100 * v['ci95'][0]:.1f}, {100 * v['ci95'][1]:.1f}] %), rerun {self.rerun['successes']}/"
+                    f"{self.rerun['n']}; config {self.config} ({self.time_s:.0f} s)")
         return f"no feeder: {self.reason} ({self.time_s:.0f} s)"
 
 
 def _run_doc(res) -> dict:
+    ttc = [t.values.get("throws_to_capture") for t in res.trials]
+    ttc = np.array([v for v in ttc if v is not None and math.isfinite(v)], dtype=float)
     return {"n": res.n, "successes": res.successes, "ci95": [float(res.ci95[0]), float(res.ci95[1])],
-            "seed": res.seed, "failures": dict(res.failures), "rate": res.success_rate}
+            "seed": res.seed, "failures": dict(res.failures), "rate": res.success_rate,
+            "first_success": next((int(t.index) for t in res.trials if t.success), None),
+            "throws_to_capture": ({"median": float(np.median(ttc)), "p90": float(np.percentile(ttc, 90)),
+                                   "max": float(ttc.max())} if ttc.size else None)}
 
 
 def _share(value, name: str, hi: float = 1.0) -> float:
@@ -102,36 +147,66 @@ def _share(value, name: str, hi: float = 1.0) -> float:
 
 @dataclass(frozen=True, slots=True)
 class VerifyPlan:
-    """How candidates are verified in the engine: ``n_pre`` trials first (``pre_share`` of them must be fed),
-    then ``n_verify`` trials and a rerun of as many (seeds ``seed`` and ``seed + 1``), ``goal`` the success
-    rate both must reach, ``workers`` engine processes (0: all cores), ``budget_s`` the wall time (s) after
-    which no further candidate is started."""
+    """How candidates are screened and verified: ``n_pre`` engine trials first (``pre_share`` of them must be fed),
+    then ``n_verify`` trials and a rerun of as many (seeds ``seed`` and ``seed + 1``), ``goal`` the success rate
+    both must reach; ``min_predicted`` the engine screen's share a candidate needs to be verified; ``screen_share``
+    the share of the budget the screens may use, ``engine_candidates`` the most candidates the engine screen
+    takes from the exact screen; ``omegas`` (rad/s) and ``hs`` (m) the grid searched; ``workers`` engine processes (0: all cores); ``budget_s`` the wall
+    time (s) after which no further candidate is started."""
 
     n_pre: int = 20
     n_verify: int = 200
     goal: float = GOAL
     pre_share: float = PRE_SHARE
+    min_predicted: float = 0.9
+    screen_share: float = 0.45
+    engine_candidates: int = 24
+    omegas: tuple = OMEGAS
+    hs: tuple = HS
     seed: int = 0
     workers: int = 0
     budget_s: float = 600.0
 
     def __post_init__(self):
-        for name, minimum in (("n_pre", 1), ("n_verify", 1), ("seed", 0), ("workers", 0)):
+        for name, minimum in (("n_pre", 1), ("n_verify", 1), ("seed", 0), ("workers", 0), ("engine_candidates", 1)):
             check_count(name, getattr(self, name), minimum=minimum)
         _share(self.budget_s, "budget_s", math.inf)
-        _share(self.goal, "goal")
-        _share(self.pre_share, "pre_share")
+        for name in ("goal", "pre_share", "min_predicted", "screen_share"):
+            _share(getattr(self, name), name)
+        for name in ("omegas", "hs"):
+            grid = getattr(self, name)
+            if (not isinstance(grid, (tuple, list)) or not grid
+                    or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in grid)):
+                raise InvalidStateError(name, f"must be a non-empty sequence of finite numbers, got {shown(grid)}")
+        if any(w <= 0 for w in self.omegas):
+            raise InvalidStateError("omegas", f"must be rates > 0 rad/s, got {list(self.omegas)}")
 
 
-def design_feeder(part: Part, out, *, side: int | None = None, mu: float = 1.0, g: float = 9.81, sigma: float = 0.03,
-                  mu_rel: float = 0.1, plan: VerifyPlan | None = None, grid: dict | None = None,
-                  progress=None) -> FeederSearch:
-    """Search a feeder of ``part`` that feeds one side (or ``side``) into a pocket at the arm's end (module docstring).
+def _weight_cap(part: Part, weight) -> float:
+    """The heaviest lead weight allowed, kg: ``"none"`` 0, ``"auto"`` 1.7 × the part's mass, or a number ≥ 0."""
+    if weight == "none":
+        return 0.0
+    if weight == "auto":
+        return 1.7 * float(part.mass)
+    if isinstance(weight, bool) or not isinstance(weight, (int, float)) or not math.isfinite(weight) or weight < 0:
+        raise InvalidStateError("weight", f"must be 'auto', 'none' or a mass ≥ 0 kg, got {shown(weight)}")
+    return float(weight)
 
-    ``out``: the folder for every candidate tried and the feeder's ``feeder.toml`` / ``part.toml``; ``mu`` the arm's
-    μ (± ``mu_rel`` per trial), ``sigma`` the relative ω jitter, ``g`` m/s²; ``plan`` the engine verification
-    (:class:`VerifyPlan`; None: its defaults); ``grid`` the screen's ``omegas``, ``hs``, ``depths``
-    (:func:`~throwmap.feeder.screen.screen`; None: its defaults); ``progress(stage, done, total)``.
+
+def _key(v: Variant, w: float, h: float) -> str:
+    return json.dumps([v.weight.to_dict() if v.weight else None, round(w, 9), round(h, 9)])
+
+
+def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", arm_length: float | None = None,
+                  mu: float = 1.0, g: float = 9.81, sigma: float = 0.03, mu_rel: float = 0.1,
+                  plan: VerifyPlan | None = None, progress=None) -> FeederSearch:
+    """Search a feeder that feeds one side of ``part`` (or ``side``) into a pocket at the arm's end (module docstring).
+
+    ``out``: the folder for the screens, every candidate verified and the feeder's ``feeder.toml`` / ``part.toml``;
+    ``weight``: ``"auto"`` (the part alone and with a lead weight up to 1.7 × its mass), ``"none"`` or the heaviest
+    weight in kg; ``arm_length``: the longest arm allowed, m (the end wall is at most there; None: the screen's reach,
+    0.55 m); ``mu`` the arm's μ (± ``mu_rel`` per trial), ``sigma`` the relative ω jitter, ``g`` m/s²; ``plan``
+    (:class:`VerifyPlan`, with the grid of ω and h searched; None: its defaults); ``progress(stage, done, total)``.
     """
     from ..experiments.base import read_config
     from ..experiments.feed import Feed
@@ -143,37 +218,105 @@ def design_feeder(part: Part, out, *, side: int | None = None, mu: float = 1.0, 
     plan = VerifyPlan() if plan is None else plan
     if not isinstance(plan, VerifyPlan):
         raise InvalidStateError("plan", f"must be a VerifyPlan, got {type(plan).__name__}")
-    grid = {"omegas": DEFAULT_OMEGAS, "hs": DEFAULT_HS, "depths": DEFAULT_DEPTHS, **(grid or {})}
-    if set(grid) - {"omegas", "hs", "depths"}:
-        raise InvalidStateError("grid", f"takes omegas, hs and depths, got {sorted(grid)}")
-    n_pre, n_verify, goal, pre_share = plan.n_pre, plan.n_verify, plan.goal, plan.pre_share
-    seed, workers, budget_s = plan.seed, plan.workers, plan.budget_s
+    sides = tuple(part.stable_sides) if side is None else (part.check_side(side),)
+    cap = _weight_cap(part, weight)
+    if arm_length is not None and not (isinstance(arm_length, (int, float)) and math.isfinite(arm_length)
+                                       and arm_length > 0):
+        raise InvalidStateError("arm_length", f"must be a length > 0 m, got {shown(arm_length)}")
+    omegas, hs = plan.omegas, plan.hs
+    _share(mu, "mu", math.inf)
+    _share(sigma, "sigma", 0.3)
+    _share(mu_rel, "mu_rel", 0.99)
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise InvalidStateError("out", f"{str(out)!r} is a file, not a folder")
-    assumptions = {"arm": {"mu": mu, "mu_rel": mu_rel, "g_m_s2": g}, "omega_jitter_rel": sigma,
-                   "realisation": "recoil (3°, ζ = 0.2)", "pocket": "end wall μ 0, floor the arm's μ",
-                   "drops": "2–10 cm above the arm, any pose, anywhere over it", "goal": goal,
-                   "screen": "exact impulse model (rigid_body), window over ω(1 − σ) … ω(1 + 3σ)"}
-    scr = screen(part, mu=mu, g=g, sides=None if side is None else (side,), **grid, sigma=sigma,
-                 progress=None if progress is None else (lambda d, t: progress("screen", d, t)))
-    ranked = [(k, c) for k, c in enumerate(scr.candidates) if c.window is not None]
+    budget_s, workers = plan.budget_s, plan.workers
+    assumptions = {
+        "arm": {"mu": mu, "mu_rel": mu_rel, "g_m_s2": g, "motion": "recoil arm (Flatland 3°, ζ = 0.2)",
+                "max_length_m": arm_length},
+        "omega_jitter_rel": sigma, "pocket": {"depth_m": POCKET_DEPTH_M, "lining_mu": LINING_MU,
+                                              "clearance_m": 0.005, "lip_deg": 60.0},
+        "drops": f"2–10 cm above the arm, any pose, CM x in {list(DROP_X)} m", "goal": plan.goal,
+        "weight": {"max_kg": cap, "places": "0.2, 0.5, 0.8 along the target side, 8 mm inside",
+                   "masses": "1 and 1.7 × the part's mass, capped"},
+        "grid": {"omegas_rad_s": list(omegas), "hs_m": list(hs)},
+        "engine": "pymunk; a half-step rerun must agree to 5 mm, a lost contact retried 4 times"}
+
+    def tick(stage, done, total):
+        if progress is not None:
+            progress(stage, done, total)
+
+    variants = [Variant(part, None, None)]
+    for k in sides:
+        variants += weight_variants(part, k, max_kg=cap)
+    out.mkdir(parents=True, exist_ok=True)
+    store = out / "screen.jsonl"
+    seen = {}
+    if store.exists():
+        for line in store.read_text(encoding="utf-8").splitlines():
+            try:
+                doc = json.loads(line)
+                seen[doc["key"]] = doc
+            except (ValueError, KeyError):
+                continue  # a line cut by an interrupted write: screened again
+
+    def fits(a: Arrival) -> bool:
+        return a.predicted > 0 and (arm_length is None or a.X <= arm_length + 1e-9)
+
+    # 1. the exact screen: every variant × ω × h
+    exact = []
+    variants = [v for v in variants if any(k in v.part.stable_sides for k in sides)]
+    total = len(variants) * len(omegas) * len(hs)
+    for v in variants:
+        for w in omegas:
+            for h in hs:
+                a = arrival(v, w, Arm(h=h, g=g, mu=mu), sides=sides, sigma=sigma, chains=600, exact=True)
+                exact.append(a)
+                tick("exact screen", len(exact), total)
+    exact_best = {str(k): max((a.best[k][1] for a in exact if k in a.best), default=0.0) for k in sides}
+    exact_doc = {"candidates": len(exact), "variants": len(variants), "best_share_per_side": exact_best}
+    ranked = sorted((a for a in exact if fits(a)), key=lambda a: (-a.predicted, a.wrong, a.variant.weight is not None))
+
+    # 2. the engine screen, best exact share first, within the screen's share of the budget
+    screened: list[Arrival] = []
+    limit = plan.screen_share * budget_s
+    n_screen = min(len(ranked), plan.engine_candidates)
+    for i, a in enumerate(ranked[:n_screen]):
+        if time.perf_counter() - t0 > limit and screened:
+            break
+        key = _key(a.variant, a.omega, a.h)
+        if key in seen:
+            d = seen[key]
+            best = {int(k): tuple(v) for k, v in d["best"].items()}
+            e = Arrival(a.variant, a.omega, a.h, d["side"], d["X"], d["predicted"], d["wrong"], best, d["chains"],
+                        d["time_s"], "engine")
+        else:
+            e = arrival(a.variant, a.omega, Arm(h=a.h, g=g, mu=mu), sides=sides, sigma=sigma, workers=workers or None)
+            doc = {"key": key, "side": e.side, "X": e.X, "predicted": e.predicted, "wrong": e.wrong,
+                   "best": {str(k): list(v) for k, v in e.best.items()}, "chains": e.chains, "time_s": e.time_s,
+                   "exact_predicted": a.predicted, "exact_side": a.side, "label": a.variant.label(),
+                   "omega": a.omega, "h": a.h}
+            with store.open("a", encoding="utf-8") as fh:
+                fh.write(json.dumps(doc) + "\n")
+        screened.append(e)
+        tick("engine screen", i + 1, n_screen)
+    screened.sort(key=lambda a: (-a.predicted, a.wrong))
     tried: list[Tried] = []
 
     def result(success, reason="", fed=None, verified=None, rerun=None):
-        return FeederSearch(success, fed.side if fed else None, str(out / "feeder.toml") if fed else None,
-                            verified, rerun, {"window_m": list(fed.window), "width_m": fed.width} if fed else None,
-                            time.perf_counter() - t0, reason, tuple(tried), scr, assumptions)
+        return FeederSearch(success, fed.side if fed else None, str(out / "feeder.toml") if fed else None, fed,
+                            verified, rerun, fed.predicted if fed else None, time.perf_counter() - t0, reason,
+                            tuple(tried), tuple(screened), exact_doc, assumptions)
 
-    if not ranked:
-        return result(False, scr.reason())
-    out.mkdir(parents=True, exist_ok=True)
+    # 3. verification in the feeding experiment
     log = out / "candidates.jsonl"
-    for k, c in ranked:
+    for k, c in enumerate(screened):
+        if c.predicted < plan.min_predicted or not fits(c):
+            continue
         if time.perf_counter() - t0 > budget_s:
             break
         here = out / "candidates" / str(k)
-        path = feeder_files(c, scr, here, mu_rel=mu_rel)
+        path = feeder_files(c, here, mu=mu, g=g, sigma=sigma, mu_rel=mu_rel)
         cfg = read_config(Feed(), path)
         runs = []
 
@@ -183,32 +326,46 @@ def design_feeder(part: Part, out, *, side: int | None = None, mu: float = 1.0, 
             runs.append(_run_doc(res))
             return res
 
-        pre = run(n_pre, seed, "first")
+        pre = run(plan.n_pre, plan.seed, "first")
         verdict = "dropped after the first trials"
         verified = rerun = None
-        if pre.successes >= pre_share * n_pre:
-            full = run(n_verify, seed, "verify")
+        if pre.successes >= plan.pre_share * plan.n_pre:
+            full = run(plan.n_verify, plan.seed, "verify")
             verdict = "below the goal"
-            if full.success_rate >= goal:
-                again = run(n_verify, seed + 1, "rerun")
+            if full.success_rate >= plan.goal:
+                again = run(plan.n_verify, plan.seed + 1, "rerun")
                 lo, hi = full.ci95
-                verdict = ("fed" if again.success_rate >= goal and lo <= again.success_rate <= hi
+                verdict = ("fed" if again.success_rate >= plan.goal and lo <= again.success_rate <= hi
                            else "rerun disagrees")
                 verified, rerun = runs[-2], runs[-1]
         tried.append(Tried(k, c, tuple(runs), verdict))
-        with log.open("a", encoding="utf-8") as fh:
-            fh.write(json.dumps(tried[-1].to_dict()) + "\n")
+        atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))  # this search's candidates
         if verdict == "fed":
             for name in ("feeder.toml", "part.toml"):
                 atomic_write_text(out / name, (here / name).read_text(encoding="utf-8"))
             return result(True, fed=c, verified=verified, rerun=rerun)
-    best = max(tried, key=lambda t: max(r["rate"] for r in t.runs), default=None)
-    if best is None:
-        why = f"the budget ({budget_s:g} s) ran out before any of {len(ranked)} screened candidates was verified"
-    else:
+    return result(False, _reason(sides, exact_best, screened, tried, plan, budget_s))
+
+
+def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: float) -> str:
+    """Why no feeder: each side's best first-arrival share on both screens, and what verification reached."""
+    eng = {k: max((a.best[k][1] for a in screened if k in a.best), default=None) for k in sides}
+    never = [k for k in sides if exact_best[str(k)] == 0 and not eng[k]]
+    parts = []
+    if never:
+        parts.append(f"side(s) {never} never arrive first at a stop they hold on the exact screen")
+    shares = ", ".join(f"side {k}: exact {100 * exact_best[str(k)]:.0f} %"
+                       + (f", engine {100 * eng[k]:.0f} %" if eng[k] is not None else "") for k in sides)
+    parts.append(f"best first-arrival shares ({shares})")
+    if tried:
+        best = max(tried, key=lambda t: max(r["rate"] for r in t.runs))
         rate = max(r["rate"] for r in best.runs)
-        why = (f"none of the {len(tried)} candidates verified in the engine (of {len(ranked)} screened with a window "
-               f"on sides {list(scr.separable())}) fed ≥ {100 * goal:g} %: the best, side {best.candidate.side} at "
-               f"ω = {best.candidate.omega:g} rad/s, h = {best.candidate.h:g} m, reached {100 * rate:.1f} % "
-               f"({best.verdict})")
-    return result(False, why)
+        c = best.candidate
+        parts.append(f"{len(tried)} candidate(s) verified in the engine, none fed ≥ {100 * plan.goal:g} %: the best, side "
+                     f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
+                     f"{100 * rate:.1f} % ({best.verdict})")
+    elif screened and max(a.predicted for a in screened) >= plan.min_predicted:
+        parts.append(f"the budget ({budget_s:g} s) ran out before a candidate was verified")
+    else:
+        parts.append(f"no candidate reached the {100 * plan.min_predicted:g} % share needed to be verified")
+    return "; ".join(parts)

@@ -1,0 +1,325 @@
+"""The design sheet of a verified feeder: drawing, numbers, margins, one fed trial to watch.
+
+:func:`write_sheet` writes into the feeder's folder:
+
+* ``drawing.svg`` / ``drawing.png`` — the arm's end with the lined pocket and the end wall, the part at
+  rest in its fed pose with the lead weight marked, dimensioned (:func:`throwmap.viz.capture.plot_capture`),
+  beside the part in its own frame with the weight's place and the fed side;
+* ``margins`` — how far the nominal ω, the arm's μ, the ω jitter and the weight's place may drift before the
+  feeding experiment falls below the goal: for each direction, steps of growing drift, each an engine run of
+  ``margin_trials`` trials (a step passes when its rate reaches the goal), stopped at the first step that fails;
+* ``fed_trial.html`` — the viewer page of one fed trial of the verification, replayed from its seed
+  (:meth:`throwmap.experiments.feed.Feed.replay`): the throws from the settled drop to 3 throws after capture;
+* ``sheet.md`` / ``sheet.html`` — all of it: the feeder (part, weight, throw schedule, pocket and wall),
+  predicted and verified success with Wilson 95 % intervals, throws to capture (median, p90), the failure
+  modes seen, the margins and the assumptions.
+
+The sheet is built from the search's result and the feeder's own files; every number on it is in SI units
+(lengths also in cm where a drawing speaks cm).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import html
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InvalidStateError
+from ..io.files import atomic_write_text
+
+__all__ = ["write_sheet", "margins", "MARGIN_STEPS"]
+
+MARGIN_STEPS = {
+    "omega": ((-0.03, -0.06, -0.10), (0.03, 0.06, 0.10)),
+    "mu": ((0.8, 0.6), (1.25, 1.5)),
+    "jitter": ((0.05, 0.08),),
+    "weight_x": ((-0.003, -0.006), (0.003, 0.006)),
+    "weight_y": ((-0.003, -0.006), (0.003, 0.006)),
+}
+"""Drift steps per quantity and direction: ω relative change; μ factor on the nominal; jitter σ (absolute);
+the weight's place shifted in the part's x / y, m."""
+
+
+def _drifted(cfg, what: str, step: float, folder: Path):
+    """The feed config ``cfg`` with one quantity drifted by ``step`` (None when the drift is not possible)."""
+    from ..io.config import resolve_part, save_part_toml
+    from .family import Weight, with_weight
+
+    if what == "omega":
+        return cfg.model_copy(update={"omega": cfg.omega * (1.0 + step)})
+    if what == "mu":
+        return cfg.model_copy(update={"arm": cfg.arm.model_copy(update={"mu": cfg.arm.mu * step})})
+    if what == "jitter":
+        return cfg.model_copy(update={"noise": cfg.noise.model_copy(update={"omega_rel": step})})
+    part = resolve_part(cfg.part).part
+    if not part.point_masses:
+        return None
+    m, at = part.point_masses[-1]
+    at = (at[0] + step, at[1]) if what == "weight_x" else (at[0], at[1] + step)
+    base = _without_last_weight(part)
+    try:
+        moved = with_weight(base, Weight(m, at))
+    except Exception:  # the moved weight leaves the plate
+        return None
+    from ..system.geometry import point_in_convex_polygon
+
+    if not point_in_convex_polygon(np.asarray(part.vertices), np.asarray(at)):
+        return None
+    folder.mkdir(parents=True, exist_ok=True)
+    path = save_part_toml(moved, None, folder / "part.toml")
+    return cfg.model_copy(update={"part": str(path.resolve())})
+
+
+def _without_last_weight(part):
+    """``part`` without its last point mass (mass, CM and radius of gyration recomputed)."""
+    m, at = part.point_masses[-1]
+    M = float(part.mass) - m
+    c = (float(part.mass) * np.asarray(part.com) - m * np.asarray(at)) / M
+    C = np.asarray(part.com, dtype=float)
+    inertia = (float(part.mass) * part.radius_of_gyration**2 - m * float(np.sum((np.asarray(at) - C) ** 2))
+               - M * float(np.sum((c - C) ** 2)))  # parallel-axis theorem, backwards
+    return dataclasses.replace(part, mass=M, com=(float(c[0]), float(c[1])), radius_of_gyration=math.sqrt(inertia / M),
+                               point_masses=part.point_masses[:-1])
+
+
+def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 100, workers: int = 0,
+            progress=None) -> dict:
+    """The drift each quantity of :data:`MARGIN_STEPS` tolerates (see the module docstring): per quantity and
+    direction ``{"passed": last step passing or None, "failed": first step failing or None, "runs": [...]}``."""
+    from ..experiments.runner import run_experiment
+
+    folder = Path(folder)
+    out = {}
+    for what, directions in MARGIN_STEPS.items():
+        rows = []
+        for steps in directions:
+            run_list, passed, failed = [], None, None
+            for step in steps:
+                here = folder / f"{what}_{step:+g}"
+                c = _drifted(cfg, what, step, here)
+                if c is None:
+                    break
+                here.mkdir(parents=True, exist_ok=True)
+                cb = None if progress is None else (lambda d, t, lab=f"margin {what} {step:+g}": progress(lab, d, t))
+                res = run_experiment("feed", c, n=trials, seed=seed, workers=workers, out=here / "run", progress=cb)
+                ok = res.success_rate >= goal
+                run_list.append({"step": step, "n": res.n, "successes": res.successes,
+                                 "ci95": [float(res.ci95[0]), float(res.ci95[1])]})
+                if ok:
+                    passed = step
+                else:
+                    failed = step
+                    break
+            if run_list:
+                rows.append({"passed": passed, "failed": failed, "runs": run_list})
+        if rows:
+            out[what] = rows
+    return out
+
+
+def _margin_text(what: str, rows: list) -> str:
+    unit = {"omega": ("ω", lambda v: f"{100 * v:+.0f} %"), "mu": ("μ", lambda v: f"× {v:g}"),
+            "jitter": ("ω jitter σ", lambda v: f"{100 * v:g} %"),
+            "weight_x": ("weight x", lambda v: f"{1000 * v:+.0f} mm"),
+            "weight_y": ("weight y", lambda v: f"{1000 * v:+.0f} mm")}[what]
+    parts = []
+    for r in rows:
+        runs = ", ".join(f"{unit[1](x['step'])}: {x['successes']}/{x['n']}" for x in r["runs"])
+        if r["failed"] is None:
+            verdict = f"holds to {unit[1](r['passed'])} (the largest step tried)"
+        elif r["passed"] is None:
+            verdict = f"falls below the goal at {unit[1](r['failed'])}"
+        else:
+            verdict = f"holds to {unit[1](r['passed'])}, not to {unit[1](r['failed'])}"
+        parts.append(f"{verdict} ({runs})")
+    return unit[0], "; ".join(parts)
+
+
+def _draw(res, design, out: Path) -> list:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle, Polygon
+
+    from ..viz.capture import plot_capture
+    from ..viz.style import side_colors
+    from .family import side_endpoints
+
+    f = res.feeder
+    part = f.variant.part
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5), gridspec_kw={"width_ratios": [2.2, 1]})
+    plot_capture(design, ax=ax, title=f"fed pose: side {f.side} against the end wall at L = {100 * f.X:.1f} cm")
+    if f.variant.weight is not None:  # the weight in the fed pose (the pose plot_capture draws)
+        from ..system.pose import pose_at_rest
+
+        gap = design.numbers.get("end_gap_m", 0.0)
+        pose = design.captured_pose or pose_at_rest(part, design.floor_y, design.length - gap - float(part.uR[f.side]),
+                                                    f.side)
+        c, s_ = math.cos(pose[2]), math.sin(pose[2])
+        d = np.asarray(f.variant.weight.at) - np.asarray(part.com)
+        wx, wy = pose[0] + c * d[0] - s_ * d[1], pose[1] + s_ * d[0] + c * d[1]
+        ax.add_patch(Circle((100 * wx, 100 * wy), 0.5, facecolor="#555", edgecolor="k", zorder=5))
+        ax.annotate(f"lead {1000 * f.variant.weight.mass:.0f} g", (100 * wx, 100 * wy), xytext=(8, 6),
+                    textcoords="offset points", fontsize=8)
+    V = np.asarray(part.vertices)
+    colors = side_colors(len(V))
+    bx.add_patch(Polygon(100 * V, closed=True, facecolor="#dde6f0", edgecolor="k", lw=1))
+    for k in range(len(V)):
+        a, b = side_endpoints(part, k)
+        bx.plot(100 * np.array([a[0], b[0]]), 100 * np.array([a[1], b[1]]), color=colors[k], lw=4 if k == f.side else 2)
+        mid = 50 * (a + b)
+        bx.annotate(f"{k}" + (" (fed)" if k == f.side else ""), mid, fontsize=9, ha="center", va="center",
+                    bbox={"boxstyle": "round", "fc": "white", "ec": colors[k]})
+    c = 100 * np.asarray(part.com)
+    bx.plot(*c, "k+", ms=10)
+    bx.annotate(f"CM ({c[0]:.2f}, {c[1]:.2f})", c, xytext=(6, -12), textcoords="offset points", fontsize=8)
+    if f.variant.weight is not None:
+        w = f.variant.weight
+        p = 100 * np.asarray(w.at)
+        bx.add_patch(Circle(p, 0.5, facecolor="#555", edgecolor="k"))
+        bx.annotate(f"lead {1000 * w.mass:.0f} g at ({p[0]:.2f}, {p[1]:.2f}) cm", p, xytext=(8, 8),
+                    textcoords="offset points", fontsize=8)
+        bx.plot([p[0], p[0]], [0, p[1]], ":", color="#555", lw=0.8)
+        bx.plot([0, p[0]], [p[1], p[1]], ":", color="#555", lw=0.8)
+    bx.set_aspect("equal")
+    bx.set_xlabel("x (cm, part frame)")
+    bx.set_ylabel("y (cm)")
+    bx.set_title("the part" + (" and its lead weight" if f.variant.weight is not None else " (no weight)"))
+    pad = 0.1 * float(np.ptp(100 * V))
+    bx.set_xlim(100 * V[:, 0].min() - pad, 100 * V[:, 0].max() + pad)
+    bx.set_ylim(100 * V[:, 1].min() - pad, 100 * V[:, 1].max() + pad)
+    fig.tight_layout()
+    paths = []
+    for ext in ("svg", "png"):
+        path = out / f"drawing.{ext}"
+        tmp = path.with_name(f".{path.name}.tmp")
+        fig.savefig(tmp, format=ext, dpi=130)
+        tmp.replace(path)
+        paths.append(path)
+    plt.close(fig)
+    return paths
+
+
+def _viewer(cfg, seed: int, index: int, out: Path, title: str):
+    from ..experiments.feed import Feed
+    from ..viz.viewer import player_data, viewer_html, write_viewer
+
+    trial, traj = Feed().replay(cfg, seed, index)
+    if traj is None:
+        return None, trial
+    page = viewer_html(title=title, subtitle=f"trial {index} of the verification (seed {seed}), replayed: "
+                                             f"{trial.values['throws']} throws, captured at throw "
+                                             f"{trial.values['throws_to_capture']:g}", player=player_data(traj))
+    return write_viewer(out / "fed_trial.html", page), trial
+
+
+def _side_length(part, k: int) -> float:
+    return float(part.length[k])
+
+
+def _md_table(header, rows) -> str:
+    out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
+    return "\n".join(out)
+
+
+def _html_table(header, rows) -> str:
+    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>" for r in rows)
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None, progress=None):
+    """Write the design sheet of the verified feeder ``res`` (a successful :class:`~throwmap.feeder.search.FeederSearch`)
+    into ``out`` (see the module docstring); returns ``res`` with ``sheet`` holding the files written, the margins,
+    throws to capture and failure modes. ``margin_trials`` 0 leaves the margins out."""
+    from ..experiments.base import read_config
+    from ..experiments.feed import Feed, build_design
+
+    if not res.success or res.feeder is None:
+        raise InvalidStateError("result", "has no verified feeder to draw (success is False)")
+    out = Path(out)
+    cfg = read_config(Feed(), out / "feeder.toml")
+    design = build_design(cfg)
+    f, v, r = res.feeder, res.verified, res.rerun
+    workers = 0 if workers is None else workers
+    files = {"config": str(out / "feeder.toml"), "part": str(out / "part.toml")}
+    files.update({p.suffix[1:]: str(p) for p in _draw(res, design, out)})
+    title = f"Feeder for {f.variant.part.name}: side {f.side}"
+    page, replayed = None, None
+    if v.get("first_success") is not None:
+        page, replayed = _viewer(cfg, v["seed"], v["first_success"], out, title)
+    if page is not None:
+        files["viewer"] = str(page)
+    marg = {}
+    if margin_trials:
+        marg = margins(cfg, out / "margins", trials=margin_trials, goal=res.assumptions.get("goal", 0.95),
+                       workers=workers, progress=progress)
+    both = [x for x in (v, r) if x]
+    failures = {}
+    for x in both:
+        for k, n in x["failures"].items():
+            failures[k] = failures.get(k, 0) + n
+    ttc = v.get("throws_to_capture")
+    part = f.variant.part
+    nums = design.numbers
+    wall_h = float(design.wall.height)
+    rows_feeder = [
+        ("part", part.name), ("part mass (with weight)", f"{1000 * part.mass:.1f} g"),
+        ("lead weight", f.variant.label()), ("CM (part frame)", f"({100 * part.com[0]:.2f}, {100 * part.com[1]:.2f}) cm"),
+        ("fed side", f"{f.side} (length {100 * _side_length(part, f.side):.2f} cm)"),
+        ("throw", f"ω = {f.omega:.4g} rad/s nominal, ± {100 * cfg.noise.omega_rel:g} % per throw, recoil arm "
+                  f"({math.degrees(cfg.noise.recoil):g}°, ζ = {cfg.noise.zeta:g})"),
+        ("throw schedule", f"throw every time the part has settled; up to {cfg.max_throws} throws to capture, then "
+                           f"{cfg.hold_throws} hold throws"),
+        ("arm", f"surface h = {100 * f.h:.3g} cm from the joint axis, μ = {cfg.arm.mu:g} ± {100 * cfg.noise.mu_rel:g} %"),
+        ("end wall", f"at L = {100 * f.X:.1f} cm from the joint, {100 * wall_h:.1f} cm high, lined μ = {cfg.cavity.wall_mu:g}"),
+        ("pocket", f"{100 * cfg.cavity.depth:.1f} cm deep, floor lined (μ {cfg.cavity.wall_mu:g}), lip "
+                   f"{math.degrees(cfg.cavity.ramp_angle):.0f}°, floor side + {100 * cfg.cavity.clearance:.1f} cm"),
+        ("drops", f"CM x in {list(cfg.x_range)} m, 2–10 cm above the arm, any pose"),
+    ]
+    rows_result = [
+        ("predicted (engine screen: first arrival on the fed side)", f"{100 * f.predicted:.1f} %"),
+        ("verified", f"{v['successes']}/{v['n']} = {100 * v['rate']:.1f} %, Wilson 95 % [{100 * v['ci95'][0]:.1f}, "
+                     f"{100 * v['ci95'][1]:.1f}] % (seed {v['seed']})"),
+        ("independent rerun", f"{r['successes']}/{r['n']} = {100 * r['rate']:.1f} % (seed {r['seed']}), inside the "
+                              "interval above"),
+        ("throws to capture", "—" if not ttc else f"median {ttc['median']:g}, p90 {ttc['p90']:g}, max {ttc['max']:g}"),
+        ("failure modes (both runs)", ", ".join(f"{k} {n}" for k, n in sorted(failures.items())) or "none"),
+    ]
+    rows_margin = [_margin_text(k, rr) for k, rr in marg.items()]
+    sheet = {"files": files, "margins": marg, "failures": failures, "throws_to_capture": ttc,
+             "margin_trials": margin_trials, "wall_height_m": wall_h,
+             "fed_trial": None if replayed is None else {"seed": v["seed"], "index": v["first_success"],
+                                                         "replayed_ok": bool(replayed.success)}}
+    md = [f"# {title}", "", "![drawing](drawing.svg)", "", "## The feeder", "", _md_table(("", ""), rows_feeder), "",
+          "## Predicted and verified", "", _md_table(("", ""), rows_result), ""]
+    if rows_margin:
+        md += ["## Margins", "", f"Each step is {margin_trials} engine trials (seed 100) with one quantity drifted; "
+               f"a step passes with ≥ {100 * res.assumptions.get('goal', 0.95):g} % fed.", "",
+               _md_table(("quantity", "margin"), rows_margin), ""]
+    md += ["## Assumptions", "", "```json", json.dumps(res.assumptions, indent=1, ensure_ascii=False), "```", ""]
+    if page is not None:
+        md += ["One fed trial, replayed: [fed_trial.html](fed_trial.html).", ""]
+    files["markdown"] = str(atomic_write_text(out / "sheet.md", "\n".join(md)))
+    body = [f"<h1>{html.escape(title)}</h1>", '<img src="drawing.svg" alt="drawing" style="max-width:100%">',
+            "<h2>The feeder</h2>", _html_table(("", ""), rows_feeder), "<h2>Predicted and verified</h2>",
+            _html_table(("", ""), rows_result)]
+    if rows_margin:
+        body += ["<h2>Margins</h2>", f"<p>Each step is {margin_trials} engine trials (seed 100) with one quantity "
+                 f"drifted; a step passes with ≥ {100 * res.assumptions.get('goal', 0.95):g} % fed.</p>",
+                 _html_table(("quantity", "margin"), rows_margin)]
+    body += ["<h2>Assumptions</h2>", f"<pre>{html.escape(json.dumps(res.assumptions, indent=1, ensure_ascii=False))}</pre>"]
+    if page is not None:
+        body.append('<p>One fed trial, replayed: <a href="fed_trial.html">fed_trial.html</a>.</p>')
+    style = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em}"
+             "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:4px 8px;text-align:left}")
+    doc = (f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title><style>{style}</style>"
+           f"</head><body>{''.join(body)}</body></html>")
+    files["html"] = str(atomic_write_text(out / "sheet.html", doc))
+    return dataclasses.replace(res, sheet=sheet)
