@@ -18,7 +18,7 @@ from throwmap.errors import InvalidStateError
 from throwmap.experiments.stats import wilson_interval
 from throwmap.feeder import VerifyPlan, design_feeder
 
-GRID = dict(omegas=(4.5,), hs=(-0.02, -0.03))
+GRID = dict(omegas=(4.5,), hs=(-0.02,))
 
 
 def _fake(monkeypatch, rates, predicted=None):
@@ -58,7 +58,7 @@ def tri():
 
 def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_path, monkeypatch):
     calls = _fake(monkeypatch, {"first": 1.0, "verify": 0.97, "rerun": 0.96}, predicted=0.99)
-    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200, seed=5, **GRID))
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, seed=5, **GRID))
     assert res.success and res.config == str(tmp_path / "feeder.toml") and (tmp_path / "part.toml").is_file()
     assert [c[1:] for c in calls] == [("first", 20, 5), ("verify", 200, 5), ("rerun", 200, 6)]
     assert res.verified["successes"] == 194 and res.rerun["successes"] == 192
@@ -79,8 +79,8 @@ def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_pat
 
 def test_a_rerun_outside_the_interval_is_not_a_feeder(tri, tmp_path, monkeypatch):
     _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 0.96}, predicted=0.99)  # 200/200: Wilson [98.1, 100] %
-    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
-    assert not res.success and res.tried and all(t.verdict == "rerun disagrees" for t in res.tried)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
+    assert not res.success and res.tried and all(t.verdict.startswith("rerun disagrees") for t in res.tried)
     assert "rerun disagrees" in res.reason and res.config is None and not (tmp_path / "feeder.toml").exists()
 
 
@@ -89,22 +89,31 @@ def test_weak_candidates_are_dropped_and_the_reason_names_the_best(tri, tmp_path
     rates[(1, "first")] = 0.95
     rates[(1, "verify")] = 0.9
     _fake(monkeypatch, rates, predicted=0.99)
-    res = design_feeder(tri, tmp_path, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=4, **GRID))
-    assert not res.success and len(res.tried) == 4
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=4, **GRID))
+    assert not res.success and [t.k for t in res.tried][:2] == [0, 1]
+    # candidate 1 passed its first trials and fell short: its neighbours are tried next, before 2 and 3 (a wall
+    # nearer than the drop zone allows is not a neighbour)
+    refined = [t for t in res.tried if "refined from candidate 1" in t.verdict]
+    assert [t.k for t in refined] == list(range(4, 4 + len(refined))) and [t.k for t in res.tried][-2:] == [2, 3]
+    c1 = res.screened[1]
+    deltas = {(round(t.candidate.X - c1.X, 6), round(t.candidate.omega - c1.omega, 6), round(t.candidate.h - c1.h, 6))
+              for t in refined}
+    assert {(0, -0.25, 0), (0, 0.25, 0), (0, 0, -0.005), (0, 0, 0.005), (0.01, 0, 0)} <= deltas
+    assert deltas <= {(-0.01, 0, 0), (0.01, 0, 0), (0, -0.25, 0), (0, 0.25, 0), (0, 0, -0.005), (0, 0, 0.005)}
     assert [t.verdict for t in res.tried].count("dropped after the first trials") == 3
     assert "reached 95.0 %" in res.reason and "below the goal" in res.reason
 
 
 def test_candidates_predicted_below_the_threshold_are_not_run(tri, tmp_path, monkeypatch):
     calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=0.5)
-    res = design_feeder(tri, tmp_path, plan=VerifyPlan(engine_candidates=3, **GRID))
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, **GRID))
     assert not res.success and calls == [] and "no candidate reached the 90 % share" in res.reason
     assert "best first-arrival shares" in res.reason
 
 
 def test_the_engine_screen_is_read_back_instead_of_run_again(tri, tmp_path, monkeypatch):
     _fake(monkeypatch, {}, predicted=0.95)
-    first = design_feeder(tri, tmp_path, plan=VerifyPlan(engine_candidates=3, **GRID))
+    first = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, **GRID))
     lines = (tmp_path / "screen.jsonl").read_text().splitlines()
     assert len(lines) == 3 and all(json.loads(x)["predicted"] == 0.95 for x in lines)
     exact = search.arrival
@@ -114,7 +123,7 @@ def test_the_engine_screen_is_read_back_instead_of_run_again(tri, tmp_path, monk
         return exact(v, w, arm, **kw)
 
     monkeypatch.setattr(search, "arrival", no_engine)
-    again = design_feeder(tri, tmp_path, plan=VerifyPlan(engine_candidates=3, **GRID))
+    again = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, **GRID))
     assert [(a.side, a.X, a.predicted) for a in again.screened] == [(a.side, a.X, a.predicted) for a in first.screened]
 
 
@@ -123,7 +132,7 @@ def test_the_engine_screen_is_read_back_instead_of_run_again(tri, tmp_path, monk
                                        ({"engine_candidates": 0}, "engine_candidates")])
 def test_bad_search_settings_name_their_field(tri, tmp_path, kw, field):
     with pytest.raises(InvalidStateError) as err:
-        design_feeder(tri, tmp_path, plan=VerifyPlan(**kw, **GRID))
+        design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(**kw, **GRID))
     assert err.value.field == field
 
 
@@ -131,7 +140,7 @@ def test_bad_search_settings_name_their_field(tri, tmp_path, kw, field):
                                        ({"arm_length": 0.0}, "arm_length"), ({"mu": float("nan")}, "mu")])
 def test_bad_search_inputs_name_their_field(tri, tmp_path, kw, field):
     with pytest.raises(InvalidStateError) as err:
-        design_feeder(tri, tmp_path, plan=VerifyPlan(**GRID), **kw)
+        design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(**GRID), **kw)
     assert err.value.field == field
 
 
@@ -145,7 +154,8 @@ def test_bad_grids_name_their_field(kw, field):
 
 def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_path):
     res = CliRunner().invoke(app, ["feeder", "design", "triangle", "--out", str(tmp_path / "f"), "--budget", "0",
-                                   "--omega", "4.5", "--h", "-0.02", "--weight", "none", "--candidates", "1", "--json"])
+                                   "--omega", "4.5", "--h", "-0.02", "--weight", "none", "--side", "0", "--candidates", "1",
+                                   "--json"])
     assert res.exit_code == 1, res.output
     doc = json.loads(res.stdout)
     assert doc["success"] is False and doc["config"] is None and doc["verified"] is None and doc["side"] is None

@@ -12,7 +12,9 @@ stages of rising cost:
    the engine (``feed``: drops from random poses, the recoil arm with ω jitter, μ spread; see
    :mod:`throwmap.experiments.feed`): ``n_pre`` trials (fewer than ``pre_share`` fed drops the candidate),
    then ``n_verify`` trials, and where those reach ``goal`` an independent rerun of ``n_verify`` trials with
-   another seed that must reach ``goal`` too and land inside the first run's Wilson 95 % interval.
+   another seed that must reach ``goal`` too and land inside the first run's Wilson 95 % interval. A candidate
+   that passes its first trials but falls short is **refined**: its neighbours (end wall ± 1 cm, ω ± 0.25
+   rad/s, h ± 5 mm) are verified next.
 
 The first candidate that passes is the feeder; none passing within the budget is ``success`` False with the
 evidence (each side's best share on both screens, the best verified rate and by whom).
@@ -308,11 +310,13 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                             verified, rerun, fed.predicted if fed else None, time.perf_counter() - t0, reason,
                             tuple(tried), tuple(screened), exact_doc, assumptions)
 
-    # 3. verification in the feeding experiment
+    # 3. verification in the feeding experiment; a candidate that passes its first trials but falls short is refined
     log = out / "candidates.jsonl"
-    for k, c in enumerate(screened):
-        if c.predicted < plan.min_predicted or not fits(c):
-            continue
+    queue = [k for k, c in enumerate(screened) if c.predicted >= plan.min_predicted and fits(c)]
+    refined_from: dict[int, int] = {}
+    while queue:
+        k = queue.pop(0)
+        c = screened[k]
         if time.perf_counter() - t0 > budget_s:
             break
         here = out / "candidates" / str(k)
@@ -338,13 +342,42 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                 verdict = ("fed" if again.success_rate >= plan.goal and lo <= again.success_rate <= hi
                            else "rerun disagrees")
                 verified, rerun = runs[-2], runs[-1]
+        if k in refined_from:
+            verdict += f" (refined from candidate {refined_from[k]})"
         tried.append(Tried(k, c, tuple(runs), verdict))
         atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))  # this search's candidates
-        if verdict == "fed":
+        if verdict.startswith("fed"):
             for name in ("feeder.toml", "part.toml"):
                 atomic_write_text(out / name, (here / name).read_text(encoding="utf-8"))
             return result(True, fed=c, verified=verified, rerun=rerun)
+        if verdict.startswith(("below the goal", "rerun disagrees")) and k not in refined_from:
+            near = _neighbours(c, g=g, mu=mu, sigma=sigma, workers=workers, budget_left=budget_s - (time.perf_counter() - t0))
+            fresh = [a for a in near if a.predicted >= plan.min_predicted and fits(a)]
+            for a in fresh:
+                refined_from[len(screened)] = k
+                screened.append(a)
+            queue[:0] = list(range(len(screened) - len(fresh), len(screened)))  # the neighbours first
     return result(False, _reason(sides, exact_best, screened, tried, plan, budget_s))
+
+
+def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, budget_left: float) -> list:
+    """The refinement of a candidate that passed its first trials but fell short: its end wall 1 cm nearer and farther
+    (carrying the share of the stop they moved from: the engine screen keeps each side's best stop only), and
+    ω ± 0.25 rad/s, h ± 5 mm on the engine screen (while half of ``budget_left`` s allows, 5–30 s each)."""
+    import dataclasses
+    import time as _time
+
+    out = []
+    for dX in (-0.01, 0.01):
+        X = round(c.X + dX, 6)
+        if DROP_X[1] + float(np.max(c.variant.part.uR)) + 0.01 - 1e-9 <= X:
+            out.append(dataclasses.replace(c, X=X))
+    t0 = _time.perf_counter()
+    for w, h in ((c.omega - 0.25, c.h), (c.omega + 0.25, c.h), (c.omega, c.h - 0.005), (c.omega, c.h + 0.005)):
+        if w <= 0 or _time.perf_counter() - t0 > budget_left / 2:
+            continue
+        out.append(arrival(c.variant, w, Arm(h=h, g=g, mu=mu), sides=(c.side,), sigma=sigma, workers=workers or None))
+    return out
 
 
 def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: float) -> str:
