@@ -36,3 +36,14 @@ def test_each_drift_changes_only_its_quantity(tmp_path):
     assert m1 == pytest.approx(m0) and np.subtract(p1, p0) == pytest.approx((0.0, 0.003), abs=1e-12)
     assert after.vertices == before.vertices and after.mass == pytest.approx(before.mass)
     assert _drifted(cfg, "weight_x", 1.0, tmp_path / "far") is None  # off the plate: not a drift
+
+
+def test_no_margin_step_starts_after_the_budget(tmp_path, monkeypatch):
+    import throwmap.experiments.runner as runner
+    from throwmap.feeder.sheet import MARGIN_STEPS, _margin_text, margins
+
+    monkeypatch.setattr(runner, "run_experiment", lambda *a, **k: pytest.fail("a margin step ran"))
+    cfg = read_config(Feed(), "examples/feed_recoil.toml")
+    out = margins(cfg, tmp_path, budget_s=-1.0)
+    assert set(out) == set(MARGIN_STEPS) and all(r["not measured"] == "budget" for rows in out.values() for r in rows)
+    assert "not measured" in _margin_text("omega", out["omega"])[1]

@@ -108,7 +108,9 @@ def design_cmd(
             if res.success:
                 from ..feeder.sheet import write_sheet
 
-                res = write_sheet(res, out, margin_trials=margin_trials, workers=workers, progress=progress)
+                left = max(60.0, 60.0 * budget - res.time_s)  # the margins get what the search left (≥ 1 min)
+                res = write_sheet(res, out, margin_trials=margin_trials, workers=workers, budget_s=left,
+                                  progress=progress)
         if as_json:
             typer.echo(to_json(res.to_dict()))
         else:

@@ -87,18 +87,27 @@ def _without_last_weight(part):
 
 
 def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 100, workers: int = 0,
-            progress=None) -> dict:
+            budget_s: float = math.inf, progress=None) -> dict:
     """The drift each quantity of :data:`MARGIN_STEPS` tolerates (see the module docstring): per quantity and
-    direction ``{"passed": last step passing or None, "failed": first step failing or None, "runs": [...]}``."""
+    direction ``{"passed": last step passing or None, "failed": first step failing or None, "runs": [...]}``; no
+    step is started after ``budget_s`` seconds (the directions left get ``"not measured": "budget"``)."""
+    import time
+
     from ..experiments.runner import run_experiment
 
+    t0 = time.perf_counter()
     folder = Path(folder)
     out = {}
     for what, directions in MARGIN_STEPS.items():
         rows = []
         for steps in directions:
+            if time.perf_counter() - t0 > budget_s:
+                rows.append({"passed": None, "failed": None, "runs": [], "not measured": "budget"})
+                continue
             run_list, passed, failed = [], None, None
             for step in steps:
+                if time.perf_counter() - t0 > budget_s:
+                    break
                 here = folder / f"{what}_{step:+g}"
                 c = _drifted(cfg, what, step, here)
                 if c is None:
@@ -128,6 +137,9 @@ def _margin_text(what: str, rows: list) -> str:
             "weight_y": ("weight y", lambda v: f"{1000 * v:+.0f} mm")}[what]
     parts = []
     for r in rows:
+        if r.get("not measured"):
+            parts.append("not measured (the search's time budget was spent)")
+            continue
         runs = ", ".join(f"{unit[1](x['step'])}: {x['successes']}/{x['n']}" for x in r["runs"])
         if r["failed"] is None:
             verdict = f"holds to {unit[1](r['passed'])} (the largest step tried)"
@@ -234,10 +246,12 @@ def _html_table(header, rows) -> str:
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
-def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None, progress=None):
+def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None, budget_s: float = math.inf,
+                progress=None):
     """Write the design sheet of the verified feeder ``res`` (a successful :class:`~throwmap.feeder.search.FeederSearch`)
     into ``out`` (see the module docstring); returns ``res`` with ``sheet`` holding the files written, the margins,
-    throws to capture and failure modes. ``margin_trials`` 0 leaves the margins out."""
+    throws to capture and failure modes. ``margin_trials`` 0 leaves the margins out; no margin step is started after
+    ``budget_s`` seconds."""
     from ..experiments.base import read_config
     from ..experiments.feed import Feed, build_design
 
@@ -259,7 +273,7 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
     marg = {}
     if margin_trials:
         marg = margins(cfg, out / "margins", trials=margin_trials, goal=res.assumptions.get("goal", 0.95),
-                       workers=workers, progress=progress)
+                       workers=workers, budget_s=budget_s, progress=progress)
     both = [x for x in (v, r) if x]
     failures = {}
     for x in both:
