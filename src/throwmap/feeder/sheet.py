@@ -311,8 +311,8 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
              "margin_trials": margin_trials, "wall_height_m": wall_h,
              "fed_trial": None if replayed is None else {"seed": v["seed"], "index": v["first_success"],
                                                          "replayed_ok": bool(replayed.success)}}
-    md = [f"# {title}", "", "![drawing](drawing.svg)", "", "## The feeder", "", _md_table(("", ""), rows_feeder), "",
-          "## Predicted and verified", "", _md_table(("", ""), rows_result), ""]
+    md = [f"# {title}", "", "![drawing](drawing.svg)", "", "## The feeder", "", _md_table(("item", "value"), rows_feeder), "",
+          "## Predicted and verified", "", _md_table(("item", "value"), rows_result), ""]
     if rows_margin:
         md += ["## Margins", "", f"Each step is {margin_trials} engine trials (seed 100) with one quantity drifted; "
                f"a step passes with ≥ {100 * res.assumptions.get('goal', 0.95):g} % fed.", "",
@@ -322,8 +322,8 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
         md += ["One fed trial, replayed: [fed_trial.html](fed_trial.html).", ""]
     files["markdown"] = str(atomic_write_text(out / "sheet.md", "\n".join(md)))
     body = [f"<h1>{html.escape(title)}</h1>", '<img src="drawing.svg" alt="drawing" style="max-width:100%">',
-            "<h2>The feeder</h2>", _html_table(("", ""), rows_feeder), "<h2>Predicted and verified</h2>",
-            _html_table(("", ""), rows_result)]
+            "<h2>The feeder</h2>", _html_table(("item", "value"), rows_feeder), "<h2>Predicted and verified</h2>",
+            _html_table(("item", "value"), rows_result)]
     if rows_margin:
         body += ["<h2>Margins</h2>", f"<p>Each step is {margin_trials} engine trials (seed 100) with one quantity "
                  f"drifted; a step passes with ≥ {100 * res.assumptions.get('goal', 0.95):g} % fed.</p>",
