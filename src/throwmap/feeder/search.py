@@ -6,8 +6,8 @@ stages of rising cost:
 
 1. **exact screen** — every (variant, ω, h) on the exact impulse model (:func:`~throwmap.feeder.arrival.arrival`
    with ``model="rigid_body"``, ≈ 0.1 s each): which side arrives first at an end stop, and how often;
-2. **engine screen** — the best of those, widest share first, on the engine's recoil-arm table (5–30 s each),
-   until ``screen_share`` of the budget is spent; a candidate's engine share is its *predicted* feed rate;
+2. **engine screen** — the best of those on the engine's recoil-arm table (5–30 s each), until ``screen_share`` of the budget is spent (80 % while no candidate has
+   reached ``min_predicted``); a candidate's engine share is its *predicted* feed rate;
 3. **verification** — candidates predicted ≥ ``min_predicted``, best first, run as the feeding experiment in
    the engine (``feed``: drops from random poses, the recoil arm with ω jitter, μ spread; see
    :mod:`throwmap.experiments.feed`): ``n_pre`` trials (fewer than ``pre_share`` fed drops the candidate),
@@ -279,12 +279,14 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     exact_doc = {"candidates": len(exact), "variants": len(variants), "best_share_per_side": exact_best}
     ranked = sorted((a for a in exact if fits(a)), key=lambda a: (-a.predicted, a.wrong, a.variant.weight is not None))
 
-    # 2. the engine screen, best exact share first, within the screen's share of the budget
+    # 2. the engine screen, best exact share first, within the screen's share of the budget — or, while no
+    #    candidate reaches the share needed for verification, until 80 % of it
     screened: list[Arrival] = []
-    limit = plan.screen_share * budget_s
     n_screen = min(len(ranked), plan.engine_candidates)
     for i, a in enumerate(ranked[:n_screen]):
-        if time.perf_counter() - t0 > limit and screened:
+        spent = time.perf_counter() - t0
+        hopeful = any(e.predicted >= plan.min_predicted for e in screened)
+        if screened and (spent > 0.8 * budget_s or (hopeful and spent > plan.screen_share * budget_s)):
             break
         key = _key(a.variant, a.omega, a.h)
         if key in seen:
