@@ -40,9 +40,10 @@ def _fake(monkeypatch, rates, predicted=None):
 
     def run_experiment(name, cfg, *, n, seed, workers, out, progress=None):
         k = int(out.parent.name)
-        r = rates.get((k, out.name), rates.get(out.name, 0.0))
+        stage = out.name if out.name == "rerun" else ("first" if n <= 20 else "verify")
+        r = rates.get((k, stage), rates.get(stage, 0.0))
         s = int(round(r * n))
-        calls.append((k, out.name, n, seed))
+        calls.append((k, stage, n, seed))
         return SimpleNamespace(n=n, successes=s, success_rate=s / n, ci95=wilson_interval(s, n), seed=seed,
                                failures={} if s == n else {"not_captured": n - s}, trials=())
 
@@ -60,7 +61,9 @@ def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_pat
     calls = _fake(monkeypatch, {"first": 1.0, "verify": 0.97, "rerun": 0.96}, predicted=0.99)
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, seed=5, **GRID))
     assert res.success and res.config == str(tmp_path / "feeder.toml") and (tmp_path / "part.toml").is_file()
-    assert [c[1:] for c in calls] == [("first", 20, 5), ("verify", 200, 5), ("rerun", 200, 6)]
+    # the first trials 5 at a time, then the verification extends them (same seed), then the rerun (seed + 1)
+    assert [c[1:] for c in calls] == [("first", 5, 5), ("first", 10, 5), ("first", 15, 5), ("first", 20, 5),
+                                      ("verify", 200, 5), ("rerun", 200, 6)]
     assert res.verified["successes"] == 194 and res.rerun["successes"] == 192
     assert res.side == res.tried[0].candidate.side and res.tried[0].verdict == "fed"
     doc = res.to_dict()
@@ -176,3 +179,10 @@ def test_bad_command_input_is_one_line_exit_2(tmp_path, args, field):
     lines = [ln for ln in res.output.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith(f"error: {field}"), lines
     assert res.stdout == ""  # nothing but the error line
+
+
+def test_the_first_trials_stop_as_soon_as_the_candidate_cannot_pass(tri, tmp_path, monkeypatch):
+    calls = _fake(monkeypatch, {"first": 0.4}, predicted=0.99)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=2, **GRID))
+    assert [c[1:3] for c in calls] == [("first", 5)] * 2  # 2 of 5 fed: 3 failures > the 2 that 90 % of 20 allows
+    assert all(t.verdict == "dropped after the first trials" and len(t.runs) == 1 for t in res.tried)

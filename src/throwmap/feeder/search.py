@@ -10,7 +10,8 @@ stages of rising cost:
    reached ``min_predicted``); a candidate's engine share is its *predicted* feed rate;
 3. **verification** — candidates predicted ≥ ``min_predicted``, best first, run as the feeding experiment in
    the engine (``feed``: drops from random poses, the recoil arm with ω jitter, μ spread; see
-   :mod:`throwmap.experiments.feed`): ``n_pre`` trials (fewer than ``pre_share`` fed drops the candidate),
+   :mod:`throwmap.experiments.feed`): ``n_pre`` trials, run 5 at a time and stopped as soon as more fail than
+   ``pre_share`` allows (which drops the candidate),
    then ``n_verify`` trials, and where those reach ``goal`` an independent rerun of ``n_verify`` trials with
    another seed that must reach ``goal`` too and land inside the first run's Wilson 95 % interval. A candidate
    that passes its first trials but falls short is **refined**: its neighbours (end wall ± 1 cm, ω ± 0.25
@@ -332,10 +333,16 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             runs.append(_run_doc(res))
             return res
 
-        pre = run(plan.n_pre, plan.seed, "first")
+        allowed = plan.n_pre - math.ceil(plan.pre_share * plan.n_pre - 1e-9)  # failures the first trials may have
+        for n in sorted({min(plan.n_pre, m) for m in range(5, plan.n_pre + 5, 5)}):  # 5, 10, …: stop once lost
+            pre = run(n, plan.seed, "verify")  # the verification extends these trials (same seed, same folder)
+            if pre.n - pre.successes > allowed:
+                break
+        if len(runs) > 1:  # the first trials are one run, stored in one folder
+            runs[:] = [runs[-1]]
         verdict = "dropped after the first trials"
         verified = rerun = None
-        if pre.successes >= plan.pre_share * plan.n_pre:
+        if pre.n == plan.n_pre and pre.successes >= plan.pre_share * plan.n_pre:
             full = run(plan.n_verify, plan.seed, "verify")
             verdict = "below the goal"
             if full.success_rate >= plan.goal:
