@@ -39,10 +39,10 @@ def test_the_feeder_tutorial_runs_as_written(tmp_path):
     design, feed = docs
     assert design["success"] is True and design["side"] == 0 and design["config"].endswith("feeder.toml")
     v = design["verified"]
-    assert v["n"] == 10 and v["successes"] >= 9 and v["ci95"][0] <= v["successes"] / v["n"] <= v["ci95"][1]
+    assert v["n"] == 5 and v["successes"] >= 5 and v["ci95"][0] <= v["successes"] / v["n"] <= v["ci95"][1]
     assert design["assumptions"]["omega_jitter_rel"] == 0.03 and design["feeder"]["variant"]["weight"]["mass_kg"] <= 0.05
     for name in ("feeder.toml", "part.toml", "sheet.md", "sheet.html", "drawing.svg", "drawing.png", "fed_trial.html"):
         assert (tmp_path / "quick" / name).is_file(), name
     sheet = (tmp_path / "quick" / "sheet.md").read_text()
     assert f"{v['successes']}/{v['n']}" in sheet and "throws to capture" in sheet
-    assert feed["n"] == 5 and feed["successes"] >= 4
+    assert feed["n"] == 3 and feed["successes"] >= 2
