@@ -39,7 +39,7 @@ def _fake(monkeypatch, rates, predicted=None):
         return dataclasses.replace(a, model="engine")
 
     def run_experiment(name, cfg, *, n, seed, workers, out, progress=None):
-        k = int(out.parent.name)
+        k = int(out.parent.name.split("-")[0])
         stage = out.name if out.name == "rerun" else ("first" if n <= 20 else "verify")
         r = rates.get((k, stage), rates.get(stage, 0.0))
         s = int(round(r * n))

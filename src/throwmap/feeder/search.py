@@ -21,8 +21,8 @@ The first candidate that passes is the feeder; none passing within the budget is
 evidence (each side's best share on both screens, the best verified rate and by whom).
 
 Every screened and verified candidate is kept in ``out``: the screens in ``out/screen.jsonl``, each verified
-candidate's files and trials in ``out/candidates/<k>/``; a rerun of the same search reads them back instead of
-computing them again (Ctrl-C loses nothing already written).
+candidate's files and trials in ``out/candidates/<k>-<tag>/`` (``k`` its rank, ``tag`` a hash of the candidate);
+a rerun of the same search reads them back instead of computing them again (Ctrl-C loses nothing already written).
 """
 
 from __future__ import annotations
@@ -196,6 +196,15 @@ def _weight_cap(part: Part, weight) -> float:
     return float(weight)
 
 
+def _tag(c: Arrival) -> str:
+    """A short name of a screened candidate (weight, ω, h, side, end wall) for its folder."""
+    import hashlib
+
+    doc = [c.variant.weight.to_dict() if c.variant.weight else None, round(c.omega, 9), round(c.h, 9), c.side,
+           round(c.X, 9)]
+    return hashlib.sha1(json.dumps(doc).encode()).hexdigest()[:8]
+
+
 def _key(v: Variant, w: float, h: float) -> str:
     return json.dumps([v.weight.to_dict() if v.weight else None, round(w, 9), round(h, 9)])
 
@@ -322,7 +331,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         c = screened[k]
         if time.perf_counter() - t0 > budget_s:
             break
-        here = out / "candidates" / str(k)
+        here = out / "candidates" / f"{k}-{_tag(c)}"  # the tag: a folder never holds two candidates' trials
         path = feeder_files(c, here, mu=mu, g=g, sigma=sigma, mu_rel=mu_rel)
         cfg = read_config(Feed(), path)
         runs = []

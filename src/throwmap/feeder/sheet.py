@@ -272,7 +272,10 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
         files["viewer"] = str(page)
     marg = {}
     if margin_trials:
-        marg = margins(cfg, out / "margins", trials=margin_trials, goal=res.assumptions.get("goal", 0.95),
+        import hashlib
+
+        tag = hashlib.sha1((out / "feeder.toml").read_bytes()).hexdigest()[:10]  # a rerun that found another feeder
+        marg = margins(cfg, out / "margins" / tag, trials=margin_trials, goal=res.assumptions.get("goal", 0.95),
                        workers=workers, budget_s=budget_s, progress=progress)
     both = [x for x in (v, r) if x]
     failures = {}
