@@ -383,16 +383,15 @@ def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, 
     (carrying the share of the stop they moved from: the engine screen keeps each side's best stop only), and
     ω ± 0.25 rad/s, h ± 5 mm on the engine screen (while half of ``budget_left`` s allows, 5–30 s each)."""
     import dataclasses
-    import time as _time
 
     out = []
     for dX in (-0.01, 0.01):
         X = round(c.X + dX, 6)
         if DROP_X[1] + float(np.max(c.variant.part.uR)) + 0.01 - 1e-9 <= X:
             out.append(dataclasses.replace(c, X=X))
-    t0 = _time.perf_counter()
+    t0 = time.perf_counter()
     for w, h in ((c.omega - 0.25, c.h), (c.omega + 0.25, c.h), (c.omega, c.h - 0.005), (c.omega, c.h + 0.005)):
-        if w <= 0 or _time.perf_counter() - t0 > budget_left / 2:
+        if w <= 0 or time.perf_counter() - t0 > budget_left / 2:
             continue
         out.append(arrival(c.variant, w, Arm(h=h, g=g, mu=mu), sides=(c.side,), sigma=sigma, workers=workers or None))
     return out

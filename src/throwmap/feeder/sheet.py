@@ -60,15 +60,11 @@ def _drifted(cfg, what: str, step: float, folder: Path):
         return None
     m, at = part.point_masses[-1]
     at = (at[0] + step, at[1]) if what == "weight_x" else (at[0], at[1] + step)
-    base = _without_last_weight(part)
-    try:
-        moved = with_weight(base, Weight(m, at))
-    except Exception:  # the moved weight leaves the plate
-        return None
     from ..system.geometry import point_in_convex_polygon
 
-    if not point_in_convex_polygon(np.asarray(part.vertices), np.asarray(at)):
+    if not point_in_convex_polygon(np.asarray(part.vertices), np.asarray(at)):  # the moved weight leaves the plate
         return None
+    moved = with_weight(_without_last_weight(part), Weight(m, at))
     folder.mkdir(parents=True, exist_ok=True)
     path = save_part_toml(moved, None, folder / "part.toml")
     return cfg.model_copy(update={"part": str(path.resolve())})
@@ -159,7 +155,7 @@ def _draw(res, design, out: Path) -> list:
     from matplotlib.patches import Circle, Polygon
 
     from ..viz.capture import plot_capture
-    from ..viz.style import side_colors
+    from ..viz.style import save_figure, side_colors
     from .family import side_endpoints
 
     f = res.feeder
@@ -206,13 +202,7 @@ def _draw(res, design, out: Path) -> list:
     bx.set_xlim(100 * V[:, 0].min() - pad, 100 * V[:, 0].max() + pad)
     bx.set_ylim(100 * V[:, 1].min() - pad, 100 * V[:, 1].max() + pad)
     fig.tight_layout()
-    paths = []
-    for ext in ("svg", "png"):
-        path = out / f"drawing.{ext}"
-        tmp = path.with_name(f".{path.name}.tmp")
-        fig.savefig(tmp, format=ext, dpi=130)
-        tmp.replace(path)
-        paths.append(path)
+    paths = [save_figure(fig, out / f"drawing.{ext}") for ext in ("svg", "png")]
     plt.close(fig)
     return paths
 
