@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import throwmap as tm
 from throwmap.feeder import Variant, arrival
-from throwmap.feeder.arrival import DROP_X, exact_table
+from throwmap.feeder.arrival import DROP_X, exact_table, screen_table
 from throwmap.system.arm import Arm
 
 
@@ -30,7 +32,8 @@ def test_the_exact_table_is_the_exact_models_throws():
 
 def test_arrival_shares_are_bounded_and_stops_lie_beyond_the_drops():
     tri = tm.triangle_30_60_90(0.17)
-    a = arrival(Variant(tri, None, None), 4.5, Arm(h=-0.02), exact=True, chains=300)
+    a = arrival(Variant(tri, None, None), 4.5, Arm(h=-0.02), chains=300,
+                table=screen_table(tri, 4.5, Arm(h=-0.02), exact=True))
     assert set(a.best) == set(tri.stable_sides)
     for X, first, wrong, holds in a.best.values():
         assert 0 <= first <= 1 and 0 <= wrong <= 1 and first + wrong <= 1 + 1e-12
@@ -43,5 +46,41 @@ def test_the_examples_recoil_feeder_arrives_first_on_its_side_in_the_engine():
     from throwmap.io.config import resolve_part
 
     part = resolve_part("examples/recoil_feeder.toml").part
-    a = arrival(Variant(part, None, None), 4.559824565181344, Arm(h=-0.02042023480254783, mu=1.0), workers=1)
+    arm = Arm(h=-0.02042023480254783, mu=1.0)
+    a = arrival(Variant(part, None, None), 4.559824565181344, arm, table=screen_table(part, 4.559824565181344, arm, workers=1))
     assert a.side == 0 and a.predicted >= 0.99 and a.wrong == 0 and 0.37 <= a.X <= 0.41
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_the_pocket_floor_covers_the_parts_footprint_on_its_side(seed):
+    """Laid flat on side k, the part spans exactly ℓ_k + (clearance − 5 mm) along the arm: the floor a pocket needs."""
+    from throwmap.feeder import random_plate
+    from throwmap.feeder.arrival import lip_offset, pocket_clearance
+    from throwmap.system.pose import pose_at_rest, world_vertices
+
+    part = random_plate(np.random.default_rng(seed))
+    for k in part.stable_sides:
+        xs = world_vertices(part, pose_at_rest(part, 0.0, 0.2, k))[:, 0]
+        assert float(xs.max() - xs.min()) == pytest.approx(part.length[k] + pocket_clearance(part, k) - 0.005, abs=1e-9)
+        assert lip_offset(part, k, 0.0) == 0.0
+        assert lip_offset(part, k, 0.01) == pytest.approx(xs.max() - xs.min() + 0.005 + 0.01 / np.tan(np.radians(60)))
+
+
+def test_a_rectangle_needs_no_more_floor_than_its_side():
+    from throwmap.feeder.arrival import pocket_clearance
+
+    box = tm.Part.from_vertices([(0.0, 0.0), (0.0, 0.04), (0.1, 0.04), (0.1, 0.0)], mass=0.05, name="box")
+    assert all(pocket_clearance(box, k) == pytest.approx(0.005) for k in range(4))
+
+
+def test_a_chain_that_starts_past_a_stop_is_there_on_the_side_it_starts_on():
+    """A stop every drop is already past: each chain counts on the side it was dropped on, whatever its throws do."""
+    from throwmap.design.passage import first_passage
+
+    tri = tm.triangle_30_60_90(0.17)
+    t = exact_table(tri, Arm(h=-0.02), 5.5)
+    sides = np.asarray(tri.stable_sides)
+    p = first_passage(tri, t, 0, n=2000, throws=5, seed=3, x_range=(0.2, 0.25), X=np.array([0.05]))
+    dropped = sides[np.random.default_rng(3).integers(0, sides.size, 2000)]  # the chains' first draw: their sides
+    assert p.good[0] == pytest.approx(np.mean(dropped == 0), abs=1e-12) and p.good[0] + p.wrong[0] == 1.0

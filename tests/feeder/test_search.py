@@ -17,22 +17,29 @@ from throwmap.cli.app import app
 from throwmap.errors import InvalidStateError
 from throwmap.experiments.stats import wilson_interval
 from throwmap.feeder import VerifyPlan, design_feeder
+from throwmap.feeder.hold import Hold
 
 GRID = dict(omegas=(4.5,), hs=(-0.02,))
 
 
-def _fake(monkeypatch, rates, predicted=None):
-    """Replace the engine: the engine screen is the exact screen (its share times ``predicted`` when given); run i of
-    candidate k feeds ``rates[(k, name)]`` (or ``rates[name]``, default 0) of its trials."""
+def _fake(monkeypatch, rates, predicted=None, unheld=()):
+    """Replace the engine: the engine screen is the exact screen (its share times ``predicted`` when given); the
+    pocket holds every candidate but those ranked in ``unheld``; run i of candidate k feeds ``rates[(k, name)]`` (or
+    ``rates[name]``, default 0) of its trials."""
     import dataclasses
 
     import throwmap.experiments.runner as runner
 
     calls, real = [], search.arrival
 
-    def arrival(v, w, arm, **kw):
+    real_table = search.screen_table
+
+    def screen_table(part, w, arm, **kw):
         kw["exact"] = True
         kw.pop("workers", None)
+        return real_table(part, w, arm, **kw)
+
+    def arrival(v, w, arm, **kw):
         a = real(v, w, arm, **kw)
         if predicted is not None:
             a = dataclasses.replace(a, predicted=predicted)
@@ -47,7 +54,13 @@ def _fake(monkeypatch, rates, predicted=None):
         return SimpleNamespace(n=n, successes=s, success_rate=s / n, ci95=wilson_interval(s, n), seed=seed,
                                failures={} if s == n else {"not_captured": n - s}, trials=())
 
+    def hold(cfg, here):
+        k = int(here.name.split("-")[0])
+        return Hold(False, 1, "other", 3.0) if k in unheld else Hold(True, 6, "target", None)
+
     monkeypatch.setattr(search, "arrival", arrival)
+    monkeypatch.setattr(search, "screen_table", screen_table)
+    monkeypatch.setattr(search, "_hold", hold)
     monkeypatch.setattr(runner, "run_experiment", run_experiment)
     return calls
 
@@ -92,6 +105,7 @@ def test_weak_candidates_are_dropped_and_the_reason_names_the_best(tri, tmp_path
     rates[(1, "first")] = 0.95
     rates[(1, "verify")] = 0.9
     _fake(monkeypatch, rates, predicted=0.99)
+    monkeypatch.setattr(search, "_diverse", lambda order, screened: order)  # the refinement's order, not the queue's
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=4, **GRID))
     assert not res.success and [t.k for t in res.tried][:2] == [0, 1]
     # candidate 1 passed its first trials and fell short: its neighbours are tried next, before 2 and 3 (a wall
@@ -119,13 +133,13 @@ def test_the_engine_screen_is_read_back_instead_of_run_again(tri, tmp_path, monk
     first = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, **GRID))
     lines = (tmp_path / "screen.jsonl").read_text().splitlines()
     assert len(lines) == 3 and all(json.loads(x)["predicted"] == 0.95 for x in lines)
-    exact = search.arrival
+    table = search.screen_table
 
-    def no_engine(v, w, arm, **kw):
+    def no_engine(part, w, arm, **kw):
         assert kw.get("exact"), "an engine screen ran again"
-        return exact(v, w, arm, **kw)
+        return table(part, w, arm, **kw)
 
-    monkeypatch.setattr(search, "arrival", no_engine)
+    monkeypatch.setattr(search, "screen_table", no_engine)
     again = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, **GRID))
     assert [(a.side, a.X, a.predicted) for a in again.screened] == [(a.side, a.X, a.predicted) for a in first.screened]
 
@@ -163,7 +177,7 @@ def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_pat
     doc = json.loads(res.stdout)
     assert doc["success"] is False and doc["config"] is None and doc["verified"] is None and doc["side"] is None
     assert "first-arrival shares" in doc["reason"] and doc["time_s"] > 0 and doc["assumptions"]["goal"] == 0.95
-    assert doc["exact_screen"]["candidates"] == 1 and len(doc["engine_screen"]) == 1
+    assert doc["exact_screen"]["candidates"] == 2 and len(doc["engine_screen"]) == 1  # arrival at the wall and at the lip
 
 
 @pytest.mark.parametrize("args, field", [(["--side", "7"], "side"), (["--budget", "-1"], "budget"),
@@ -186,3 +200,20 @@ def test_the_first_trials_stop_as_soon_as_the_candidate_cannot_pass(tri, tmp_pat
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=2, **GRID))
     assert [c[1:3] for c in calls] == [("first", 5)] * 2  # 2 of 5 fed: 3 failures > the 2 that 90 % of 20 allows
     assert all(t.verdict == "dropped after the first trials" and len(t.runs) == 1 for t in res.tried)
+
+
+def test_a_pocket_that_does_not_hold_its_side_drops_the_candidate_before_any_trial(tri, tmp_path, monkeypatch):
+    calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=0.99, unheld=(0,))
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=5, n_verify=20, engine_candidates=2, **GRID))
+    first, second = res.tried[0], res.tried[1]
+    assert first.k == 0 and first.runs == () and first.verdict.startswith("not held in the pocket (ended other")
+    assert all(c[0] != 0 for c in calls)  # no trial of the candidate the pocket does not hold
+    assert res.success and second.verdict == "fed" and res.feeder is second.candidate
+
+
+def test_candidates_are_verified_round_robin_over_variant_and_side():
+    a = SimpleNamespace(variant=SimpleNamespace(label=lambda: "A"), side=0)
+    b = SimpleNamespace(variant=SimpleNamespace(label=lambda: "B"), side=0)
+    a1 = SimpleNamespace(variant=SimpleNamespace(label=lambda: "A"), side=1)
+    screened = [a, a, a1, b, a]
+    assert search._diverse([0, 1, 2, 3, 4], screened) == [0, 2, 3, 1, 4]

@@ -31,7 +31,7 @@ def design_cmd(
     weight: Annotated[str, typer.Option("--weight", help="Lead weight: 'auto' (none or up to 1.7 × the part's mass), "
                                                           "'none', or the heaviest allowed in kg.")] = "auto",
     arm_length: Annotated[float | None, typer.Option("--arm-length", help="Longest arm allowed, m (the end wall is at "
-                                                                          "most there; default: 0.55 m).")] = None,
+                                                                          "most there; default: 0.6 m).")] = None,
     mu: Annotated[float, typer.Option("--mu", help="Arm friction μ (± 10 % per trial).")] = 1.0,
     budget: Annotated[float, typer.Option("--budget", help="Minutes after which no further candidate is started (one "
                                                            "running is finished).")]
@@ -45,7 +45,7 @@ def design_cmd(
     = None,
     hs: Annotated[list[float] | None, typer.Option("--h", help="Arm surface height to search, m (repeat for several; "
                                                                "default -0.03, -0.02, -0.01, 0).")] = None,
-    candidates: Annotated[int, typer.Option("--candidates", help="Most candidates screened in the engine.")] = 24,
+    candidates: Annotated[int, typer.Option("--candidates", help="Most candidates screened in the engine.")] = 48,
     margin_trials: Annotated[int, typer.Option("--margin-trials", help="Engine trials per margin step of the design "
                                                                        "sheet (0: no margins).")] = 30,
     as_json: JsonOpt = False,

@@ -13,7 +13,8 @@ This module measures, for a part on a plain arm:
   (step ``step`` m) and ω·(1 + σ z) for integer z ∈ [−3, 3] (pymunk, recoil arm, one throw each);
 * :func:`first_passage` — Monte Carlo Markov chains on that table (ω jitter z ~ N(0, 1) rounded,
   random starts on the arm): for each end-stop position X (m) the share of chains whose
-  outermost vertex first passes X on the target side (``good``), on another side (``wrong``),
+  outermost vertex first passes X on the target side (``good``), on another side (``wrong``; a chain
+  that starts past X is there on the side it starts on),
   never within ``throws`` throws or after leaving the arm (the rest), and whether the target side
   with its outer vertex at X jogs *into* the stop for every z (``holds``: a necessary condition
   for the stop to keep it).
@@ -188,6 +189,8 @@ def first_passage(part: Part, table: RecoilTable, target: int, *, n: int = 3000,
     x = lo + rng.uniform(0.0, 1.0, n) * np.maximum(hi_x - lo, 0.0)
     alive = np.ones(n, dtype=bool)
     first = np.full((X.size, n), -1)
+    start = (x + uR[side])[None, :] > X[:, None]  # a part that starts past a stop is there on the side it rests on
+    first = np.where(start, side[None, :], first)
     ok_status = int(Status.OK)
     for _ in range(throws):
         idx = np.flatnonzero(alive)
@@ -205,9 +208,9 @@ def first_passage(part: Part, table: RecoilTable, target: int, *, n: int = 3000,
         x[g] = table.x_next[a[good], k[good], jj[good]] + (x[g] - table.x[jj[good]])
         side[g] = table.side_next[a[good], k[good], jj[good]]
         v = x[g] + uR[side[g]]
-        for q, Xq in enumerate(X):
-            m = (first[q, g] < 0) & (v > Xq)
-            first[q, g[m]] = side[g[m]]
+        sub = first[:, g]
+        hit = (sub < 0) & (v[None, :] > X[:, None])  # (stops, chains): first past the stop now
+        first[:, g] = np.where(hit, side[g][None, :], sub)
     good = (first == target).mean(axis=1)
     wrong = ((first >= 0) & (first != target)).mean(axis=1)
     holds = np.array([_holds(part, table, target, float(Xq)) for Xq in X])

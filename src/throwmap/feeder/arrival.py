@@ -10,8 +10,17 @@ on the engine's tabulated one-throw map (:func:`throwmap.design.passage.recoil_t
 to the table's end. A candidate's score is its best X's share of chains that arrive first on the
 target side where that side holds (its *predicted* feed rate); a wrong arrival counts against it.
 
-Drops: CM abscissa uniform over ``DROP_X`` (a chute onto the inner arm); end stops are considered
-only beyond every side's outermost vertex from there (+1 cm), so no drop lands in the pocket.
+With a pocket (``pocket_depth`` > 0) the stop a side meets first is the pocket's lip, not its end wall: the
+floor is as long as the part's footprint on the target side plus a clearance (:func:`pocket_clearance`) and its lip a ramp down to it
+(:class:`~throwmap.design.cavity.Pocket`), so a part whose outermost vertex passes the lip's top edge tips in on
+whatever side it lies — a wrong side jams there, tilted (measured in the feeding experiment: a part screened
+"first at the wall" was caught by the lip on a side that would have flipped to the target a few cm farther
+out). Arrival is therefore counted at the lip, ``X − (ℓ_k + clearance + depth / tan ramp)`` for target side k,
+and ``X`` is the end wall.
+
+Drops: CM abscissa uniform over ``DROP_X`` (a chute onto the inner arm); end walls are considered from
+beyond every side's outermost vertex from there (+1 cm) to ``WALL_X_MAX``; a pocket's lip may lie over the drop
+zone, and a part dropped past it is in the pocket on the side it was dropped on.
 """
 
 from __future__ import annotations
@@ -26,7 +35,7 @@ from ..errors import InvalidStateError, RegimeWarning
 from ..system.arm import Arm
 from .family import Variant
 
-__all__ = ["Arrival", "arrival", "exact_table", "DROP_X", "TABLE_STEP", "TABLE_X_MAX"]
+__all__ = ["Arrival", "arrival", "screen_table", "exact_table", "lip_offset", "pocket_clearance", "DROP_X", "TABLE_STEP", "TABLE_X_MAX", "WALL_X_MAX"]
 
 DROP_X = (0.0, 0.25)
 """The drop zone: CM abscissa range over which parts arrive on the arm, m."""
@@ -34,6 +43,36 @@ TABLE_STEP = 0.01
 """The grid of the engine table, m."""
 TABLE_X_MAX = 0.56
 """The table's reach, m (the draft's arm is about 0.6 m)."""
+WALL_X_MAX = 0.6
+"""The farthest end wall screened, m (the draft's arm is about 0.6 m long)."""
+
+
+def pocket_clearance(part, side: int) -> float:
+    """The floor a pocket for ``side`` needs beyond the side's length, m: the part's overhang past both ends of the
+    side (its footprint on the floor, the width of its vertices projected on the side, less the side's length — a
+    part whose side meets its neighbours at obtuse angles is wider than the side) plus the
+    :class:`~throwmap.design.cavity.Pocket` clearance (5 mm). A pocket only the side's length long wedges such a
+    part tilted against its end wall (measured: every trial of a pentagon with 5 cm of overhang)."""
+    from ..design.cavity import Pocket
+
+    w = np.asarray(part.w, dtype=float)
+    a, b = w[side], w[(side + 1) % len(w)]
+    t = (b - a) / float(np.linalg.norm(b - a))
+    proj = (w - a) @ t
+    overhang = float(proj.max() - proj.min()) - float(np.linalg.norm(b - a))
+    return max(overhang, 0.0) + float(Pocket().clearance)
+
+
+def lip_offset(part, side: int, depth: float) -> float:
+    """How far inward of the end wall a pocket ``depth`` m deep for ``side`` begins (the top of its lip ramp), m:
+    ``ℓ_side + clearance + depth / tan(ramp)``, the clearance of :func:`pocket_clearance`, the ramp of
+    :class:`~throwmap.design.cavity.Pocket` (0 for ``depth`` 0: a plain end stop)."""
+    if depth <= 0:
+        return 0.0
+    from ..design.cavity import Pocket
+
+    return (float(part.length[side]) + pocket_clearance(part, side)
+            + float(depth) / math.tan(float(Pocket().ramp_angle)))
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -53,13 +92,15 @@ class Arrival:
     chains: int
     time_s: float
     model: str = "engine"
+    lip: bool = False
 
     def to_dict(self) -> dict:
         return {"variant": self.variant.to_dict(), "omega_rad_s": self.omega, "h_m": self.h, "side": self.side,
                 "end_stop_m": self.X, "predicted": self.predicted, "wrong_first": self.wrong,
                 "per_side": {str(k): {"end_stop_m": v[0], "first": v[1], "wrong_first": v[2], "holds": v[3]}
                              for k, v in self.best.items()},
-                "chains": self.chains, "model": self.model, "time_s": self.time_s}
+                "chains": self.chains, "model": self.model, "time_s": self.time_s,
+                "arrival_at": "pocket lip" if self.lip else "end wall"}
 
 
 def exact_table(part, arm: Arm, omega: float, *, sigma: float = 0.03):
@@ -86,19 +127,35 @@ def exact_table(part, arm: Arm, omega: float, *, sigma: float = 0.03):
 
 
 def _stops(part) -> np.ndarray:
+    """The end walls screened, every cm from just beyond every side's outermost vertex over the drop zone to
+    ``WALL_X_MAX``, m."""
     lo = DROP_X[1] + float(np.max(part.uR)) + 0.01
-    return np.round(np.arange(math.ceil(lo * 100) / 100, TABLE_X_MAX - TABLE_STEP, 0.01), 6)
+    return np.round(np.arange(math.ceil(lo * 100) / 100, WALL_X_MAX + 1e-9, 0.01), 6)
+
+
+def screen_table(part, omega: float, arm: Arm, *, sigma: float = 0.03, exact: bool = False,
+                 workers: int | None = None):
+    """The one-throw map a screen runs on: ``exact`` False, the engine's recoil table
+    (:func:`throwmap.design.passage.recoil_table`, 7 × (stable sides) × 56 throws, 5–30 s on 2 cores); True,
+    :func:`exact_table` on the exact "rigid_body" model, the impulse throw (the cheap screen, < 0.1 s)."""
+    from ..design.passage import recoil_table
+
+    with warnings.catch_warnings():  # a grid crosses regimes on purpose: the screen's shares are the verdict
+        warnings.simplefilter("ignore", RegimeWarning)
+        if exact:
+            return exact_table(part, arm, omega, sigma=sigma)
+        return recoil_table(part, arm, omega, sigma=sigma, step=TABLE_STEP, x_max=TABLE_X_MAX, workers=workers)
 
 
 def arrival(variant: Variant, omega: float, arm: Arm, *, sides=None, sigma: float = 0.03, chains: int = 1500,
-            throws: int = 60, seed: int = 0, workers: int | None = None, exact: bool = False) -> Arrival:
-    """Screen ``variant`` thrown at ``omega`` from the plain ``arm`` (its h, g and μ; see the module docstring):
-    the best end stop of every side in ``sides`` (None: every stable side), and the side with the highest share.
-    ``exact`` False: the engine's recoil table, 7 × (stable sides) × 56 throws (5–30 s on 2 cores); True:
-    :func:`exact_table` on the exact "rigid_body" model, the impulse throw (the cheap screen, < 0.1 s)."""
+            throws: int = 60, seed: int = 0, table=None, pocket_depth: float = 0.0) -> Arrival:
+    """Screen ``variant`` thrown at ``omega`` from the plain ``arm`` (its h, g and μ; see the module docstring) on
+    ``table`` (:func:`screen_table`; None: the engine's, computed here): the best end wall of every side in ``sides``
+    (None: every stable side) — arrival counted at the lip of a pocket ``pocket_depth`` m deep (0: at the end wall
+    itself) —, and the side with the highest share."""
     import time
 
-    from ..design.passage import first_passage, recoil_table
+    from ..design.passage import first_passage
 
     t0 = time.perf_counter()
     part = variant.part
@@ -113,20 +170,23 @@ def arrival(variant: Variant, omega: float, arm: Arm, *, sides=None, sigma: floa
     if X.size == 0:
         raise InvalidStateError("part", f"too long for the arm: its outermost vertex passes {TABLE_X_MAX:g} m "
                                         f"from the drop zone {list(DROP_X)} m")
-    with warnings.catch_warnings():  # a grid crosses regimes on purpose: the screen's shares are the verdict
-        warnings.simplefilter("ignore", RegimeWarning)
-        if exact:
-            table = exact_table(part, arm, omega, sigma=sigma)
-        else:
-            table = recoil_table(part, arm, omega, sigma=sigma, step=TABLE_STEP, x_max=TABLE_X_MAX, workers=workers)
+    exact = table is not None and float(table.recoil) == 0.0
+    if table is None:
+        table = screen_table(part, omega, arm, sigma=sigma)
     best = {}
     for k in sides:
-        p = first_passage(part, table, k, n=chains, throws=throws, seed=seed, x_range=DROP_X, X=X)
+        off = lip_offset(part, k, pocket_depth)
+        lips = np.round(X - off, 6)
+        lips = lips[(lips > 0.02) & (lips <= TABLE_X_MAX - TABLE_STEP + 1e-9)]  # inside the table
+        if lips.size == 0:
+            best[k] = (math.nan, 0.0, 1.0, False)
+            continue
+        p = first_passage(part, table, k, n=chains, throws=throws, seed=seed, x_range=DROP_X, X=lips)
         score = np.where(p.holds, p.good - 2.0 * p.wrong, -np.inf)
         i = int(np.argmax(score))
         held = bool(p.holds[i])
-        best[k] = (float(p.X[i]), float(p.good[i]) if held else 0.0, float(p.wrong[i]), held)
+        best[k] = (round(float(p.X[i]) + off, 6), float(p.good[i]) if held else 0.0, float(p.wrong[i]), held)
     side = max(best, key=lambda k: best[k][1] - 2.0 * best[k][2])
     X_k, good, wrong, _ = best[side]
     return Arrival(variant, float(omega), float(arm.h), int(side), X_k, good, wrong, best, int(chains),
-                   time.perf_counter() - t0, "rigid_body" if exact else "engine")
+                   time.perf_counter() - t0, "rigid_body" if exact else "engine", pocket_depth > 0)

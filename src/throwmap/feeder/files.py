@@ -16,7 +16,7 @@ import math
 from pathlib import Path
 
 from ..errors import InvalidStateError
-from .arrival import DROP_X, Arrival
+from .arrival import DROP_X, Arrival, pocket_clearance
 
 __all__ = ["feeder_files", "feeder_config_text", "POCKET_DEPTH_M", "LINING_MU", "MAX_THROWS", "ENGINE_SETTINGS"]
 
@@ -57,6 +57,8 @@ def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: floa
         f"length = {found.X!r}  # end wall, m: side {found.side} arrives there first in "
         f"{100 * found.predicted:.1f} % of screened chains",
         f"depth = {POCKET_DEPTH_M!r}",
+        f"clearance = {round(pocket_clearance(found.variant.part, found.side), 6)!r}  # floor beyond side "
+        f"{found.side}'s length: the part's overhang past its ends + 5 mm, m",
         f"wall_mu = {LINING_MU!r}",
         "lined = true  # the floor faced like the end wall",
         "",

@@ -5,10 +5,17 @@ lead weight placed for a target side) over a grid of release rates ω and arm he
 stages of rising cost:
 
 1. **exact screen** — every (variant, ω, h) on the exact impulse model (:func:`~throwmap.feeder.arrival.arrival`
-   with ``model="rigid_body"``, ≈ 0.1 s each): which side arrives first at an end stop, and how often;
-2. **engine screen** — the best of those on the engine's recoil-arm table (5–30 s each), until ``screen_share`` of the budget is spent (80 % while no candidate has
+   with ``model="rigid_body"``, ≈ 0.1 s each): which side arrives first at an end stop, and how often — counted
+   where the part reaches the end wall and, separately, where it reaches the pocket's lip (a pocket that sorts by
+   releasing wrong sides is caught at the wall, one that jams them at its lip: each screened candidate is one or
+   the other, and the engine decides);
+2. **engine screen** — the best of those (the best of every variant and side before any second one) on the
+   engine's recoil-arm table (5–30 s each), until ``screen_share`` of the budget is spent (60 % while no candidate has
    reached ``min_predicted``); a candidate's engine share is its *predicted* feed rate;
-3. **verification** — candidates predicted ≥ ``min_predicted``, best first, run as the feeding experiment in
+3. **verification** — candidates predicted ≥ ``min_predicted``, best first but the best of every (variant, side)
+   before any second one, each first laid in its pocket and thrown a few times in the engine
+   (:func:`~throwmap.feeder.hold.pocket_hold`; a pocket that does not keep the target side drops it), then run
+   as the feeding experiment in
    the engine (``feed``: drops from random poses, the recoil arm with ω jitter, μ spread; see
    :mod:`throwmap.experiments.feed`): ``n_pre`` trials, run 5 at a time and stopped as soon as more fail than
    ``pre_share`` allows (which drops the candidate),
@@ -40,7 +47,7 @@ from ..errors import InvalidStateError, shown
 from ..io.files import atomic_write_text
 from ..system.arm import Arm
 from ..system.part import Part
-from .arrival import DROP_X, Arrival, arrival
+from .arrival import DROP_X, WALL_X_MAX, Arrival, arrival, lip_offset, screen_table
 from .family import Variant, weight_variants
 from .files import LINING_MU, POCKET_DEPTH_M, feeder_files
 
@@ -61,7 +68,7 @@ class Tried:
     """One candidate verified in the engine: its index ``k`` in the engine screen's ranking, the screened
     ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
     "throws_to_capture"}``) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
-    ``"below the goal"``, ``"rerun disagrees"``)."""
+    ``"below the goal"``, ``"rerun disagrees"``, ``"not held in the pocket (…)"``)."""
 
     k: int
     candidate: Arrival
@@ -78,8 +85,9 @@ class FeederSearch:
     without one), ``feeder`` (the screened candidate fed, or None), ``verified`` and ``rerun`` (the two full runs),
     ``predicted`` (the engine screen's share for the fed candidate), ``time_s``, ``reason`` (why none, when
     ``success`` is False), ``tried`` (every candidate verified, in order), ``screened`` (the engine screen's
-    candidates, best first), ``exact`` (the exact screen's count and best per side) and every ``assumption``
-    (arm, jitter, materials, drops, goal)."""
+    candidates, best first), ``exact`` (the exact screen's count and best per side), every ``assumption``
+    (arm, jitter, materials, drops, goal) and the seconds each stage took (``stages_s``: exact screen, engine screen,
+    verification)."""
 
     success: bool
     side: int | None
@@ -95,6 +103,7 @@ class FeederSearch:
     exact: dict = field(default_factory=dict)
     assumptions: dict = field(default_factory=dict)
     sheet: dict = field(default_factory=dict)
+    stages_s: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         f = self.feeder
@@ -103,7 +112,8 @@ class FeederSearch:
                "predicted": self.predicted, "time_s": self.time_s,
                "feeder": None if f is None else f.to_dict(), "verification": self.verified, "rerun": self.rerun,
                "sheet": self.sheet, "assumptions": self.assumptions, "exact_screen": self.exact,
-               "engine_screen": [a.to_dict() for a in self.screened], "tried": [t.to_dict() for t in self.tried]}
+               "engine_screen": [a.to_dict() for a in self.screened], "tried": [t.to_dict() for t in self.tried],
+               "stages_s": self.stages_s}
         if not self.success:
             out["reason"] = self.reason
         return out
@@ -162,8 +172,8 @@ class VerifyPlan:
     goal: float = GOAL
     pre_share: float = PRE_SHARE
     min_predicted: float = 0.9
-    screen_share: float = 0.45
-    engine_candidates: int = 24
+    screen_share: float = 0.35
+    engine_candidates: int = 48
     omegas: tuple = OMEGAS
     hs: tuple = HS
     seed: int = 0
@@ -201,12 +211,14 @@ def _tag(c: Arrival) -> str:
     import hashlib
 
     doc = [c.variant.weight.to_dict() if c.variant.weight else None, round(c.omega, 9), round(c.h, 9), c.side,
-           round(c.X, 9)]
+           round(c.X, 9)] + (["lip"] if c.lip else [])
     return hashlib.sha1(json.dumps(doc).encode()).hexdigest()[:8]
 
 
-def _key(v: Variant, w: float, h: float) -> str:
-    return json.dumps([v.weight.to_dict() if v.weight else None, round(w, 9), round(h, 9)])
+def _key(v: Variant, w: float, h: float, **screen) -> str:
+    """A stored engine screen's key: the variant, ω, h and everything else the screen depends on (``screen``)."""
+    return json.dumps([v.weight.to_dict() if v.weight else None, round(w, 9), round(h, 9),
+                       {k: screen[k] for k in sorted(screen)}])
 
 
 def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", arm_length: float | None = None,
@@ -217,7 +229,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     ``out``: the folder for the screens, every candidate verified and the feeder's ``feeder.toml`` / ``part.toml``;
     ``weight``: ``"auto"`` (the part alone and with a lead weight up to 1.7 × its mass), ``"none"`` or the heaviest
     weight in kg; ``arm_length``: the longest arm allowed, m (the end wall is at most there; None: the screen's reach,
-    0.55 m); ``mu`` the arm's μ (± ``mu_rel`` per trial), ``sigma`` the relative ω jitter, ``g`` m/s²; ``plan``
+    0.6 m); ``mu`` the arm's μ (± ``mu_rel`` per trial), ``sigma`` the relative ω jitter, ``g`` m/s²; ``plan``
     (:class:`VerifyPlan`, with the grid of ω and h searched; None: its defaults); ``progress(stage, done, total)``.
     """
     from ..experiments.base import read_config
@@ -282,51 +294,78 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     for v in variants:
         for w in omegas:
             for h in hs:
-                a = arrival(v, w, Arm(h=h, g=g, mu=mu), sides=sides, sigma=sigma, chains=600, exact=True)
-                exact.append(a)
+                arm = Arm(h=h, g=g, mu=mu)
+                table = screen_table(v.part, w, arm, sigma=sigma, exact=True)
+                for depth in (0.0, POCKET_DEPTH_M):  # arrival at the end wall, and at the pocket's lip
+                    exact.append(arrival(v, w, arm, sides=sides, sigma=sigma, chains=400, table=table,
+                                         pocket_depth=depth))
                 tick("exact screen", len(exact), total)
+    stages = {"exact_screen": time.perf_counter() - t0}
     exact_best = {str(k): max((a.best[k][1] for a in exact if k in a.best), default=0.0) for k in sides}
     exact_doc = {"candidates": len(exact), "variants": len(variants), "best_share_per_side": exact_best}
     ranked = sorted((a for a in exact if fits(a)), key=lambda a: (-a.predicted, a.wrong, a.variant.weight is not None))
+    ranked = [ranked[i] for i in _diverse(list(range(len(ranked))), ranked)]  # every variant and side gets a turn
 
     # 2. the engine screen, best exact share first, within the screen's share of the budget — or, while no
-    #    candidate reaches the share needed for verification, until 80 % of it
+    #    candidate reaches the share needed for verification, until 60 % of it; resumed below when every candidate
+    #    verified so far has failed and time is left
     screened: list[Arrival] = []
+    tables: dict = {}
     n_screen = min(len(ranked), plan.engine_candidates)
-    for i, a in enumerate(ranked[:n_screen]):
-        spent = time.perf_counter() - t0
-        hopeful = any(e.predicted >= plan.min_predicted for e in screened)
-        if screened and (spent > 0.8 * budget_s or (hopeful and spent > plan.screen_share * budget_s)):
-            break
-        key = _key(a.variant, a.omega, a.h)
+
+    def engine(a: Arrival) -> Arrival:
+        """``a`` on the engine's table (read back from ``store`` when screened before)."""
+        depth = POCKET_DEPTH_M if a.lip else 0.0
+        key = _key(a.variant, a.omega, a.h, sides=list(sides), mu=mu, g=g, sigma=sigma, pocket_depth=depth)
         if key in seen:
             d = seen[key]
             best = {int(k): tuple(v) for k, v in d["best"].items()}
-            e = Arrival(a.variant, a.omega, a.h, d["side"], d["X"], d["predicted"], d["wrong"], best, d["chains"],
-                        d["time_s"], "engine")
-        else:
-            e = arrival(a.variant, a.omega, Arm(h=a.h, g=g, mu=mu), sides=sides, sigma=sigma, workers=workers or None)
-            doc = {"key": key, "side": e.side, "X": e.X, "predicted": e.predicted, "wrong": e.wrong,
-                   "best": {str(k): list(v) for k, v in e.best.items()}, "chains": e.chains, "time_s": e.time_s,
-                   "exact_predicted": a.predicted, "exact_side": a.side, "label": a.variant.label(),
-                   "omega": a.omega, "h": a.h}
-            with store.open("a", encoding="utf-8") as fh:
-                fh.write(json.dumps(doc) + "\n")
-        screened.append(e)
-        tick("engine screen", i + 1, n_screen)
+            return Arrival(a.variant, a.omega, a.h, d["side"], d["X"], d["predicted"], d["wrong"], best, d["chains"],
+                           d["time_s"], "engine", a.lip)
+        arm = Arm(h=a.h, g=g, mu=mu)
+        tkey = _key(a.variant, a.omega, a.h)
+        if tkey not in tables:  # one engine table serves both places of arrival
+            tables[tkey] = screen_table(a.variant.part, a.omega, arm, sigma=sigma, workers=workers or None)
+        e = arrival(a.variant, a.omega, arm, sides=sides, sigma=sigma, table=tables[tkey], pocket_depth=depth)
+        doc = {"key": key, "side": e.side, "X": e.X, "predicted": e.predicted, "wrong": e.wrong,
+               "best": {str(k): list(v) for k, v in e.best.items()}, "chains": e.chains, "time_s": e.time_s,
+               "exact_predicted": a.predicted, "exact_side": a.side, "label": a.variant.label(),
+               "omega": a.omega, "h": a.h}
+        with store.open("a", encoding="utf-8") as fh:
+            fh.write(json.dumps(doc) + "\n")
+        return e
+
+    for a in ranked[:n_screen]:
+        spent = time.perf_counter() - t0
+        hopeful = any(e.predicted >= plan.min_predicted for e in screened)
+        if screened and (spent > 0.6 * budget_s or (hopeful and spent > plan.screen_share * budget_s)):
+            break
+        screened.append(engine(a))
+        tick("engine screen", len(screened), n_screen)
+    pos = len(screened)  # exact candidates screened in the engine
     screened.sort(key=lambda a: (-a.predicted, a.wrong))
+    stages["engine_screen"] = time.perf_counter() - t0 - stages["exact_screen"]
     tried: list[Tried] = []
 
     def result(success, reason="", fed=None, verified=None, rerun=None):
         return FeederSearch(success, fed.side if fed else None, str(out / "feeder.toml") if fed else None, fed,
                             verified, rerun, fed.predicted if fed else None, time.perf_counter() - t0, reason,
-                            tuple(tried), tuple(screened), exact_doc, assumptions)
+                            tuple(tried), tuple(screened), exact_doc, assumptions,
+                            stages_s={**stages, "verification": time.perf_counter() - t0 - sum(stages.values())})
 
     # 3. verification in the feeding experiment; a candidate that passes its first trials but falls short is refined
     log = out / "candidates.jsonl"
-    queue = [k for k, c in enumerate(screened) if c.predicted >= plan.min_predicted and fits(c)]
+    queue = _diverse([k for k, c in enumerate(screened) if c.predicted >= plan.min_predicted and fits(c)], screened)
     refined_from: dict[int, int] = {}
-    while queue:
+    while True:
+        while not queue and pos < n_screen and time.perf_counter() - t0 < 0.75 * budget_s:
+            screened.append(engine(ranked[pos]))  # every candidate so far failed: screen the next
+            pos += 1
+            tick("engine screen", pos, n_screen)
+            if screened[-1].predicted >= plan.min_predicted and fits(screened[-1]):
+                queue.append(len(screened) - 1)
+        if not queue:
+            break
         k = queue.pop(0)
         c = screened[k]
         if time.perf_counter() - t0 > budget_s:
@@ -335,11 +374,17 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         path = feeder_files(c, here, mu=mu, g=g, sigma=sigma, mu_rel=mu_rel)
         cfg = read_config(Feed(), path)
         runs = []
+        hold = _hold(cfg, here)
+        if not hold.held:  # the pocket does not keep the target side: no trials
+            tried.append(Tried(k, c, (), f"not held in the pocket (ended {hold.ended} at ω(1 {hold.z:+g}σ))"))
+            atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))
+            continue
 
         def run(n, s, name):
             cb = None if progress is None else (lambda d, t: progress(f"candidate {k}: {name}", d, t))
+            t = time.perf_counter()
             res = run_experiment("feed", cfg, n=n, seed=s, workers=workers, out=here / name, progress=cb)
-            runs.append(_run_doc(res))
+            runs.append({**_run_doc(res), "time_s": time.perf_counter() - t})
             return res
 
         allowed = plan.n_pre - math.ceil(plan.pre_share * plan.n_pre - 1e-9)  # failures the first trials may have
@@ -378,6 +423,37 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     return result(False, _reason(sides, exact_best, screened, tried, plan, budget_s))
 
 
+def _hold(cfg, here: Path):
+    """The in-pocket hold check of a candidate's config (:func:`~throwmap.feeder.hold.pocket_hold`), stored in
+    ``here/hold.json`` and read back from there."""
+    from .hold import Hold, pocket_hold
+
+    store = here / "hold.json"
+    if store.exists():
+        try:
+            return Hold(**json.loads(store.read_text(encoding="utf-8")))
+        except (ValueError, TypeError):
+            pass  # cut by an interrupted write: checked again
+    h = pocket_hold(cfg)
+    atomic_write_text(store, json.dumps(h.to_dict()))
+    return h
+
+
+def _diverse(order: list, screened: list) -> list:
+    """``order`` (indices into ``screened``, best first) taken round-robin over (variant, side): the best candidate
+    of every variant and side before any second one (candidates of one variant and side tend to fail alike)."""
+    groups: dict = {}
+    for k in order:
+        c = screened[k]
+        groups.setdefault((c.variant.label(), c.side), []).append(k)
+    out = []
+    while any(groups.values()):
+        for g in groups.values():
+            if g:
+                out.append(g.pop(0))
+    return out
+
+
 def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, budget_left: float) -> list:
     """The refinement of a candidate that passed its first trials but fell short: its end wall 1 cm nearer and farther
     (carrying the share of the stop they moved from: the engine screen keeps each side's best stop only), and
@@ -385,15 +461,20 @@ def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, 
     import dataclasses
 
     out = []
+    part = c.variant.part
+    depth = POCKET_DEPTH_M if c.lip else 0.0
     for dX in (-0.01, 0.01):
         X = round(c.X + dX, 6)
-        if DROP_X[1] + float(np.max(c.variant.part.uR)) + 0.01 - 1e-9 <= X:
+        lip = X - lip_offset(part, c.side, depth)
+        if DROP_X[1] + float(np.max(part.uR)) + 0.01 - 1e-9 <= lip and X <= WALL_X_MAX + 1e-9:
             out.append(dataclasses.replace(c, X=X))
     t0 = time.perf_counter()
     for w, h in ((c.omega - 0.25, c.h), (c.omega + 0.25, c.h), (c.omega, c.h - 0.005), (c.omega, c.h + 0.005)):
         if w <= 0 or time.perf_counter() - t0 > budget_left / 2:
             continue
-        out.append(arrival(c.variant, w, Arm(h=h, g=g, mu=mu), sides=(c.side,), sigma=sigma, workers=workers or None))
+        arm = Arm(h=h, g=g, mu=mu)
+        out.append(arrival(c.variant, w, arm, sides=(c.side,), sigma=sigma, pocket_depth=depth,
+                           table=screen_table(part, w, arm, sigma=sigma, workers=workers or None)))
     return out
 
 
@@ -408,8 +489,8 @@ def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: floa
                        + (f", engine {100 * eng[k]:.0f} %" if eng[k] is not None else "") for k in sides)
     parts.append(f"best first-arrival shares ({shares})")
     if tried:
-        best = max(tried, key=lambda t: max(r["rate"] for r in t.runs))
-        rate = max(r["rate"] for r in best.runs)
+        best = max(tried, key=lambda t: max((r["rate"] for r in t.runs), default=0.0))
+        rate = max((r["rate"] for r in best.runs), default=0.0)
         c = best.candidate
         parts.append(f"{len(tried)} candidate(s) verified in the engine, none fed ≥ {100 * plan.goal:g} %: the best, side "
                      f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
