@@ -68,7 +68,8 @@ class Tried:
     """One candidate verified in the engine: its index ``k`` in the engine screen's ranking, the screened
     ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
     "throws_to_capture"}``) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
-    ``"below the goal"``, ``"rerun disagrees"``, ``"not held in the pocket (…)"``)."""
+    ``"below the goal"``, ``"rerun disagrees"``, ``"not held in the pocket (…)"``, ``"passed its first trials; not
+    verified: …"`` when the verification would overrun the budget by more than a tenth)."""
 
     k: int
     candidate: Arrival
@@ -393,10 +394,17 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             if pre.n - pre.successes > allowed:
                 break
         if len(runs) > 1:  # the first trials are one run, stored in one folder
-            runs[:] = [runs[-1]]
+            runs[:] = [{**runs[-1], "time_s": sum(r["time_s"] for r in runs)}]
         verdict = "dropped after the first trials"
         verified = rerun = None
-        if pre.n == plan.n_pre and pre.successes >= plan.pre_share * plan.n_pre:
+        passed = pre.n == plan.n_pre and pre.successes >= plan.pre_share * plan.n_pre
+        # the verification and its rerun cost about as much a trial as the first trials did
+        need = runs[0]["time_s"] / max(pre.n, 1) * (2 * plan.n_verify - pre.n)
+        left = budget_s - (time.perf_counter() - t0)
+        if passed and need > left + 0.1 * budget_s:
+            verdict = f"passed its first trials; not verified: ≈ {need:.0f} s needed, {max(left, 0):.0f} s of the budget left"
+            passed = False
+        if passed:
             full = run(plan.n_verify, plan.seed, "verify")
             verdict = "below the goal"
             if full.success_rate >= plan.goal:
