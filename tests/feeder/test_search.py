@@ -118,7 +118,7 @@ def test_weak_candidates_are_dropped_and_the_reason_names_the_best(tri, tmp_path
     assert {(0, -0.25, 0), (0, 0.25, 0), (0, 0, -0.005), (0, 0, 0.005), (0.01, 0, 0)} <= deltas
     assert deltas <= {(-0.01, 0, 0), (0.01, 0, 0), (0, -0.25, 0), (0, 0.25, 0), (0, 0, -0.005), (0, 0, 0.005)}
     assert [t.verdict for t in res.tried].count("dropped after the first trials") == 3
-    assert "reached 95.0 %" in res.reason and "below the goal" in res.reason
+    assert "reached 180/200 = 90.0 %" in res.reason and "below the goal" in res.reason
 
 
 def test_candidates_predicted_below_the_threshold_are_not_run(tri, tmp_path, monkeypatch):

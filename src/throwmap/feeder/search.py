@@ -497,12 +497,15 @@ def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: floa
                        + (f", engine {100 * eng[k]:.0f} %" if eng[k] is not None else "") for k in sides)
     parts.append(f"best first-arrival shares ({shares})")
     if tried:
-        best = max(tried, key=lambda t: max((r["rate"] for r in t.runs), default=0.0))
-        rate = max((r["rate"] for r in best.runs), default=0.0)
+        def final(t):  # a candidate's verdict rests on its largest run (its first trials are the start of it)
+            return max(t.runs, key=lambda r: r["n"]) if t.runs else {"n": 0, "successes": 0, "rate": 0.0}
+
+        best = max(tried, key=lambda t: (final(t)["rate"], final(t)["n"]))
+        last = final(best)
         c = best.candidate
         parts.append(f"{len(tried)} candidate(s) verified in the engine, none fed ≥ {100 * plan.goal:g} %: the best, side "
                      f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
-                     f"{100 * rate:.1f} % ({best.verdict})")
+                     f"{last['successes']}/{last['n']} = {100 * last['rate']:.1f} % ({best.verdict})")
     elif screened and max(a.predicted for a in screened) >= plan.min_predicted:
         parts.append(f"the budget ({budget_s:g} s) ran out before a candidate was verified")
     else:
