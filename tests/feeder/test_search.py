@@ -219,22 +219,23 @@ def test_candidates_are_verified_round_robin_over_variant_and_side():
     assert search._diverse([0, 1, 2, 3, 4], screened) == [0, 2, 3, 1, 4]
 
 
-def test_a_verification_that_would_overrun_the_budget_is_not_started(tri, tmp_path, monkeypatch):
-    """First trials at 0.1 s a trial: 380 more need ≈ 38 s, more than a 20 s budget has left."""
+def test_no_candidate_is_started_in_the_last_quarter_of_the_budget(tri, tmp_path, monkeypatch):
+    """Each candidate's runs take 0.4 s here: of a 6 s budget, candidates start only in its first 4.5 s (and the
+    search, with candidates left, runs until then)."""
     import time as _time
 
     import throwmap.experiments.runner as runner
 
-    _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=0.99)
+    _fake(monkeypatch, {"first": 0.4}, predicted=0.99)
     fast = runner.run_experiment
 
     def slow(name, cfg, *, n, seed, workers, out, progress=None):
-        _time.sleep(0.5)
+        _time.sleep(0.4)
         return fast(name, cfg, n=n, seed=seed, workers=workers, out=out, progress=progress)
 
     monkeypatch.setattr(runner, "run_experiment", slow)
-    plan = VerifyPlan(n_pre=20, n_verify=200, engine_candidates=1, budget_s=20.0, **GRID)
-    res = design_feeder(tri, tmp_path, side=0, plan=plan)
-    (t,) = res.tried
-    assert not res.success and t.verdict.startswith("passed its first trials; not verified: ≈")
-    assert len(t.runs) == 1 and t.runs[0]["n"] == 20 and t.runs[0]["time_s"] >= 2.0  # four calls of 5 trials, summed
+    t0 = _time.perf_counter()
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=5, n_verify=20, engine_candidates=48,
+                                                               omegas=(4.5, 5.0, 5.5), hs=(-0.02, -0.01), budget_s=6.0))
+    assert not res.success and res.tried and 6.0 * search.START_BY - 0.5 < res.time_s < 6.0 * search.START_BY + 0.9
+    assert _time.perf_counter() - t0 < 15
