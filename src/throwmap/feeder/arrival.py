@@ -56,11 +56,9 @@ def pocket_clearance(part, side: int) -> float:
     from ..design.cavity import Pocket
 
     w = np.asarray(part.w, dtype=float)
-    a, b = w[side], w[(side + 1) % len(w)]
-    t = (b - a) / float(np.linalg.norm(b - a))
-    proj = (w - a) @ t
-    overhang = float(proj.max() - proj.min()) - float(np.linalg.norm(b - a))
-    return max(overhang, 0.0) + float(Pocket().clearance)
+    ell = float(part.length[side])
+    proj = (w - w[side]) @ ((w[(side + 1) % len(w)] - w[side]) / ell)  # the vertices along the side
+    return max(float(proj.max() - proj.min()) - ell, 0.0) + float(Pocket().clearance)
 
 
 def lip_offset(part, side: int, depth: float) -> float:
@@ -168,7 +166,7 @@ def arrival(variant: Variant, omega: float, arm: Arm, *, sides=None, sigma: floa
             raise InvalidStateError("sides", f"none of them is stable for {part.name} (stable: {list(part.stable_sides)})")
     X = _stops(part)
     if X.size == 0:
-        raise InvalidStateError("part", f"too long for the arm: its outermost vertex passes {TABLE_X_MAX:g} m "
+        raise InvalidStateError("part", f"too long for the arm: its outermost vertex passes {WALL_X_MAX:g} m "
                                         f"from the drop zone {list(DROP_X)} m")
     exact = table is not None and float(table.recoil) == 0.0
     if table is None:
