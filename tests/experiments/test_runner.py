@@ -96,6 +96,26 @@ def test_interrupted_run_resumes_without_redoing(tmp_path, reference):
     assert third.resumed == 12 and third.trials[:12] == reference.trials
 
 
+@pytest.mark.parametrize("workers", [1, 2])
+def test_no_trial_is_started_past_stop_by(tmp_path, reference, workers):
+    """A deadline already past starts no trial (the stored ones still count); a deadline in the middle of a run
+    stops it early with the trials finished by then, each equal to the uninterrupted run's."""
+    first = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path, stop_after=3)
+    late = run_experiment("settle", CFG, n=12, seed=7, workers=workers, out=tmp_path, stop_by=time.perf_counter() - 1)
+    assert first.n == late.n == 3 and not late.complete and late.resumed == 3
+    if workers == 1:  # a deadline passed while the run goes on (the 6th trial's progress waits past it)
+        stop = time.perf_counter() + 2.0
+
+        def wait(done, total):
+            if done == 6:
+                time.sleep(max(0.0, stop - time.perf_counter()) + 0.05)
+
+        cut = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path / "b", stop_by=stop, progress=wait)
+        assert cut.n == 6 and cut.trials == reference.trials[:6]  # 6 settle trials take ≈ 0.1 s of the 2 s
+    with pytest.raises(InvalidStateError, match=r"^stop_by: must be a time.perf_counter\(\) instant"):
+        run_experiment("settle", CFG, n=2, seed=7, workers=1, stop_by=float("nan"))
+
+
 def _processes_running(marker: str) -> list[int]:
     """Live processes whose command line contains ``marker`` (Linux /proc; empty elsewhere)."""
     pids = []

@@ -45,12 +45,14 @@ def _fake(monkeypatch, rates, predicted=None, unheld=()):
             a = dataclasses.replace(a, predicted=predicted)
         return dataclasses.replace(a, model="engine")
 
-    def run_experiment(name, cfg, *, n, seed, workers, out, progress=None):
+    def run_experiment(name, cfg, *, n, seed, workers, out, progress=None, stop_by=None):
         k = int(out.parent.name.split("-")[0])
         stage = out.name if out.name == "rerun" else ("first" if n <= 20 else "verify")
         r = rates.get((k, stage), rates.get(stage, 0.0))
-        s = int(round(r * n))
+        assert stop_by is not None  # every run is bounded by the search's budget
         calls.append((k, stage, n, seed))
+        n = rates.get(("cut", stage), n)  # the trials run before the budget ran out
+        s = int(round(r * n))
         return SimpleNamespace(n=n, successes=s, success_rate=s / n, ci95=wilson_interval(s, n), seed=seed,
                                failures={} if s == n else {"not_captured": n - s}, trials=())
 
@@ -91,6 +93,18 @@ def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_pat
     f = res.feeder
     assert (side, omega, arm.h) == (f.side, f.omega, f.h) and cfg.cavity.length == f.X and cfg.cavity.lined
     assert part.com == pytest.approx(f.variant.part.com, abs=1e-12) and part.mass == pytest.approx(f.variant.part.mass)
+
+
+@pytest.mark.parametrize("stage", ["first", "verify", "rerun"])
+def test_trials_cut_short_by_the_budget_are_no_verdict(tri, tmp_path, monkeypatch, stage):
+    """Trials that feed every part but were stopped by the budget's end are not a feeder (nor a failure)."""
+    cut = {"first": 15, "verify": 150, "rerun": 150}[stage]
+    calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0, ("cut", stage): cut}, predicted=0.99)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=1, **GRID))
+    name = {"first": "first trials", "verify": "verification", "rerun": "rerun"}[stage]
+    want = f"the budget ran out in the {name} ({cut}/{20 if stage == 'first' else 200} trials run)"
+    assert not res.success and [t.verdict for t in res.tried] == [want] and not (tmp_path / "feeder.toml").exists()
+    assert calls[-1][1] == stage  # nothing run after the cut
 
 
 def test_a_rerun_outside_the_interval_is_not_a_feeder(tri, tmp_path, monkeypatch):
@@ -229,9 +243,9 @@ def test_no_candidate_is_started_in_the_last_quarter_of_the_budget(tri, tmp_path
     _fake(monkeypatch, {"first": 0.4}, predicted=0.99)
     fast = runner.run_experiment
 
-    def slow(name, cfg, *, n, seed, workers, out, progress=None):
+    def slow(name, cfg, *, n, seed, workers, out, progress=None, stop_by=None):
         _time.sleep(0.4)
-        return fast(name, cfg, n=n, seed=seed, workers=workers, out=out, progress=progress)
+        return fast(name, cfg, n=n, seed=seed, workers=workers, out=out, progress=progress, stop_by=stop_by)
 
     monkeypatch.setattr(runner, "run_experiment", slow)
     t0 = _time.perf_counter()

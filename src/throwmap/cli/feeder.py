@@ -17,6 +17,9 @@ import typer
 from .options import JsonOpt, guard, to_json
 from .usage import ThrowmapGroup
 
+SHEET_S = 60.0
+"""Seconds of ``--budget`` kept for the design sheet (its margins and drawing) when margins are measured."""
+
 __all__ = ["register", "feeder_app"]
 
 feeder_app = typer.Typer(name="feeder", cls=ThrowmapGroup, no_args_is_help=True, add_completion=False,
@@ -33,8 +36,9 @@ def design_cmd(
     arm_length: Annotated[float | None, typer.Option("--arm-length", help="Longest arm allowed, m (the end wall is at "
                                                                           "most there; default: 0.6 m).")] = None,
     mu: Annotated[float, typer.Option("--mu", help="Arm friction μ (± 10 % per trial).")] = 1.0,
-    budget: Annotated[float, typer.Option("--budget", help="Minutes after which no further candidate is started (one "
-                                                           "running is finished).")]
+    budget: Annotated[float, typer.Option("--budget", help="Minutes for the whole design: no candidate is started "
+                                                           "after 3/4 of them, no trial after them (the design "
+                                                           "sheet's margins get the last minute).")]
     = 10.0,
     n: Annotated[int, typer.Option("--n", help="Engine trials of a full verification (and of its rerun).")] = 200,
     n_pre: Annotated[int, typer.Option("--n-pre", help="Engine trials a candidate must pass first (90 %).")] = 20,
@@ -93,7 +97,8 @@ def design_cmd(
         if side is not None:
             p.check_side(side)
         grid = {k: tuple(v) for k, v in (("omegas", omegas), ("hs", hs)) if v}
-        plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=60.0 * budget,
+        sheet_s = min(SHEET_S if margin_trials else 10.0, 30.0 * budget)  # kept for the sheet (≤ half the budget)
+        plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=60.0 * budget - sheet_s,
                           engine_candidates=candidates, **grid)
         with Progress(transient=True, disable=as_json) as bar:
             tasks = {}
@@ -108,7 +113,7 @@ def design_cmd(
             if res.success:
                 from ..feeder.sheet import write_sheet
 
-                left = max(60.0, 60.0 * budget - res.time_s)  # the margins get what the search left (≥ 1 min)
+                left = 60.0 * budget - res.time_s - 10.0  # the margins get what the search left (the drawing 10 s)
                 res = write_sheet(res, out, margin_trials=margin_trials, workers=workers, budget_s=left,
                                   progress=progress)
         if as_json:

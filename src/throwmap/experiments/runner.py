@@ -320,7 +320,8 @@ def load_result(directory) -> dict:
 # ------------------------------------------------------------------- runner
 @regime_warnings_once()
 def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int = 0, out=None, resume: bool = True,
-                   progress=None, limits: Limits | None = None, stop_after: int | None = None) -> ExperimentResult:
+                   progress=None, limits: Limits | None = None, stop_after: int | None = None,
+                   stop_by: float | None = None) -> ExperimentResult:
     """Run trials ``0 … n−1`` of ``experiment`` (a registered name or object) and summarise them.
 
     ``config``: an instance of the experiment's ``config_type``, a dict validated by it,
@@ -330,7 +331,9 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     ``resume``: reuse the trials stored there. ``progress(done, total)`` is called after
     each trial (stored trials count as done at the start). ``limits`` (a :class:`~throwmap.budget.Limits`;
     None: 2 GB, 30 min) bound the estimated work; ``limits.force`` runs anyway. ``stop_after``: run at most this
-    many new trials, then return the (incomplete) result — an interruption on purpose.
+    many new trials, then return the (incomplete) result — an interruption on purpose. ``stop_by``: a
+    ``time.perf_counter()`` instant after which no trial is started (those under way finish; at most one chunk of
+    ≈ 0.2 s of work per process); the result is then incomplete, as with ``stop_after``.
 
     Raises :class:`~throwmap.errors.InvalidStateError` on bad input, on a stored run that
     does not match, and when the work guard refuses (trials already finished are kept in ``out``).
@@ -344,6 +347,9 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
         raise InvalidStateError("workers", f"must be an integer ≥ 0 (0: all cores), got {shown(workers)}")
     if stop_after is not None:
         stop_after = check_count("stop_after", stop_after)
+    if stop_by is not None and not (isinstance(stop_by, (int, float)) and not isinstance(stop_by, bool)
+                                    and math.isfinite(stop_by)):
+        raise InvalidStateError("stop_by", f"must be a time.perf_counter() instant, s, got {shown(stop_by)}")
     limits = Limits.of(limits)
     max_seconds, force = limits.max_seconds, limits.force
     guard_work(f"experiment {exp.name}", "n", n, BYTES_PER_TRIAL, limits,
@@ -410,6 +416,8 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     try:
         if n_workers == 1 or len(todo) <= 1:
             for k, i in enumerate(todo, 1):
+                if stop_by is not None and time.perf_counter() > stop_by:
+                    break
                 finish(_checked(exp, cfg, seed, i), k)
         else:
             with ProcessPoolExecutor(max_workers=n_workers, initializer=_worker_init) as pool:
@@ -417,6 +425,10 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
                 pending = set()
                 k = 0
                 spent, counted = 0.0, 0
+
+                def more() -> bool:
+                    return bool(queue) and len(pending) < 2 * n_workers and (stop_by is None
+                                                                             or time.perf_counter() <= stop_by)
 
                 def submit():
                     # one trial per task at first; then chunks of ≈ CHUNK_SECONDS of work (cheap trials
@@ -427,7 +439,7 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
                         pending.add(pool.submit(_run_chunk, exp.name, config_json, seed, chunk, type(exp).__module__))
 
                 try:
-                    while queue and len(pending) < 2 * n_workers:
+                    while more():
                         submit()
                     while pending:
                         finished, pending = wait(pending, return_when=FIRST_COMPLETED)
@@ -437,7 +449,7 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
                             for row in rows:
                                 k += 1
                                 finish(Trial.from_json(row), k)
-                        while queue and len(pending) < 2 * n_workers:
+                        while more():
                             submit()
                 except BaseException as err:
                     for f in pending:

@@ -24,8 +24,9 @@ stages of rising cost:
    that passes its first trials but falls short is **refined**: its neighbours (end wall ± 1 cm, ω ± 0.25
    rad/s, h ± 5 mm) are verified next.
 
-The first candidate that passes is the feeder; none passing within the budget is ``success`` False with the
-evidence (each side's best share on both screens, the best verified rate and by whom).
+The budget is a hard limit: no candidate is started after :data:`START_BY` of it and no trial after its end (a
+candidate whose trials it cuts short gets the verdict "the budget ran out in the …", never "fed"). The first candidate
+that passes is the feeder; none passing within the budget is ``success`` False with the evidence (each side's best share on both screens, the best verified rate and by whom).
 
 Every screened and verified candidate is kept in ``out``: the screens in ``out/screen.jsonl``, each verified
 candidate's files and trials in ``out/candidates/<k>-<tag>/`` (``k`` its rank, ``tag`` a hash of the candidate);
@@ -60,10 +61,10 @@ PRE_SHARE = 0.9
 OMEGAS = (3.5, 4.0, 4.5, 5.0, 5.5, 6.0)
 """Release rates searched, rad/s (the draft's arm throws at 3.5–6 rad/s)."""
 HS = (-0.03, -0.02, -0.01, 0.0)
+"""Arm surface heights searched, m (below or through the joint)."""
 START_BY = 0.75
 """No candidate is started after this share of the budget (a verification and its rerun, 2 × 200 trials, take 1–5
-minutes on 2 cores; one started earlier may still run past the budget)."""
-"""Arm surface heights searched, m (below or through the joint)."""
+minutes on 2 cores). No trial is started after the budget itself: a verification it cuts short is no verdict."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -168,7 +169,7 @@ class VerifyPlan:
     both must reach; ``min_predicted`` the engine screen's share a candidate needs to be verified; ``screen_share``
     the share of the budget the screens may use, ``engine_candidates`` the most candidates the engine screen
     takes from the exact screen; ``omegas`` (rad/s) and ``hs`` (m) the grid searched; ``workers`` engine processes (0: all cores); ``budget_s`` the wall
-    time (s) after which no further candidate is started."""
+    time (s) of the search: no candidate is started after :data:`START_BY` of it, no trial after it."""
 
     n_pre: int = 20
     n_verify: int = 200
@@ -386,27 +387,35 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         def run(n, s, name):
             cb = None if progress is None else (lambda d, t: progress(f"candidate {k}: {name}", d, t))
             t = time.perf_counter()
-            res = run_experiment("feed", cfg, n=n, seed=s, workers=workers, out=here / name, progress=cb)
+            res = run_experiment("feed", cfg, n=n, seed=s, workers=workers, out=here / name, progress=cb,
+                                 stop_by=t0 + budget_s)  # no trial is started past the budget
             runs.append({**_run_doc(res), "time_s": time.perf_counter() - t})
             return res
 
         allowed = plan.n_pre - math.ceil(plan.pre_share * plan.n_pre - 1e-9)  # failures the first trials may have
         for n in sorted({min(plan.n_pre, m) for m in range(5, plan.n_pre + 5, 5)}):  # 5, 10, …: stop once lost
             pre = run(n, plan.seed, "verify")  # the verification extends these trials (same seed, same folder)
-            if pre.n - pre.successes > allowed:
+            if pre.n - pre.successes > allowed or pre.n < n:
                 break
         if len(runs) > 1:  # the first trials are one run, stored in one folder
             runs[:] = [{**runs[-1], "time_s": sum(r["time_s"] for r in runs)}]
         verdict = "dropped after the first trials"
         verified = rerun = None
-        if pre.n == plan.n_pre and pre.successes >= plan.pre_share * plan.n_pre:
+        short = "the budget ran out in the {} ({}/{} trials run)"
+        if pre.n < plan.n_pre and pre.n - pre.successes <= allowed:
+            verdict = short.format("first trials", pre.n, plan.n_pre)
+        elif pre.n == plan.n_pre and pre.successes >= plan.pre_share * plan.n_pre:
             full = run(plan.n_verify, plan.seed, "verify")
             verdict = "below the goal"
-            if full.success_rate >= plan.goal:
+            if full.n < plan.n_verify:  # an unfinished verification is no verdict either way
+                verdict = short.format("verification", full.n, plan.n_verify)
+            elif full.success_rate >= plan.goal:
                 again = run(plan.n_verify, plan.seed + 1, "rerun")
                 lo, hi = full.ci95
                 verdict = ("fed" if again.success_rate >= plan.goal and lo <= again.success_rate <= hi
                            else "rerun disagrees")
+                if again.n < plan.n_verify:
+                    verdict = short.format("rerun", again.n, plan.n_verify)
                 verified, rerun = runs[-2], runs[-1]
         if k in refined_from:
             verdict += f" (refined from candidate {refined_from[k]})"
