@@ -84,3 +84,29 @@ def test_a_chain_that_starts_past_a_stop_is_there_on_the_side_it_starts_on():
     p = first_passage(tri, t, 0, n=2000, throws=5, seed=3, x_range=(0.2, 0.25), X=np.array([0.05]))
     dropped = sides[np.random.default_rng(3).integers(0, sides.size, 2000)]  # the chains' first draw: their sides
     assert p.good[0] == pytest.approx(np.mean(dropped == 0), abs=1e-12) and p.good[0] + p.wrong[0] == 1.0
+
+
+@settings(max_examples=8, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), omega=st.sampled_from([3.5, 4.5, 5.5]), h=st.sampled_from([-0.03, -0.01]))
+def test_one_run_of_the_chains_for_both_places_equals_a_run_per_side_and_place(seed, omega, h):
+    """``arrivals`` shares one run of the chains between every side and both places of arrival; each side's shares
+    equal those of its own ``first_passage`` run over its own stops (the chains do not depend on the stops)."""
+    from throwmap.design.passage import first_passage
+    from throwmap.feeder import random_plate
+    from throwmap.feeder.arrival import TABLE_STEP, TABLE_X_MAX, _stops, arrivals, lip_offset
+
+    part = random_plate(np.random.default_rng(seed))
+    arm = Arm(h=h, mu=1.0)
+    table = screen_table(part, omega, arm, exact=True)
+    both = arrivals(Variant(part, None, None), omega, arm, chains=200, table=table, depths=(0.0, 0.01))
+    for a, depth in zip(both, (0.0, 0.01)):
+        assert a.lip == (depth > 0)
+        for k in part.stable_sides:
+            off = lip_offset(part, k, depth)
+            lips = np.round(_stops(part) - off, 6)
+            lips = lips[(lips > 0.02) & (lips <= TABLE_X_MAX - TABLE_STEP + 1e-9)]
+            p = first_passage(part, table, k, n=200, X=lips, x_range=DROP_X)
+            score = np.where(p.holds, p.good - 2.0 * p.wrong, -np.inf)
+            i = int(np.argmax(score))
+            want = (round(float(p.X[i]) + off, 6), float(p.good[i]) if p.holds[i] else 0.0, float(p.wrong[i]))
+            assert a.best[k][:3] == pytest.approx(want, abs=1e-12)

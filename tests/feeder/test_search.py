@@ -60,7 +60,14 @@ def _fake(monkeypatch, rates, predicted=None, unheld=()):
         k = int(here.name.split("-")[0])
         return Hold(False, 1, "other", 3.0) if k in unheld else Hold(True, 6, "target", None)
 
+    real_many = search.arrivals
+
+    def arrivals(v, w, arm, **kw):
+        return [dataclasses.replace(a, predicted=predicted) if predicted is not None else a
+                for a in real_many(v, w, arm, **kw)]
+
     monkeypatch.setattr(search, "arrival", arrival)
+    monkeypatch.setattr(search, "arrivals", arrivals)
     monkeypatch.setattr(search, "screen_table", screen_table)
     monkeypatch.setattr(search, "_hold", hold)
     monkeypatch.setattr(runner, "run_experiment", run_experiment)

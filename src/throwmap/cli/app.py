@@ -3,12 +3,13 @@
 This module only builds the Typer app: the ``--version`` option and the command groups,
 each in its own module and each registering its commands here:
 
-==========================  ==============================================
-:mod:`throwmap.cli.throws`    ``throw``, ``iterate``
-:mod:`throwmap.cli.studies`   ``demo``, ``compare``, ``validate``
-:mod:`throwmap.cli.animate`   ``animate``
-:mod:`throwmap.cli.analysis`  ``limitset``, ``basins``, ``funnels``
-==========================  ==============================================
+================================  ==============================================
+:mod:`throwmap.cli.throws`          ``throw``, ``iterate``
+:mod:`throwmap.cli.studies`         ``demo``, ``compare``, ``validate``
+:mod:`throwmap.cli.animate`         ``animate``
+:mod:`throwmap.cli.analysis`        ``limitset``, ``basins``, ``funnels``
+:mod:`throwmap.cli.continuat      ion`  ``continuation``
+================================  ==============================================
 
 Each subcommand parses its options, builds the part and arm, calls one library
 function and prints (or writes) the result; there is no physics here. What the
@@ -26,7 +27,7 @@ from typing import Annotated
 import typer
 
 from ..version import __version__
-from . import analysis, animate, assemble, chain, control, design, experiment, feeder, plan, reproduce, statics, studies, sweep, throws, view
+from . import analysis, animate, assemble, chain, continuation, control, design, experiment, feeder, plan, reproduce, statics, studies, sweep, throws, view
 from .usage import ThrowmapGroup
 
 __all__ = ["app", "main"]
@@ -55,7 +56,7 @@ def _root(
     """Throw maps of planar parts on a one-joint throwing arm (SI units: m, kg, s, rad)."""
 
 
-for _group in (throws, studies, animate, analysis, experiment, design, feeder, control, plan, statics, assemble, reproduce, view, sweep, chain):  # the order of `throwmap --help`
+for _group in (throws, studies, animate, analysis, continuation, experiment, design, feeder, control, plan, statics, assemble, reproduce, view, sweep, chain):  # the order of `throwmap --help`
     _group.register(app)
 
 

@@ -36,7 +36,7 @@ from ..errors import InvalidStateError
 from ..system.arm import Arm
 from ..system.part import Part
 
-__all__ = ["RecoilTable", "Passage", "recoil_table", "first_passage", "check_chains"]
+__all__ = ["RecoilTable", "Passage", "recoil_table", "first_passage", "first_passages", "check_chains"]
 
 Z_LEVELS = tuple(range(-3, 4))
 """ω levels of the table, in units of the jitter σ."""
@@ -169,16 +169,26 @@ def first_passage(part: Part, table: RecoilTable, target: int, *, n: int = 3000,
                   x_range: tuple | None = None, X=None) -> Passage:
     """Markov chains on ``table`` from ``n`` random rests (side uniform, CM x uniform in ``x_range``, m;
     default from the joint to 0.35 m): see the module docstring."""
-    from ..records.outcome import Status
-
     target = part.check_side(target, field="target")
-    check_chains(n, throws, seed)
     if X is None:  # end stops from 30 cm (5 cm on a short table) to the table's end, every cm
         x_end = float(table.x[-1])
         X = np.arange(0.30 if x_end > 0.35 else 0.05, x_end, 0.01)
-    X = np.asarray(X, dtype=float)
-    if X.size == 0 or not np.all(np.isfinite(X)):
-        raise InvalidStateError("X", f"needs at least one finite end-stop position inside the table (x ≤ {table.x[-1]:g} m)")
+    return first_passages(part, table, {target: X}, n=n, throws=throws, seed=seed, x_range=x_range)[target]
+
+
+def first_passages(part: Part, table: RecoilTable, stops: dict, *, n: int = 3000, throws: int = 60, seed: int = 0,
+                   x_range: tuple | None = None) -> dict:
+    """:func:`first_passage` for several targets at once: ``stops`` maps each target side to its end-stop positions
+    X (m); the chains are run once, over every stop of every target, and each target's :class:`Passage` read off
+    them (the same chains, so each equals what :func:`first_passage` gives for that target alone)."""
+    from ..records.outcome import Status
+
+    check_chains(n, throws, seed)
+    stops = {part.check_side(t, field="target"): np.asarray(X, dtype=float) for t, X in stops.items()}
+    for X in stops.values():
+        if X.size == 0 or not np.all(np.isfinite(X)):
+            raise InvalidStateError("X", f"needs at least one finite end-stop position inside the table (x ≤ {table.x[-1]:g} m)")
+    X, where = np.unique(np.concatenate(list(stops.values())), return_inverse=True)
     rng = np.random.default_rng(seed)
     uL, uR = np.asarray(part.uL, dtype=float), np.asarray(part.uR, dtype=float)
     sides = np.asarray(part.stable_sides)
@@ -211,7 +221,13 @@ def first_passage(part: Part, table: RecoilTable, target: int, *, n: int = 3000,
         sub = first[:, g]
         hit = (sub < 0) & (v[None, :] > X[:, None])  # (stops, chains): first past the stop now
         first[:, g] = np.where(hit, side[g][None, :], sub)
-    good = (first == target).mean(axis=1)
-    wrong = ((first >= 0) & (first != target)).mean(axis=1)
-    holds = np.array([_holds(part, table, target, float(Xq)) for Xq in X])
-    return Passage(X, good, wrong, holds, int(target), int(n), int(throws), int(seed), (lo_x, hi_x))
+    out = {}
+    at = 0
+    for target, Xt in stops.items():
+        rows = first[where[at:at + Xt.size]]
+        at += Xt.size
+        good = (rows == target).mean(axis=1)
+        wrong = ((rows >= 0) & (rows != target)).mean(axis=1)
+        holds = np.array([_holds(part, table, target, float(Xq)) for Xq in Xt])
+        out[target] = Passage(Xt, good, wrong, holds, int(target), int(n), int(throws), int(seed), (lo_x, hi_x))
+    return out

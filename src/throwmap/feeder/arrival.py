@@ -35,7 +35,7 @@ from ..errors import InvalidStateError, RegimeWarning
 from ..system.arm import Arm
 from .family import Variant
 
-__all__ = ["Arrival", "arrival", "screen_table", "exact_table", "lip_offset", "pocket_clearance", "DROP_X", "TABLE_STEP", "TABLE_X_MAX", "WALL_X_MAX"]
+__all__ = ["Arrival", "arrival", "arrivals", "screen_table", "exact_table", "lip_offset", "pocket_clearance", "DROP_X", "TABLE_STEP", "TABLE_X_MAX", "WALL_X_MAX"]
 
 DROP_X = (0.0, 0.25)
 """The drop zone: CM abscissa range over which parts arrive on the arm, m."""
@@ -151,9 +151,17 @@ def arrival(variant: Variant, omega: float, arm: Arm, *, sides=None, sigma: floa
     ``table`` (:func:`screen_table`; None: the engine's, computed here): the best end wall of every side in ``sides``
     (None: every stable side) — arrival counted at the lip of a pocket ``pocket_depth`` m deep (0: at the end wall
     itself) —, and the side with the highest share."""
+    return arrivals(variant, omega, arm, sides=sides, sigma=sigma, chains=chains, throws=throws, seed=seed,
+                    table=table, depths=(pocket_depth,))[0]
+
+
+def arrivals(variant: Variant, omega: float, arm: Arm, *, sides=None, sigma: float = 0.03, chains: int = 1500,
+             throws: int = 60, seed: int = 0, table=None, depths=(0.0,)) -> list:
+    """:func:`arrival` for each pocket depth in ``depths`` (m), on one run of the chains
+    (:func:`throwmap.design.passage.first_passages`): each equals :func:`arrival` at that depth alone."""
     import time
 
-    from ..design.passage import first_passage
+    from ..design.passage import first_passages
 
     t0 = time.perf_counter()
     part = variant.part
@@ -171,20 +179,34 @@ def arrival(variant: Variant, omega: float, arm: Arm, *, sides=None, sigma: floa
     exact = table is not None and float(table.recoil) == 0.0
     if table is None:
         table = screen_table(part, omega, arm, sigma=sigma)
-    best = {}
-    for k in sides:
-        off = lip_offset(part, k, pocket_depth)
-        lips = np.round(X - off, 6)
-        lips = lips[(lips > 0.02) & (lips <= TABLE_X_MAX - TABLE_STEP + 1e-9)]  # inside the table
-        if lips.size == 0:
-            best[k] = (math.nan, 0.0, 1.0, False)
-            continue
-        p = first_passage(part, table, k, n=chains, throws=throws, seed=seed, x_range=DROP_X, X=lips)
-        score = np.where(p.holds, p.good - 2.0 * p.wrong, -np.inf)
-        i = int(np.argmax(score))
-        held = bool(p.holds[i])
-        best[k] = (round(float(p.X[i]) + off, 6), float(p.good[i]) if held else 0.0, float(p.wrong[i]), held)
-    side = max(best, key=lambda k: best[k][1] - 2.0 * best[k][2])
-    X_k, good, wrong, _ = best[side]
-    return Arrival(variant, float(omega), float(arm.h), int(side), X_k, good, wrong, best, int(chains),
-                   time.perf_counter() - t0, "rigid_body" if exact else "engine", pocket_depth > 0)
+    lips = {}  # (side, depth) → (offset, the lips inside the table)
+    for d in depths:
+        for k in sides:
+            off = lip_offset(part, k, d)
+            at = np.round(X - off, 6)
+            lips[(k, d)] = (off, at[(at > 0.02) & (at <= TABLE_X_MAX - TABLE_STEP + 1e-9)])  # inside the table
+    want = {}
+    for (k, d), (_, at) in lips.items():
+        if at.size:
+            want[k] = np.union1d(want.get(k, np.zeros(0)), at)
+    passages = first_passages(part, table, want, n=chains, throws=throws, seed=seed, x_range=DROP_X) if want else {}
+    out = []
+    for d in depths:
+        best = {}
+        for k in sides:
+            off, at = lips[(k, d)]
+            if at.size == 0:
+                best[k] = (math.nan, 0.0, 1.0, False)
+                continue
+            p = passages[k]
+            rows = np.searchsorted(p.X, at)
+            good, wrong, holds = p.good[rows], p.wrong[rows], p.holds[rows]
+            score = np.where(holds, good - 2.0 * wrong, -np.inf)
+            i = int(np.argmax(score))
+            held = bool(holds[i])
+            best[k] = (round(float(at[i]) + off, 6), float(good[i]) if held else 0.0, float(wrong[i]), held)
+        side = max(best, key=lambda k: best[k][1] - 2.0 * best[k][2])
+        X_k, good, wrong, _ = best[side]
+        out.append(Arrival(variant, float(omega), float(arm.h), int(side), X_k, good, wrong, best, int(chains),
+                           (time.perf_counter() - t0) / len(depths), "rigid_body" if exact else "engine", d > 0))
+    return out

@@ -48,7 +48,7 @@ from ..errors import InvalidStateError, shown
 from ..io.files import atomic_write_text
 from ..system.arm import Arm
 from ..system.part import Part
-from .arrival import DROP_X, WALL_X_MAX, Arrival, arrival, lip_offset, screen_table
+from .arrival import DROP_X, WALL_X_MAX, Arrival, arrival, arrivals, lip_offset, screen_table
 from .family import Variant, weight_variants
 from .files import LINING_MU, POCKET_DEPTH_M, feeder_files
 
@@ -300,9 +300,8 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             for h in hs:
                 arm = Arm(h=h, g=g, mu=mu)
                 table = screen_table(v.part, w, arm, sigma=sigma, exact=True)
-                for depth in (0.0, POCKET_DEPTH_M):  # arrival at the end wall, and at the pocket's lip
-                    exact.append(arrival(v, w, arm, sides=sides, sigma=sigma, chains=400, table=table,
-                                         pocket_depth=depth))
+                exact += arrivals(v, w, arm, sides=sides, sigma=sigma, chains=400, table=table,
+                                  depths=(0.0, POCKET_DEPTH_M))  # arrival at the end wall, and at the pocket's lip
                 tick("exact screen", len(exact), total)
     stages = {"exact_screen": time.perf_counter() - t0}
     exact_best = {str(k): max((a.best[k][1] for a in exact if k in a.best), default=0.0) for k in sides}
@@ -500,6 +499,11 @@ def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: floa
     shares = ", ".join(f"side {k}: exact {100 * exact_best[str(k)]:.0f} %"
                        + (f", engine {100 * eng[k]:.0f} %" if eng[k] is not None else "") for k in sides)
     parts.append(f"best first-arrival shares ({shares})")
+    run = [t for t in tried if t.runs]
+    unheld = len(tried) - len(run)
+    if unheld:
+        parts.append(f"{unheld} candidate(s) not held in the pocket (no trials run)")
+    tried = run
     if tried:
         def final(t):  # a candidate's verdict rests on its largest run (its first trials are the start of it)
             return max(t.runs, key=lambda r: r["n"]) if t.runs else {"n": 0, "successes": 0, "rate": 0.0}
@@ -507,11 +511,11 @@ def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: floa
         best = max(tried, key=lambda t: (final(t)["rate"], final(t)["n"]))
         last = final(best)
         c = best.candidate
-        parts.append(f"{len(tried)} candidate(s) verified in the engine, none fed ≥ {100 * plan.goal:g} %: the best, side "
+        parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} %: the best, side "
                      f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
                      f"{last['successes']}/{last['n']} = {100 * last['rate']:.1f} % ({best.verdict})")
     elif screened and max(a.predicted for a in screened) >= plan.min_predicted:
-        parts.append(f"the budget ({budget_s:g} s) ran out before a candidate was verified")
+        parts.append(f"the budget ({budget_s:g} s) ran out before a candidate held in the pocket was run")
     else:
         parts.append(f"no candidate reached the {100 * plan.min_predicted:g} % share needed to be verified")
     return "; ".join(parts)

@@ -182,7 +182,8 @@ class ThrowConfig(SystemSpec):
 class LimitSetConfig(SystemSpec):
     """One limit set (target ``limit_set``): the map of :class:`ThrowConfig` (without ``x``, ``side``), from
     ``n_starts`` starts per stable side, with the recurrence caps ``transient`` and ``n_record`` and the
-    domain's end ``x_max`` (m; None: the arm length, else 0.6 m)."""
+    domain's end ``x_max`` (m; None: the arm length, else 0.6 m); ``weight_x``/``weight_y`` (m, the part's frame)
+    move the part's first lead weight."""
 
     arm: ArmSpec = Field(default_factory=lambda: ArmSpec(h=-0.01, length=0.40, mu=0.8))
     model: str = "rigid_body"
@@ -191,6 +192,20 @@ class LimitSetConfig(SystemSpec):
     transient: int = Field(200, ge=0, description="throws discarded")
     n_record: int = Field(400, ge=1, description="throws recorded")
     x_max: Finite | None = Field(None, gt=0, description="domain end, m")
+    weight_x: Finite | None = Field(None, description="the part's first lead weight moved to this x, m (part frame)")
+    weight_y: Finite | None = Field(None, description="the part's first lead weight moved to this y, m (part frame)")
+
+    def build_part(self):
+        """The part, its first lead weight moved to ``weight_x`` / ``weight_y`` where given
+        (:func:`throwmap.analysis.continuation.system_at`)."""
+        part = super().build_part()
+        for name in ("weight_x", "weight_y"):
+            value = getattr(self, name)
+            if value is not None:
+                from ..analysis.continuation import system_at
+
+                part = system_at(part, None, None, name, value, {})[0]
+        return part
 
 
 def parse_sweep(doc: Any, source: str = "sweep") -> SweepSpec:

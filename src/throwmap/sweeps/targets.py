@@ -171,7 +171,8 @@ def _limit_set_point(cfg: dict, seed: int) -> dict:
     from .schema import LimitSetConfig
 
     c = _spec(cfg, LimitSetConfig)
-    ls = limit_set(_part(c.part), c.build_arm(), c.omega, c.model, n_starts=c.n_starts, rng=seed, x_max=c.x_max,
+    part = _part(c.part) if c.weight_x is None and c.weight_y is None else c.build_part()
+    ls = limit_set(part, c.build_arm(), c.omega, c.model, n_starts=c.n_starts, rng=seed, x_max=c.x_max,
                    transient=c.transient, n_record=c.n_record, limits=Limits(force=True),
                    **({"fixtures": c.fixtures()} if c.wall is not None else {}), **({"alpha": c.alpha} if c.alpha else {}))
     return {"kind": ls.kind, "n_attractors": len(ls.attractors), "unique": bool(ls.unique),
