@@ -4,11 +4,11 @@ This module only builds the Typer app: the ``--version`` option and the command 
 each in its own module and each registering its commands here:
 
 ================================  ==============================================
-:mod:`throwmap.cli.throws`          ``throw``, ``iterate``
-:mod:`throwmap.cli.studies`         ``demo``, ``compare``, ``validate``
-:mod:`throwmap.cli.animate`         ``animate``
-:mod:`throwmap.cli.analysis`        ``limitset``, ``basins``, ``funnels``
-:mod:`throwmap.cli.continuat      ion`  ``continuation``
+:mod:`throwmap.cli.throws`        ``throw``, ``iterate``
+:mod:`throwmap.cli.studies`       ``demo``, ``compare``, ``validate``
+:mod:`throwmap.cli.animate`       ``animate``
+:mod:`throwmap.cli.analysis`      ``limitset``, ``basins``, ``funnels``
+:mod:`throwmap.cli.continuation`  ``continuation``
 ================================  ==============================================
 
 Each subcommand parses its options, builds the part and arm, calls one library
