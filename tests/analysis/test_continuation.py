@@ -162,3 +162,22 @@ def test_the_command_line_prints_json_and_draws(tmp_path):
     r = runner.invoke(app, ["continuation", "--part", "triangle", "--h", "-0.01", "--param", "speed", "--from", "1",
                             "--to", "2"])
     assert r.exit_code == 2 and "error: param: must be one of" in r.output
+
+
+def test_the_margin_to_escape_is_the_distance_to_the_located_onset(tri_paper):
+    """At ω = 4.36 the onset (≈ 4.42 rad/s on this grid of starts) is within ± 0.1: the margin is the distance to
+    it; at ω = 4.0 it is beyond ± 0.1: no number, the span is stated instead."""
+    from throwmap.analysis.continuation import Resolution as R
+    from throwmap.analysis.margins import margin
+
+    tri, arm, c = tri_paper
+    res = R(starts=60, horizon=300)
+    m = margin(tri, arm, "omega", 4.36, span=0.1, model="paper", n=5, resolution=res)
+    e = m.escape
+    assert e is not None and e.kind == "escape_onset" and m.escape_distance == pytest.approx(e.value - 4.36)
+    # a true edge of escape (the chaotic band lets single starts escape in windows: the edge found is the first
+    # one that the grid of values brackets)
+    assert _brute_escape(tri, arm, e.value - e.tol, res.starts, res.horizon) == 0
+    assert _brute_escape(tri, arm, e.value + e.tol, res.starts, res.horizon) > 0
+    far = margin(tri, arm, "omega", 4.0, span=0.1, model="paper", n=3, resolution=res)
+    assert far.escape is None and math.isinf(far.escape_distance) and "none within [3.9, 4.1]" in far.text()

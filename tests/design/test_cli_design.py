@@ -15,7 +15,7 @@ runner = CliRunner()
 PNG = b"\x89PNG\r\n\x1a\n"
 POINTS = ["design", "points", "--part", "triangle", "--h", "-0.01", "--length", "0.6", "--omega", "4",
           "--weight-mass", "0.03", "--weight-at", "0.03,0.03", "--target", "0=0.40", "--target", "1=0.25",
-          "--target", "2=0.25"]
+          "--target", "2=0.25", "--escape-margin", "0"]
 
 
 def test_points_json_and_plot(tmp_path):
@@ -44,6 +44,31 @@ def test_points_that_feed_nothing_exit_1():
     assert res.exit_code == 1, res.output
     doc = json.loads(res.stdout)
     assert doc["success"] is False and doc["targets_reached"] is True and "every orbit escapes" in doc["limit_set"]
+
+
+def test_a_design_within_its_escape_margin_is_refused(monkeypatch):
+    """The margins (a continuation along ω and the weight's place) are reported; within --escape-margin × ω of
+    escape the design is refused (a stated margin stands in for the continuation here)."""
+    import throwmap.analysis.margins as margins
+    from throwmap.analysis.continuation import Event
+
+    calls = []
+
+    def near(part, arm, param, value, *, span, omega=None, model="rigid_body", **kw):
+        calls.append((param, span))
+        e = Event("escape_onset", value * 1.03, 1e-3)
+        return margins.Margin(param, "", value, (value - span, value + span), e, value * 0.03, e, value * 0.03, None)
+
+    monkeypatch.setattr(margins, "margin", near)
+    args = POINTS[:-2]
+    res = runner.invoke(app, args + ["--json"])
+    assert res.exit_code == 1, res.output
+    doc = json.loads(res.stdout)
+    assert doc["success"] is False and "within 5 % of ω of escape" in doc["message"]
+    assert [m["param"] for m in doc["margins"]] == ["omega", "weight_x", "weight_y"] and calls[1:] == [
+        ("weight_x", 0.01), ("weight_y", 0.01)]
+    res = runner.invoke(app, args + ["--escape-margin", "0.02", "--json"])  # 3 % away: outside a 2 % margin
+    assert res.exit_code == 0 and json.loads(res.stdout)["margins"][0]["escape_distance"] > 0
 
 
 def test_points_not_reached_exits_1():

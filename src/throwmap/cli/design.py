@@ -95,13 +95,18 @@ def points_cmd(
                                                                 "tilt).")] = None,
     margin: Annotated[float, typer.Option("--margin", help="The weight stays this far inside every edge, m.")] = 0.008,
     tol: Annotated[float, typer.Option("--tol", help="Success when every r_i is within tol of its target, m.")] = 1e-4,
+    escape_margin: Annotated[float, typer.Option("--escape-margin", help="Refuse a design whose ω lies within this "
+                                                                         "share of ω of where starts begin to escape "
+                                                                         "(0: no margins measured).")] = 0.05,
     as_json: JsonOpt = False,
     plot: PlotOpt = None,
 ) -> None:
     """Place a lead weight (and set ω…) so that the critical points r_i hit --target (paper Sec. V-B).
 
-    Exit status 0 when the targets are reached, 1 when the solver stops short (its message says
-    why), 2 on bad input."""
+    A design that reaches its targets then gets its margins (a short continuation of its limit set along ω, and
+    along the weight's x and y): the distance to the nearest event, and to where starts begin to escape; within
+    --escape-margin × ω of escape it is refused. Exit status 0 when the targets are reached with the margin, 1 when
+    the solver stops short or the margin is not met (the message says why), 2 on bad input."""
     from ..design import design
     from ..design.api import SolveOptions, SpaceOptions
 
@@ -112,22 +117,49 @@ def points_cmd(
         at = _pair(weight_at, "weight_at") if weight_at is not None else None
         names = tuple(v.strip() for v in vary.split(",") if v.strip())
         fmt = figure_format(plot, "plot")
+        if not (escape_margin >= 0 and escape_margin < 1):
+            raise InvalidStateError("escape-margin", f"must be a share of ω in [0, 1), got {escape_margin}")
         res = design(the_part, arm, omega, targets, weight_mass=weight_mass, weight_at=at, vary=names, model=model,
                      alpha=alpha, space=SpaceOptions(margin=margin), solve=SolveOptions(tol=tol))
+        margins = []
+        if res.success and escape_margin > 0:
+            res, margins = _with_margins(res, the_part, escape_margin)
         if plot is not None:
             save_figure(res.plot(), plot, fmt, "plot")
         if as_json:
             doc = res.to_dict()
             doc.update({"arm": arm_dict(res.arm), "plot": str(plot) if plot is not None else None,
-                        "version": __version__})
+                        "margins": [m.to_dict() for m in margins], "version": __version__})
             typer.echo(to_json(doc))
         else:
             typer.echo(f"{res.part.name}: h = {res.arm.h:g} m, model {model!r}")
             typer.echo(res.table())
+            for m in margins:
+                typer.echo(m.text())
             if plot is not None:
                 typer.echo(f"wrote {plot}")
     if not res.success:
         raise typer.Exit(1)
+
+
+def _with_margins(res, plate, share: float):
+    """The design's margins along ω (± 3 × ``share`` × ω, at least ± 10 %) and, for a weight on a plate without
+    others, along its x and y (± 1 cm); the result refused when escape lies within ``share`` × ω."""
+    import dataclasses
+
+    from ..analysis.margins import margin
+
+    opts = {"alpha": res.alpha} if res.alpha else {}
+    w = res.omega
+    out = [margin(res.part, res.arm, "omega", w, span=max(3 * share, 0.1) * w, model=res.model, **opts)]
+    if res.weight_mass > 0 and not plate.point_masses:
+        for k, name in enumerate(("weight_x", "weight_y")):
+            out.append(margin(res.part, res.arm, name, float(res.weight_at[k]), span=0.01, omega=w, model=res.model,
+                              **opts))
+    if out[0].escape_distance < share * w:
+        res = dataclasses.replace(res, success=False, message=f"targets reached, but within {100 * share:g} % of ω of "
+                                                              f"escape: {out[0].text()}")
+    return res, out
 
 
 @design_app.command("example")
