@@ -49,6 +49,14 @@ def test_set_distance_and_the_changes_a_matching_names():
     assert to_before == {0: 1} and [(c.kind, c.before, c.after) for c in changes] == [("merge", (0, 1), (0,))]
     to_before, changes = match([far], [b], 0.03, forced=[(0, 0)])  # a doubling pairs whatever the distance
     assert to_before == {0: 0} and changes == []
+    # a band that takes in two far apart (a crisis): the larger continues (a jump), the other merged into it
+    big = _att(7, [(0, 0.10, 0.55)])
+    small = _att(8, [(0, 0.48, 0.54)]).with_fraction(0.1)
+    a0 = _att(9, [(0, 0.10, 0.20)])
+    to_before, changes = match([a0, small], [big], 0.03)
+    assert to_before == {0: 0} and sorted((c.kind, c.before) for c in changes) == [("jump", (0,)), ("merge", (1, 0))]
+    to_before, changes = match([big], [a0, small], 0.03)  # and back: a jump and a split
+    assert to_before == {0: 0} and sorted((c.kind, c.after) for c in changes) == [("jump", (0,)), ("split", (0, 1))]
 
 
 def test_the_logistic_family_doubles_at_three_and_escapes_past_four():

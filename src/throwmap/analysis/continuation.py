@@ -8,7 +8,8 @@ neighbouring values by the distance between their sets (:mod:`throwmap.analysis.
 id along the curve.
 
 Where the structure changes between two values — an attractor appears, vanishes, merges or splits, or the share
-of starts that escape becomes positive (``escape_onset``) or zero (``escape_end``) — the interval is halved,
+of starts that escape becomes positive (``escape_onset``) or zero (``escape_end``), or an attractor's set jumps
+(grows or shrinks at once by more than the matching's threshold: ``jump``) — the interval is halved,
 evaluating the middle value, until it is at most ``tol`` wide; the changes found between the final neighbours are
 the events, at the interval's middle ± half its width. A fixed point matched to a period-2 cycle, or whose
 multiplier passes −1, is a period doubling: located by bisection on the multiplier of the fixed point itself,
@@ -48,7 +49,7 @@ along x or y of the part's frame (m), the other coordinate kept."""
 FOLD_MULTIPLIER = 0.9
 """A fixed point that vanishes with a multiplier above this is reported as a fold (multiplier → +1)."""
 
-EVENT_KINDS = ("appear", "vanish", "merge", "split", "period_doubling", "fold", "escape_onset", "escape_end")
+EVENT_KINDS = ("appear", "vanish", "merge", "split", "jump", "period_doubling", "fold", "escape_onset", "escape_end")
 
 
 @dataclass(frozen=True, slots=True)
@@ -87,7 +88,7 @@ class Resolution:
 
 @dataclass(frozen=True, slots=True)
 class Event:
-    """A change located on the parameter: ``kind`` (one of ``appear``, ``vanish``, ``merge``, ``split``,
+    """A change located on the parameter: ``kind`` (one of ``appear``, ``vanish``, ``merge``, ``split``, ``jump``,
     ``period_doubling``, ``fold``, ``escape_onset``, ``escape_end``), ``value`` (the middle of the final interval,
     in the parameter's unit) ± ``tol`` (half its width), ``ids`` (the attractors concerned) and ``detail``."""
 
@@ -550,6 +551,10 @@ def continuation(part, arm=None, param: str = "omega", values=None, *, omega=Non
                     detail = f"{s.attractors[c.after[0]].kind} on sides {list(s.attractors[c.after[0]].sides)} appeared"
                 elif kind == "merge":
                     detail = f"#{before[0]} merged into #{before[1]}"
+                elif kind == "jump":
+                    a, b = p.attractors[c.before[0]], s.attractors[c.after[0]]
+                    detail = (f"x range [{100 * min(x[1] for x in a.bands):.2f}, {100 * max(x[2] for x in a.bands):.2f}] → "
+                              f"[{100 * min(x[1] for x in b.bands):.2f}, {100 * max(x[2] for x in b.bands):.2f}] cm at once")
                 else:
                     detail = f"#{after[1]} split off #{before[0]}"
                 if not fine:

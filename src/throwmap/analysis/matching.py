@@ -6,9 +6,11 @@ rest on, in metres (infinite when they share no side). Matching is greedy by asc
 up to a threshold — the matching by distance of Attractors.jl's global continuation, with sides kept apart
 because a throw map's configurations on different sides are never near each other.
 
-What is left unmatched is a change: an attractor of the earlier value within the threshold of one already
-matched has *merged* into it; one of the later value near a matched one has *split* off it; the rest have
-*vanished* or *appeared*. :func:`match` returns both.
+What is left unmatched is a change: an unmatched attractor whose set (its hull on every side, ± the threshold)
+takes in unmatched ones of the other value continues the largest of them — a *jump* (the set grew or shrank at
+once, a crisis) — and the others have *merged* into it (or *split* off it); an attractor of the earlier value within
+the threshold of one already matched has merged into it, one of the later value near a matched one has split off
+it; the rest have *vanished* or *appeared*. :func:`match` returns both.
 """
 
 from __future__ import annotations
@@ -41,8 +43,9 @@ def set_distance(a, b) -> float:
 @dataclass(frozen=True, slots=True)
 class Change:
     """One change between two neighbouring values: ``kind`` (``"appear"``, ``"vanish"``, ``"merge"``,
-    ``"split"``), ``before`` / ``after`` the indices of the attractors concerned at the earlier / later value
-    (a merge: the vanished one and the one it merged into; a split: the one split from and the new one)."""
+    ``"split"``, ``"jump"``), ``before`` / ``after`` the indices of the attractors concerned at the earlier / later
+    value (a merge: the vanished one and the one it merged into; a split: the one split from and the new one; a
+    jump: one attractor whose set grew or shrank by more than the threshold at once)."""
 
     kind: str
     before: tuple
@@ -65,16 +68,52 @@ def match(before, after, tol: float, forced=()) -> tuple[dict, list]:
         if i not in used_before and j not in to_before:
             to_before[j] = i
             used_before.add(i)
-    matched_after = {i: j for j, i in to_before.items()}
     changes = []
+    fraction = [getattr(a, "fraction", 0.0) for a in before], [getattr(b, "fraction", 0.0) for b in after]
+    # an attractor whose set takes in unmatched ones of the other value continues the largest of them: one taken
+    # in is a jump (its hull grew or shrank by more than tol at once), more are a merge (or a split)
+    for j in range(len(after)):
+        if j in to_before:
+            continue
+        inner = [i for i in range(len(before)) if i not in used_before and _inside(before[i], after[j], tol)]
+        if inner:
+            keep = max(inner, key=lambda i: fraction[0][i])
+            to_before[j] = keep
+            used_before.add(keep)
+            changes.append(Change("jump", (keep,), (j,)))
+            changes += [Change("merge", (i, keep), (j,)) for i in inner if i != keep]
+            used_before.update(inner)
+    matched_after = {i: j for j, i in to_before.items()}
+    for i in range(len(before)):
+        if i in used_before:
+            continue
+        inner = [j for j in range(len(after)) if j not in to_before and _inside(after[j], before[i], tol)]
+        if inner:
+            keep = max(inner, key=lambda j: fraction[1][j])
+            to_before[keep] = i
+            used_before.add(i)
+            matched_after[i] = keep
+            changes.append(Change("jump", (i,), (keep,)))
+            for j in inner:
+                if j != keep:
+                    to_before.setdefault(j, None)
+                    changes.append(Change("split", (i,), (keep, j)))
+    split_new = {j for j, i in to_before.items() if i is None}
+    to_before = {j: i for j, i in to_before.items() if i is not None}
     for i in range(len(before)):
         if i in used_before:
             continue
         near = [j for d, k, j in pairs if k == i and j in to_before]
         changes.append(Change("merge", (i, to_before[near[0]]), (near[0],)) if near else Change("vanish", (i,), ()))
     for j in range(len(after)):
-        if j in to_before:
+        if j in to_before or j in split_new:
             continue
         near = [i for d, i, k in pairs if k == j and i in matched_after]
         changes.append(Change("split", (near[0],), (matched_after[near[0]], j)) if near else Change("appear", (), (j,)))
     return to_before, changes
+
+
+def _inside(small, big, tol: float) -> bool:
+    """Whether every side's hull of ``small`` lies within ``big``'s hull on that side, ± ``tol`` m."""
+    hs, hb = _hulls(small), _hulls(big)
+    return bool(hs) and all(s in hb and hb[s][0] - tol <= lo and hi <= hb[s][1] + tol for s, (lo, hi) in hs.items())

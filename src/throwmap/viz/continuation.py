@@ -11,7 +11,7 @@ from .style import ESCAPE_COLOR, _plt, attractor_colors, layout, save_figure, sc
 
 __all__ = ["plot_continuation", "EVENT_LABELS"]
 
-EVENT_LABELS = {"appear": "appears", "vanish": "vanishes", "merge": "merge", "split": "splits",
+EVENT_LABELS = {"appear": "appears", "vanish": "vanishes", "merge": "merge", "split": "splits", "jump": "jumps",
                 "period_doubling": "period doubling", "fold": "fold (multiplier +1)",
                 "escape_onset": "escape begins", "escape_end": "escape ends"}
 """How each event kind is written on the figure."""
