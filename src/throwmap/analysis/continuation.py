@@ -219,7 +219,7 @@ class Continuation:
 def _first_weight(part: Part, field_name: str):
     if not part.point_masses:
         raise InvalidStateError(field_name, f"part {part.name!r} has no lead weight to move: give one in its part file "
-                                            "([[weights]] or point_masses)")
+                                            "([[part.point_masses]])")
     return part.point_masses[0]
 
 

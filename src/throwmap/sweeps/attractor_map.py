@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InvalidStateError, shown
+from .schema import jsonable
 
 __all__ = ["AttractorMap", "attractor_map", "limit_set_config", "FIELDS"]
 
@@ -44,12 +45,12 @@ class AttractorMap:
         return bool(np.all(np.isfinite(self.count)) or self.errors)
 
     def to_dict(self) -> dict:
-        def grid(a):
-            return [[None if not math.isfinite(v) else float(v) for v in row] for row in a]
+        def grid(a, kind=float):
+            return [[None if not math.isfinite(v) else kind(v) for v in row] for row in a]
 
         return {"params": list(self.params), "values": [list(map(float, v)) for v in self.values],
-                "attractors": grid(self.count), "escape_fraction": grid(self.escape), "errors": dict(self.errors),
-                "out": self.out, "system": dict(self.system)}
+                "attractors": grid(self.count, int), "escape_fraction": grid(self.escape), "errors": dict(self.errors),
+                "out": self.out, "system": jsonable(dict(self.system))}
 
     def table(self) -> str:
         """Attractor counts (and escape share, %) as a text grid: rows the first parameter, columns the second."""
@@ -114,8 +115,8 @@ def limit_set_config(part: str, arm, *, omega=None, model: str = "rigid_body", t
     n_record = min(400, int(horizon))
     config = {"part": str(part), "model": model, "n_starts": int(n_starts), "transient": int(horizon) - n_record,
               "n_record": n_record, "x_max": x_max, "omega": omega, "alpha": alpha or None,
-              "arm": {k: v for k, v in (("h", arm.h), ("g", arm.g), ("length", arm.length), ("mu", arm.mu),
-                                        ("back", arm.back)) if v is not None}}
+              "arm": {"h": arm.h, "g": arm.g, "length": math.inf if arm.length is None else arm.length, "mu": arm.mu,
+                      "back": arm.back}}  # every field: the target's own arm defaults (a 0.4 m arm) would apply
     if walls:
         config["wall"] = {k: v for k, v in (("height", walls[0].height), ("mu", walls[0].mu)) if v is not None}
     return {k: v for k, v in config.items() if v is not None}

@@ -37,17 +37,20 @@ def plot_continuation(c, path=None, *, unit: str = "cm", fig=None):
     values = np.array([p.value for p in pts])
     step = float(np.min(np.diff(values))) if len(values) > 1 else 1.0
     shown_sides = set()
+    span = float(values[-1] - values[0]) or 1.0
+    grid_step = float(np.min(np.diff(c.grid))) if len(c.grid) > 1 else span
+    n_sides = max(1, len(sides))
     for p in pts:
+        lw, alpha = (1.0, 0.45) if p.refined else (2.2, 0.85)  # values added while locating events: lighter
         for a in p.attractors:
-            if a.kind == "band":
-                for s, lo, hi in a.bands:
-                    ax.plot([p.value, p.value], [k * lo, k * hi], "-", color=colors[int(s)], lw=2.0, alpha=0.75,
+            for s, lo, hi in a.bands:  # sides side by side around the value, so overlapping intervals stay visible
+                dx = (sides.index(int(s)) - (n_sides - 1) / 2) * 0.22 * grid_step / n_sides if not p.refined else 0.0
+                if a.kind == "band":
+                    ax.plot([p.value + dx] * 2, [k * lo, k * hi], "-", color=colors[int(s)], lw=lw, alpha=alpha,
                             solid_capstyle="butt")
-                    shown_sides.add(int(s))
-            else:
-                for s, x in a.points:
-                    ax.plot(p.value, k * x, "o", color=colors[int(s)], ms=3.5)
-                    shown_sides.add(int(s))
+                else:
+                    ax.plot(p.value + dx, k * lo, "o", color=colors[int(s)], ms=3.5 if not p.refined else 2)
+                shown_sides.add(int(s))
     for s in sides:
         r = [(p.value, p.r.get(s, math.nan)) for p in pts if p.r]
         if r:
@@ -55,12 +58,20 @@ def plot_continuation(c, path=None, *, unit: str = "cm", fig=None):
             ax.plot(rv[:, 0], k * rv[:, 1], "--", color=colors[s], lw=0.9, label=f"r{s} (jogs end)")
     for s in sorted(shown_sides):
         ax.plot([], [], "-", color=colors[s], lw=3, label=f"rests on side {s}")
+    ax.plot([], [], "-", color="0.5", lw=1, alpha=0.5, label="values added to locate events")
     ymax = ax.get_ylim()[1]
-    for e in c.events:
+    groups: list = []  # events closer than 1.5 % of the axis share one label
+    for e in sorted(c.events, key=lambda e: e.value):
         ax.axvline(e.value, color="0.35", lw=0.8, ls=":")
         ax2.axvline(e.value, color="0.35", lw=0.8, ls=":")
-        ax.text(e.value, ymax, " " + EVENT_LABELS.get(e.kind, e.kind) + (f" #{e.ids[0]}" if e.ids else ""),
-                rotation=90, va="top", ha="right", fontsize=7, color="0.2")
+        text = EVENT_LABELS.get(e.kind, e.kind) + (f" #{e.ids[0]}" if e.ids else "")
+        if groups and e.value - groups[-1][0] <= 0.015 * span:
+            if text not in groups[-1][1]:
+                groups[-1][1].append(text)
+        else:
+            groups.append([e.value, [text]])
+    for at, texts in groups:
+        ax.text(at, ymax, " " + ", ".join(texts), rotation=90, va="top", ha="right", fontsize=7, color="0.2")
     u = f" ({c.unit})" if c.unit else ""
     ax.set_ylabel(f"attractor x ({unit})")
     ax.set_ylim(bottom=0)
@@ -75,7 +86,8 @@ def plot_continuation(c, path=None, *, unit: str = "cm", fig=None):
     else:
         what = f"map family {sys_.get('family', '')}"
     r = c.range
-    ax.set_title(f"{what}\nattractors along {c.param}; {r['starts_per_side']} starts per side, {r['horizon_throws']} "
+    symbol = {"omega": "ω", "alpha": "α", "mu": "μ"}.get(c.param, c.param)
+    ax.set_title(f"{what}\nattractors along {symbol}; {r['starts_per_side']} starts per side, {r['horizon_throws']} "
                  "throws each", fontsize=9)
 
     # basin fractions, stacked: attractors by id, then escapes and unresolved
@@ -89,7 +101,7 @@ def plot_continuation(c, path=None, *, unit: str = "cm", fig=None):
     ax2.stackplot(values, *layers, colors=colours, labels=labels, step=None)
     ax2.set_ylim(0, 1)
     ax2.set_ylabel("share of starts")
-    ax2.set_xlabel(f"{c.param}{u}")
+    ax2.set_xlabel(f"{symbol}{u}")
     ax2.set_xlim(values[0] - 0.02 * step, values[-1] + 0.02 * step)
     ax2.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=7, framealpha=0.85)
     layout(fig)
