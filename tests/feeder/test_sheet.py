@@ -47,3 +47,17 @@ def test_no_margin_step_starts_after_the_budget(tmp_path, monkeypatch):
     out = margins(cfg, tmp_path, budget_s=-1.0)
     assert set(out) == set(MARGIN_STEPS) and all(r["not measured"] == "budget" for rows in out.values() for r in rows)
     assert "not measured" in _margin_text("omega", out["omega"])[1]
+
+
+def test_a_feeder_is_refused_only_when_a_three_percent_drift_is_clearly_below_the_goal():
+    from throwmap.experiments.stats import wilson_interval
+    from throwmap.feeder.sheet import margin_refusal
+
+    def row(step, s, n=30):
+        return {"passed": None, "failed": step, "runs": [{"step": step, "n": n, "successes": s,
+                                                          "ci95": list(wilson_interval(s, n))}]}
+
+    assert margin_refusal({"omega": [row(-0.03, 27), row(0.03, 30)]}, 0.95) == ""  # 90 %: not clearly below 95 %
+    why = margin_refusal({"omega": [row(-0.03, 30), row(0.03, 20)]}, 0.95)
+    assert why.startswith("verified, but within 3 % of ω of losing its feed: at ω(1 +3%) 20/30 fed")
+    assert margin_refusal({"omega": [row(-0.06, 0)]}, 0.95) == "" and margin_refusal({}, 0.95) == ""

@@ -329,4 +329,26 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
     doc = (f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title><style>{style}</style>"
            f"</head><body>{''.join(body)}</body></html>")
     files["html"] = str(atomic_write_text(out / "sheet.html", doc))
-    return dataclasses.replace(res, sheet=sheet)
+    res = dataclasses.replace(res, sheet=sheet)
+    why = margin_refusal(marg, res.assumptions.get("goal", 0.95))
+    if why:
+        res = dataclasses.replace(res, success=False, reason=why)
+    return res
+
+
+REFUSE_WITHIN = 0.03
+"""A verified feeder is refused when at ω(1 ± this) (the first margin step, one jitter σ) its success is below the
+goal with 95 % confidence (the Wilson interval's upper end under the goal)."""
+
+
+def margin_refusal(marg: dict, goal: float) -> str:
+    """Why a feeder sits within :data:`REFUSE_WITHIN` of ω of losing its feed (``marg``: :func:`margins`), or ``""``.
+    Only a step clearly below ``goal`` refuses: 30 trials cannot tell 95 % from 90 %, so a step that merely fails
+    its 95 % is a margin reported, not a refusal."""
+    for row in marg.get("omega", []):
+        for run in row.get("runs", []):
+            if abs(abs(run["step"]) - REFUSE_WITHIN) < 1e-9 and run["ci95"][1] < goal:
+                return (f"verified, but within {100 * REFUSE_WITHIN:g} % of ω of losing its feed: at ω(1 "
+                        f"{run['step']:+.0%}) {run['successes']}/{run['n']} fed (Wilson 95 % up to "
+                        f"{100 * run['ci95'][1]:.1f} % < {100 * goal:g} %)")
+    return ""
