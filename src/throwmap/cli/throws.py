@@ -1,6 +1,8 @@
-"""``throwmap throw`` and ``throwmap iterate``: one throw, and an orbit of throws (paper Sec. III).
+"""``throwmap throw``, ``throwmap iterate`` and ``throwmap map``: one throw, an orbit of throws, and the throw
+map T(x) of every side (paper Sec. III).
 
-A thin shell over :func:`throwmap.throws.throw.throw` and :func:`throwmap.throws.orbit.iterate`:
+A thin shell over :func:`throwmap.throws.throw.throw`, :func:`throwmap.throws.orbit.iterate` and
+:func:`throwmap.throws.samples.throw_map_samples`:
 parse, build the part and arm (:func:`~throwmap.cli.options.part_and_arm`), throw, print a
 table (or JSON with ``--json``) and, for ``iterate --plot``, write the orbit's figure.
 Errors follow :mod:`throwmap.cli.options`: one ``error: <field>: <reason>`` line, exit 2.
@@ -26,7 +28,7 @@ from ..analysis.maps import system_text
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
-__all__ = ["register", "throw_cmd", "iterate_cmd", "PROGRESS_THRESHOLD"]
+__all__ = ["register", "throw_cmd", "iterate_cmd", "map_cmd", "PROGRESS_THRESHOLD"]
 
 PROGRESS_THRESHOLD = 200
 """``iterate`` shows a progress bar (on stderr) for more throws than this."""
@@ -236,7 +238,99 @@ def iterate_cmd(
         console.print(table)
 
 
+# ------------------------------------------------------------------ map
+def map_cmd(
+    part: PartOpt,
+    omega: OmegaOpt,
+    h: HOpt = None,
+    g: GOpt = None,
+    length: LengthOpt = None,
+    mu: MuOpt = None,
+    back: BackOpt = None,
+    model: ModelOpt = DEFAULT_MODEL,
+    model_option: ModelOptionOpt = None,
+    alpha: AlphaOpt = None,
+    wall: WallOpt = None,
+    wall_mu: WallMuOpt = None,
+    cavity: CavityOpt = None,
+    x_max: Annotated[float | None, typer.Option("--x-max", help="Outer end of the starts, m (default: the arm "
+                                                                "length, else 0.5).")] = None,
+    n: Annotated[int, typer.Option("--n", parser=strict_int, metavar="INTEGER",
+                                   help="Starts per stable side, evenly spaced.")] = 400,
+    as_json: JsonOpt = False,
+    plot: Annotated[Path | None, typer.Option("--plot", help="Write T(x) per side, e.g. map.png.")] = None,
+) -> None:
+    """The throw map T(x) of every stable side: where a part resting at x lands, as runs of x with one outcome."""
+    from ..throws.samples import throw_map_samples
+    from ..records.outcome import Status
+
+    with guard():
+        check_model(model)
+        opts = model_options(model_option, model)
+        the_part, arm = part_and_arm(part, h, g, length, mu, back)
+        sysk = system_options(alpha, wall, wall_mu, cavity, arm)
+        check_finite(omega, "omega")
+        if x_max is not None:
+            check_finite(x_max, "x-max")
+        if n < 2:
+            raise InvalidStateError("n", f"must be ≥ 2, got {n}")
+        fmt = figure_format(plot, "plot")
+        smp = throw_map_samples(the_part, arm, omega, model=model, x_max=x_max, n=n, **opts, **sysk)
+        runs = []  # (side, x from, x to, what, x' lo, x' hi)
+        for i in range(smp.x.size):
+            st = int(smp.status[i])
+            what = (f"side {int(smp.side_next[i])}" if st == 0 else Status(st).label)
+            if st == 0:
+                what = ("jog" if int(smp.side_next[i]) == int(smp.side[i]) else "flip to ") + (
+                    "" if int(smp.side_next[i]) == int(smp.side[i]) else what)
+            xn = float(smp.x_next[i]) if st == 0 else None
+            r = runs[-1] if runs else None
+            if r and r[0] == int(smp.side[i]) and r[3] == what:
+                r[2] = float(smp.x[i])
+                if xn is not None:
+                    r[4], r[5] = min(r[4], xn), max(r[5], xn)
+            else:
+                runs.append([int(smp.side[i]), float(smp.x[i]), float(smp.x[i]), what,
+                             xn if xn is not None else float("inf"), xn if xn is not None else float("-inf")])
+        seen_other: set = set()
+        for r in runs:  # beyond r_i a throw that lands on its own side has tumbled over and back, not jogged
+            if r[3] != "jog":
+                seen_other.add(r[0])
+            elif r[0] in seen_other:
+                r[3] = "tumbles over and back"
+        if plot is not None:
+            from ..analysis.maps import plot_throw_map
+
+            save_figure(plot_throw_map(the_part, arm, omega, model=model, x_max=x_max, n=n, **opts, **sysk), plot,
+                        fmt, "plot")
+        if as_json:
+            doc = {"part": the_part.name, "arm": arm_dict(arm), **system_doc(sysk), "omega": omega, "model": model,
+                   "model_options": options_doc(opts), "n_per_side": smp.n,
+                   "sides": {str(s): {"x_lo_m": smp.x_lo[k], "x_hi_m": smp.x_hi[k]} for k, s in enumerate(smp.sides)},
+                   "runs": [{"side": r[0], "x_from_m": r[1], "x_to_m": r[2], "outcome": r[3],
+                             "x_next_m": [r[4], r[5]] if r[4] <= r[5] else None} for r in runs],
+                   "samples": {"x_m": smp.x.tolist(), "side": smp.side.tolist(), "x_next_m": [
+                       float(v) if int(st) == 0 else None for v, st in zip(smp.x_next, smp.status)],
+                       "side_next": [int(v) if int(st) == 0 else None for v, st in zip(smp.side_next, smp.status)],
+                       "status": [Status(int(st)).label for st in smp.status]},
+                   "plot": str(plot) if plot is not None else None, "version": __version__}
+            typer.echo(to_json(doc))
+            return
+        typer.echo(f"throw map of {the_part.name} at ω = {omega:g} rad/s, h = {arm.h:g} m, model {model!r}"
+                   f"{system_text(sysk.get('fixtures', ()), sysk.get('alpha', 0.0))}; {smp.n} starts per side")
+        typer.echo("side  x from (cm)  x to (cm)  outcome               lands at x' (cm)")
+        for r in runs:
+            lands = f"{100 * r[4]:.2f} … {100 * r[5]:.2f}" if r[4] <= r[5] else "—"
+            typer.echo(f"{r[0]:>4}  {100 * r[1]:>11.2f}  {100 * r[2]:>9.2f}  {r[3]:<20}  {lands}")
+        typer.echo("jog: lands on the side it rested on without turning over; flip: on another side; tumbles over and "
+                   "back: turns over and lands on its own side again; any other outcome leaves the arm or is refused "
+                   "(an x between two runs lies between two samples)")
+        if plot is not None:
+            typer.echo(f"wrote {plot}")
+
+
 def register(app: typer.Typer) -> None:
-    """Add the ``throw`` and ``iterate`` commands to ``app``."""
+    """Add the ``throw``, ``iterate`` and ``map`` commands to ``app``."""
     app.command("throw")(throw_cmd)
     app.command("iterate")(iterate_cmd)
+    app.command("map")(map_cmd)
