@@ -155,6 +155,11 @@ def test_the_weight_moves_and_bad_parameters_are_refused():
         continuation(tri, tm.Arm(h=-0.01), "h", [-0.02, -0.01])
     with pytest.raises(InvalidStateError, match=r"^tol: must be a number > 0"):
         Resolution(tol=0)
+    with pytest.raises(InvalidStateError, match=r"^param: mu: model 'paper' does not use the arm's friction"):
+        continuation(tri, tm.Arm(h=-0.01), "mu", [0.3, 1.0], omega=4.0, model="paper")
+    bad = FunctionMap(lambda x, s: (x, s, np.array(["ok"] * x.size)), {0: (0.0, 1.0)})
+    with pytest.raises(InvalidStateError, match=r"^status: f must return integer status codes"):
+        continuation(lambda r: bad, None, "r", [1.0, 2.0])
 
 
 def test_the_command_line_prints_json_and_draws(tmp_path):
@@ -170,6 +175,9 @@ def test_the_command_line_prints_json_and_draws(tmp_path):
     r = runner.invoke(app, ["continuation", "--part", "triangle", "--h", "-0.01", "--param", "speed", "--from", "1",
                             "--to", "2"])
     assert r.exit_code == 2 and "error: param: must be one of" in r.output
+    r = runner.invoke(app, ["continuation", "--part", "triangle", "--h", "-0.01", "--param", "omega", "--from", "nan",
+                            "--to", "5"])
+    assert r.exit_code == 2 and r.stderr.strip() == "error: from: must be a finite number, got nan"
 
 
 def test_the_margin_to_escape_is_the_distance_to_the_located_onset(tri_paper):

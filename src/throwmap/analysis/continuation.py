@@ -197,7 +197,8 @@ class Continuation:
             atts = "; ".join(f"#{a.id} {a.kind}{'' if a.kind != 'cycle' else f'/{a.period}'} s{','.join(map(str, a.sides))} "
                              f"[{100 * min(b[1] for b in a.bands):.2f}, {100 * max(b[2] for b in a.bands):.2f}] cm "
                              f"{100 * a.fraction:.1f} %" for a in p.attractors) or "none"
-            lines.append(f"  {p.value:10.5g}  escape {100 * p.escape_fraction:5.1f} %  {atts}")
+            un = f"  unresolved {100 * p.unresolved_fraction:.1f} %" if p.unresolved_fraction > 0 else ""
+            lines.append(f"  {p.value:10.5g}  escape {100 * p.escape_fraction:5.1f} %{un}  {atts}")
         if self.events:
             lines.append("events:")
             for e in self.events:
@@ -214,6 +215,22 @@ class Continuation:
         from ..viz.continuation import plot_continuation
 
         return plot_continuation(self, path=path, **kwargs)
+
+
+def _jump_text(a, b) -> str:
+    """Where an attractor's set jumped: the side whose hull moved most (or that it gained or lost), in cm."""
+    ha, hb = {}, {}
+    for h, att in ((ha, a), (hb, b)):
+        for s, lo, hi in att.bands:
+            l0, h0 = h.get(int(s), (math.inf, -math.inf))
+            h[int(s)] = (min(l0, float(lo)), max(h0, float(hi)))
+    gained, lost = sorted(set(hb) - set(ha)), sorted(set(ha) - set(hb))
+    if gained or lost:
+        return ", ".join(t for t in (f"gained side(s) {gained}" if gained else "", f"lost side(s) {lost}" if lost else "")
+                         if t) + " at once"
+    s = max(ha, key=lambda k: max(abs(ha[k][0] - hb[k][0]), abs(ha[k][1] - hb[k][1])))
+    return (f"side {s}: x range [{100 * ha[s][0]:.2f}, {100 * ha[s][1]:.2f}] → [{100 * hb[s][0]:.2f}, "
+            f"{100 * hb[s][1]:.2f}] cm at once")
 
 
 def _first_weight(part: Part, field_name: str):
@@ -435,7 +452,19 @@ def continuation(part, arm=None, param: str = "omega", values=None, *, omega=Non
 
     ``part`` may instead be a family of maps, ``part(value)`` → a :class:`~throwmap.analysis.maps.ConfigMap`
     (``arm`` None, ``param`` any name, no ``omega``, ``model`` or ``throw_options``; ``resolution.x_max`` unused):
-    the same continuation on any map, e.g. a synthetic one with known bifurcations.
+    the same continuation on any map, e.g. a synthetic one with known bifurcations. A
+    :class:`~throwmap.analysis.maps.FunctionMap` is the shortest way: ``f(x, side)`` returns ``(x', side',
+    status)`` arrays, ``status`` integer codes of :class:`throwmap.records.outcome.Status` (0, ``Status.OK``: at rest
+    on the arm; e.g. ``Status.OFF_END``, ``Status.BEHIND_JOINT``: it left)::
+
+        def family(r):
+            def f(x, side):
+                y = r * x * (1 - x)
+                ok = (y > 0) & (y <= 1)
+                return np.where(ok, y, x), side, np.where(ok, Status.OK, Status.OFF_END)
+            return FunctionMap(f, {0: (0.0, 0.999)}, deterministic=True)
+
+        continuation(family, None, "r", np.linspace(2.8, 3.2, 9))
     """
     t0 = time.perf_counter()
     if not isinstance(resolution, Resolution):
@@ -468,6 +497,12 @@ def continuation(part, arm=None, param: str = "omega", values=None, *, omega=Non
             raise InvalidStateError("omega", "is the parameter: give its values, not omega")
         if param.startswith("weight"):
             _first_weight(part, param)
+        if param == "mu":
+            from ..models import get_model
+
+            if not get_model(model).features.friction:
+                raise InvalidStateError("param", f"mu: model {model!r} does not use the arm's friction (it assumes no "
+                                                 "slip): continue μ with a model that does, e.g. rigid_body")
 
         def family(value):
             p, a, w, opts = system_at(part, arm, omega, param, value, throw_options)
@@ -552,9 +587,7 @@ def continuation(part, arm=None, param: str = "omega", values=None, *, omega=Non
                 elif kind == "merge":
                     detail = f"#{before[0]} merged into #{before[1]}"
                 elif kind == "jump":
-                    a, b = p.attractors[c.before[0]], s.attractors[c.after[0]]
-                    detail = (f"x range [{100 * min(x[1] for x in a.bands):.2f}, {100 * max(x[2] for x in a.bands):.2f}] → "
-                              f"[{100 * min(x[1] for x in b.bands):.2f}, {100 * max(x[2] for x in b.bands):.2f}] cm at once")
+                    detail = _jump_text(p.attractors[c.before[0]], s.attractors[c.after[0]])
                 else:
                     detail = f"#{after[1]} split off #{before[0]}"
                 if not fine:

@@ -275,9 +275,13 @@ class FunctionMap(ConfigMap):
     def step(self, x, side):
         xn, sn, st = self.f(x, side)
         xn = np.asarray(xn, dtype=float).reshape(x.shape).copy()
-        sn = np.asarray(sn).reshape(x.shape).astype(np.int64)
-        st = np.asarray(st).reshape(x.shape).astype(np.int64)
-        return xn, sn, st
+        sn = np.asarray(sn).reshape(x.shape)
+        st = np.asarray(st).reshape(x.shape)
+        for name, a in (("side", sn), ("status", st)):
+            if not (np.issubdtype(a.dtype, np.integer) or np.issubdtype(a.dtype, np.bool_)):
+                raise InvalidStateError(name, f"f must return integer {name} codes (status: 0 at rest on the arm, else a "
+                                              f"throwmap.records.outcome.Status code), got dtype {a.dtype}")
+        return xn, sn.astype(np.int64), st.astype(np.int64)
 
     def describe(self) -> dict:
         return {"kind": "function", "name": self.name,

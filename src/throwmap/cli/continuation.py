@@ -96,6 +96,11 @@ def continuation_cmd(
             raise InvalidStateError("param", f"must be one of {', '.join(PARAMS)}, got {param!r}")
         if n < 2:
             raise InvalidStateError("n", f"must be ≥ 2 (the ends), got {n}")
+        import math
+
+        for name, v in (("from", start), ("to", stop)):
+            if not math.isfinite(v):
+                raise InvalidStateError(name, f"must be a finite number, got {v}")
         if not stop > start:
             raise InvalidStateError("to", f"must be above --from ({start:g}), got {stop:g}")
         fmt = figure_format(plot, "plot")

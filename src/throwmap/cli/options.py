@@ -113,7 +113,7 @@ WallOpt = Annotated[float | None, typer.Option(
 WallMuOpt = Annotated[float | None, typer.Option(
     "--wall-mu", help="Wall–part Coulomb friction μ (default: the arm's μ; inf = no slip). Needs --wall.")]
 CavityOpt = Annotated[Path | None, typer.Option(
-    "--cavity", help="A cavity at the arm's end from a .json or .toml file holding profile = [[s, y], …] in m "
+    "--cavity", help="A cavity at the arm's end from a .json or .toml file holding profile = \\[\\[s, y], …] in m "
                      "(s back from the arm's end, y ≤ 0 below the surface; see throwmap.Cavity).")]
 
 
