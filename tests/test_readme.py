@@ -196,3 +196,10 @@ def test_the_demo_files_listed_are_the_files_it_writes():
     section = text[text.index("`make demo` (= `throwmap demo --out out`)"):text.index("## Use it")]
     listed = re.findall(r"^\| `([\w.]+)` \|", section, flags=re.M)
     assert sorted(listed) == sorted(OUTPUTS)
+
+
+def test_the_readme_part_file_is_shipped_in_examples():
+    """The part file the README shows is ``examples/part.toml`` (its commands use it), byte for byte after the comment."""
+    text = (ROOT / "examples" / "part.toml").read_text(encoding="utf-8")
+    block = next(b for b in blocks("toml") if "[part]" in b and "point_masses" in b)
+    assert text.split("\n", 1)[1].strip() == block.strip()
