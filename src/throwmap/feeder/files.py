@@ -18,13 +18,10 @@ from pathlib import Path
 from ..errors import InvalidStateError
 from .arrival import DROP_X, Arrival, pocket_clearance
 
-__all__ = ["feeder_files", "feeder_config_text", "POCKET_DEPTH_M", "POCKET_DEPTHS", "LINING_MU", "MAX_THROWS", "ENGINE_SETTINGS"]
+__all__ = ["feeder_files", "feeder_config_text", "POCKET_DEPTH_M", "LINING_MU", "MAX_THROWS", "ENGINE_SETTINGS"]
 
 POCKET_DEPTH_M = 0.01
-"""The pocket's floor below the arm's surface, m (the first depth tried; see :data:`POCKET_DEPTHS`)."""
-POCKET_DEPTHS = (0.01, 0.02, 0.03)
-"""The pocket depths a candidate whose part arrives at the end wall is tried with, shallowest first, until the
-pocket holds the part (a candidate that arrives at the lip keeps the depth its lip was screened at)."""
+"""The pocket's floor below the arm's surface, m."""
 LINING_MU = 0.2
 """Friction of the pocket's lining (floor and end wall; PTFE on plastic, upper value)."""
 MAX_THROWS = 100
@@ -35,12 +32,8 @@ contact is retried 4 times."""
 
 
 def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: float = 1.0, g: float = 9.81,
-                       sigma: float = 0.03, mu_rel: float = 0.1, recoil_deg: float = 3.0, zeta: float = 0.2,
-                       depth: float = POCKET_DEPTH_M) -> str:
-    """The TOML text of the ``feed`` config of a screened feeder (SI units; see the module docstring); ``depth``
-    the pocket's floor below the arm's surface, m."""
-    if not (isinstance(depth, (int, float)) and math.isfinite(depth) and depth > 0):
-        raise InvalidStateError("depth", f"must be a depth > 0 m, got {depth!r}")
+                       sigma: float = 0.03, mu_rel: float = 0.1, recoil_deg: float = 3.0, zeta: float = 0.2) -> str:
+    """The TOML text of the ``feed`` config of a screened feeder (SI units; see the module docstring)."""
     if not (found.predicted > 0 and math.isfinite(found.X)):
         raise InvalidStateError("candidate", f"side {found.side} at ω = {found.omega:g} rad/s has no end stop where "
                                              "it arrives first and holds: nothing to feed with")
@@ -63,7 +56,7 @@ def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: floa
         "[cavity]",
         f"length = {found.X!r}  # end wall, m: side {found.side} arrives there first in "
         f"{100 * found.predicted:.1f} % of screened chains",
-        f"depth = {float(depth)!r}",
+        f"depth = {POCKET_DEPTH_M!r}",
         f"clearance = {round(pocket_clearance(found.variant.part, found.side), 6)!r}  # floor beyond side "
         f"{found.side}'s length: the part's overhang past its ends + 5 mm, m",
         f"wall_mu = {LINING_MU!r}",
@@ -82,7 +75,7 @@ def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: floa
 
 def feeder_files(found: Arrival, out, **kw) -> Path:
     """Write ``out/part.toml`` and ``out/feeder.toml`` (atomically) for a screened feeder; returns the config's path.
-    ``kw``: ``mu``, ``g``, ``sigma``, ``mu_rel``, ``recoil_deg``, ``zeta``, ``depth`` of :func:`feeder_config_text`."""
+    ``kw``: ``mu``, ``g``, ``sigma``, ``mu_rel``, ``recoil_deg``, ``zeta`` of :func:`feeder_config_text`."""
     from ..io.config import save_part_toml
     from ..io.files import atomic_write_text
 

@@ -50,7 +50,7 @@ from ..system.arm import Arm
 from ..system.part import Part
 from .arrival import DROP_X, WALL_X_MAX, Arrival, arrival, arrivals, lip_offset, screen_table
 from .family import Variant, weight_variants
-from .files import LINING_MU, POCKET_DEPTH_M, POCKET_DEPTHS, feeder_files
+from .files import LINING_MU, POCKET_DEPTH_M, feeder_files
 
 __all__ = ["Tried", "FeederSearch", "VerifyPlan", "design_feeder", "GOAL", "PRE_SHARE", "OMEGAS", "HS"]
 
@@ -262,7 +262,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     assumptions = {
         "arm": {"mu": mu, "mu_rel": mu_rel, "g_m_s2": g, "motion": "recoil arm (Flatland 3°, ζ = 0.2)",
                 "max_length_m": arm_length},
-        "omega_jitter_rel": sigma, "pocket": {"depth_m": POCKET_DEPTH_M, "depths_tried_m": list(POCKET_DEPTHS), "lining_mu": LINING_MU,
+        "omega_jitter_rel": sigma, "pocket": {"depth_m": POCKET_DEPTH_M, "lining_mu": LINING_MU,
                                               "clearance_m": 0.005, "lip_deg": 60.0},
         "drops": f"2–10 cm above the arm, any pose, CM x in {list(DROP_X)} m", "goal": plan.goal,
         "weight": {"max_kg": cap, "places": "0.2, 0.5, 0.8 along the target side, 8 mm inside",
@@ -374,17 +374,12 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         if time.perf_counter() - t0 > START_BY * budget_s:  # leave the last quarter to a verification under way
             break
         here = out / "candidates" / f"{k}-{_tag(c)}"  # the tag: a folder never holds two candidates' trials
+        path = feeder_files(c, here, mu=mu, g=g, sigma=sigma, mu_rel=mu_rel)
+        cfg = read_config(Feed(), path)
         runs = []
-        notes = []
-        for depth in ((POCKET_DEPTH_M,) if c.lip else POCKET_DEPTHS):  # a deeper pocket may hold what 1 cm lets go
-            path = feeder_files(c, here, mu=mu, g=g, sigma=sigma, mu_rel=mu_rel, depth=depth)
-            cfg = read_config(Feed(), path)
-            hold = _hold(cfg, here, depth)
-            if hold.held:
-                break
-            notes.append(f"{100 * depth:g} cm: ended {hold.ended} at ω(1 {hold.z:+g}σ)")
-        if not hold.held:  # the pocket does not keep the target side at any depth tried: no trials
-            tried.append(Tried(k, c, (), f"not held in the pocket ({'; '.join(notes)})"))
+        hold = _hold(cfg, here)
+        if not hold.held:  # the pocket does not keep the target side: no trials
+            tried.append(Tried(k, c, (), f"not held in the pocket (ended {hold.ended} at ω(1 {hold.z:+g}σ))"))
             atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))
             continue
 
@@ -439,12 +434,12 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     return result(False, _reason(sides, exact_best, screened, tried, plan, budget_s))
 
 
-def _hold(cfg, here: Path, depth: float):
-    """The in-pocket hold check of a candidate's config (:func:`~throwmap.feeder.hold.pocket_hold`) with its pocket
-    ``depth`` m deep, stored in ``here/hold-<mm>.json`` and read back from there."""
+def _hold(cfg, here: Path):
+    """The in-pocket hold check of a candidate's config (:func:`~throwmap.feeder.hold.pocket_hold`), stored in
+    ``here/hold.json`` and read back from there."""
     from .hold import Hold, pocket_hold
 
-    store = here / f"hold-{round(1000 * depth)}mm.json"
+    store = here / "hold.json"
     if store.exists():
         try:
             return Hold(**json.loads(store.read_text(encoding="utf-8")))
