@@ -18,7 +18,7 @@ import throwmap.cli
 
 CLI_DIR = Path(throwmap.cli.__file__).parent
 MODULES = sorted(p.stem for p in CLI_DIR.glob("*.py"))
-COMMAND_MODULES = ("analysis", "animate", "assemble", "chain", "control", "design", "experiment", "feeder", "plan", "reproduce", "statics", "studies", "sweep", "throws", "view")
+COMMAND_MODULES = ("analysis", "animate", "assemble", "chain", "continuation", "control", "design", "experiment", "feeder", "plan", "reproduce", "statics", "studies", "sweep", "throws", "view")
 SUPPORT_MODULES = ("usage",)  # the app's command group (usage errors as one line); imports options only
 SUBCOMMAND_MODULES = {"cavity": "design", "passage": "design"}  # module → the command group that registers it (by name, at run time)
 GROUP_MODULES = ("assemble", "chain", "control", "design", "feeder", "plan", "statics")  # commands that are groups of subcommands (they use usage's ThrowmapGroup)
@@ -118,6 +118,6 @@ def test_each_module_imports_first_in_a_fresh_interpreter():
     assert sorted(seen) == sorted(stems)
     want = sorted(["throw", "iterate", "demo", "compare", "validate", "validate-fixtures", "validate-recoil",
                    "animate", "limitset", "basins", "funnels", "design", "experiment", "feeder", "control", "plan", "statics",
-                   "assemble", "sensitivity", "reproduce", "view", "sweep", "chain"])
+                   "assemble", "sensitivity", "reproduce", "view", "sweep", "chain", "continuation", "map"])
     for stem, got in seen.items():
         assert got == want, f"throwmap.cli.{stem} imported first: {got}"

@@ -24,7 +24,7 @@ import typer
 from ..version import __version__
 from ..analysis import ConfigSet, basins, critical_points, funnels, limit_set
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
-from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
+from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt, stage_bars
 from ..analysis.limitset import DEFAULT_CAPS
 from ..analysis.maps import ThrowMap, system_text
 from ..analysis.orbits import orbit_on_attractor
@@ -75,25 +75,9 @@ def _stderr_console():
     return Console(stderr=True)
 
 
-@contextmanager
 def _progress():
-    """Yields ``update(stage, done, total)``: one Rich bar per stage on stderr (a no-op off a terminal)."""
-    console = _stderr_console()
-    if not console.is_terminal:
-        yield lambda stage, done, total: None
-        return
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                  console=console, transient=True) as bar:
-        tasks: dict = {}
-
-        def update(stage, done, total):
-            if stage not in tasks:
-                tasks[stage] = bar.add_task(str(stage), total=total)
-            bar.update(tasks[stage], completed=done, total=total)
-
-        yield update
+    """One Rich bar per stage on stderr (:func:`~throwmap.cli.options.stage_bars`)."""
+    return stage_bars(_stderr_console())
 
 
 @contextmanager

@@ -22,8 +22,8 @@ import typer
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits
 from .options import (AlphaOpt, BackOpt, CavityOpt, ForceOpt, GOpt, HOpt, JsonOpt, LengthOpt, MaxMemoryOpt,
                       MaxTimeOpt, ModelOpt, ModelOptionOpt, MuOpt, PartOpt, WallMuOpt, WallOpt, check_out_dir,
-                      figure_format, guard, model_options, part_and_arm, save_figure, strict_int, system_options,
-                      to_json)
+                      figure_format, guard, model_options, part_and_arm, save_figure, stage_bars, strict_int,
+                      system_options, to_json)
 
 __all__ = ["register", "continuation_cmd"]
 
@@ -111,9 +111,7 @@ def continuation_cmd(
             return
         res = Resolution(starts=starts, x_max=x_max, horizon=horizon, tol=tol, match_tol=match_tol,
                          critical=critical)
-        from .analysis import _progress
-
-        with _progress() as bar:
+        with stage_bars() as bar:
             c = continuation(the_part, arm, param, np.linspace(start, stop, n), omega=omega, model=model,
                              resolution=res, rng=seed, progress=bar, limits=limits, **opts, **sysk)
         if plot is not None:
@@ -146,11 +144,9 @@ def _two(the_part, part_arg, arm, model, opts, sysk, p1, r1, p2, r2, omega, star
     if opts:
         raise InvalidStateError("model-option", "a two-parameter map runs the sweep's limit-set target, which takes "
                                                 "no model options")
-    from .analysis import _progress
-
     config = limit_set_config(part_arg, arm, omega=omega, model=model, throw_options=sysk, n_starts=starts,
                               x_max=x_max, horizon=horizon)
-    with _progress() as bar:
+    with stage_bars() as bar:
         m = attractor_map({p1: r1, p2: r2}, out, config, seed=seed, workers=workers,
                           progress=lambda d, t: bar("points", d, t), limits=limits)
     if plot is not None:

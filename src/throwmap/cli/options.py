@@ -487,6 +487,30 @@ def save_figure(fig, path: Path, fmt: str, field: str) -> None:
 
 
 @contextmanager
+def stage_bars(console=None):
+    """Yields ``update(stage, done, total)``: one Rich bar per stage on ``console`` (default: stderr; a no-op off a
+    terminal)."""
+    from rich.console import Console
+
+    console = Console(stderr=True) if console is None else console
+    if not console.is_terminal:
+        yield lambda stage, done, total: None
+        return
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                  console=console, transient=True) as bar:
+        tasks: dict = {}
+
+        def update(stage, done, total):
+            if stage not in tasks:
+                tasks[stage] = bar.add_task(str(stage), total=total)
+            bar.update(tasks[stage], completed=done, total=total)
+
+        yield update
+
+
+@contextmanager
 def progress_bar(name: str):
     """Yields ``update(done, total)``: a Rich bar ``experiment NAME`` on stderr (a no-op off a terminal)."""
     from rich.console import Console
