@@ -514,8 +514,11 @@ def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: floa
         parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} %: the best, side "
                      f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
                      f"{last['successes']}/{last['n']} = {100 * last['rate']:.1f} % ({best.verdict})")
+    elif unheld:
+        parts.append(f"no other candidate reached the {100 * plan.min_predicted:g} % share on the engine screen before "
+                     f"{100 * START_BY:g} % of the budget ({START_BY * budget_s:g} s; none is started later)")
     elif screened and max(a.predicted for a in screened) >= plan.min_predicted:
-        parts.append(f"the budget ({budget_s:g} s) ran out before a candidate held in the pocket was run")
+        parts.append(f"the budget ({budget_s:g} s) ran out before a candidate was run")
     else:
         parts.append(f"no candidate reached the {100 * plan.min_predicted:g} % share needed to be verified")
     return "; ".join(parts)
