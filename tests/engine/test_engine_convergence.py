@@ -10,6 +10,7 @@ import warnings
 import pytest
 
 from throwmap import Arm
+from throwmap.errors import InvalidStateError
 from throwmap.engine import EngineSettings, engine_run
 from throwmap.engine.pymunk.verify import flags
 from throwmap.system.catalogue import triangle_30_60_90
@@ -59,3 +60,28 @@ def test_a_flagged_throw_that_holds_is_ok_and_verified(mu):
     settings = EngineSettings(penetration_tol=1e-4)  # every landing is then "deep": flagged
     run = _run(TRI, Arm(h=-0.01, mu=mu), 0.45, 2, 6.0, settings=settings)
     assert run.status == Status.OK and run.verified
+
+
+def test_refine_halves_on_until_two_steps_agree_or_refuses():
+    """With ``refine`` the step is halved on after the disagreement: the result stands only where two successive
+    steps agree (and is marked verified, the step named in its message), and equals a run made at that step."""
+    from dataclasses import replace
+
+    arm, x, side, omega = HARD
+    run = _run(PENTAGON, arm, x, side, omega, settings=EngineSettings(refine=3))
+    if run.status == Status.UNCONVERGED:
+        assert "half-step rerun" in run.message
+        return
+    assert run.verified and "converged at dt = " in run.message
+    dt = float(run.message.split("converged at dt = ")[1].split(" s")[0])
+    assert dt < EngineSettings().dt / 2
+    s = EngineSettings()
+    direct = _run(PENTAGON, arm, x, side, omega,
+                  settings=replace(s, dt=dt, coarse_dt=max(s.coarse_dt * dt / s.dt, dt), verify=False))
+    assert (direct.status, direct.states[0][1]) == (run.status, run.states[0][1])
+    assert abs(direct.states[0][0] - run.states[0][0]) <= s.agreement
+
+
+def test_refine_is_a_count():
+    with pytest.raises(InvalidStateError, match=r"^settings.refine: must be an integer ≥ 0"):
+        EngineSettings(refine=-1)

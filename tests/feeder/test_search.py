@@ -17,15 +17,13 @@ from throwmap.cli.app import app
 from throwmap.errors import InvalidStateError
 from throwmap.experiments.stats import wilson_interval
 from throwmap.feeder import VerifyPlan, design_feeder
-from throwmap.feeder.hold import Hold
 
 GRID = dict(omegas=(4.5,), hs=(-0.02,))
 
 
-def _fake(monkeypatch, rates, predicted=None, unheld=()):
-    """Replace the engine: the engine screen is the exact screen (its share times ``predicted`` when given); the
-    pocket holds every candidate but those ranked in ``unheld``; run i of candidate k feeds ``rates[(k, name)]`` (or
-    ``rates[name]``, default 0) of its trials."""
+def _fake(monkeypatch, rates, predicted=None):
+    """Replace the engine: the engine screen is the exact screen (its share times ``predicted`` when given); run i of
+    candidate k feeds ``rates[(k, name)]`` (or ``rates[name]``, default 0) of its trials."""
     import dataclasses
 
     import throwmap.experiments.runner as runner
@@ -56,10 +54,6 @@ def _fake(monkeypatch, rates, predicted=None, unheld=()):
         return SimpleNamespace(n=n, successes=s, success_rate=s / n, ci95=wilson_interval(s, n), seed=seed,
                                failures={} if s == n else {"not_captured": n - s}, trials=())
 
-    def hold(cfg, here):
-        k = int(here.name.split("-")[0])
-        return Hold(False, 1, "other", 3.0) if k in unheld else Hold(True, 6, "target", None)
-
     real_many = search.arrivals
 
     def arrivals(v, w, arm, **kw):
@@ -69,7 +63,6 @@ def _fake(monkeypatch, rates, predicted=None, unheld=()):
     monkeypatch.setattr(search, "arrival", arrival)
     monkeypatch.setattr(search, "arrivals", arrivals)
     monkeypatch.setattr(search, "screen_table", screen_table)
-    monkeypatch.setattr(search, "_hold", hold)
     monkeypatch.setattr(runner, "run_experiment", run_experiment)
     return calls
 
@@ -221,15 +214,6 @@ def test_the_first_trials_stop_as_soon_as_the_candidate_cannot_pass(tri, tmp_pat
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=2, **GRID))
     assert [c[1:3] for c in calls] == [("first", 5)] * 2  # 2 of 5 fed: 3 failures > the 2 that 90 % of 20 allows
     assert all(t.verdict == "dropped after the first trials" and len(t.runs) == 1 for t in res.tried)
-
-
-def test_a_pocket_that_does_not_hold_its_side_drops_the_candidate_before_any_trial(tri, tmp_path, monkeypatch):
-    calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=0.99, unheld=(0,))
-    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=5, n_verify=20, engine_candidates=2, **GRID))
-    first, second = res.tried[0], res.tried[1]
-    assert first.k == 0 and first.runs == () and first.verdict.startswith("not held in the pocket (ended other")
-    assert all(c[0] != 0 for c in calls)  # no trial of the candidate the pocket does not hold
-    assert res.success and second.verdict == "fed" and res.feeder is second.candidate
 
 
 def test_candidates_are_verified_round_robin_over_variant_and_side():

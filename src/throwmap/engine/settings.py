@@ -48,6 +48,9 @@ class EngineSettings:
         energy gain, timeout) at half the step and refuse them (status
         ``unconverged``) unless both agree: same status, side and x within
         ``agreement`` (m); see :mod:`throwmap.engine.pymunk.verify`.
+    refine : where the half-step rerun disagrees, halve the step again up to this many times: the run whose result
+        the next halving confirms (the same agreement) stands, verified at that step; none confirmed is refused as
+        before (0: refuse at the first disagreement).
     """
 
     dt: float = 1.25e-4
@@ -68,6 +71,7 @@ class EngineSettings:
     record_dt: float = 1.0 / 240.0
     verify: bool = True
     agreement: float = 5e-4
+    refine: int = 0
 
     def __post_init__(self):
         for f in fields(self):
@@ -79,7 +83,7 @@ class EngineSettings:
                 continue
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
                 raise InvalidStateError(key, f"must be a finite number, got {shown(v)}")
-            if f.name == "retries":
+            if f.name in ("retries", "refine"):
                 if int(v) != v or v < 0:
                     raise InvalidStateError(key, f"must be an integer ≥ 0, got {shown(v)}")
                 continue

