@@ -46,7 +46,9 @@ def _fake(monkeypatch, rates, predicted=None):
     def run_experiment(name, cfg, *, n, seed, workers, out, progress=None, stop_by=None):
         k = int(out.parent.name.split("-")[0])
         stage = out.name if out.name == "rerun" else ("first" if n <= 20 else "verify")
-        r = rates.get((k, stage), rates.get(stage, 0.0))
+        if out.name.startswith("omega_"):  # the ω ± 3 % check: feeds all unless stated
+            stage = "omega" + out.name[6]
+        r = rates.get((k, stage), rates.get(stage, 1.0 if stage.startswith("omega") else 0.0))
         assert stop_by is not None  # every run is bounded by the search's budget
         calls.append((k, stage, n, seed))
         n = rates.get(("cut", stage), n)  # the trials run before the budget ran out
@@ -78,7 +80,7 @@ def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_pat
     assert res.success and res.config == str(tmp_path / "feeder.toml") and (tmp_path / "part.toml").is_file()
     # the first trials 5 at a time, then the verification extends them (same seed), then the rerun (seed + 1)
     assert [c[1:] for c in calls] == [("first", 5, 5), ("first", 10, 5), ("first", 15, 5), ("first", 20, 5),
-                                      ("verify", 200, 5), ("rerun", 200, 6)]
+                                      ("omega-", 30, 100), ("omega+", 30, 100), ("verify", 200, 5), ("rerun", 200, 6)]
     assert res.verified["successes"] == 194 and res.rerun["successes"] == 192
     assert res.side == res.tried[0].candidate.side and res.tried[0].verdict == "fed"
     doc = res.to_dict()
@@ -125,26 +127,28 @@ def test_weak_candidates_are_dropped_and_the_reason_names_the_best(tri, tmp_path
     # candidate 1 passed its first trials and fell short: its neighbours are tried next, before 2 and 3 (a wall
     # nearer than the drop zone allows is not a neighbour)
     refined = [t for t in res.tried if "refined from candidate 1" in t.verdict]
-    assert [t.k for t in refined] == list(range(4, 4 + len(refined))) and [t.k for t in res.tried][-2:] == [2, 3]
+    n0 = len(res.screened) - len(refined)  # the neighbours join the candidates screened, at their end
+    assert [t.k for t in refined] == list(range(n0, len(res.screened))) and [t.k for t in res.tried][-2:] == [2, 3]
     c1 = res.screened[1]
     deltas = {(round(t.candidate.X - c1.X, 6), round(t.candidate.omega - c1.omega, 6), round(t.candidate.h - c1.h, 6))
               for t in refined}
-    assert {(0, -0.25, 0), (0, 0.25, 0), (0, 0, -0.005), (0, 0, 0.005), (0.01, 0, 0)} <= deltas
+    assert {(0, -0.25, 0), (0, 0.25, 0), (0, 0, -0.005), (0, 0, 0.005)} <= deltas
     assert deltas <= {(-0.01, 0, 0), (0.01, 0, 0), (0, -0.25, 0), (0, 0.25, 0), (0, 0, -0.005), (0, 0, 0.005)}
     assert [t.verdict for t in res.tried].count("dropped after the first trials") == 3
     assert "reached 180/200 = 90.0 %" in res.reason and "below the goal" in res.reason
 
 
-def test_candidates_predicted_below_the_threshold_are_not_run(tri, tmp_path, monkeypatch):
-    calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=0.5)
-    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, **GRID))
-    assert not res.success and calls == [] and "no candidate reached the 90 % share" in res.reason
+@pytest.mark.parametrize("engine, predicted, need", [(True, 0.5, 90), (False, 0.4, 50)])
+def test_candidates_predicted_below_the_threshold_are_not_run(tri, tmp_path, monkeypatch, engine, predicted, need):
+    calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=predicted)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, engine_screen=engine, **GRID))
+    assert not res.success and calls == [] and f"no candidate reached the {need} % share" in res.reason
     assert "best first-arrival shares" in res.reason
 
 
 def test_the_engine_screen_is_read_back_instead_of_run_again(tri, tmp_path, monkeypatch):
     _fake(monkeypatch, {}, predicted=0.95)
-    first = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, **GRID))
+    first = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, engine_screen=True, **GRID))
     lines = (tmp_path / "screen.jsonl").read_text().splitlines()
     assert len(lines) == 3 and all(json.loads(x)["predicted"] == 0.95 for x in lines)
     table = search.screen_table
@@ -154,7 +158,7 @@ def test_the_engine_screen_is_read_back_instead_of_run_again(tri, tmp_path, monk
         return table(part, w, arm, **kw)
 
     monkeypatch.setattr(search, "screen_table", no_engine)
-    again = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, **GRID))
+    again = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(engine_candidates=3, engine_screen=True, **GRID))
     assert [(a.side, a.X, a.predicted) for a in again.screened] == [(a.side, a.X, a.predicted) for a in first.screened]
 
 
@@ -191,7 +195,7 @@ def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_pat
     doc = json.loads(res.stdout)
     assert doc["success"] is False and doc["config"] is None and doc["verified"] is None and doc["side"] is None
     assert "first-arrival shares" in doc["reason"] and doc["time_s"] > 0 and doc["assumptions"]["goal"] == 0.95
-    assert doc["exact_screen"]["candidates"] == 2 and len(doc["engine_screen"]) == 1  # arrival at the wall and at the lip
+    assert doc["exact_screen"]["candidates"] == 2 and len(doc["screened"]) == 2  # arrival at the wall and at the lip
 
 
 @pytest.mark.parametrize("args, field", [(["--side", "7"], "side"), (["--budget", "-1"], "budget"),
@@ -244,3 +248,20 @@ def test_no_candidate_is_started_in_the_last_quarter_of_the_budget(tri, tmp_path
                                                                omegas=(4.5, 5.0, 5.5), hs=(-0.02, -0.01), budget_s=6.0))
     assert not res.success and res.tried and 6.0 * search.START_BY - 0.5 < res.time_s < 6.0 * search.START_BY + 0.9
     assert _time.perf_counter() - t0 < 15
+
+
+def test_a_feeder_fragile_in_omega_is_not_fed_and_its_omega_moves_away_from_the_drift(tri, tmp_path, monkeypatch):
+    """Verified at ω but 21/30 at ω(1 − 3 %) (Wilson upper end 85 % < 95 %): "fragile", and the next candidate is the
+    same feeder at ω(1 + 5 %), which holds both drifts and is the feeder."""
+    calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 0.99, (0, "omega-"): 0.7}, predicted=0.99)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
+    first, second = res.tried[:2]
+    assert first.verdict.startswith("fragile in ω: ω(1 -3%) 21/30, ω(1 +3%) 30/30 fed")
+    assert second.verdict == "fed (refined from candidate 0)" and res.success and res.feeder is second.candidate
+    assert second.candidate.omega == pytest.approx(first.candidate.omega * 1.05)
+    assert (second.candidate.X, second.candidate.h, second.candidate.side) == (first.candidate.X, first.candidate.h,
+                                                                               first.candidate.side)
+    assert [c[1] for c in calls].count("omega-") == 2 and [c[1] for c in calls].count("verify") == 1  # not the fragile
+    # with no ω check asked for, the first candidate is the feeder
+    again = design_feeder(tri, tmp_path / "b", side=0, plan=VerifyPlan(n_pre=20, n_verify=200, omega_check=0, **GRID))
+    assert again.success and again.tried[0].verdict == "fed"

@@ -1,8 +1,8 @@
 """``throwmap feeder design PART --out DIR``: search a feeder for a part, verify it in the engine, say the verdict.
 
-A thin shell over :func:`throwmap.feeder.search.design_feeder`: the exact-model screen, the engine screen,
-then engine verification of the best candidates (feeding experiment, ``--n`` trials and an independent
-rerun), and the design sheet of a feeder found.
+A thin shell over :func:`throwmap.feeder.search.design_feeder`: the exact-model screen, short engine runs of
+the feeding experiment that rank the candidates, then engine verification of the best (``--n`` trials, an
+independent rerun, ω ± 3 %), and the design sheet of a feeder found.
 Exit 0 with a verified feeder (``DIR/feeder.toml`` runs as ``throwmap experiment feed DIR/feeder.toml``),
 1 without one (the reason says why), 2 on bad input.
 """
@@ -49,7 +49,7 @@ def design_cmd(
     = None,
     hs: Annotated[list[float] | None, typer.Option("--h", help="Arm surface height to search, m (repeat for several; "
                                                                "default -0.03, -0.02, -0.01, 0).")] = None,
-    candidates: Annotated[int, typer.Option("--candidates", help="Most candidates screened in the engine.")] = 48,
+    candidates: Annotated[int, typer.Option("--candidates", help="Most candidates run in the engine.")] = 48,
     margin_trials: Annotated[int, typer.Option("--margin-trials", help="Engine trials per margin step of the design "
                                                                        "sheet (0: no margins).")] = 30,
     as_json: JsonOpt = False,

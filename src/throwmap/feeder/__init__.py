@@ -2,9 +2,9 @@
 verified in the engine.
 
 :func:`design_feeder` searches the family of :mod:`throwmap.feeder.family` (the part alone or with a lead
-weight) over ω and h: an exact-model screen, an engine screen of which side arrives first at an end stop
-(:mod:`throwmap.feeder.arrival`), then the feeding experiment in the engine with an independent rerun
-(:mod:`throwmap.feeder.search`). :func:`feeder_files` writes the part file and the ``feed`` config of a
+weight) over ω and h: an exact-model screen of which side arrives first at an end stop
+(:mod:`throwmap.feeder.arrival`), short runs of the feeding experiment in the engine that rank the candidates, then
+a full run with an independent rerun and an ω-drift check (:mod:`throwmap.feeder.search`). :func:`feeder_files` writes the part file and the ``feed`` config of a
 candidate (:mod:`throwmap.feeder.files`); :func:`write_sheet` the design sheet (:mod:`throwmap.feeder.sheet`);
 :func:`random_plate` draws parts nobody tuned for (:mod:`throwmap.feeder.plates`).
 """

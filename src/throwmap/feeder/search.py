@@ -1,38 +1,41 @@
-"""The feeder search: the exact-model screen, the engine screen, engine verification, an honest verdict.
+"""The feeder search: the exact-model screen, the first trials, engine verification, an honest verdict.
 
 :func:`design_feeder` searches the family of :mod:`throwmap.feeder.family` (the part alone, or with a
-lead weight placed for a target side) over a grid of release rates ω and arm heights h, in three
-stages of rising cost:
+lead weight placed for a target side) over a grid of release rates ω and arm heights h, in stages of rising cost:
 
 1. **exact screen** — every (variant, ω, h) on the exact impulse model (:func:`~throwmap.feeder.arrival.arrival`
    with ``model="rigid_body"``, ≈ 0.1 s each): which side arrives first at an end stop, and how often — counted
    where the part reaches the end wall and, separately, where it reaches the pocket's lip (a pocket that sorts by
-   releasing wrong sides is caught at the wall, one that jams them at its lip: each screened candidate is one or
-   the other, and the engine decides);
-2. **engine screen** — the best of those (the best of every variant and side before any second one) on the
-   engine's recoil-arm table (5–30 s each), until ``screen_share`` of the budget is spent (60 % while no candidate has
-   reached ``min_predicted``); a candidate's engine share is its *predicted* feed rate;
-3. **verification** — candidates predicted ≥ ``min_predicted``, best first but the best of every (variant, side)
-   before any second one, run as the feeding experiment in
-   the engine (``feed``: drops from random poses, the recoil arm with ω jitter, μ spread; see
-   :mod:`throwmap.experiments.feed`): ``n_pre`` trials, run 5 at a time and stopped as soon as more fail than
-   ``pre_share`` allows (which drops the candidate),
-   then ``n_verify`` trials, and where those reach ``goal`` an independent rerun of ``n_verify`` trials with
-   another seed that must reach ``goal`` too and land inside the first run's Wilson 95 % interval. A candidate
-   that passes its first trials but falls short is **refined**: its neighbours (end wall ± 1 cm, ω ± 0.25
-   rad/s, h ± 5 mm) are verified next.
+   releasing wrong sides is caught at the wall, one that jams them at its lip). A candidate's share is its
+   *predicted* feed rate;
+2. **first trials** — candidates predicted ≥ ``min_predicted`` (then any ≥ :data:`TRY_SHARE`), the best of every
+   (variant, side) before any second one, run as the feeding experiment in the engine (``feed``: drops from random
+   poses, the recoil arm with ω jitter, μ spread, the pocket itself; see :mod:`throwmap.experiments.feed`):
+   ``n_pre`` trials, 5 at a time, stopped as soon as more fail than ``pre_share`` allows (≈ 3 s a candidate
+   dropped). The pocket decides which side it holds, which no screen of the plain arm sees (measured: candidates
+   the engine's own first-arrival table put at 97–99 % fed 0–73 % in the pocket), so the trials are the screen
+   that ranks. ``engine_screen=True`` puts the engine's first-arrival table (5–30 s a candidate,
+   :func:`~throwmap.feeder.arrival.screen_table`) between the two, as a filter at ``min_predicted``;
+3. **verification** — ``n_verify`` trials, and where those reach ``goal`` an independent rerun of ``n_verify`` trials
+   with another seed that must reach ``goal`` too and land inside the first run's Wilson 95 % interval; then
+   ``omega_check`` trials at ω(1 ± :data:`OMEGA_DRIFT`): a feeder clearly below the goal there (Wilson upper end under
+   it) is *fragile*, not fed, and the same feeder with ω moved :data:`OMEGA_SHIFT` away from the drift it failed is
+   tried next. A candidate that passes its first trials but falls short is **refined**: its neighbours (end wall
+   ± 1 cm, ω ± 0.25 rad/s, h ± 5 mm) are run next.
 
 The budget is a hard limit: no candidate is started after :data:`START_BY` of it and no trial after its end (a
 candidate whose trials it cuts short gets the verdict "the budget ran out in the …", never "fed"). The first candidate
-that passes is the feeder; none passing within the budget is ``success`` False with the evidence (each side's best share on both screens, the best verified rate and by whom).
+that passes is the feeder; none passing within the budget is ``success`` False with the evidence (each side's best
+share on the screens, the best verified rate and by whom).
 
-Every screened and verified candidate is kept in ``out``: the screens in ``out/screen.jsonl``, each verified
-candidate's files and trials in ``out/candidates/<k>-<tag>/`` (``k`` its rank, ``tag`` a hash of the candidate);
+Every screened and verified candidate is kept in ``out``: the engine screen (when asked for) in ``out/screen.jsonl``,
+each candidate's files and trials in ``out/candidates/<k>-<tag>/`` (``k`` its rank, ``tag`` a hash of the candidate);
 a rerun of the same search reads them back instead of computing them again (Ctrl-C loses nothing already written).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import time
@@ -60,6 +63,9 @@ OMEGAS = (3.5, 4.0, 4.5, 5.0, 5.5, 6.0)
 """Release rates searched, rad/s (the draft's arm throws at 3.5–6 rad/s)."""
 HS = (-0.03, -0.02, -0.01, 0.0)
 """Arm surface heights searched, m (below or through the joint)."""
+TRY_SHARE = 0.5
+"""Without the engine screen, exact-screen candidates below ``min_predicted`` but at least this share are run too
+(after every one above it): the pocket, not the plain arm's first arrival, decides which side is held."""
 START_BY = 0.75
 """No candidate is started after this share of the budget (a verification and its rerun, 2 × 200 trials, take 1–5
 minutes on 2 cores). No trial is started after the budget itself: a verification it cuts short is no verdict."""
@@ -114,7 +120,7 @@ class FeederSearch:
                "predicted": self.predicted, "time_s": self.time_s,
                "feeder": None if f is None else f.to_dict(), "verification": self.verified, "rerun": self.rerun,
                "sheet": self.sheet, "assumptions": self.assumptions, "exact_screen": self.exact,
-               "engine_screen": [a.to_dict() for a in self.screened], "tried": [t.to_dict() for t in self.tried],
+               "screened": [a.to_dict() for a in self.screened], "tried": [t.to_dict() for t in self.tried],
                "stages_s": self.stages_s}
         if not self.success:
             out["reason"] = self.reason
@@ -164,10 +170,12 @@ def _share(value, name: str, hi: float = 1.0) -> float:
 class VerifyPlan:
     """How candidates are screened and verified: ``n_pre`` engine trials first (``pre_share`` of them must be fed),
     then ``n_verify`` trials and a rerun of as many (seeds ``seed`` and ``seed + 1``), ``goal`` the success rate
-    both must reach; ``min_predicted`` the engine screen's share a candidate needs to be verified; ``screen_share``
-    the share of the budget the screens may use, ``engine_candidates`` the most candidates the engine screen
-    takes from the exact screen; ``omegas`` (rad/s) and ``hs`` (m) the grid searched; ``workers`` engine processes (0: all cores); ``budget_s`` the wall
-    time (s) of the search: no candidate is started after :data:`START_BY` of it, no trial after it."""
+    both must reach, then ``omega_check`` trials at each of ω(1 ± :data:`OMEGA_DRIFT`) (0: no check);
+    ``min_predicted`` the screen's share run first (the engine screen's share needed, with ``engine_screen``);
+    ``screen_share`` the share of the budget the engine screen may use; ``engine_candidates`` the most candidates
+    run (or engine-screened); ``omegas`` (rad/s) and ``hs`` (m) the grid searched; ``workers`` engine processes
+    (0: all cores); ``budget_s`` the wall time (s) of the search: no candidate is started after :data:`START_BY` of
+    it, no trial after it."""
 
     n_pre: int = 20
     n_verify: int = 200
@@ -181,11 +189,16 @@ class VerifyPlan:
     seed: int = 0
     workers: int = 0
     budget_s: float = 600.0
+    engine_screen: bool = False
+    omega_check: int = 30
 
     def __post_init__(self):
-        for name, minimum in (("n_pre", 1), ("n_verify", 1), ("seed", 0), ("workers", 0), ("engine_candidates", 1)):
+        for name, minimum in (("n_pre", 1), ("n_verify", 1), ("seed", 0), ("workers", 0), ("engine_candidates", 1),
+                              ("omega_check", 0)):
             check_count(name, getattr(self, name), minimum=minimum)
         _share(self.budget_s, "budget_s", math.inf)
+        if not isinstance(self.engine_screen, bool):
+            raise InvalidStateError("engine_screen", f"must be true or false, got {shown(self.engine_screen)}")
         for name in ("goal", "pre_share", "min_predicted", "screen_share"):
             _share(getattr(self, name), name)
         for name in ("omegas", "hs"):
@@ -336,7 +349,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             fh.write(json.dumps(doc) + "\n")
         return e
 
-    for a in ranked[:n_screen]:
+    for a in (ranked[:n_screen] if plan.engine_screen else ()):
         spent = time.perf_counter() - t0
         hopeful = any(e.predicted >= plan.min_predicted for e in screened)
         if screened and (spent > 0.6 * budget_s or (hopeful and spent > plan.screen_share * budget_s)):
@@ -356,8 +369,15 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
 
     # 3. verification in the feeding experiment; a candidate that passes its first trials but falls short is refined
     log = out / "candidates.jsonl"
-    queue = _diverse([k for k, c in enumerate(screened) if c.predicted >= plan.min_predicted and fits(c)], screened)
+    if plan.engine_screen:
+        queue = _diverse([k for k, c in enumerate(screened) if c.predicted >= plan.min_predicted and fits(c)], screened)
+    else:  # the first trials screen: the exact screen's candidates, those ≥ min_predicted first, then any ≥ 1/2
+        screened[:] = ranked
+        good = [k for k, c in enumerate(ranked) if c.predicted >= plan.min_predicted]
+        queue = (good + [k for k, c in enumerate(ranked) if TRY_SHARE <= c.predicted < plan.min_predicted])[:n_screen]
+        pos = n_screen
     refined_from: dict[int, int] = {}
+    shifted: dict[int, int] = {}  # how many times a candidate's ω was moved away from a side it could not hold
     while True:
         while not queue and pos < n_screen and time.perf_counter() - t0 < 0.75 * budget_s:
             screened.append(engine(ranked[pos]))  # every candidate so far failed: screen the next
@@ -397,18 +417,28 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         if pre.n < plan.n_pre and pre.n - pre.successes <= allowed:
             verdict = short.format("first trials", pre.n, plan.n_pre)
         elif pre.n == plan.n_pre and pre.successes >= plan.pre_share * plan.n_pre:
-            full = run(plan.n_verify, plan.seed, "verify")
-            verdict = "below the goal"
-            if full.n < plan.n_verify:  # an unfinished verification is no verdict either way
-                verdict = short.format("verification", full.n, plan.n_verify)
-            elif full.success_rate >= plan.goal:
-                again = run(plan.n_verify, plan.seed + 1, "rerun")
-                lo, hi = full.ci95
-                verdict = ("fed" if again.success_rate >= plan.goal and lo <= again.success_rate <= hi
-                           else "rerun disagrees")
-                if again.n < plan.n_verify:
-                    verdict = short.format("rerun", again.n, plan.n_verify)
-                verified, rerun = runs[-2], runs[-1]
+            verdict, shift = "fed", 0.0
+            if plan.omega_check:  # cheaper than the verification, and it stops the fragile ones before it
+                verdict, shift = _omega_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s,
+                                              progress=progress, label=f"candidate {k}")
+                if shift and shifted.get(k, 0) < 2:  # centre ω in its window: away from the drift it cannot take
+                    refined_from[len(screened)] = k
+                    shifted[len(screened)] = shifted.get(k, 0) + 1
+                    screened.append(dataclasses.replace(c, omega=round(c.omega * (1.0 + shift), 6)))
+                    queue.insert(0, len(screened) - 1)
+            if verdict == "fed":
+                full = run(plan.n_verify, plan.seed, "verify")
+                verdict = "below the goal"
+                if full.n < plan.n_verify:  # an unfinished verification is no verdict either way
+                    verdict = short.format("verification", full.n, plan.n_verify)
+                elif full.success_rate >= plan.goal:
+                    again = run(plan.n_verify, plan.seed + 1, "rerun")
+                    lo, hi = full.ci95
+                    verdict = ("fed" if again.success_rate >= plan.goal and lo <= again.success_rate <= hi
+                               else "rerun disagrees")
+                    if again.n < plan.n_verify:
+                        verdict = short.format("rerun", again.n, plan.n_verify)
+                    verified, rerun = runs[-2], runs[-1]
         if k in refined_from:
             verdict += f" (refined from candidate {refined_from[k]})"
         tried.append(Tried(k, c, tuple(runs), verdict))
@@ -418,13 +448,44 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                 atomic_write_text(out / name, (here / name).read_text(encoding="utf-8"))
             return result(True, fed=c, verified=verified, rerun=rerun)
         if verdict.startswith(("below the goal", "rerun disagrees")) and k not in refined_from:
-            near = _neighbours(c, g=g, mu=mu, sigma=sigma, workers=workers, budget_left=budget_s - (time.perf_counter() - t0))
+            near = _neighbours(c, g=g, mu=mu, sigma=sigma, workers=workers, engine=plan.engine_screen,
+                               budget_left=budget_s - (time.perf_counter() - t0))
             fresh = [a for a in near if a.predicted >= plan.min_predicted and fits(a)]
             for a in fresh:
                 refined_from[len(screened)] = k
                 screened.append(a)
             queue[:0] = list(range(len(screened) - len(fresh), len(screened)))  # the neighbours first
     return result(False, _reason(sides, exact_best, screened, tried, plan, budget_s))
+
+
+OMEGA_DRIFT = 0.03
+"""The systematic ω drift a feeder must tolerate (one jitter σ): a feeder verified at ω but clearly below the goal at
+ω(1 ± this) is *fragile*, not fed."""
+OMEGA_SHIFT = 0.05
+"""How far a fragile feeder's ω is moved away from the drift it cannot take (relative), for the next candidate."""
+
+
+def _omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: float, progress, label: str):
+    """``plan.omega_check`` engine trials (seed 100) at ω(1 − :data:`OMEGA_DRIFT`) and ω(1 + :data:`OMEGA_DRIFT`):
+    ``("fed", 0.0)`` when neither is clearly below the goal (its Wilson 95 % upper end under it), else the verdict
+    ``"fragile in ω: …"`` and the relative shift of ω to try next (away from the failing drift; 0 when both fail)."""
+    from ..experiments.runner import run_experiment
+
+    failed, seen = [], []
+    for step in (-OMEGA_DRIFT, OMEGA_DRIFT):
+        c = cfg.model_copy(update={"omega": cfg.omega * (1.0 + step)})
+        cb = None if progress is None else (lambda d, t, s=step: progress(f"{label}: ω {s:+.0%}", d, t))
+        res = run_experiment("feed", c, n=plan.omega_check, seed=100, workers=workers, out=here / f"omega_{step:+g}",
+                             progress=cb, stop_by=stop_by)
+        if res.n < plan.omega_check:
+            return f"the budget ran out in the ω check ({res.n}/{plan.omega_check} trials run)", 0.0
+        seen.append(f"ω(1 {step:+.0%}) {res.successes}/{res.n}")
+        if res.ci95[1] < plan.goal:
+            failed.append(step)
+    if not failed:
+        return "fed", 0.0
+    return ("fragile in ω: " + ", ".join(seen) + f" fed (below {100 * plan.goal:g} % with 95 % confidence at "
+            + " and ".join(f"{s:+.0%}" for s in failed) + ")"), (0.0 if len(failed) == 2 else -OMEGA_SHIFT * math.copysign(1, failed[0]))
 
 
 def _diverse(order: list, screened: list) -> list:
@@ -442,7 +503,8 @@ def _diverse(order: list, screened: list) -> list:
     return out
 
 
-def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, budget_left: float) -> list:
+def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, budget_left: float,
+                engine: bool = True) -> list:
     """The refinement of a candidate that passed its first trials but fell short: its end wall 1 cm nearer and farther
     (carrying the share of the stop they moved from: the engine screen keeps each side's best stop only), and
     ω ± 0.25 rad/s, h ± 5 mm on the engine screen (while half of ``budget_left`` s allows, 5–30 s each)."""
@@ -460,6 +522,9 @@ def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, 
     for w, h in ((c.omega - 0.25, c.h), (c.omega + 0.25, c.h), (c.omega, c.h - 0.005), (c.omega, c.h + 0.005)):
         if w <= 0 or time.perf_counter() - t0 > budget_left / 2:
             continue
+        if not engine:  # the first trials judge them: they carry the candidate's share
+            out.append(dataclasses.replace(c, omega=w, h=h))
+            continue
         arm = Arm(h=h, g=g, mu=mu)
         out.append(arrival(c.variant, w, arm, sides=(c.side,), sigma=sigma, pocket_depth=depth,
                            table=screen_table(part, w, arm, sigma=sigma, workers=workers or None)))
@@ -468,7 +533,8 @@ def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, 
 
 def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: float) -> str:
     """Why no feeder: each side's best first-arrival share on both screens, and what verification reached."""
-    eng = {k: max((a.best[k][1] for a in screened if k in a.best), default=None) for k in sides}
+    eng = {k: max((a.best[k][1] for a in screened if k in a.best and a.model == "engine"), default=None)
+           for k in sides}
     never = [k for k in sides if exact_best[str(k)] == 0 and not eng[k]]
     parts = []
     if never:
@@ -483,11 +549,12 @@ def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: floa
         best = max(tried, key=lambda t: (final(t)["rate"], final(t)["n"]))
         last = final(best)
         c = best.candidate
-        parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} %: the best, side "
+        parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} % with an agreeing rerun and ω ± {100 * OMEGA_DRIFT:g} % held: the best, side "
                      f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
                      f"{last['successes']}/{last['n']} = {100 * last['rate']:.1f} % ({best.verdict})")
     elif screened and max(a.predicted for a in screened) >= plan.min_predicted:
         parts.append(f"the budget ({budget_s:g} s) ran out before a candidate was run")
     else:
-        parts.append(f"no candidate reached the {100 * plan.min_predicted:g} % share needed to be verified")
+        need = plan.min_predicted if plan.engine_screen else TRY_SHARE
+        parts.append(f"no candidate reached the {100 * need:g} % share needed to be run in the engine")
     return "; ".join(parts)

@@ -110,7 +110,10 @@ def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 10
                     break
                 here.mkdir(parents=True, exist_ok=True)
                 cb = None if progress is None else (lambda d, t, lab=f"margin {what} {step:+g}": progress(lab, d, t))
-                res = run_experiment("feed", c, n=trials, seed=seed, workers=workers, out=here / "run", progress=cb)
+                res = run_experiment("feed", c, n=trials, seed=seed, workers=workers, out=here / "run", progress=cb,
+                                     stop_by=t0 + budget_s)
+                if res.n < trials:  # cut short by the budget: no verdict on this step
+                    break
                 ok = res.success_rate >= goal
                 run_list.append({"step": step, "n": res.n, "successes": res.successes,
                                  "ci95": [float(res.ci95[0]), float(res.ci95[1])]})
