@@ -1,5 +1,5 @@
-"""The README's layout section matches the tree: every package and every public module is named there, and nothing
-named there as a package is missing from the tree."""
+"""The layout section of the development page (docs/reference/development.md) matches the tree: every package and
+every public module is named there, and nothing named there as a package is missing from the tree."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ SRC = ROOT / "src" / "throwmap"
 
 
 def layout_block() -> str:
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    text = (ROOT / "docs" / "reference" / "development.md").read_text(encoding="utf-8")
     start = text.index("```\nsrc/throwmap/")
     return text[start:text.index("```", start + 4)]
 
@@ -24,7 +24,7 @@ def test_every_public_module_is_named_in_the_layout():
     block = layout_block()
     missing = [str(p.relative_to(SRC)) for p in public_modules()
                if not re.search(rf"(?<![\w.]){re.escape(p.stem)}\b", block)]
-    assert not missing, f"modules the README's layout does not name: {missing}"
+    assert not missing, f"modules the layout (docs/reference/development.md) does not name: {missing}"
 
 
 def test_every_package_of_the_layout_exists():

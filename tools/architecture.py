@@ -43,7 +43,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("io",),
     ("engine",),
     ("models",),
-    ("session", "throws"),
+    ("session", "throws", "warmup"),
     ("viz",),
     ("analysis",),
     ("statics",),

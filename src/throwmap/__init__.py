@@ -1,7 +1,8 @@
 """throwmap — throw maps, limit sets and design for parts handling by repeated throwing.
 
 Implements the method of Murphey & Lynch, "Parts handling and self-assembly using
-stable limit sets" (draft in ``shared/paper``), corrected where the draft is wrong.
+stable limit sets" (an unpublished draft, restated in docs/paper-notes.md), corrected where the draft is wrong
+(docs/explanation/errata.md).
 SI units throughout; see :mod:`throwmap.conventions`.
 
 ``import throwmap`` loads neither matplotlib nor mujoco.

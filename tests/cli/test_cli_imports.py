@@ -116,7 +116,7 @@ def test_each_module_imports_first_in_a_fresh_interpreter():
     assert done.returncode == 0, done.stderr
     seen = dict(json.loads(line) for line in done.stdout.splitlines())
     assert sorted(seen) == sorted(stems)
-    want = sorted(["throw", "iterate", "demo", "compare", "validate", "validate-fixtures", "validate-recoil",
+    want = sorted(["throw", "iterate", "demo", "compile", "compare", "validate", "validate-fixtures", "validate-recoil",
                    "animate", "limitset", "basins", "funnels", "design", "experiment", "feeder", "control", "plan", "statics",
                    "assemble", "sensitivity", "reproduce", "view", "sweep", "chain", "continuation", "map"])
     for stem, got in seen.items():

@@ -6,7 +6,7 @@ h −3…0 cm, α −0.35…−0.03 rad, μ ∈ {0.2, 0.4, 0.6, 1, 2}, walls 2�
 (``impact_law="velocity"``; the default Routh law differs from it by millimetres at μ ≤ 0.6, a law choice). A
 throw either side refuses is left out; every other throw must end the same way, and rests on the same side
 within 2 mm — except rests leaning on the wall's top corner (an edge on the corner, a vertex on the arm), where
-the two disagree in 4 of 59 such rests of a 1,000-throw scan (seed 12): that gap is known and stated in the README.
+the two disagree in 4 of 59 such rests of a 1,000-throw scan (seed 12): that gap is known and stated in docs/explanation/validation.md.
 """
 
 import math

@@ -2,7 +2,7 @@
 counted as refusals, the open variant, config errors.
 
 Short runs on the impulse arm (its cavity design uses the exact model: about a second) with few
-throws; the full experiment's numbers are in the README and /tmp evidence, not asserted here.
+throws; the full experiment's numbers are in docs/how-to/feeding.md and /tmp evidence, not asserted here.
 """
 
 import math

@@ -204,7 +204,8 @@ def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_pat
                                          (["--weight", "lots"], "weight"), (["--weight", "-1"], "weight"),
                                          (["--arm-length", "0"], "arm-length"), (["--omega", "-2"], "omega"),
                                          (["--candidates", "0"], "candidates"), (["--margin-trials", "-1"],
-                                                                                 "margin-trials")])
+                                                                                 "margin-trials"),
+                                         (["--omega-check", "-1"], "omega-check")])
 def test_bad_command_input_is_one_line_exit_2(tmp_path, args, field):
     res = CliRunner().invoke(app, ["feeder", "design", "triangle", "--out", str(tmp_path / "f"), *args])
     assert res.exit_code == 2, res.output
@@ -226,6 +227,8 @@ def test_candidates_are_verified_round_robin_over_variant_and_side():
     a1 = SimpleNamespace(variant=SimpleNamespace(label=lambda: "A"), side=1)
     screened = [a, a, a1, b, a]
     assert search._diverse([0, 1, 2, 3, 4], screened) == [0, 2, 3, 1, 4]
+    # every side's best before a second of any side, even of another variant
+    assert search._diverse([0, 1, 2, 3], [a, b, a, a1]) == [0, 3, 1, 2]
 
 
 def test_no_candidate_is_started_in_the_last_quarter_of_the_budget(tri, tmp_path, monkeypatch):

@@ -53,7 +53,7 @@ def _summary(rows):
 def test_walled_throws_agree_with_the_pymunk_engine(tilted):
     """~30 random walled throws (validation parts, starts in the outer part of the arm, μ ∈ [0.3, ∞],
     wall μ ∈ {0, arm μ}; α = 0, then α ∈ [−15°, 15°]): where neither model refuses, the same outcome
-    in all but one and |Δx| ≤ 0.5 mm in ≥ 90 %; the refused fraction is printed (README: what is refused)."""
+    in all but one and |Δx| ≤ 0.5 mm in ≥ 90 %; the refused fraction is printed (docs/how-to/tilt-and-walls.md: what is refused)."""
     rng_alpha = (-math.radians(15), math.radians(15)) if tilted else (0.0, 0.0)
     rows = _compare(rng_alpha, 11 if tilted else 7, 15)
     compared, same, close = _summary(rows)

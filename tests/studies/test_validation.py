@@ -1,4 +1,4 @@
-"""`throwmap validate` and :mod:`throwmap.studies.validation` at small sizes (the full table is in the README)."""
+"""`throwmap validate` and :mod:`throwmap.studies.validation` at small sizes (the full table is in docs/explanation/validation.md)."""
 
 import json
 

@@ -260,7 +260,10 @@ def limit_set(part, arm=None, omega=None, model: str = DEFAULT_MODEL, *, caps: R
         :func:`throwmap.throw_batch` (``fixtures``, ``settings``…). Anything else is
         refused, naming it.
 
-    Returns a :class:`LimitSet`.
+    Returns
+    -------
+    LimitSet
+        The attractors found, the escapes and every start's label.
     """
     cap_overrides, throw_options = split_options(overrides, not isinstance(part, ConfigMap))
     cmap = as_map(part, arm, omega, model, x_max=x_max, **throw_options)

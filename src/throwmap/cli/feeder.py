@@ -52,6 +52,8 @@ def design_cmd(
     candidates: Annotated[int, typer.Option("--candidates", help="Most candidates run in the engine.")] = 48,
     margin_trials: Annotated[int, typer.Option("--margin-trials", help="Engine trials per margin step of the design "
                                                                        "sheet (0: no margins).")] = 30,
+    omega_check: Annotated[int, typer.Option("--omega-check", help="Engine trials at each of ω(1 ± 3 %) before a "
+                                                                   "candidate's verification (0: no check).")] = 30,
     as_json: JsonOpt = False,
 ) -> None:
     """Search a feeder that feeds one side of PART into a pocket at the arm's end, verified in the engine."""
@@ -69,6 +71,8 @@ def design_cmd(
         for name, value in (("n", n), ("n-pre", n_pre), ("candidates", candidates)):
             if value < 1:
                 raise InvalidStateError(name, f"must be ≥ 1, got {value}")
+        if omega_check < 0:
+            raise InvalidStateError("omega-check", f"must be ≥ 0 (0: no check), got {omega_check}")
         if margin_trials < 0:
             raise InvalidStateError("margin-trials", f"must be ≥ 0 (0: no margins), got {margin_trials}")
         for name, values in (("omega", omegas), ("h", hs)):
@@ -99,7 +103,7 @@ def design_cmd(
         grid = {k: tuple(v) for k, v in (("omegas", omegas), ("hs", hs)) if v}
         sheet_s = min(SHEET_S if margin_trials else 10.0, 30.0 * budget)  # kept for the sheet (≤ half the budget)
         plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=60.0 * budget - sheet_s,
-                          engine_candidates=candidates, **grid)
+                          engine_candidates=candidates, omega_check=omega_check, **grid)
         with Progress(transient=True, disable=as_json) as bar:
             tasks = {}
 

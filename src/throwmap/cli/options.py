@@ -284,6 +284,18 @@ def stderr_line(text: str) -> None:
     sys.stderr.flush()
 
 
+def compiling_notice(model: str) -> bool:
+    """Say on stderr that the kernels of ``model`` compile now, when their cache is empty (the first call on a fresh
+    checkout, a minute of silence otherwise); returns whether it did (:func:`throwmap.warmup.cold`)."""
+    from ..warmup import cold
+
+    if cold(model):
+        stderr_line(f"compiling the {model} kernels, once (about a minute; `throwmap compile` does it ahead, "
+                    "`make` at install)…")
+        return True
+    return False
+
+
 @contextmanager
 def guard():
     """Turn ThrowmapErrors into one ``error:`` line and exit 2; print warnings one line each (a lost guarantee of

@@ -1,4 +1,5 @@
-"""``throwmap compare``, ``throwmap validate``, ``throwmap demo``: the studies on the command line.
+"""``throwmap compare``, ``throwmap validate``, ``throwmap demo``, ``throwmap compile``: the studies on the command
+line, and compiling the kernels ahead (:mod:`throwmap.warmup`).
 
 A thin shell over :mod:`throwmap.studies`: :func:`~throwmap.studies.compare.compare_models`
 (small-angle models against the exact ``paper`` model),
@@ -33,7 +34,7 @@ from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work
 from ..studies.study import StudyRun
 from .options import ForceOpt, MaxMemoryOpt, MaxTimeOpt
 
-__all__ = ["register", "demo_cmd", "compare_cmd", "validate_cmd", "validate_fixtures_cmd", "validate_recoil_cmd",
+__all__ = ["register", "demo_cmd", "compile_cmd", "compare_cmd", "validate_cmd", "validate_fixtures_cmd", "validate_recoil_cmd",
            "ENGINES"]
 
 ENGINES = ("pymunk", "mujoco")
@@ -50,12 +51,33 @@ def demo_cmd(
 
     with guard():
         check_out_dir(out)
+        _compile_if_cold("demo: ")
         try:
             result = demo.run_demo(out, progress=lambda msg: stderr_line(f"demo: {msg}…"))
         except OSError as err:
             raise ConfigError("out", f"cannot write into {out}: {err.strerror or err}") from None
         for f in getattr(result, "files", ()):
             typer.echo(f"wrote {f}")
+
+
+def _compile_if_cold(prefix: str = "", force: bool = False) -> None:
+    """Compile the kernels in parallel processes when their cache is empty (or ``force``), saying so on stderr."""
+    from ..warmup import GROUPS, cold, compile_kernels
+
+    if not (force or cold("rigid_body") or cold("paper")):
+        return
+    stderr_line(f"{prefix}compiling the kernels, once ({len(GROUPS)} groups in parallel, about a minute)…")
+    compile_kernels(progress=lambda name, done, total: stderr_line(f"{prefix}compiled {name} ({done}/{total})"))
+
+
+def compile_cmd() -> None:
+    """Compile the numerical kernels now (they are kept on disk): later commands start in seconds."""
+    import time
+
+    with guard():
+        t = time.perf_counter()
+        _compile_if_cold(force=True)
+        typer.echo(f"kernels ready ({time.perf_counter() - t:.0f} s)")
 
 
 # ------------------------------------------------------------------ compare
@@ -376,8 +398,9 @@ def validate_recoil_cmd(
 
 
 def register(app: typer.Typer) -> None:
-    """Add the ``demo``, ``compare``, ``validate``, ``validate-fixtures`` and ``validate-recoil`` commands to ``app``."""
+    """Add the ``demo``, ``compile``, ``compare``, ``validate``, ``validate-fixtures`` and ``validate-recoil`` commands to ``app``."""
     app.command("demo")(demo_cmd)
+    app.command("compile")(compile_cmd)
     app.command("compare")(compare_cmd)
     app.command("validate")(validate_cmd)
     app.command("validate-fixtures")(validate_fixtures_cmd)

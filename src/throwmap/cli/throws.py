@@ -22,7 +22,7 @@ from ..throws.orbit import iterate
 from ..throws.throw import DEFAULT_MODEL, check_model, throw
 from .options import (AlphaOpt, BackOpt, CavityOpt, GOpt, HOpt, JsonOpt, LengthOpt, ModelOpt, ModelOptionOpt, MuOpt,
                       OmegaOpt, PartOpt, SideOpt, WallMuOpt, WallOpt, XOpt, arm_dict, check_finite, figure_format,
-                      format_value, guard, model_options, options_doc, parse_floats, part_and_arm, save_figure,
+                      compiling_notice, format_value, guard, model_options, options_doc, parse_floats, part_and_arm, save_figure,
                       strict_int, system_doc, system_options, to_json)
 from ..analysis.maps import system_text
 from ..budget import DEFAULT_MAX_MEMORY, DEFAULT_MAX_SECONDS, cli_limits as work_limits
@@ -63,6 +63,7 @@ def throw_cmd(
         side = the_part.check_side(side)  # the library's rule for a side, before any work
         check_finite(x, "x")
         check_finite(omega, "omega")
+        compiling_notice(model)
         out = throw(the_part, arm, x, side, omega, model=model, **opts, **sysk)
         if out.status.label == "invalid_start":  # a start the tilted arm cannot hold: bad input, as any other start
             raise InvalidStateError("side", f"not at rest on the tilted arm: {out.message}")

@@ -17,7 +17,7 @@ Lemma 4.2's monotonicity (the jog grows with ω on the branch) is reported as ``
 the grid and the bisection's throws; the draft's own statement of it assumes the small-angle
 flight. Its lower bound δ on the jog (Lemma 4.1's proof) does not hold near the joint: the jog is
 proportional to R + u_L, the support's distance from the joint, and vanishes with it
-(:func:`jog_size`; README "Errata").
+(:func:`jog_size`; docs/explanation/errata.md).
 
 Units: m, rad/s. Any model registered with :mod:`throwmap.models`; for a realisation that
 depends on ω (the engine's recoil arm) pass ``realisation=`` a callable ω → realisation or

@@ -162,10 +162,13 @@ def design(plate: Part, arm: Arm, omega: float, target, *, weight_mass: float = 
         Tolerances, the critical points' grid and range, iterations, the limit set's options
         (:class:`SolveOptions`).
 
-    Returns a :class:`~throwmap.design.result.DesignResult`; ``success`` False with a
-    ``message`` when the targets are not reached, or when they are but the designed part keeps no limit set
-    on the arm (no attractor, or more than :data:`MAX_ESCAPE` of the starts over the searched range escape:
-    a limit set that does not exist feeds nothing). Raises only on invalid input.
+    Returns
+    -------
+    DesignResult
+        ``success`` False with a ``message`` when the targets are not reached, or when they are but the
+        designed part keeps no limit set on the arm (no attractor, or more than :data:`MAX_ESCAPE` of the starts
+        over the searched range escape: a limit set that does not exist feeds nothing). Raises only on invalid
+        input.
     """
     if not isinstance(plate, Part):
         raise InvalidStateError("part", f"must be a Part, got {type(plate).__name__}")

@@ -386,7 +386,7 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, pocket: Pock
         "landing on it slides into the cavity"),
         f"end wall {100 * H:.1f} cm: after a throw the CM rises at most ω_hi²(x²+y²)/2g = {100 * rise:.1f} cm",
         (f"end wall and pocket floor lined (μ {wall_mu:g}): a part leaning on the wall slides flat (a lean needs floor "
-         "friction ≥ 0.45, README) instead of resting against it (the draft's failure)") if lined else
+         "friction ≥ 0.45, docs: how-to/feeding) instead of resting against it (the draft's failure)") if lined else
         f"end wall μ = {wall_mu:g}: a part swung into it slides down instead of resting against it (the draft's failure)",
         (f"floor ends {100 * end_gap:.2f} cm short of the end wall in a {math.degrees(end_angle):.0f}° ramp: the part "
          "turns in flight without touching the wall") if end_gap > 0 else

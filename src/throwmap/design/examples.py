@@ -16,7 +16,7 @@ gives its numbers in cm; they are converted here, at the edge.
     side 0 alone reaches the far part of the arm. Read from ``data/feeder_design.toml``
     (computed by :func:`run_feeder_design`; a test re-runs it and checks the stored numbers).
 
-Chosen values the draft does not state (the README's parameter table): h = −1 cm (inside the
+Chosen values the draft does not state (the parameter table of docs/how-to/design.md): h = −1 cm (inside the
 paper's regime 0 > h > −min d for every part here but the draft's CM-only parameterisation),
 g = 9.81 m/s², μ = ∞ (the paper's no-slip), arm length 60 cm, weight margin 8 mm (a lead
 cylinder of 8 mm radius: 50 g is 4.4 cm³, 16 mm across and 22 mm tall), engine r_i on a 48-point

@@ -16,7 +16,7 @@ the first jog where that holds (:func:`energy_critical_points`), found by bisect
 
 Notes
 -----
-Corrections to the draft's Sec. V-A (each pinned in the kernel's tests; README errata 1, 4, 5, 7):
+Corrections to the draft's Sec. V-A (each pinned in the kernel's tests; errata 1, 4, 5, 7 in docs/explanation/errata.md):
 t* is positive (the draft's −2θ̇_r(R + u_L)/g comes from a signed g); φ̇⁺ has no extra factor
 θ̇_r and uses the contact vector rotated by φ*; K is m H²/(2(ρ² + |r|²)) (the draft adds ρ,
 a length, to m|r|², a moment of inertia); U is m g (−r_y) (the draft squares lengths and drops

@@ -26,7 +26,7 @@ cavity at the arm's end on side 2: 19/20 = 95 %. Here one trial is:
    Failures: ``wrong_side`` (left over the end from another side), ``behind_joint``,
    ``not_fed`` (still on the arm after ``max_throws``), ``refused:<status>``.
 
-Options of the closed variant (measured, none beats the designed cavity; README "The cavity and the
+Options of the closed variant (measured, none beats the designed cavity; docs/how-to/feeding.md "The cavity and the
 feeding experiment"): ``fixture = "wall"`` replaces the cavity by a plain end wall
 (:func:`build_wall`, :class:`EndWall`: "target" = flat on the target side with its outermost vertex
 within ``wall.zone`` of the wall); ``clear_every``/``clear_factor`` make every ``clear_every``-th
@@ -309,8 +309,8 @@ class Feed:
     def example(self) -> FeedConfig:
         """The built-in example (no CONFIG): the recoil feeder, ``throwmap/data/feed_recoil.toml`` (the same
         file as ``examples/feed_recoil.toml``; its part ``data/recoil_feeder.toml``). The config's field
-        defaults are the Sec. V feeder design instead (impulse-designed; README "The cavity and the feeding
-        experiment")."""
+        defaults are the Sec. V feeder design instead (impulse-designed; docs/how-to/feeding.md, "The impulse
+        feeder design's cavity")."""
         from importlib import resources
 
         from .base import read_config

@@ -324,6 +324,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     #    candidate reaches the share needed for verification, until 60 % of it; resumed below when every candidate
     #    verified so far has failed and time is left
     screened: list[Arrival] = []
+    engined: list[Arrival] = []  # the candidates the engine's table screened (read back or computed)
     tables: dict = {}
     n_screen = min(len(ranked), plan.engine_candidates)
 
@@ -334,13 +335,15 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         if key in seen:
             d = seen[key]
             best = {int(k): tuple(v) for k, v in d["best"].items()}
-            return Arrival(a.variant, a.omega, a.h, d["side"], d["X"], d["predicted"], d["wrong"], best, d["chains"],
-                           d["time_s"], "engine", a.lip)
+            engined.append(Arrival(a.variant, a.omega, a.h, d["side"], d["X"], d["predicted"], d["wrong"], best,
+                                   d["chains"], d["time_s"], "engine", a.lip))
+            return engined[-1]
         arm = Arm(h=a.h, g=g, mu=mu)
         tkey = _key(a.variant, a.omega, a.h)
         if tkey not in tables:  # one engine table serves both places of arrival
             tables[tkey] = screen_table(a.variant.part, a.omega, arm, sigma=sigma, workers=workers or None)
         e = arrival(a.variant, a.omega, arm, sides=sides, sigma=sigma, table=tables[tkey], pocket_depth=depth)
+        engined.append(e)
         doc = {"key": key, "side": e.side, "X": e.X, "predicted": e.predicted, "wrong": e.wrong,
                "best": {str(k): list(v) for k, v in e.best.items()}, "chains": e.chains, "time_s": e.time_s,
                "exact_predicted": a.predicted, "exact_side": a.side, "label": a.variant.label(),
@@ -455,7 +458,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                 refined_from[len(screened)] = k
                 screened.append(a)
             queue[:0] = list(range(len(screened) - len(fresh), len(screened)))  # the neighbours first
-    return result(False, _reason(sides, exact_best, screened, tried, plan, budget_s))
+    return result(False, _reason(sides, exact_best, screened, engined, tried, plan, budget_s))
 
 
 OMEGA_DRIFT = 0.03
@@ -489,15 +492,28 @@ def _omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: fl
 
 
 def _diverse(order: list, screened: list) -> list:
-    """``order`` (indices into ``screened``, best first) taken round-robin over (variant, side): the best candidate
-    of every variant and side before any second one (candidates of one variant and side tend to fail alike)."""
-    groups: dict = {}
+    """``order`` (indices into ``screened``, best first) taken round-robin over the target side, and within a side
+    over the variant: the best candidate of every side before any second one, and of every variant of a side
+    before a second of any (candidates of one side tend to fail alike — the pocket keeps the same wrong side —
+    and those of one variant and side more so)."""
+    def rounds(ks: list, key) -> list:
+        groups: dict = {}
+        for k in ks:
+            groups.setdefault(key(screened[k]), []).append(k)
+        out = []
+        while any(groups.values()):
+            for g in groups.values():
+                if g:
+                    out.append(g.pop(0))
+        return out
+
+    sides: dict = {}
     for k in order:
-        c = screened[k]
-        groups.setdefault((c.variant.label(), c.side), []).append(k)
+        sides.setdefault(screened[k].side, []).append(k)
+    per_side = {s: rounds(ks, lambda c: c.variant.label()) for s, ks in sides.items()}
     out = []
-    while any(groups.values()):
-        for g in groups.values():
+    while any(per_side.values()):
+        for g in per_side.values():
             if g:
                 out.append(g.pop(0))
     return out
@@ -531,10 +547,10 @@ def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, 
     return out
 
 
-def _reason(sides, exact_best, screened, tried, plan: VerifyPlan, budget_s: float) -> str:
-    """Why no feeder: each side's best first-arrival share on both screens, and what verification reached."""
-    eng = {k: max((a.best[k][1] for a in screened if k in a.best and a.model == "engine"), default=None)
-           for k in sides}
+def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budget_s: float) -> str:
+    """Why no feeder: each side's best first-arrival share on the exact screen and on the engine's (``engined``: the
+    candidates it screened), and what the engine runs reached."""
+    eng = {k: max((a.best[k][1] for a in engined if k in a.best), default=None) for k in sides}
     never = [k for k in sides if exact_best[str(k)] == 0 and not eng[k]]
     parts = []
     if never:

@@ -294,7 +294,7 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
         ("drops", f"CM x in {list(cfg.x_range)} m, 2–10 cm above the arm, any pose"),
     ]
     rows_result = [
-        ("predicted (engine screen: first arrival on the fed side)", f"{100 * f.predicted:.1f} %"),
+        (f"predicted (first arrival on the fed side, screened on the {f.model} model)", f"{100 * f.predicted:.1f} %"),
         ("verified", f"{v['successes']}/{v['n']} = {100 * v['rate']:.1f} %, Wilson 95 % [{100 * v['ci95'][0]:.1f}, "
                      f"{100 * v['ci95'][1]:.1f}] % (seed {v['seed']})"),
         ("independent rerun", f"{r['successes']}/{r['n']} = {100 * r['rate']:.1f} % (seed {r['seed']}), inside the "

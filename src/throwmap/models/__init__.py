@@ -15,7 +15,7 @@ name (:func:`get_model`) and never branch on it. Built-in models, one module eac
 Adding a model: one module here (or your own code) with a class that has ``name``,
 ``summary``, ``options_type`` (a frozen dataclass), ``features`` (:class:`Features`),
 ``throw_one``, ``throw_batch`` and ``trajectory`` (see :class:`ThrowModel`), and a call
-of :func:`register` on an instance; see README, "Models".
+of :func:`register` on an instance; see docs/explanation/models.md.
 """
 
 from .base import BatchArrays, Features, NoOptions, ThrowModel, build_options

@@ -5,7 +5,7 @@ Why
 pymunk's result can depend on its step where nothing marks the run as hard (no deep vertex, no repeated
 flips, no energy gain: :mod:`throwmap.engine.pymunk.verify`), so no half-step rerun happens and a wrong
 ``ok`` is reported. Measured on random convex parts with lead weights, μ ∈ {0.6, 1, 2, ∞}: see the
-``engine oracle`` table in the README. One part thrown from rest on a bare or tilted arm, with at most an end
+``engine oracle`` paragraph of docs/explanation/models.md. One part thrown from rest on a bare or tilted arm, with at most an end
 wall and the friction of the arm and wall, is a throw the exact model "rigid_body" takes too, at a small
 fraction of the engine's cost.
 

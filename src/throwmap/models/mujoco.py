@@ -1,7 +1,7 @@
 """Model "mujoco": the impulse throw in MuJoCo, the engine cross-check (optional extra ``throwmap[mujoco]``).
 
 One part on the plain arm, with the tuned contact settings of
-:class:`throwmap.engine.mujoco.MujocoSettings` (README, "Full physics"). The mujoco
+:class:`throwmap.engine.mujoco.MujocoSettings` (docs/explanation/models.md, the engine). The mujoco
 package is imported only when a throw runs; without it the call fails with one
 line saying what to install.
 """

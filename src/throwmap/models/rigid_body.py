@@ -5,7 +5,7 @@ Drops the paper's two contact assumptions: the pivot may lift off and may slip
 the one-step velocity-level impacts of time-stepping engines), sticking and sliding pivots, flat
 slides and the Zeno rocking rule, as a hybrid automaton
 (:mod:`throwmap.kernels.rigid_body`). Validated against pymunk and MuJoCo
-(README, "Validation"). The arm may rest at an angle α (``alpha=``, rad, CCW +;
+(docs/explanation/validation.md). The arm may rest at an angle α (``alpha=``, rad, CCW +;
 draft Sec. VI): gravity (−g sin α, −g cos α) in the arm frame, :mod:`throwmap.kernels.rigid_body.tilt`.
 A :class:`~throwmap.system.fixtures.Wall` at the arm's end (``fixtures=(Wall(),)``, finite arm length)
 is modelled exactly where it can be (:mod:`throwmap.kernels.rigid_body.wall`: impacts against the wall

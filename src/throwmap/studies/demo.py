@@ -20,7 +20,7 @@ h = −0.01 m, thrown at ω = 4.0 rad/s. Writes into ``out_dir``:
                           basin fractions with the certificate, the funnel order.
 
 Every file is written atomically (temp file + rename); :data:`OUTPUTS` names them all, and
-:func:`run_demo` checks that it wrote exactly those (the README's list is tested against it).
+:func:`run_demo` checks that it wrote exactly those (README.md's list is tested against it).
 """
 
 from __future__ import annotations
@@ -153,7 +153,7 @@ def run_demo(out_dir: Path | str = "out", progress=None) -> DemoResult:
         "files": [str(f) for f in files] + [str(out / "model_comparison.txt"), str(out / "summary.json")],
     }
     written = [Path(f).name for f in summary["files"]]
-    if sorted(written) != sorted(OUTPUTS):  # the documented list (OUTPUTS, README) is the written one
+    if sorted(written) != sorted(OUTPUTS):  # the documented list (OUTPUTS, README.md) is the written one
         raise RuntimeError(f"demo: writes {written}, but OUTPUTS lists {list(OUTPUTS)}")
     atomic_write_text(out / "model_comparison.txt", comp.table() + "\n")
     atomic_write_text(out / "summary.json", json.dumps(json_ready(summary), indent=2, allow_nan=False))

@@ -11,7 +11,7 @@ TIMEOUT / PENETRATION / UNCONVERGED); a throw agrees on the side when both rest 
 both leave the arm the same way, and within when also |Δx| ≤ 0.5 mm. Wilson 95 % intervals.
 Rows also without the throws whose engine answer is bound to pymunk's friction cap (:mod:`.engine_cap`:
 the engine again with the cap relaxed 0.7 → 0.9 moves by > 0.25 mm), and split at μ finite / μ = ∞ (where
-the README reads the engine as ±2 mm). Also: how often the recoil's answer differs in side (or status)
+docs/explanation/validation.md reads the engine as ±2 mm). Also: how often the recoil's answer differs in side (or status)
 from the impulse's at the same ω, in rigid_body and in the engine. Every comparison is also given by the one
 agreement statistic (:mod:`throwmap.studies.agreement`: refusals apart, same-outcome rests within 0.5 mm).
 

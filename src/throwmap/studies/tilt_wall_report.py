@@ -19,7 +19,7 @@ __all__ = ["MU_BANDS", "TiltWallReport", "TiltWallRow"]
 MU_BANDS = ((0.3, 0.6), (0.6, 1.0), (1.0, 3.0), (math.inf, math.inf))
 """Arm-friction bands of the per-μ breakdown ([lo, hi); the last is μ = ∞). Below μ ≈ 0.6 rigid_body's
 Routh impacts and pymunk's velocity-level impacts differ by mm; at μ = ∞ pymunk caps its friction
-(README, Validation): there the reference itself is uncertain by mm."""
+(docs/explanation/validation.md): there the reference itself is uncertain by mm."""
 
 
 def _band(lo: float, hi: float) -> str:

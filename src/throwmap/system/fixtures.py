@@ -80,7 +80,7 @@ class Cavity:
 
     ``lined``: the floor (the segments at the full depth) is faced with the end wall's material, so
     part contacts there have the wall's μ (:attr:`Wall.mu`) instead of the arm's (e.g. a PTFE insert:
-    a part leaning on the end wall then slides flat; README, the recoil feeder).
+    a part leaning on the end wall then slides flat; docs/how-to/feeding.md, the recoil feeder).
     """
 
     profile: tuple

@@ -159,6 +159,8 @@ class Part:
     ) -> "Part":
         """Build a part from a convex polygon and its mass properties.
 
+        Explicit ``com``/``radius_of_gyration`` override the computed values.
+
         Parameters
         ----------
         vertices : (n, 2) array-like, m
@@ -178,8 +180,6 @@ class Part:
         name : str, optional
             Free label. Default (None): :func:`default_name`, e.g. ``"polygon(4 vertices, 70 g)"``
             plus the lead weights; an explicit ``""`` stays empty.
-
-        Explicit ``com``/``radius_of_gyration`` override the computed values.
         """
         v = as_finite_array(vertices, "part.vertices", (None, 2))
         check_convex_polygon(v)

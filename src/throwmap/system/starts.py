@@ -52,7 +52,7 @@ def _last_at_most(u: float, bound: float) -> float:
 def start_interval(part: Part, arm: Arm, side: int) -> tuple[float, float]:
     """The admissible starts (rests) on ``side``: ``x`` (m, CM) with ``lo < x <= hi``.
 
-    The rule (README "the arm"; :func:`throwmap.engine.rest.rest_status` for the engines' rests):
+    The rule (docs/explanation/conventions.md; :func:`throwmap.engine.rest.rest_status` for the engines' rests):
     a part rests on the arm iff both support vertices are on it, −back < x + u_L and
     x + u_R ≤ length. ``lo`` is the largest double with ``lo + u_L ≤ −back`` and ``hi``
     the largest with ``hi + u_R ≤ length`` (``inf`` on an unbounded arm), so that

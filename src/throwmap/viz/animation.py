@@ -206,9 +206,12 @@ def animate(traj: Trajectory, path, *, fps: int = 30, speed: float = 1.0, dpi: i
     max_frames : int
         Refuse (``ThrowmapError("out", …)``) to draw more frames than this.
 
-    Every frame has a scale bar (a round length, e.g. 5 cm) and names the phase
-    (:func:`frame_label`). The returned :attr:`Animation.n_frames` is the number of
-    frames in the file, which is what should be reported.
+    Returns
+    -------
+    Animation
+        Every frame has a scale bar (a round length, e.g. 5 cm) and names the phase
+        (:func:`frame_label`). The returned :attr:`Animation.n_frames` is the number of
+        frames in the file, which is what should be reported.
 
     Raises
     ------

@@ -80,10 +80,13 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     max_columns : int
         Most columns per lane (≥ 1).
 
-    Returns the Figure: the x axis starts at the joint (x = 0); a colour key beside
-    it has one column per label drawn, faded by throws exactly as the lanes are
-    (:func:`shade`), ticked in throws; the title names the part, h, ω, the model
-    and the analysed range, and carries the certificate's statement, shortened.
+    Returns
+    -------
+    Figure
+        The x axis starts at the joint (x = 0); a colour key beside it has one column per label
+        drawn, faded by throws exactly as the lanes are (:func:`shade`), ticked in throws; the title
+        names the part, h, ω, the model and the analysed range, and carries the certificate's
+        statement, shortened.
     """
     from matplotlib.cm import ScalarMappable
     from matplotlib.colors import LinearSegmentedColormap, Normalize

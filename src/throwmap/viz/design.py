@@ -73,7 +73,9 @@ def plot_design(result, ax=None, *, steps=None, limit_sets=None, unit: str = "cm
         Draws X (solid) and X ± margin (shaded) on every row; default the result's own
         separation target, if any.
 
-    Returns the Figure.
+    Returns
+    -------
+    Figure
     """
     from matplotlib.lines import Line2D
 

@@ -59,7 +59,9 @@ def plot_funnel_graph(graph, ax=None):
         ``edges``, ``goal`` and ``rank`` as there).
     ax : Axes, optional
 
-    Returns the Figure.
+    Returns
+    -------
+    Figure
     """
     from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 

@@ -122,8 +122,11 @@ def plot_limit_set(limit, ax=None, *, critical=None, orbit=None, unit: str = "cm
     n_arrows : int
         Throws of ``orbit`` drawn (≥ 0).
 
-    Returns the Figure. A limit set with no attractor (every orbit escapes) still
-    draws its lanes, with a note saying where the orbits went.
+    Returns
+    -------
+    Figure
+        A limit set with no attractor (every orbit escapes) still draws its lanes, with a note
+        saying where the orbits went.
     """
     from matplotlib.lines import Line2D
 

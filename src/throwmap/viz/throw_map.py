@@ -104,7 +104,9 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
         The figure's title; default names the part, h, ω and the model for a throw
         map (from ``samples.info``), else ``samples.label``.
 
-    Returns the Figure.
+    Returns
+    -------
+    Figure
     """
     from matplotlib.lines import Line2D
 
