@@ -157,10 +157,13 @@ def test_basins_title_is_whole_and_states_the_range():
     part, arm = tm.triangle_30_60_90(0.17), tm.Arm(h=-0.01)
     bas = tm.basins(part, arm, 4.0, grid=40, x_max=0.6, rng=1)
     title = plot_basins(bas).axes[0].get_title()
-    flat = " ".join(title.split())
-    assert "…" not in title and "x ≤ 60 cm" in flat
-    assert " ".join(bas.certificate.statement.split()) in flat  # the whole statement, only wrapped
-    assert max(len(line) for line in title.splitlines()) <= 110
+    lines = title.splitlines()
+    assert len(lines) == 2 and "…" not in title and "120 starts, x ≤ 60 cm: " in lines[1]
+    assert "h = -0.01 m" in lines[0] and " m" not in lines[1]  # the setting as every figure's; then the axis' unit
+    c = bas.certificate
+    assert (f"all reach #{c.attractor} within {c.max_throws_to_reach} throws" in lines[1]) is (c.attractor is not None)
+    title_m = plot_basins(bas, unit="m").axes[0].get_title()
+    assert "x ≤ 0.6 m" in title_m and " cm" not in title_m
 
 
 def test_throw_map_title_states_the_sampled_range():

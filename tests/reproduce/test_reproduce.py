@@ -48,7 +48,8 @@ def tiny(monkeypatch):
         ax.plot([0, 1], [0, 1])
         save_figure(fig, path)
         plt.close(fig)
-        return {"numbers": {"r_m": [0.1]}, "parameters": {"omega_rad_s": 4.0}}
+        return {"numbers": {"r_m": [0.1], "l_m": float("nan"), "xs": list(range(40))},
+                "parameters": {"omega_rad_s": 4.123456789, "arm": {"h_m": -0.01}}}
 
     def broken(path, size, ctx):
         raise RuntimeError("no attractor within x <= 0.6 m\nsecond line")
@@ -78,6 +79,15 @@ def test_report_says_what_ran_and_what_failed(tiny, tmp_path):
     page = (tmp_path / "report.html").read_text()
     assert "data:image/png;base64," in page and not re.search(r"(src|href)=[\"']https?:", page)
     assert "<ol>" in page and "Lemma 4.1" in page
+    # the Markdown rendered: no literal emphasis or code marks outside code blocks; tables are tables
+    text = re.sub(r"<(pre|code)>.*?</\1>", "", page, flags=re.S)
+    assert "**" not in text and "`" not in text and "<table>" in page and "<strong>Failed pieces:</strong>" in page
+    # the JSON blocks are valid JSON with no NaN; long lists are cut and say so; parameters are tables of 4 digits
+    blocks = re.findall(r"```json\n(.*?)```", md, flags=re.S)
+    assert blocks and all("NaN" not in b for b in blocks)
+    numbers = json.loads(blocks[0])
+    assert numbers["l_m"] is None and numbers["xs"][-1] == "… 28 more" and len(numbers["xs"]) == 13
+    assert "| `omega_rad_s` | 4.123 |" in md and "| `arm.h_m` | -0.01 |" in md
     doc = json.loads((tmp_path / "report.json").read_text())
     assert doc["failed"] == rep.failed and doc["size"] == "quick"
     again = reproduce(tmp_path, size="quick", workers=1)  # the kept trials are read back

@@ -149,11 +149,11 @@ def test_cli_on_an_existing_scheduler(tmp_path):
         sweep.write_text('kind = "grid"\ntarget = "experiment:settle"\nn = 2\nchunk = 4\n[parameters]\n'
                          '"arm.mu" = [0.3, 0.5, 0.7, 0.9, 1.1, 1.3]\n')
         done = subprocess.run([str(BIN / "throwmap"), "sweep", str(sweep), "--scheduler", address, "--json"],
-                              capture_output=True, text=True, timeout=120)
+                              capture_output=True, text=True, timeout=120, cwd=tmp_path)
         assert done.returncode == 0, done.stderr
         res = json.loads(done.stdout)
         assert (res["n_points"], res["computed"], res["rows_after"], res["scheduler"]) == (6, 6, 6, address)
-        assert read_table(tmp_path / "s.parquet").num_rows == 6
+        assert read_table(tmp_path / "runs" / "s.parquet").num_rows == 6  # the default: a run folder
     finally:
         for p in reversed(procs):
             p.terminate()
@@ -169,9 +169,9 @@ def test_cli_sweep_killed_and_restarted(tmp_path):
     sweep = tmp_path / "s.toml"
     sweep.write_text('kind = "grid"\ntarget = "experiment:settle"\nseed = 1\nn = 15\n[parameters]\n'
                      '"arm.mu" = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3]\n')
-    out = tmp_path / "s.parquet"
+    out = tmp_path / "runs" / "s.parquet"  # the default: a run folder in the current one
     proc = subprocess.Popen([str(BIN / "throwmap"), "sweep", str(sweep), "--workers", "1"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path)
     _wait(lambda: len(list(out.glob("part-*.parquet"))) >= 2 or proc.poll() is not None, timeout=120,
           what="two parts")
     children = psutil.Process(proc.pid).children(recursive=True) if proc.poll() is None else []
@@ -182,11 +182,11 @@ def test_cli_sweep_killed_and_restarted(tmp_path):
     gone, alive = psutil.wait_procs(children, timeout=30)
     assert not alive, f"orphaned worker processes: {[p.pid for p in alive]}"
     status = subprocess.run([str(BIN / "throwmap"), "sweep", str(sweep), "--status", "--json"], capture_output=True,
-                            text=True, timeout=60)
+                            text=True, timeout=60, cwd=tmp_path)
     st = json.loads(status.stdout)
     assert (st["rows"], st["missing"]) == (before, 12 - before)
     done = subprocess.run([str(BIN / "throwmap"), "sweep", str(sweep), "--workers", "1", "--json"],
-                          capture_output=True, text=True, timeout=120)
+                          capture_output=True, text=True, timeout=120, cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     res = json.loads(done.stdout)
     assert (res["rows_before"], res["computed"], res["rows_after"], res["complete"]) == (before, 12 - before, 12, True)

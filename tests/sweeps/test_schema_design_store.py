@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -156,18 +157,19 @@ def test_cli_errors_are_one_line(tmp_path, text, field):
     assert len(res.stderr.splitlines()) == 1 and res.stderr.startswith(f"error: {field}: "), res.stderr
 
 
-def test_cli_status_and_a_changed_sweep(tmp_path):
+def test_cli_status_and_a_changed_sweep(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # the default output is a run folder in the current one
     f = tmp_path / "s.toml"
     f.write_text('kind = "grid"\ntarget = "throw"\nchunk = 2\n[parameters]\nx = [0.1, 0.2, 0.3]\n')
     res = _cli(f, "--status", "--json")
     assert res.exit_code == 0, res.stderr
     st = json.loads(res.stdout)
     assert (st["n_points"], st["n_chunks"], st["rows"], st["missing"]) == (3, 2, 0, 3)
-    assert st["out"] == str(tmp_path / "s.parquet")
-    assert not (tmp_path / "s.parquet").exists()  # --status computes and creates nothing
+    assert st["out"] == str(Path("runs") / "s.parquet") and not (tmp_path / "runs").exists()  # --status creates nothing
     from throwmap.sweeps.run import _plan
 
-    _plan(read_sweep(f)[0], tmp_path / "s.parquet")  # what a run does first: the manifest
+    (tmp_path / "runs").mkdir()
+    _plan(read_sweep(f)[0], tmp_path / "runs" / "s.parquet")  # what a run does first: the manifest
     f.write_text('kind = "grid"\ntarget = "throw"\nchunk = 3\n[parameters]\nx = [0.1, 0.2, 0.3]\n')
     res = _cli(f, "--status")
     assert res.exit_code == 2 and "first difference: chunk" in res.stderr and res.stderr.startswith("error: out: ")

@@ -390,3 +390,10 @@ def test_critical_points_plot_marks_r_and_l_per_side(triangle, arm):
     r_marks = sorted(float(line.get_xdata()[0]) for line in ax.lines if line.get_marker() == "|")
     assert r_marks == pytest.approx(sorted(100 * cp.r[s] for s in cp.sides))
     plt.close(fig)
+
+
+def test_funnel_graph_has_a_key_of_mouth_spout_and_priority(tmp_path):
+    ax = plot_funnel_graph(_stand_in_graph()).axes[0]
+    key = next(t for t in ax.texts if t.get_gid() == "key").get_text().replace("\n", " ")
+    assert all(w in key for w in ("mouth:", "spout:", "priority k:", "dashed: spout inside the goal"))
+    ax.figure.savefig(tmp_path / "funnels_key.png")

@@ -50,10 +50,13 @@ def test_draws_exactly_the_samples(samples, compact):
         sl = samples.panel(s)
         ok = samples.ok[sl]
         got = _branches(ax)
-        assert set(got) == {f"branch-{d}" for d in np.unique(samples.side_next[sl][ok])}
-        for gid, coll in got.items():
+        tumble = samples.kinds()[sl] == "tumble"  # drawn hollow, in their own collection
+        assert set(got) == {f"branch-{d}" for d in np.unique(samples.side_next[sl][ok & ~tumble])}
+        tumbles = {c.get_gid(): c for c in ax.collections if str(c.get_gid()).startswith("tumble-")}
+        assert set(tumbles) == {f"tumble-{d}" for d in np.unique(samples.side_next[sl][tumble])}
+        for gid, coll in [*got.items(), *tumbles.items()]:
             d = int(gid.split("-")[1])
-            m = ok & (samples.side_next[sl] == d)
+            m = ok & (samples.side_next[sl] == d) & (tumble if gid.startswith("tumble") else ~tumble)
             np.testing.assert_allclose(coll.get_offsets(), 100 * np.column_stack([samples.x[sl][m],
                                                                                  samples.x_next[sl][m]]))
         assert ax.get_title() == f"side {s}" and ax.get_xlabel() == f"x on side {s} (cm)"
@@ -66,7 +69,8 @@ def test_compact_look_is_fig2(samples):
     assert fig._suptitle.get_text() == ("throw map T(x): triangle_30_60_90(hypotenuse=0.17), h = -0.01 m, "
                                         "ω = 4 rad/s, model 'rigid_body', sampled for x ≤ 60 cm")
     for ax, s in zip(fig.axes, samples.sides):
-        assert ax.get_xlim() == pytest.approx((0.0, 60.0)) == ax.get_ylim()  # the sampled domain only
+        top = max(60.0, 100 * float(samples.x_next[samples.ok].max()))
+        assert ax.get_xlim() == pytest.approx((0.0, top)) == ax.get_ylim()  # the sampled domain and every image
         labels = [t.get_text() for t in ax.get_legend().get_texts()]
         assert f"→ side {s} (jog)" in labels and "T(x) = x" in labels
         assert any(t.endswith("(flip)") for t in labels)

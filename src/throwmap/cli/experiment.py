@@ -32,8 +32,44 @@ from .options import (ForceOpt, progress_bar, JsonOpt, MaxMemoryOpt, MaxTimeOpt,
 __all__ = ["register", "experiment_cmd"]
 
 
+def _setting(p: dict) -> str:
+    """One line naming what a result is about, from its ``parameters``: the part, the side fed, ω, the arm and the
+    fixtures (SI units), each only where the experiment states it."""
+    def num(v):
+        return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+    bits = []
+    if isinstance(p.get("part"), str):
+        bits.append(f"part {p['part']}")
+    if num(p.get("target_side")):
+        bits.append(f"side {p['target_side']} wanted")
+    if num(p.get("omega_rad_s")):
+        bits.append(f"ω = {p['omega_rad_s']:.4g} rad/s")
+    arm = [f"h = {p['h_m']:.4g} m"] if num(p.get("h_m")) else []
+    arm += [f"length {p['length_m']:.4g} m"] if num(p.get("length_m")) else []
+    arm += [f"μ = {p['mu']:.3g}"] if num(p.get("mu")) else []
+    if arm:
+        bits.append("arm " + ", ".join(arm))
+    noise = p.get("noise")
+    if isinstance(noise, dict) and isinstance(noise.get("realisation"), str):
+        jitter = noise.get("omega_rel")
+        bits.append(f"{noise['realisation']} throw" + (f", ω jitter {100 * jitter:.3g} %" if num(jitter) and jitter else ""))
+    fixtures = []
+    cavity, wall = p.get("cavity"), p.get("wall")
+    if isinstance(cavity, dict):
+        numbers = cavity.get("numbers") or {}
+        fixtures.append("cavity" + (f" (end wall at {numbers['L_m']:.4g} m, {100 * numbers['depth_m']:.3g} cm deep)"
+                                    if num(numbers.get("L_m")) and num(numbers.get("depth_m")) else ""))
+    if isinstance(wall, dict):
+        h = wall.get("height_m")
+        fixtures.append("end wall" + (f" {h:.3g} m high" if num(h) else ""))
+    if fixtures:
+        bits.append("fixtures: " + ", ".join(fixtures))
+    return "; ".join(bits)
+
+
 def _table(result) -> None:
-    """The result as a Rich table on stdout."""
+    """The result as a Rich table on stdout, captioned with the part, ω, the arm and the fixtures."""
     from rich.console import Console
     from rich.table import Table
 
@@ -52,6 +88,11 @@ def _table(result) -> None:
         a, b = wilson_interval(c, result.n)
         t.add_row(kind, str(c), f"{100 * c / result.n:.1f} %", f"[{100 * a:.1f}, {100 * b:.1f}] %")
     console = Console()
+    setting = _setting(result.parameters or {})
+    if setting:
+        from rich.markup import escape
+
+        console.print(escape(setting), soft_wrap=True)
     console.print(t)
     console.print(f"{result.elapsed_s:.3g} s on {result.workers} worker(s)"
                   + (f", {result.resumed} trials resumed" if result.resumed else ""))

@@ -7,7 +7,7 @@
 
 A thin shell over :func:`throwmap.sweeps.run_sweep`. ``SWEEP.toml`` is validated first
 (:class:`throwmap.sweeps.SweepSpec`; every design point's config too), then the points missing from
-``--out`` (default: ``SWEEP.parquet/`` beside the file) are computed on a local Dask cluster of
+``--out`` (default: ``runs/SWEEP.parquet/`` in the current folder, never beside the sweep file) are computed on a local Dask cluster of
 ``--workers`` processes (0: all cores) or on the cluster whose scheduler is at ``--scheduler``, one
 Parquet part per chunk of points. Run it again after an interruption: only the missing points are
 computed; Ctrl-C stops a run with one line ``interrupted: N rows stored …`` and exit 130. ``--status`` prints what is stored and missing and computes nothing. The last line (or, with
@@ -51,7 +51,7 @@ def _bar(label: str):
 def sweep_cmd(
     sweep: Annotated[Path, typer.Argument(help="The sweep file (.toml; .json also read).", show_default=False)],
     out: Annotated[Path | None, typer.Option("--out", help="Directory of the Parquet parts and the manifest "
-                                                           "(default: SWEEP.parquet beside the file).")] = None,
+                                                           "(default: runs/SWEEP.parquet in the current folder).")] = None,
     scheduler: Annotated[str | None, typer.Option("--scheduler", metavar="ADDRESS",
                                                   help="A running Dask scheduler (tcp://host:8786); default: a "
                                                        "local cluster started for this run.")] = None,
@@ -74,13 +74,15 @@ def sweep_cmd(
     with guard():
         limits = cli_limits(max_memory, max_time, force)
         spec, _ = read_sweep(sweep)
-        target = out if out is not None else sweep.with_suffix(".parquet")
+        target = out if out is not None else Path("runs") / f"{sweep.stem}.parquet"  # a run folder, not the config's
         if scheduler is not None and not scheduler.strip():
             raise InvalidStateError("scheduler", "give an address (tcp://host:8786)")
         if status:
             st = sweep_status(spec, target)
             typer.echo(to_json(st.to_dict()) if as_json else st.table())
             return
+        if out is None:
+            target.parent.mkdir(exist_ok=True)  # the default run folder is made; a --out's parent must exist
         check_out_dir(target)
         try:
             with _bar(f"sweep {sweep.name}") as update:

@@ -12,9 +12,12 @@ from __future__ import annotations
 import base64
 import html
 import json
+import math
 from pathlib import Path
 
-__all__ = ["markdown_report", "html_report", "experiment_rows"]
+from ..serial import json_ready
+
+__all__ = ["markdown_report", "html_report", "experiment_rows", "parameter_rows"]
 
 
 def _pct(k, n) -> str:
@@ -38,7 +41,9 @@ def experiment_rows(rep) -> list[list[str]]:
             ours = f"{o['successes']}/{o['n']} = {_pct(o['successes'], o['n'])} {_ci(o['ci95'])}"
             fails = ", ".join(f"{k} {v}" for k, v in sorted(o["failures"].items(), key=lambda kv: -kv[1])) or "none"
             t = o.get("throws") or {}
-            throws = f"{t.get('median', float('nan')):.0f} / {t.get('p90', float('nan')):.0f}" if t else ""
+            med, p90 = t.get("median"), t.get("p90")
+            throws = (f"{med:.0f} / {p90:.0f}" if all(isinstance(v, (int, float)) and math.isfinite(v)
+                                                      for v in (med, p90)) else "")
         goal = "" if e.get("goal") is None else f"≥ {100 * e['goal']:g} %"
         rows.append([f"{e['title']} ({e['section']}; `experiment {e['experiment']}`)", draft, ours, goal, fails,
                      throws])
@@ -49,8 +54,56 @@ HEAD = ["experiment", "draft (hardware, Wilson 95 %)", "ours (engine, Wilson 95 
         "throws median / p90 (feeding: to capture)"]
 
 
+LIST_MAX = 12
+"""Lists longer than this are shown by their first :data:`LIST_MAX` items and a count of the rest."""
+
+
+def _trim(obj):
+    """``obj`` made JSON-ready (non-finite numbers → null) with long lists cut to :data:`LIST_MAX` items and a note."""
+    if isinstance(obj, dict):
+        return {k: _trim(v) for k, v in obj.items()}
+    if isinstance(obj, list):
+        head = [_trim(v) for v in obj[:LIST_MAX]]
+        return head + ([f"… {len(obj) - LIST_MAX} more"] if len(obj) > LIST_MAX else [])
+    if isinstance(obj, float):
+        return float(f"{obj:.6g}")
+    return obj
+
+
 def _numbers(d: dict) -> str:
-    return json.dumps(d, default=str, ensure_ascii=False, indent=1)[:4000]
+    """The numbers behind a figure as valid, readable JSON: null where a number is not finite, 6 significant
+    digits, long lists cut (every value that was cut says how many items it lost)."""
+    return json.dumps(_trim(json_ready(d)), ensure_ascii=False, indent=1, allow_nan=False)
+
+
+def _value(v) -> str:
+    """One parameter value as text: numbers to 4 significant digits, ∞ for infinity, lists in brackets."""
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, float):
+        return "∞" if v == math.inf else "−∞" if v == -math.inf else "n/a" if v != v else f"{v:.4g}"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    if v is None:
+        return "—"
+    return str(v)
+
+
+def parameter_rows(d: dict, prefix: str = "") -> list[tuple[str, str]]:
+    """A nested parameters dict as ``(dotted name, value text)`` rows (SI: the name's suffix says the unit)."""
+    rows = []
+    for k, v in d.items():
+        name = f"{prefix}{k}"
+        if isinstance(v, dict):
+            rows += parameter_rows(v, name + ".")
+        else:
+            rows.append((name, _value(v)))
+    return rows
+
+
+def _md_table(rows: list[tuple[str, str]]) -> list[str]:
+    cell = lambda t: str(t).replace("|", "\\|")  # noqa: E731 - a pipe inside a cell would end it
+    return ["| parameter | value |", "|---|---|"] + [f"| `{cell(a)}` | {cell(b)} |" for a, b in rows]
 
 
 def markdown_report(rep) -> str:
@@ -79,79 +132,40 @@ def markdown_report(rep) -> str:
     for e in rep.experiments:
         o = e.get("ours")
         if o:
-            lines += [f"### {e['title']} (`experiment {e['experiment']}`, seed {o['seed']})", "", "```json",
-                      json.dumps(o["parameters"], default=str, ensure_ascii=False, indent=1), "```", ""]
+            lines += [f"### {e['title']} (`experiment {e['experiment']}`, seed {o['seed']})", ""]
+            lines += _md_table(parameter_rows(json_ready(o["parameters"]))) + [""]
     for f in rep.figures:
         if f.get("parameters"):
-            lines += [f"- `{f['key']}`: `{json.dumps(f['parameters'], default=str, ensure_ascii=False)[:600]}`"]
+            lines += [f"### Figure `{f['key']}`", ""] + _md_table(parameter_rows(json_ready(f["parameters"]))) + [""]
     lines += ["", "## Errata: where we depart from the draft", "", rep.errata.strip(), ""]
     return "\n".join(lines) + "\n"
 
 
 def _img(path: Path) -> str:
     data = base64.b64encode(path.read_bytes()).decode("ascii")
-    return f'<img alt="{html.escape(path.stem)}" src="data:image/png;base64,{data}" style="max-width:100%">'
+    return f"data:image/png;base64,{data}"
 
 
-def _md_inline(text: str) -> str:
-    """Markdown lines to HTML paragraphs and lists (bold, code): enough for the errata text."""
-    import re
-
-    out, in_list = [], False
-    for raw in text.splitlines():
-        line = html.escape(raw)
-        line = re.sub(r"\*\*(.+?)\*\*", r"<b>\1</b>", line)
-        line = re.sub(r"`(.+?)`", r"<code>\1</code>", line)
-        m = re.match(r"^\s*(\d+)\.\s+(.*)$", line)
-        if m:
-            if not in_list:
-                out.append("<ol>")
-                in_list = True
-            out.append(f"<li value=\"{m.group(1)}\">{m.group(2)}")
-        elif line.strip():
-            out.append(line if in_list else f"<p>{line}</p>")
-        elif in_list:
-            out.append("")
-    if in_list:
-        out.append("</ol>")
-    return "\n".join(out)
+STYLE = ("body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}"
+         "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:4px 6px;font-size:13px}"
+         "pre{background:#f4f4f4;padding:6px;font-size:12px;overflow-x:auto}img{max-width:100%}")
 
 
 def html_report(rep, out) -> str:
+    """The Markdown report rendered to one self-contained HTML page (Python-Markdown: tables, code blocks), its
+    figures inlined as PNG data (a missing figure file is named in its place)."""
+    import re
+
+    import markdown
+
     out = Path(out)
-    esc = html.escape
-    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
-             f"<title>throwmap {esc(rep.version)}: the draft reproduced</title>",
-             "<style>body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}"
-             "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:4px 6px;font-size:13px}"
-             "pre{background:#f4f4f4;padding:6px;font-size:12px;overflow-x:auto}</style></head><body>",
-             f"<h1>The draft reproduced (throwmap {esc(rep.version)})</h1>",
-             f"<p>Size <code>{esc(rep.size)}</code>, started {esc(rep.started)} UTC, {rep.elapsed_s / 60:.1f} min. "
-             "Units SI. The draft's numbers are its hardware results (20 trials); ours are engine simulations.</p>"]
-    if rep.failed:
-        parts.append(f"<p><b>Failed pieces:</b> {esc(', '.join(rep.failed))}</p>")
-    parts.append("<h2>The experiments</h2><table><tr>" + "".join(f"<th>{esc(h)}</th>" for h in HEAD) + "</tr>")
-    for r in experiment_rows(rep):
-        parts.append("<tr>" + "".join(f"<td>{esc(c).replace('**', '')}</td>" for c in r) + "</tr>")
-    parts.append("</table><h2>Figures</h2>")
-    for f in rep.figures:
-        parts.append(f"<h3>{esc(f['draft'])} analogue: <code>{esc(f['key'])}</code></h3>")
-        if f.get("error"):
-            parts.append(f"<p><b>failed</b>: {esc(f['error'])}</p>")
-            continue
-        p = out / f["file"]
-        parts.append(_img(p) if p.is_file() else f"<p>missing file {esc(str(p))}</p>")
-        parts.append(f"<p>{esc(f['caption'])}</p>")
-        if f.get("numbers"):
-            parts.append(f"<details><summary>numbers</summary><pre>{esc(_numbers(f['numbers']))}</pre></details>")
-    parts.append("<h2>Parameters (every value the draft leaves blank is chosen here)</h2>")
-    for e in rep.experiments:
-        o = e.get("ours")
-        if o:
-            parts.append(f"<details><summary>{esc(e['title'])} (experiment {esc(e['experiment'])}, seed {o['seed']})"
-                         f"</summary><pre>{esc(json.dumps(o['parameters'], default=str, ensure_ascii=False, indent=1))}"
-                         "</pre></details>")
-    parts.append("<h2>Errata: where we depart from the draft</h2>")
-    parts.append(_md_inline(rep.errata))
-    parts.append("</body></html>")
-    return "\n".join(parts) + "\n"
+
+    def inline(m):
+        p = out / m.group(2)
+        return f"![{m.group(1)}]({_img(p)})" if p.is_file() else f"*missing file {p}*"
+
+    text = re.sub(r"!\[([^\]]*)\]\(([^)]+)\)", inline, markdown_report(rep))
+    body = markdown.markdown(text, extensions=["tables", "fenced_code"], output_format="html")
+    return ("<!DOCTYPE html><html><head><meta charset='utf-8'>"
+            f"<title>throwmap {html.escape(rep.version)}: the draft reproduced</title><style>{STYLE}</style></head>"
+            f"<body>\n{body}\n</body></html>\n")

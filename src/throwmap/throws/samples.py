@@ -113,6 +113,22 @@ class MapSamples:
         """Where the image rests on the arm (``status == 0``)."""
         return self.status == Status.OK
 
+    def kinds(self) -> np.ndarray:
+        """What each throw does, as text: ``"jog"`` (lands on its own side before any flip from that side),
+        ``"flip"`` (lands on another side), ``"tumble"`` (lands on its own side beyond a flip: it tumbled over and
+        back, paper Sec. III-D — beyond r_i no throw jogs) or ``"escape"`` (no rest on the arm). Samples are in x
+        order per side, as :func:`throw_map_samples` makes them."""
+        out = np.full(self.x.size, "escape", dtype=object)
+        ok = self.ok
+        for s in self.sides:
+            sl = self.panel(s)
+            same, good = self.side_next[sl] == s, ok[sl]
+            flips = np.flatnonzero(good & ~same)
+            first = flips[0] if flips.size else self.n
+            kind = np.where(same, np.where(np.arange(self.n) < first, "jog", "tumble"), "flip")
+            out[sl] = np.where(good, kind, "escape")
+        return out
+
     def panel(self, side: int) -> slice:
         """The slice of the flat arrays that starts on ``side``."""
         if side not in self.sides:

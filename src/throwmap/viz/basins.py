@@ -8,8 +8,6 @@ columns so that 10⁶ of them draw quickly. Matplotlib is imported on first use.
 from __future__ import annotations
 
 import math
-import re
-import textwrap
 
 import numpy as np
 
@@ -24,8 +22,6 @@ from .style import (
     map_title,
     scale,
     side_colors,
-    wrap_setting,
-    x_range_text,
 )
 
 __all__ = ["basins_title", "plot_basins", "shade"]
@@ -184,23 +180,26 @@ def plot_basins(basins, ax=None, *, unit: str = "cm", max_columns: int = 2000):
     cb.ax.tick_params(labelsize=7)
 
     label = map_title(basins.map_info, basins.map_info.get("label", "map")) + system_suffix(basins.map_info)
-    rng = x_range_text(basins.map_info)
-    ax.set_title(basins_title(label, x.size, rng, str(basins.certificate.statement)), fontsize=8)
+    info = basins.map_info if isinstance(basins.map_info, dict) else {}
+    ax.set_title(basins_title(label, x.size, info.get("x_max_m"), basins.certificate, unit), fontsize=8)
     layout(fig)
     return fig
 
 
-TITLE_WIDTH = 110
-"""Characters per title line of a basin map (fontsize 8 fits about 130 across its axes)."""
-
-
-def basins_title(label: str, n_configs: int, range_text: str, statement: str, width: int = TITLE_WIDTH) -> str:
-    """The basin map's title, whole (never cut): ``basins: <setting>`` broken at its settings
-    (:func:`~throwmap.viz.style.wrap_setting`), then the number of configurations and the
-    analysed range, then the certificate's statement wrapped on lines of about ``width``
-    characters."""
-    head = wrap_setting(f"basins: {label}", width)
-    body = f"{n_configs} configurations{', ' + range_text if range_text else ''}; {statement}"
-    body = re.sub(r"(\d) (m|cm|rad/s)\b", "\\1\0\\2", body)  # a number keeps its unit on its line
-    lines = textwrap.wrap(body, width=width, break_long_words=False, break_on_hyphens=False)
-    return head + "\n" + "\n".join(line.replace("\0", " ") for line in lines)
+def basins_title(label: str, n_configs: int, x_max_m, certificate, unit: str = "cm") -> str:
+    """The basin map's title, two lines: ``basins: <setting>`` (as every figure names it, SI), then — in the axis'
+    ``unit`` — the starts, the range analysed and what the certificate says in short — unique and globally attractive (all starts reach attractor #k
+    within T throws), one attractor reached but not certified, or the attractors and escapes that share the grid
+    (the whole statement is ``basins.certificate.statement``)."""
+    k = scale(unit)
+    where = f"{n_configs} starts" + ("" if x_max_m is None else f", x ≤ {float(x_max_m) * k:.4g} {unit}")
+    c = certificate
+    if not hasattr(c, "attractor"):  # a certificate known by its statement only
+        say = str(getattr(c, "statement", c))
+    elif c.attractor is not None and c.unique:
+        say = f"unique and globally attractive at grid resolution: all reach #{c.attractor} within {c.max_throws_to_reach} throws"
+    elif c.attractor is not None:
+        say = f"all reach #{c.attractor} within {c.max_throws_to_reach} throws, not certified (see the certificate)"
+    else:
+        say = "not unique: " + str(c.statement).split("share the grid: ", 1)[-1]
+    return f"basins: {label}\n{where}: {say}"

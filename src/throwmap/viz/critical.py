@@ -32,9 +32,10 @@ def plot_critical(cp, ax=None, *, unit: str = "cm"):
             ax.plot([lo * k, end * k], [row, row], color=colors[s], lw=6, solid_capstyle="butt",
                     label="jogs (jog_start → r_i)" if row == 0 else None)
         if math.isfinite(r):
-            ax.plot([r * k], [row], marker="|", ms=16, color="tab:red", label="r_i" if row == 0 else None)
+            ax.plot([r * k], [row], marker="|", ms=16, color="tab:red", label="r_i: where jogs end" if row == 0 else None)
         if math.isfinite(l):
-            ax.plot([l * k], [row], marker="v", ms=9, color="tab:blue", label="l_i = inf S" if row == 0 else None)
+            ax.plot([l * k], [row], marker="v", ms=9, color="tab:blue",
+                    label="l_i: where S begins (inf S)" if row == 0 else None)
         for x0, x1, what in cp.non_flips.get(s, ()):
             ax.plot([x0 * k, x1 * k], [row - 0.25, row - 0.25], color="0.4", lw=2,
                     label="beyond r_i, not a flip" if row == 0 else None)

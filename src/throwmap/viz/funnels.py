@@ -12,6 +12,12 @@ from .style import _plt, layout, map_title, wrap_setting, x_range_text
 __all__ = ["plot_funnel_graph"]
 
 
+FUNNEL_KEY = ("key — mouth: the starts a funnel collects (its basin, % of the grid); spout: where it delivers "
+              "them (its attractor); arrow i → j: i's spout lies in j's mouth (share of spout samples); priority k: "
+              "its spout lies in the mouth of a priority k − 1 funnel (0: in the goal), so k switches of ω reach the goal")
+"""The funnel graph's key, under the figure."""
+
+
 def _omega_text(omegas) -> str:
     om = tuple(omegas or ())
     if not om:
@@ -83,7 +89,7 @@ def plot_funnel_graph(graph, ax=None):
     levels = sorted(layers)
     widest = max([len(v) for v in layers.values()] + [1])
     if ax is None:
-        fig, ax = plt.subplots(figsize=(max(5.0, 2.9 * widest + 0.6), 1.6 * max(len(levels), 1) + 1.2))
+        fig, ax = plt.subplots(figsize=(max(5.0, 2.9 * widest + 0.6), 1.6 * max(len(levels), 1) + 1.7))
     fig = ax.figure
     bw, bh, sx = 0.86, 0.62, 1.3  # box size and spacing of neighbours in a layer, data units (layers 1 apart)
     pos: dict = {}
@@ -147,6 +153,12 @@ def plot_funnel_graph(graph, ax=None):
     ax.set_xlim(-half, half)
     ax.set_ylim(-(len(levels) - 1) - bh / 2 - 0.25, bh / 2 + 0.25)
     ax.set_axis_off()
+    if fs:  # the key: the words of the draft's Sec. I-A, said once under the graph
+        import textwrap
+
+        key = FUNNEL_KEY + ("; dashed: spout inside the goal" if goal is not None else "")
+        ax.text(0.5, -0.01, textwrap.fill(key, max(50, int(13 * fig.get_figwidth()))), transform=ax.transAxes,
+                ha="center", va="top", fontsize=7, color="0.25", gid="key")
     order = [fs[i].name for i in sorted((i for i, r in rank.items() if r is not None),
                                          key=lambda i: (rank[i], -fs[i].mouth_fraction, i))]
     title = f"funnel graph: {len(fs)} funnel{'s' if len(fs) != 1 else ''}, {len(graph.edges)} edge" \

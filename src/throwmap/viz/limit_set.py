@@ -226,8 +226,9 @@ def plot_limit_set(limit, ax=None, *, critical=None, orbit=None, unit: str = "cm
             handles.append(Line2D([], [], ls="none", marker="v", color="tab:red", label="$r_i$: jogs end"))
         if lx:
             ax.scatter(lx, np.asarray(ly) - 0.22, marker="^", s=40, color="tab:blue", zorder=6, gid="critical-l",
-                       label="$l_i$ = inf S")
-            handles.append(Line2D([], [], ls="none", marker="^", color="tab:blue", label="$l_i$ = inf S"))
+                       label="$l_i$: where S begins (inf S)")
+            handles.append(Line2D([], [], ls="none", marker="^", color="tab:blue",
+                                  label="$l_i$: where S begins (inf S)"))
 
     # orbit
     if orbit is not None and n_arrows > 0:

@@ -71,7 +71,7 @@ def _draw_critical(ax, critical, s: int, k: float, key) -> None:
         ax.axvline(l * k, color="tab:blue", ls=":", lw=1.2, gid="critical-l")
         ax.annotate(f"$l_{{{s}}}$", (l * k, 1.0), xycoords=ax.get_xaxis_transform(), xytext=(2, -14),
                     textcoords="offset points", color="tab:blue", ha="left", va="top", fontsize=9)
-        key("$l_i$ = inf S", ls=":", color="tab:blue", lw=1.2)
+        key("$l_i$: where S begins (inf S)", ls=":", color="tab:blue", lw=1.2)
 
 
 def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm", compact: bool = False,
@@ -95,11 +95,11 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
     unit : str
         ``"cm"`` (default) or ``"m"``; the data are in m.
     compact : bool
-        The paper's Fig. 2 look (:func:`throwmap.plot_throw_map`): 4.2 × 4 in panels,
-        axes over the sampled domain only (images beyond it leave the panel), and a
-        legend in each panel naming each branch a jog or a flip. Otherwise
-        (default) the axes span every image and one legend sits below the panels
-        (or in the last panel of a figure without constrained layout).
+        The paper's Fig. 2 look (:func:`throwmap.plot_throw_map`): 4.2 × 4 in panels and a
+        legend in each panel naming each branch a jog, a flip or a tumble over and back (a landing on the
+        panel's side beyond a flip from it, hollow). Otherwise
+        (default) one legend sits below the panels (or in the last panel of a figure without constrained
+        layout). Both span the sampled domain and every image.
     title : str, optional
         The figure's title; default names the part, h, ω and the model for a throw
         map (from ``samples.info``), else ``samples.label``.
@@ -127,9 +127,10 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
     xn, sn, ok_all = samples.x_next, samples.side_next, samples.ok
     n_col = max(sides + [int(v) for v in np.unique(sn[ok_all])]) + 1
     colors = side_colors(n_col)
+    kinds = samples.kinds()
     lo_all = min([0.0] + list(samples.x_lo))
     hi_all = max(samples.x_hi)
-    if np.any(ok_all) and not compact:
+    if np.any(ok_all):  # every image inside the axes
         hi_all = max(hi_all, float(np.max(xn[ok_all])))
         lo_all = min(lo_all, float(np.min(xn[ok_all])))
     lim = (lo_all * k, hi_all * k)
@@ -144,14 +145,24 @@ def plot_map(samples, axes=None, *, critical=None, limit=None, unit: str = "cm",
 
         sl = samples.panel(s)
         x, y, d, ok = samples.x[sl], xn[sl], sn[sl], ok_all[sl]
+        kind = kinds[sl]
         if limit is not None:
             _draw_limit_set(ax, limit, s, k, colors, n_col, key)
         for dest in np.unique(d[ok]):
             m = ok & (d == dest)
+            tumble = m & (kind == "tumble")  # on its own side again, beyond a flip: over and back, not a jog
+            m = m & ~tumble
             ax.scatter(x[m] * k, y[m] * k, s=3, color=colors[int(dest)], zorder=1 if compact else 3,
                        rasterized=not compact, gid=f"branch-{int(dest)}")
             what = f"→ side {int(dest)} ({'jog' if dest == s else 'flip'})" if compact else f"lands on side {int(dest)}"
-            key(what, ls="none", marker="o", ms=5 if compact else 4, color=colors[int(dest)])
+            if np.any(m):
+                key(what, ls="none", marker="o", ms=5 if compact else 4, color=colors[int(dest)])
+            if np.any(tumble):
+                ax.scatter(x[tumble] * k, y[tumble] * k, s=10, marker="o", facecolors="none",
+                           edgecolors=colors[int(dest)], linewidths=0.8, zorder=1 if compact else 3,
+                           rasterized=not compact, gid=f"tumble-{int(dest)}")
+                key(f"→ side {int(dest)}, tumbled over and back", ls="none", marker="o", ms=5, mfc="none",
+                    color=colors[int(dest)])
         if np.any(~ok):
             ax.scatter(x[~ok] * k, np.full(int(np.sum(~ok)), lim[0]), marker="x", s=8, color="k",
                        zorder=1 if compact else 3, clip_on=compact, gid="escapes")  # compact: the Fig. 2 look
