@@ -17,6 +17,22 @@ import typer
 from .options import JsonOpt, guard, to_json
 from .usage import ThrowmapGroup
 
+END_S = 5.0
+"""Seconds of ``--budget`` kept for writing the result at the end."""
+
+
+def _started_s() -> float:
+    """Seconds since this process started (its imports count against ``--budget``); 0 where it cannot be read."""
+    import time
+
+    try:
+        import psutil
+
+        return max(time.time() - psutil.Process().create_time(), 0.0)
+    except Exception:  # noqa: BLE001 - no psutil, or no access: count from now
+        return 0.0
+
+
 SHEET_S = 60.0
 """Seconds of ``--budget`` kept for the design sheet (its margins and drawing) when margins are measured."""
 
@@ -102,7 +118,8 @@ def design_cmd(
             p.check_side(side)
         grid = {k: tuple(v) for k, v in (("omegas", omegas), ("hs", hs)) if v}
         sheet_s = min(SHEET_S if margin_trials else 10.0, 30.0 * budget)  # kept for the sheet (≤ half the budget)
-        plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=60.0 * budget - sheet_s,
+        total_s = max(60.0 * budget - _started_s() - END_S, 0.0)  # the budget counts from the command's start
+        plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=max(total_s - sheet_s, 0.0),
                           engine_candidates=candidates, omega_check=omega_check, **grid)
         with Progress(transient=True, disable=as_json) as bar:
             tasks = {}
@@ -117,7 +134,7 @@ def design_cmd(
             if res.success:
                 from ..feeder.sheet import write_sheet
 
-                left = 60.0 * budget - res.time_s - 10.0  # the margins get what the search left (the drawing 10 s)
+                left = total_s - res.time_s - 10.0  # the margins get what the search left (the drawing 10 s)
                 res = write_sheet(res, out, margin_trials=margin_trials, workers=workers, budget_s=left,
                                   progress=progress)
         if as_json:
