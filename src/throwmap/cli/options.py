@@ -290,7 +290,7 @@ def compiling_notice(model: str) -> bool:
     from ..warmup import cold
 
     if cold(model):
-        stderr_line(f"compiling the {model} kernels, once (about a minute; `throwmap compile` does it ahead, "
+        stderr_line(f"compiling the {model} kernels, once (a minute or two; `throwmap compile` does it ahead, "
                     "`make` at install)…")
         return True
     return False
