@@ -51,7 +51,8 @@ def _rigid_body() -> None:
 
 
 def _paper() -> None:
-    """Models "paper", "small_angle" and "small_angle2": a throw, serial and parallel batches, a trajectory, an orbit."""
+    """Models "paper", "small_angle" and "small_angle2": a throw, serial and parallel batches, a trajectory, an
+    orbit."""
     import numpy as np
 
     from .kernels import paper as kp
@@ -61,7 +62,8 @@ def _paper() -> None:
     from .throws.throw import throw, throw_batch
 
     part, arm = _setup()
-    for model, pmin in (("paper", kp.PARALLEL_MIN), ("small_angle", ks.PARALLEL_MIN), ("small_angle2", ks.PARALLEL_MIN)):
+    for model, pmin in (("paper", kp.PARALLEL_MIN), ("small_angle", ks.PARALLEL_MIN),
+                        ("small_angle2", ks.PARALLEL_MIN)):
         throw(part, arm, 0.2, 0, 4.0, model)
         for n in (8, pmin + 1):
             throw_batch(part, arm, np.linspace(0.1, 0.3, n), 0, 4.0, model)

@@ -1,4 +1,4 @@
-"""The feeder search's engine screen: which side arrives first at an end stop under the real arm.
+"""The feeder search's screens: which side arrives first at an end stop, on the exact model or the engine's table.
 
 An end stop holds whatever side reaches it first (the flips that would free a wrong side roll outward,
 into the stop), so a pocket at the arm's end feeds side k when, under the arm that really throws

@@ -73,8 +73,8 @@ minutes on 2 cores). No trial is started after the budget itself: a verification
 
 @dataclass(frozen=True, slots=True)
 class Tried:
-    """One candidate verified in the engine: its index ``k`` in the engine screen's ranking, the screened
-    ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
+    """One candidate run in the engine: its index ``k`` in the screen's ranking (``FeederSearch.screened``), the
+    screened ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
     "throws_to_capture"}``) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
     ``"below the goal"``, ``"rerun disagrees"``, ``"the budget ran out in the …"``)."""
 
@@ -91,8 +91,8 @@ class Tried:
 class FeederSearch:
     """The search's result: ``success`` (a verified feeder), its ``side``, ``config`` (path of ``feeder.toml``; None
     without one), ``feeder`` (the screened candidate fed, or None), ``verified`` and ``rerun`` (the two full runs),
-    ``predicted`` (the engine screen's share for the fed candidate), ``time_s``, ``reason`` (why none, when
-    ``success`` is False), ``tried`` (every candidate verified, in order), ``screened`` (the engine screen's
+    ``predicted`` (the screen's share for the fed candidate), ``time_s``, ``reason`` (why none, when
+    ``success`` is False), ``tried`` (every candidate run in the engine, in order), ``screened`` (the screen's
     candidates, best first), ``exact`` (the exact screen's count and best per side), every ``assumption``
     (arm, jitter, materials, drops, goal) and the seconds each stage took (``stages_s``: exact screen, engine screen,
     verification)."""
@@ -127,7 +127,7 @@ class FeederSearch:
         return out
 
     def table(self, n: int = 5) -> str:
-        """The engine screen's ``n`` best candidates and every verified one, one line each (cm for lengths)."""
+        """The screen's ``n`` best candidates and every one run in the engine, one line each (cm for lengths)."""
         rows = [f"{'side':>4}  {'weight':>28}  {'ω rad/s':>7}  {'h cm':>5}  {'wall cm':>7}  {'predicted':>9}  verified"]
         runs = {t.k: t for t in self.tried}
         for k, a in enumerate(self.screened):
@@ -487,8 +487,9 @@ def _omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: fl
             failed.append(step)
     if not failed:
         return "fed", 0.0
-    return ("fragile in ω: " + ", ".join(seen) + f" fed (below {100 * plan.goal:g} % with 95 % confidence at "
-            + " and ".join(f"{s:+.0%}" for s in failed) + ")"), (0.0 if len(failed) == 2 else -OMEGA_SHIFT * math.copysign(1, failed[0]))
+    verdict = ("fragile in ω: " + ", ".join(seen) + f" fed (below {100 * plan.goal:g} % with 95 % confidence at "
+               + " and ".join(f"{s:+.0%}" for s in failed) + ")")
+    return verdict, (0.0 if len(failed) == 2 else -OMEGA_SHIFT * math.copysign(1, failed[0]))
 
 
 def _diverse(order: list, screened: list) -> list:
