@@ -26,3 +26,4 @@ def test_the_table_is_headed_by_the_setting():
     assert res.exit_code == 0, res.output
     first = res.stdout.splitlines()[0]
     assert first.startswith("part triangle_30_60_90(hypotenuse=0.17); arm h = -0.01 m"), first
+    assert "throw" not in first and first.endswith("fixtures: none")  # settle drops the part, it throws nothing

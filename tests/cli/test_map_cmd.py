@@ -39,3 +39,10 @@ def test_the_table_names_each_run_and_bad_input_is_one_line():
     assert r.exit_code == 0 and "flip to side 1" in r.stdout and "jog:" in r.stdout
     r = runner.invoke(app, BASE[:-2] + ["--n", "1"])
     assert r.exit_code == 2 and r.stderr.strip() == "error: n: must be ≥ 2, got 1"
+
+
+def test_an_x_max_below_a_sides_first_start_is_refused():
+    for bad in ("-1", "0.02"):
+        res = runner.invoke(app, ["map", "--part", "triangle", "--h", "-0.01", "--omega", "4", "--x-max", bad])
+        assert res.exit_code == 2 and res.stdout == "", res.output
+        assert res.stderr.startswith("error: x_max: must exceed the first valid x on every side"), res.stderr

@@ -51,7 +51,8 @@ def _setting(p: dict) -> str:
     if arm:
         bits.append("arm " + ", ".join(arm))
     noise = p.get("noise")
-    if isinstance(noise, dict) and isinstance(noise.get("realisation"), str):
+    thrown = num(p.get("omega_rad_s"))  # an experiment that throws (settle only drops the part)
+    if thrown and isinstance(noise, dict) and isinstance(noise.get("realisation"), str):
         jitter = noise.get("omega_rel")
         bits.append(f"{noise['realisation']} throw" + (f", ω jitter {100 * jitter:.3g} %" if num(jitter) and jitter else ""))
     fixtures = []
@@ -63,8 +64,8 @@ def _setting(p: dict) -> str:
     if isinstance(wall, dict):
         h = wall.get("height_m")
         fixtures.append("end wall" + (f" {h:.3g} m high" if num(h) else ""))
-    if fixtures:
-        bits.append("fixtures: " + ", ".join(fixtures))
+    if bits:
+        bits.append("fixtures: " + (", ".join(fixtures) if fixtures else "none"))
     return "; ".join(bits)
 
 

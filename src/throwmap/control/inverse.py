@@ -293,7 +293,7 @@ def _polish(thrower, side, branch, w_best, x_best, x_target, span, n):
 def jog_rate(part, arm, x0: float, side: int, x_target: float, model: str = DEFAULT_MODEL, **kw) -> float:
     """The release rate (rad/s) that jogs ``(x0, side)`` to ``x_target`` (m) on the same side, to 1 µm.
 
-    The issue's contract; :func:`inverse_jog` (same arguments) gives the whole answer: the
+    Just the rate; :func:`inverse_jog` (same arguments) gives the whole answer: the
     branch's reach, where it ends and what happens beyond, the Lemma 4.2 monotonicity check."""
     return inverse_jog(part, arm, x0, side, x_target, model, **kw).omega
 

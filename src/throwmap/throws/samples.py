@@ -211,6 +211,9 @@ def throw_map_samples(part: Part, arm: Arm, omega: float, *, model: str = DEFAUL
     if not math.isfinite(x_max):
         raise InvalidStateError("x_max", f"must be finite, got {x_max}")
     x_lo = [part.x_min(s) for s in sides]
+    if x_max <= max(x_lo):  # a side with no start below x_max: nothing to sample there, say so
+        raise InvalidStateError("x_max", f"must exceed the first valid x on every side ({max(x_lo):.6g} m), got "
+                                         f"{x_max:.6g}")
     x_hi = [x_max] * len(sides)
     if walled:  # stop each side where its outer vertex meets the wall (beyond, no rest exists)
         from ..system.starts import start_interval
