@@ -142,6 +142,7 @@ def _orbit_summary(orbit: Orbit, requested: int) -> dict:
         "status": orbit.status.label,
         "jogs": sum(k == "jog" for k in kinds),
         "flips": sum(k == "flip" for k in kinds),
+        "tumbles": sum(k == "tumble" for k in kinds),
         "final": {"x": float(orbit.x[-1]), "side": int(orbit.side[-1])},
         "escape": orbit.outcomes[-1].to_dict() if orbit.escaped else None,
         "per_side": per_side,

@@ -47,9 +47,10 @@ class Orbit:
         else:
             omega = f"omega∈[{om.min():g}, {om.max():g}] rad/s"
         kinds = self.kinds
-        jogs, flips = kinds.count("jog"), kinds.count("flip")
+        jogs, flips, tumbles = kinds.count("jog"), kinds.count("flip"), kinds.count("tumble")
         sides = ", ".join(str(int(s)) for s in np.unique(self.side))
-        return (f"Orbit(model={self.model!r}{_system_text(self)}, {omega}, {self.n_throws} throws ({jogs} jogs, {flips} flips), "
+        what = f"{jogs} jogs, {flips} flips" + (f", {tumbles} tumbles over and back" if tumbles else "")
+        return (f"Orbit(model={self.model!r}{_system_text(self)}, {omega}, {self.n_throws} throws ({what}), "
                 f"{self.status.label}, sides {sides}, x∈[{np.min(self.x):.4g}, {np.max(self.x):.4g}] m, "
                 f"final (x={self.x[-1]:.4g} m, side {int(self.side[-1])}))")
 

@@ -273,10 +273,13 @@ class ThrowOutcome:
 
     @property
     def kind(self) -> str:
-        """``"jog"`` (same side), ``"flip"`` (another side) or the escape status."""
+        """``"jog"`` (lands on the side it rested on without turning over), ``"tumble"`` (on the same side after
+        landing on another: over and back), ``"flip"`` (another side) or the escape status."""
         if self.status != Status.OK:
             return self.status.label
-        return "jog" if self.side == self.side0 else "flip"
+        if self.side != self.side0:
+            return "flip"
+        return "tumble" if self.n_flips > 0 else "jog"
 
     @property
     def assumptions_hold(self) -> bool:
