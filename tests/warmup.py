@@ -6,16 +6,15 @@ cores that doubles the largest cost of the suite. ``conftest.pytest_configure`` 
 module in the controlling process, the chains of groups below in parallel processes (one per core at most); the
 workers then load the kernels from the cache.
 
-Each group makes the calls that compile one model's kernels through the public API, with the
-argument types the tests use (a bare, tilted and walled arm, a batch below and above the
-parallel threshold, a trajectory, a recoil arm).
+The models' groups are the library's own (:mod:`throwmap.warmup`, what ``throwmap compile`` runs: a bare,
+tilted and walled arm, batches below and above the parallel threshold, a trajectory, a recoil arm); the tests add
+the kernels' RK4 reference and the throw benchmark's own kernels.
 
     python tests/warmup.py [GROUP ...]      # the groups in this process, in order (all when none is named)
 """
 
 from __future__ import annotations
 
-import math
 import os
 import subprocess
 import sys
@@ -25,49 +24,24 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 
-def throw_trajectory(*a, **kw):
-    from throwmap.throws.orbit_trajectory import throw_trajectory as tt
-
-    return tt(*a, **kw)
-
-
 def _setup():
     import throwmap as tm
 
     return tm, tm.triangle_30_60_90(0.17), tm.Arm(h=-0.01)
 
 
-def _batch_sizes(parallel_min: int) -> tuple[int, int]:
-    return 8, parallel_min + 1
-
-
 def paper():
-    """Models "paper" and "small_angle": one throw, its trajectory, serial and parallel batches."""
-    tm, part, arm = _setup()
-    from throwmap.kernels import paper as kp
-    from throwmap.kernels import small_angle as ks
+    """Models "paper", "small_angle" and "small_angle2": the library's own warm-up group (throwmap.warmup)."""
+    from throwmap import warmup
 
-    for model, pmin in (("paper", kp.PARALLEL_MIN), ("small_angle", ks.PARALLEL_MIN)):
-        tm.throw(part, arm, 0.2, 0, 4.0, model)
-        for n in _batch_sizes(pmin):
-            tm.throw_batch(part, arm, np.linspace(0.1, 0.3, n), 0, 4.0, model)
-    throw_trajectory(part, arm, 0.2, 0, 4.0, "paper")
+    warmup.GROUPS["paper"]()
 
 
 def rigid_body():
-    """Model "rigid_body" on a bare, tilted and walled arm: a throw, serial and parallel batches."""
-    tm, part, arm = _setup()
-    from throwmap.kernels.rigid_body import PARALLEL_MIN
+    """Model "rigid_body" on a bare, tilted and walled arm and the recoil arm: the library's own warm-up group."""
+    from throwmap import warmup
 
-    walled = tm.Arm(h=-0.01, length=0.35)
-    wall = (tm.Wall(height=0.05, mu=0.5),)
-    tm.throw(part, arm, 0.2, 0, 4.0, "rigid_body")
-    tm.throw(part, walled, 0.25, 2, 5.0, "rigid_body", fixtures=wall, alpha=-math.radians(10.0))
-    for n in _batch_sizes(PARALLEL_MIN):
-        tm.throw_batch(part, arm, np.linspace(0.1, 0.3, n), 0, 4.0, "rigid_body")
-    tm.throw_batch(part, walled, np.linspace(0.2, 0.3, 8), 2, 5.0, "rigid_body", fixtures=wall,
-                   alpha=-math.radians(10.0))
-    throw_trajectory(part, arm, 0.2, 0, 4.0, "rigid_body")
+    warmup.GROUPS["rigid_body"]()
 
 
 def reference():
@@ -85,14 +59,6 @@ def reference():
            *out)
 
 
-def moving():
-    """Model "rigid_body" on a moving arm: the recoil arm's throw and its hand-over to the automaton."""
-    tm, part, arm = _setup()
-    from throwmap.system.motion import RecoilThrow
-
-    tm.throw(part, arm, 0.2, 0, 4.0, "rigid_body", realisation=RecoilThrow.for_release_rate(4.0))
-
-
 def bench():
     """``benchmarks/bench_throw.py``'s own kernels (its reference integrator), at the sizes its test uses."""
     import importlib.util
@@ -106,11 +72,11 @@ def bench():
     mod.main(["--n", "2000", "--n-reference", "5", "--n-single", "50", "--repeat", "1"])
 
 
-GROUPS = {"rigid_body": rigid_body, "reference": reference, "moving": moving, "paper": paper, "bench": bench}
+GROUPS = {"rigid_body": rigid_body, "reference": reference, "paper": paper, "bench": bench}
 
-CHAINS = (("rigid_body", "reference", "moving"), ("paper", "bench"))
-"""Groups run in one process, in order: "reference" and "moving" call the automaton "rigid_body" compiles (run
-apart they would compile it again). The two chains take about as long (≈ 160 s and ≈ 135 s of one core)."""
+CHAINS = (("rigid_body", "reference"), ("paper", "bench"))
+"""Groups run in one process, in order: "reference" calls the automaton "rigid_body" compiles (run apart it would
+compile it again). The two chains take about as long (≈ 160 s and ≈ 135 s of one core)."""
 
 
 def warm(chains=CHAINS, workers: int | None = None, stream=sys.stderr) -> float:

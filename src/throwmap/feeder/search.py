@@ -36,6 +36,7 @@ a rerun of the same search reads them back instead of computing them again (Ctrl
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import json
 import math
 import time
@@ -497,27 +498,16 @@ def _diverse(order: list, screened: list) -> list:
     over the variant: the best candidate of every side before any second one, and of every variant of a side
     before a second of any (candidates of one side tend to fail alike — the pocket keeps the same wrong side —
     and those of one variant and side more so)."""
-    def rounds(ks: list, key) -> list:
+    def by(ks: list, key) -> list:  # ks in groups of one key, each in the order given
         groups: dict = {}
         for k in ks:
             groups.setdefault(key(screened[k]), []).append(k)
-        out = []
-        while any(groups.values()):
-            for g in groups.values():
-                if g:
-                    out.append(g.pop(0))
-        return out
+        return list(groups.values())
 
-    sides: dict = {}
-    for k in order:
-        sides.setdefault(screened[k].side, []).append(k)
-    per_side = {s: rounds(ks, lambda c: c.variant.label()) for s, ks in sides.items()}
-    out = []
-    while any(per_side.values()):
-        for g in per_side.values():
-            if g:
-                out.append(g.pop(0))
-    return out
+    def round_robin(lists: list) -> list:
+        return [k for layer in itertools.zip_longest(*lists) for k in layer if k is not None]
+
+    return round_robin([round_robin(by(ks, lambda c: c.variant.label())) for ks in by(order, lambda c: c.side)])
 
 
 def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, budget_left: float,
