@@ -41,7 +41,8 @@ def rigid_body():
     """Model "rigid_body" on a bare, tilted and walled arm and the recoil arm: the library's own warm-up group."""
     from throwmap import warmup
 
-    warmup.GROUPS["rigid_body"]()
+    for group in ("rigid_body", "rigid_body_parallel", "recoil"):
+        warmup.GROUPS[group]()
 
 
 def reference():

@@ -66,7 +66,8 @@ def _compile_if_cold(prefix: str = "", force: bool = False) -> None:
 
     if not (force or cold("rigid_body") or cold("paper")):
         return
-    stderr_line(f"{prefix}compiling the kernels, once ({len(GROUPS)} groups in parallel, a few minutes)…")
+    stderr_line(f"{prefix}compiling the kernels, once ({len(GROUPS)} groups in parallel processes, two minutes or "
+                f"more)…")
     compile_kernels(progress=lambda name, done, total: stderr_line(f"{prefix}compiled {name} ({done}/{total})"))
 
 
