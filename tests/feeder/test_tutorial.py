@@ -21,7 +21,8 @@ def _tested_commands() -> list[str]:
     m = re.search(r"<!-- tutorial: the tests run the commands of this block in order -->\s*```bash\n(.*?)```", text,
                   re.S)
     assert m, "the tutorial has no tested block"
-    return [ln for ln in m.group(1).splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    block = m.group(1).replace("\\\n", " ")  # a command continued on the next line, as a shell reads it
+    return [ln for ln in block.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
 
 
 @pytest.mark.slow

@@ -15,6 +15,8 @@ EVENT_LABELS = {"appear": "appears", "vanish": "vanishes", "merge": "merge", "sp
                 "period_doubling": "period doubling", "fold": "fold (multiplier +1)",
                 "escape_onset": "escape begins", "escape_end": "escape ends"}
 """How each event kind is written on the figure."""
+LABEL_PT = 7
+"""Font size of the event labels, points."""
 
 
 def plot_continuation(c, path=None, *, unit: str = "cm", fig=None):
@@ -60,18 +62,21 @@ def plot_continuation(c, path=None, *, unit: str = "cm", fig=None):
         ax.plot([], [], "-", color=colors[s], lw=3, label=f"rests on side {s}")
     ax.plot([], [], "-", color="0.5", lw=1, alpha=0.5, label="values added to locate events")
     ymax = ax.get_ylim()[1]
-    groups: list = []  # events closer than 1.5 % of the axis share one label
+    # events closer than a label's line height (at the axes' width on the page) share one label
+    width_pt = ax.get_position().width * fig.get_figwidth() * 72.0
+    near = 1.6 * LABEL_PT / max(width_pt, 1.0) * span
+    groups: list = []
     for e in sorted(c.events, key=lambda e: e.value):
         ax.axvline(e.value, color="0.35", lw=0.8, ls=":")
         ax2.axvline(e.value, color="0.35", lw=0.8, ls=":")
         text = EVENT_LABELS.get(e.kind, e.kind) + (f" #{e.ids[0]}" if e.ids else "")
-        if groups and e.value - groups[-1][0] <= 0.015 * span:
+        if groups and e.value - groups[-1][0] <= near:
             if text not in groups[-1][1]:
                 groups[-1][1].append(text)
         else:
             groups.append([e.value, [text]])
     for at, texts in groups:
-        ax.text(at, ymax, " " + ", ".join(texts), rotation=90, va="top", ha="right", fontsize=7, color="0.2")
+        ax.text(at, ymax, " " + ", ".join(texts), rotation=90, va="top", ha="right", fontsize=LABEL_PT, color="0.2")
     u = f" ({c.unit})" if c.unit else ""
     ax.set_ylabel(f"attractor x ({unit})")
     ax.set_ylim(bottom=0)
