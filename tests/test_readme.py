@@ -48,7 +48,7 @@ def shell_commands(block: str) -> list[list[str]]:
     """Each ``throwmap …`` / ``make …`` / ``python …`` line of a shell block as words, comments and
     ``[optional]`` brackets removed (``[--plot funnels.png]`` → ``--plot funnels.png``)."""
     out = []
-    for line in block.splitlines():
+    for line in re.sub(r"\\\n\s*", " ", block).splitlines():  # a command continued on the next line, joined
         line = line.split(" #")[0].strip()
         if line.startswith("$ "):
             line = line[2:]
