@@ -80,6 +80,19 @@ def chapters(code_blocks: list[str] | tuple[str, ...]) -> list[tuple[int, int]]:
 CHAPTERS = [(rel(p), a, b) for p in PAGES for a, b in chapters(page_blocks("python", rel(p)))]
 
 
+def printed(text: str) -> dict[int, str]:
+    """What a page says its Python blocks print: a ``text`` block that follows a ``python`` block with no other block
+    between them is the output of that block (index among the page's Python blocks)."""
+    out, k, last = {}, -1, ""
+    for lang, body in re.findall(r"^```(\w*)\n(.*?)^```", text, flags=re.S | re.M):
+        if lang == "python":
+            k += 1
+        elif lang == "text" and k >= 0 and k not in out and last == "python":
+            out[k] = body
+        last = lang
+    return out
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("page, first, end", CHAPTERS, ids=[f"{p}:blocks {a}-{b - 1}" for p, a, b in CHAPTERS])
 def test_python_blocks_run_as_pasted(page, first, end, tmp_path, monkeypatch):
@@ -97,15 +110,23 @@ def test_python_blocks_run_as_pasted(page, first, end, tmp_path, monkeypatch):
     module = types.ModuleType("__readme__")  # like __main__ of an interpreter: dataclasses look it up
     monkeypatch.setitem(sys.modules, module.__name__, module)
     namespace = module.__dict__
+    import contextlib
+    import io
+
     code_blocks = page_blocks("python", page)
+    expected = printed((ROOT / page).read_text(encoding="utf-8"))
     for i in range(first, end):
         code = code_blocks[i]
+        stdout = io.StringIO()
         try:
-            exec(compile(code, f"{page} python block {i}", "exec"), namespace)
+            with contextlib.redirect_stdout(stdout):
+                exec(compile(code, f"{page} python block {i}", "exec"), namespace)
         except Exception as err:  # pragma: no cover - the message is the point
             pytest.fail(f"{page} python block {i} fails: {type(err).__name__}: {err}\n{code}")
         finally:
             plt.close("all")
+        if i in expected:  # the page shows what the block prints: it must print that
+            assert stdout.getvalue().rstrip() == expected[i].rstrip(), f"{page} python block {i} prints otherwise"
 
 
 def test_the_chapters_cover_every_block_once():
@@ -158,9 +179,11 @@ def _has_option(help_text: str, opt: str) -> bool:
 
 
 def _takes_value(help_text: str, opt: str) -> bool:
-    """Whether ``opt`` takes a value, from the help's metavar column (``<bool>`` and ``BOOLEAN``: a flag)."""
-    m = re.search(rf"(?<![\w-]){re.escape(opt)}(?![\w-])[ ,\w-]*?\s+(<\w+>|[A-Z]{{3,}})", help_text)
-    return m is not None and m.group(1) not in ("<bool>", "BOOLEAN")
+    """Whether ``opt`` takes a value, from the help's type column: the first word after the option's spellings is a
+    type (``<int>``, ``INTEGER``) for an option that takes one; a flag has none (or ``<bool>``, ``BOOLEAN``)."""
+    m = re.search(rf"(?<![\w-]){re.escape(opt)}(?![\w-])(?:[,/]?\s*-{{1,2}}[\w-]+)*\s+(\S+)", help_text)
+    return m is not None and bool(re.fullmatch(r"<\w+>|[A-Z]{3,}", m.group(1))) and m.group(1) not in ("<bool>",
+                                                                                                   "BOOLEAN")
 
 
 def test_shell_commands_exist_with_their_options():
@@ -194,6 +217,11 @@ def test_shell_commands_exist_with_their_options():
         seen.add(cmd.split()[0])
     assert {"throw", "iterate", "compare", "validate", "animate", "demo", "limitset", "basins", "funnels", "map",
             "feeder"} <= seen
+
+
+def test_a_text_block_after_a_python_block_is_its_output():
+    page = "```python\nprint(1)\n```\nprints\n```text\n1\n```\n```bash\nls\n```\n```text\nx\n```\n```python\nf()\n```\n"
+    assert printed(page) == {0: "1\n"}
 
 
 def test_the_checker_catches_a_missing_option_and_a_missing_import():

@@ -320,15 +320,20 @@ def map_cmd(
             return
         typer.echo(f"throw map of {the_part.name} at ω = {omega:g} rad/s, h = {arm.h:g} m, model {model!r}"
                    f"{system_text(sysk.get('fixtures', ()), sysk.get('alpha', 0.0))}; {smp.n} starts per side")
-        typer.echo("side  x from (cm)  x to (cm)  outcome               lands at x' (cm)")
+        typer.echo("side  x from (cm)  x to (cm)  outcome                   lands at x' (cm)")
         for r in runs:
             lands = f"{100 * r[4]:.2f} … {100 * r[5]:.2f}" if r[4] <= r[5] else "—"
-            typer.echo(f"{r[0]:>4}  {100 * r[1]:>11.2f}  {100 * r[2]:>9.2f}  {r[3]:<20}  {lands}")
+            said = _MAP_WORDS.get(r[3], r[3].replace("_", " "))
+            typer.echo(f"{r[0]:>4}  {100 * r[1]:>11.2f}  {100 * r[2]:>9.2f}  {said:<24}  {lands}")
         typer.echo("jog: lands on the side it rested on without turning over; flip: on another side; tumbles over and "
                    "back: turns over and lands on its own side again; any other outcome leaves the arm or is refused "
                    "(an x between two runs lies between two samples)")
         if plot is not None:
             typer.echo(f"wrote {plot}")
+
+
+_MAP_WORDS = {"behind_joint": "escapes behind the joint", "off_end": "falls off the arm's end"}
+"""The map table's words for the escapes (the JSON keeps the status labels)."""
 
 
 def register(app: typer.Typer) -> None:

@@ -32,6 +32,25 @@ from .options import WRITTEN, kept_line, stderr_line
 __all__ = ["ThrowmapGroup", "usage_line"]
 
 
+def _flags_show_no_type() -> None:
+    """Help pages list a flag (``--json``, ``--force``) without a type: Typer's Rich help shows ``<bool>`` beside it,
+    which reads as if the flag took a value. Options that take one keep theirs."""
+    from typer.core import TyperOption
+
+    shown = getattr(TyperOption, "display_type_rich", None)
+    if shown is None or getattr(shown, "_throwmap", False):  # an older Typer, or done already
+        return
+
+    def display_type_rich(self, ctx):
+        return None if self.is_flag else shown(self, ctx)
+
+    display_type_rich._throwmap = True
+    TyperOption.display_type_rich = display_type_rich
+
+
+_flags_show_no_type()
+
+
 class UnknownCommand(_cx.UsageError):
     """A command name the app does not have (``name``; ``commands``: those it has)."""
 

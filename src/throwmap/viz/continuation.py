@@ -76,7 +76,8 @@ def plot_continuation(c, path=None, *, unit: str = "cm", fig=None):
         else:
             groups.append([e.value, [text]])
     for at, texts in groups:
-        ax.text(at, ymax, " " + ", ".join(texts), rotation=90, va="top", ha="right", fontsize=LABEL_PT, color="0.2")
+        ax.text(at, ymax, " " + ", ".join(texts), rotation=90, va="top", ha="right", fontsize=LABEL_PT, color="0.2",
+                bbox=dict(facecolor="white", edgecolor="none", alpha=0.8, pad=0.3))  # readable over the bars
     u = f" ({c.unit})" if c.unit else ""
     ax.set_ylabel(f"attractor x ({unit})")
     ax.set_ylim(bottom=0)

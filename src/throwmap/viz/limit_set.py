@@ -166,7 +166,8 @@ def plot_limit_set(limit, ax=None, *, critical=None, orbit=None, unit: str = "cm
         ax.hlines(lane[s], 0.0, x_hi * k, color="0.82", lw=1.0, zorder=0)
     ax.axvline(0.0, color="0.3", lw=1.2, zorder=0)
     draw_wall_stops(ax, limit.map_info, k, lambda s: lane.get(s), handles)
-    ax.text(0.0, 1.0, " joint", transform=ax.get_xaxis_transform(), va="top", ha="left", fontsize=7, color="0.3")
+    ax.annotate(" joint", (0.0, 1.0), xycoords=ax.get_xaxis_transform(), xytext=(0, -3), textcoords="offset points",
+                va="top", ha="left", fontsize=7, color="0.3")
 
     # attractors
     n_att = len(limit.attractors)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..records.outcome import Status
-from .style import _plt, describe_setting, side_colors
+from .style import _plt, describe_setting, side_colors, wrap_setting
 
 __all__ = ["plot_orbit"]
 
@@ -49,7 +49,9 @@ def plot_orbit(orbit, ax=None, part=None, unit: str = "cm", *, arm=None, title: 
                                    orbit.model, None if arm is None else arm.mu)
         if len(omegas) > 4:
             setting = setting.replace("ω = ?", f"{len(omegas)} release rates {min(omegas):g}–{max(omegas):g} rad/s")
-        title = f"orbit ({orbit.n_throws} throws): {setting}"
+        # on lines that fit over the axes (at most 0.6 em a character at 9 pt)
+        width_pt = ax.get_position().width * fig.get_figwidth() * 72.0
+        title = wrap_setting(f"orbit ({orbit.n_throws} throws): {setting}", int(width_pt / (0.6 * 9)))
     ax.set_title(title, fontsize=9)
     ax.legend(loc="best", fontsize=8)
     fig.tight_layout()
