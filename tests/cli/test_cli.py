@@ -102,6 +102,15 @@ def test_throw_table():
         assert label in result.stdout
 
 
+def test_an_escape_is_not_shown_as_a_landing():
+    """ω = 40 rad/s throws the triangle behind the joint: the table says where the part was when it left, and that
+    it does not rest there."""
+    result = invoke("throw", *TRIANGLE, "--x", "0.2", "--side", "0", "--omega", "40")
+    assert result.exit_code == 0, result.output
+    assert "behind_joint" in result.stdout and "x when it ended (m)" in result.stdout
+    assert "new x (m)" not in result.stdout and "behind the joint" in result.stdout.splitlines()[-1]
+
+
 def test_throw_arm_from_file_and_override(tmp_path):
     path = part_file(tmp_path, arm="h = -0.01\nlength = 0.5")
     a = strict_json(invoke("throw", "--part", path, "--x", "0.07", "--side", "0", "--omega", "3", "--json").stdout)

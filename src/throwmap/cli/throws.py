@@ -84,9 +84,10 @@ def throw_cmd(
         table = Table()
         table.add_column("quantity")
         table.add_column("value", justify="right")
+        rested = out.status.label == "ok"  # otherwise x and side are where the part was when the throw ended
         rows = [
-            ("new x (m)", fmt(out.x)),
-            ("side", fmt(out.side)),
+            ("new x (m)" if rested else "x when it ended (m)", fmt(out.x)),
+            ("side" if rested else "side when it ended", fmt(out.side)),
             ("status", out.status.label),
             ("kind", out.kind),
             ("flight time (s)", fmt(out.t_flight)),
@@ -101,6 +102,9 @@ def throw_cmd(
         for name, value in rows:
             table.add_row(name, value)
         console.print(table)
+        if not rested:
+            console.print(escape(_ENDED.get(out.status.label, f"the throw ended {out.status.label}: it did not come to rest "
+                                                        "on the arm")), soft_wrap=True)
 
 
 # ------------------------------------------------------------------ iterate
@@ -332,6 +336,9 @@ def map_cmd(
             typer.echo(f"wrote {plot}")
 
 
+_ENDED = {"behind_joint": "the part left the arm behind the joint (a contact at x ≤ 0): it does not rest there",
+          "off_end": "the part left the arm past its end: it does not rest there"}
+"""What the throw table says under an escape."""
 _MAP_WORDS = {"behind_joint": "escapes behind the joint", "off_end": "falls off the arm's end"}
 """The map table's words for the escapes (the JSON keeps the status labels)."""
 
