@@ -3,6 +3,7 @@
     python benchmarks/feeder.py                                  # 20 plates (seed 2026) + the draft's triangle
     python benchmarks/feeder.py --parts 5 --budget 3 --n 100     # smaller
     python benchmarks/feeder.py --out bench-feeder               # rows kept in bench-feeder/rows.jsonl (resumable)
+    python benchmarks/feeder.py --weight none --out bench-plain  # the same plates, no lead weight allowed
 
 Each plate is drawn by :func:`throwmap.feeder.random_plate` (4–6 vertices, 6–15 cm across, 20–80 g,
 ``numpy.random.default_rng(seed)``), then :func:`throwmap.feeder.design_feeder` searches a feeder for it
@@ -34,6 +35,7 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--out", default="bench-feeder", help="folder: one sub-folder per part, rows.jsonl")
     ap.add_argument("--no-triangle", action="store_true")
+    ap.add_argument("--weight", default="auto", help="lead weight allowed: auto, none or the heaviest in kg")
     a = ap.parse_args(argv)
 
     from throwmap.feeder import VerifyPlan, design_feeder, random_plate
@@ -54,8 +56,9 @@ def main(argv=None) -> int:
     rng = np.random.default_rng(a.seed)
     parts = [] if a.no_triangle else [("triangle", resolve_part("triangle").part)]
     parts += [(f"plate-{i:02d}", random_plate(rng)) for i in range(a.parts)]
+    weight = a.weight if a.weight in ("auto", "none") else float(a.weight)
     plan = VerifyPlan(n_pre=a.n_pre, n_verify=a.n, seed=1, workers=a.workers, budget_s=60.0 * a.budget)
-    print(f"# feeder benchmark: {len(parts)} parts (plates seed {a.seed}), budget {a.budget:g} min/part, "
+    print(f"# feeder benchmark: {len(parts)} parts (plates seed {a.seed}), budget {a.budget:g} min/part, weight {a.weight}, "
           f"verification {a.n_pre} + {a.n} + rerun {a.n} trials, {a.workers} workers", flush=True)
     print("| part | vertices | size cm | mass g | fed side | weight | verified | Wilson 95 % | rerun | time s | reason |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
@@ -67,7 +70,7 @@ def main(argv=None) -> int:
             t0 = time.perf_counter()
             error = ""
             try:
-                res = design_feeder(part, out / pid, plan=plan)
+                res = design_feeder(part, out / pid, plan=plan, weight=weight)
             except Exception as err:  # a crash is a row of the table, not the end of the benchmark
                 res = None
                 error = f"error: {type(err).__name__}: {err}"
@@ -79,7 +82,8 @@ def main(argv=None) -> int:
                  "weight": None if f is None or f.variant.weight is None else f.variant.weight.to_dict(),
                  "verified": None if res is None else res.verified, "rerun": None if res is None else res.rerun,
                  "time_s": round(time.perf_counter() - t0, 1),
-                 "reason": error if res is None else ("" if res.success else res.reason), "seed": a.seed}
+                 "reason": error if res is None else ("" if res.success else res.reason), "seed": a.seed,
+                 "weight_allowed": a.weight, "budget_min": a.budget}
             with rows_path.open("a", encoding="utf-8") as fh:
                 fh.write(json.dumps(r) + "\n")
         rows.append(r)
