@@ -116,6 +116,14 @@ def test_a_rerun_outside_the_interval_is_not_a_feeder(tri, tmp_path, monkeypatch
     assert "rerun disagrees" in res.reason and res.config is None and not (tmp_path / "feeder.toml").exists()
 
 
+def test_a_rerun_above_the_interval_confirms_the_feeder(tri, tmp_path, monkeypatch):
+    """199/200 has the Wilson interval [97.2, 99.9] %: a perfect rerun lies above it, which is no disagreement."""
+    _fake(monkeypatch, {"first": 1.0, "verify": 0.995, "rerun": 1.0}, predicted=0.99)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
+    assert res.verified["successes"] == 199 and res.verified["ci95"][1] < 1.0 and res.rerun["successes"] == 200
+    assert res.success and [t.verdict for t in res.tried] == ["fed"]
+
+
 def test_weak_candidates_are_dropped_and_the_reason_names_the_best(tri, tmp_path, monkeypatch):
     rates = {(k, "first"): 0.5 for k in range(100)}
     rates[(1, "first")] = 0.95
