@@ -204,6 +204,8 @@ def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_pat
     assert doc["success"] is False and doc["config"] is None and doc["verified"] is None and doc["side"] is None
     assert "first-arrival shares" in doc["reason"] and doc["time_s"] > 0 and doc["assumptions"]["goal"] == 0.95
     assert doc["exact_screen"]["candidates"] == 2 and len(doc["screened"]) == 2  # arrival at the wall and at the lip
+    # off a terminal, each stage's start is one line on stderr (stdout holds the JSON alone)
+    assert "exact screen…" in res.stderr.splitlines()
 
 
 @pytest.mark.parametrize("args, field", [(["--side", "7"], "side"), (["--budget", "-1"], "budget"),

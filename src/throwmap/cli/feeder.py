@@ -14,7 +14,7 @@ from typing import Annotated
 
 import typer
 
-from .options import JsonOpt, guard, to_json
+from .options import JsonOpt, guard, stage_bars, to_json
 from .usage import ThrowmapGroup
 
 END_S = 5.0
@@ -73,8 +73,6 @@ def design_cmd(
     as_json: JsonOpt = False,
 ) -> None:
     """Search a feeder that feeds one side of PART into a pocket at the arm's end, verified in the engine."""
-    from rich.progress import Progress
-
     from ..errors import InvalidStateError
     from ..feeder.search import VerifyPlan, design_feeder
     from ..io.config import resolve_part
@@ -121,14 +119,7 @@ def design_cmd(
         total_s = max(60.0 * budget - _started_s() - END_S, 0.0)  # the budget counts from the command's start
         plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=max(total_s - sheet_s, 0.0),
                           engine_candidates=candidates, omega_check=omega_check, **grid)
-        with Progress(transient=True, disable=as_json) as bar:
-            tasks = {}
-
-            def progress(stage, done, total):
-                if stage not in tasks:
-                    tasks[stage] = bar.add_task(stage, total=total)
-                bar.update(tasks[stage], completed=done)
-
+        with stage_bars(lines=True) as progress:  # on stderr: stdout keeps the table or the JSON alone
             res = design_feeder(p, out, side=side, weight=weight_kg, arm_length=arm_length, mu=mu, plan=plan,
                                 progress=progress)
             if res.success:

@@ -499,14 +499,21 @@ def save_figure(fig, path: Path, fmt: str, field: str) -> None:
 
 
 @contextmanager
-def stage_bars(console=None):
-    """Yields ``update(stage, done, total)``: one Rich bar per stage on ``console`` (default: stderr; a no-op off a
-    terminal)."""
+def stage_bars(console=None, lines: bool = False):
+    """Yields ``update(stage, done, total)``: one Rich bar per stage on ``console`` (default: stderr). Off a terminal
+    a no-op, or with ``lines`` one line on stderr as each stage starts (a log of a long run)."""
     from rich.console import Console
 
     console = Console(stderr=True) if console is None else console
     if not console.is_terminal:
-        yield lambda stage, done, total: None
+        started: set = set()
+
+        def line(stage, done, total):
+            if lines and stage not in started:
+                started.add(stage)
+                stderr_line(f"{stage}…")
+
+        yield line
         return
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 

@@ -55,8 +55,7 @@ def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: floa
         f"mu = {float(mu)!r}" if math.isfinite(mu) else 'mu = "inf"',
         "",
         "[cavity]",
-        f"length = {found.X!r}  # end wall, m: side {found.side} arrives there first in "
-        f"{100 * found.predicted:.1f} % of screened chains",
+        f"length = {found.X!r}  # end wall, m: " + _wall_note(found),
         f"depth = {POCKET_DEPTH_M!r}",
         f"clearance = {round(pocket_clearance(found.variant.part, found.side), 6)!r}  # floor beyond side "
         f"{found.side}'s length: the part's overhang past its ends + 5 mm, m",
@@ -72,6 +71,16 @@ def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: floa
         "",
     ]
     return "\n".join(lines)
+
+
+def _wall_note(found: Arrival) -> str:
+    """Where the end wall's screened share comes from: this wall, or the screened stop it was moved from."""
+    stop = float(found.best.get(found.side, (found.X,))[0]) if found.best else found.X
+    share = f"{100 * found.predicted:.1f} % of screened chains"
+    if not math.isfinite(stop) or abs(stop - found.X) < 1e-9:
+        return f"side {found.side} arrives there first in {share}"
+    return (f"moved {100 * (found.X - stop):+.1f} cm from the screened stop at {stop:g} m, where side {found.side} "
+            f"arrives first in {share}")
 
 
 def feeder_files(found: Arrival, out, **kw) -> Path:

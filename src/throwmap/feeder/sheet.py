@@ -166,11 +166,10 @@ def _draw(res, design, out: Path) -> list:
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5), gridspec_kw={"width_ratios": [2.2, 1]})
     plot_capture(design, ax=ax, title=f"fed pose: side {f.side} against the end wall at L = {100 * f.X:.1f} cm")
     if f.variant.weight is not None:  # the weight in the fed pose (the pose plot_capture draws)
-        from ..system.pose import pose_at_rest
+        from ..system.pose import pose_against_wall
 
         gap = design.numbers.get("end_gap_m", 0.0)
-        pose = design.captured_pose or pose_at_rest(part, design.floor_y, design.length - gap - float(part.uR[f.side]),
-                                                    f.side)
+        pose = design.captured_pose or pose_against_wall(part, design.floor_y, design.length - gap, f.side)
         c, s_ = math.cos(pose[2]), math.sin(pose[2])
         d = np.asarray(f.variant.weight.at) - np.asarray(part.com)
         wx, wy = pose[0] + c * d[0] - s_ * d[1], pose[1] + s_ * d[0] + c * d[1]

@@ -19,7 +19,7 @@ import numpy as np
 
 from .part import Part
 
-__all__ = ["pose_at_rest", "state_from_pose", "to_arm_frame", "world_vertices"]
+__all__ = ["pose_at_rest", "pose_against_wall", "state_from_pose", "to_arm_frame", "world_vertices"]
 
 
 def _wrap(a):
@@ -52,6 +52,15 @@ def state_from_pose(part: Part, pose, arm_angle: float = 0.0) -> tuple[float, in
     diff = _wrap(phi - part.beta)
     k = int(np.argmin(np.abs(diff)))
     return float(xa), k, float(diff[k])
+
+
+def pose_against_wall(part: Part, h: float, wall_x: float, side: int) -> tuple[float, float, float]:
+    """World pose ``(x, y, φ)`` of ``part`` resting flat on ``side`` (arm surface at ``h``, m) pushed outward until
+    its outermost point touches a vertical wall at ``wall_x`` (m): the side's own end where its neighbour leans back,
+    the neighbour's far vertex where it overhangs the side."""
+    pose = pose_at_rest(part, h, 0.0, side)
+    reach = float(np.max(world_vertices(part, pose)[:, 0]))
+    return pose_at_rest(part, h, float(wall_x) - reach, side)
 
 
 def world_vertices(part: Part, pose) -> np.ndarray:

@@ -26,7 +26,7 @@ def plot_capture(design, ax=None, path=None, pose=None, title: str | None = None
     from matplotlib.patches import Polygon
 
     from ..system.fixtures import surface_profile
-    from ..system.pose import pose_at_rest, world_vertices
+    from ..system.pose import pose_against_wall, world_vertices
     from .style import side_colors
 
     d, part, k = design, design.part, design.side
@@ -36,7 +36,7 @@ def plot_capture(design, ax=None, path=None, pose=None, title: str | None = None
     if pose is None:
         what = "designed rest (no engine capture) on side"
         gap = d.numbers.get("end_gap_m", 0.0)
-        pose = pose_at_rest(part, d.floor_y, d.length - gap - float(part.uR[k]), k)
+        pose = pose_against_wall(part, d.floor_y, d.length - gap, k)
     fig = None
     if ax is None:
         fig, ax = plt.subplots(figsize=(8.0, 4.2))
