@@ -61,3 +61,17 @@ def test_a_feeder_is_refused_only_when_a_three_percent_drift_is_clearly_below_th
     why = margin_refusal({"omega": [row(-0.03, 30), row(0.03, 20)]}, 0.95)
     assert why.startswith("verified, but within 3 % of ω of losing its feed: at ω(1 +3%) 20/30 fed")
     assert margin_refusal({"omega": [row(-0.06, 0)]}, 0.95) == "" and margin_refusal({}, 0.95) == ""
+
+
+def test_the_sheet_says_when_a_design_sits_at_an_edge():
+    from types import SimpleNamespace
+
+    from throwmap.feeder.sheet import _edge_rows, _tail_note
+
+    grid = {"omegas_rad_s": [3.5, 4.0, 4.5], "hs_m": [-0.03, -0.02, 0.0]}
+    rows = dict(_edge_rows(SimpleNamespace(omega=3.5, h=-0.02), grid))
+    assert list(rows) == ["ω at the grid's edge"] and "3.5 to 4.5 rad/s" in rows["ω at the grid's edge"]
+    rows = dict(_edge_rows(SimpleNamespace(omega=4.2, h=0.0), grid))  # a shifted ω inside the grid: no row for ω
+    assert list(rows) == ["h at the grid's edge"] and "-3 to 0 cm" in rows["h at the grid's edge"]
+    assert _edge_rows(SimpleNamespace(omega=4.0, h=-0.02), grid) == []
+    assert "85 of the 100" in _tail_note({"max": 85}, 100) and _tail_note({"max": 80}, 100) == ""

@@ -239,6 +239,24 @@ def _html_table(header, rows) -> str:
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
+def _tail_note(ttc: dict, max_throws: int) -> str:
+    """A warning when the slowest capture came near the throws allowed (a longer run may leave parts uncaught)."""
+    if ttc.get("max", 0) > 0.8 * max_throws:
+        return f" — the slowest used {ttc['max']:g} of the {max_throws} throws allowed"
+    return ""
+
+
+def _edge_rows(f, grid: dict) -> list:
+    """A row saying so when the feeder's ω or h is at an end of the grid searched (a better one may lie beyond)."""
+    out = []
+    for name, value, values, unit, k in (("ω", f.omega, grid.get("omegas_rad_s"), "rad/s", 1.0),
+                                         ("h", f.h, grid.get("hs_m"), "cm", 100.0)):
+        if values and len(values) > 1 and (value <= min(values) + 1e-12 or value >= max(values) - 1e-12):
+            out.append((f"{name} at the grid's edge", f"{k * value:.4g} {unit}, searched {k * min(values):.4g} to "
+                                                     f"{k * max(values):.4g} {unit}: a better value may lie beyond"))
+    return out
+
+
 def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None, budget_s: float = math.inf,
                 progress=None):
     """Write the design sheet of the verified feeder ``res`` (a successful :class:`~throwmap.feeder.search.FeederSearch`)
@@ -289,6 +307,7 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
         ("throw schedule", f"throw every time the part has settled; up to {cfg.max_throws} throws to capture, then "
                            f"{cfg.hold_throws} hold throws"),
         ("arm", f"surface h = {100 * f.h:.3g} cm from the joint axis, μ = {cfg.arm.mu:g} ± {100 * cfg.noise.mu_rel:g} %"),
+        *_edge_rows(f, res.assumptions.get("grid", {})),
         ("end wall", f"at L = {100 * f.X:.1f} cm from the joint, {100 * wall_h:.1f} cm high, lined μ = {cfg.cavity.wall_mu:g}"),
         ("pocket", f"{100 * cfg.cavity.depth:.1f} cm deep, floor lined (μ {cfg.cavity.wall_mu:g}), lip "
                    f"{math.degrees(cfg.cavity.ramp_angle):.0f}°, floor side + {100 * cfg.cavity.clearance:.1f} cm"),
@@ -300,7 +319,8 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
                      f"{100 * v['ci95'][1]:.1f}] % (seed {v['seed']})"),
         ("independent rerun", f"{r['successes']}/{r['n']} = {100 * r['rate']:.1f} % (seed {r['seed']}), "
                               + ("inside the interval above" if r["rate"] <= v["ci95"][1] else "above the interval")),
-        ("throws to capture", "—" if not ttc else f"median {ttc['median']:g}, p90 {ttc['p90']:g}, max {ttc['max']:g}"),
+        ("throws to capture", "—" if not ttc else f"median {ttc['median']:g}, p90 {ttc['p90']:g}, max {ttc['max']:g}"
+                              + _tail_note(ttc, cfg.max_throws)),
         ("failure modes (both runs)", ", ".join(f"{k} {n}" for k, n in sorted(failures.items())) or "none"),
     ]
     rows_margin = [_margin_text(k, rr) for k, rr in marg.items()]
