@@ -47,7 +47,7 @@ def test_one_trial_runs_and_reports(tmp_path):
     assert t.success == (t.failure is None)
     assert 1 <= t.values["throws"] <= 43
     lo, hi = cfg.x_range
-    assert lo - 1e-9 <= t.values["drop_x"] <= hi + 1e-9
+    assert lo - 1e-9 <= t.values["release_x"] <= hi + 1e-9  # drop_x is where it settled, which may lie beyond
 
 
 @pytest.mark.parametrize("change, field", [

@@ -49,6 +49,40 @@ def test_no_margin_step_starts_after_the_budget(tmp_path, monkeypatch):
     assert "not measured" in _margin_text("omega", out["omega"])[1]
 
 
+def test_a_weight_step_that_fails_is_followed_by_half_of_it(tmp_path, monkeypatch):
+    """The weight's place: 3 mm failing is followed by 1.5 mm (holds or not); other quantities stop at a failure."""
+    from types import SimpleNamespace
+
+    import throwmap.experiments.runner as runner
+    from throwmap.feeder import sheet
+
+    cfg = read_config(Feed(), "examples/feed_recoil.toml")
+    base = resolve_part(cfg.part).part.point_masses[-1][1]
+    holds = {"weight_x": 0.002, "weight_y": 0.001}  # the drift each quantity takes before failing, m
+    ran = []
+
+    def fake(name, c, *, n, **kw):
+        part = resolve_part(c.part).part
+        at = part.point_masses[-1][1]
+        what = "weight_x" if abs(at[0] - base[0]) > 1e-12 else "weight_y"
+        drift = abs(at[0] - base[0]) + abs(at[1] - base[1])
+        if drift < 1e-12:  # ω, μ or jitter: every step fails
+            what, drift = "other", 1.0
+        ran.append((what, round(drift, 6)))
+        k = n if drift <= holds.get(what, 0.0) + 1e-12 else n // 2
+        return SimpleNamespace(n=n, successes=k, success_rate=k / n, ci95=(0.0, 1.0))
+
+    monkeypatch.setattr(runner, "run_experiment", fake)
+    out = sheet.margins(cfg, tmp_path, trials=30)
+    assert [r for r in ran if r[0] == "other"] == [("other", 1.0)] * 5  # ω ± and μ ±: one failing step each; jitter
+    assert [r for r in ran if r[0] == "weight_x"] == [("weight_x", 0.003), ("weight_x", 0.0015)] * 2
+    assert [(r["passed"], r["failed"]) for r in out["weight_x"]] == [(-0.0015, -0.003), (0.0015, 0.003)]
+    assert [(r["passed"], r["failed"]) for r in out["weight_y"]] == [(None, -0.0015), (None, 0.0015)]
+    assert [x["step"] for x in out["weight_x"][1]["runs"]] == [0.0015, 0.003]  # sorted by size
+    text = sheet._margin_text("weight_x", out["weight_x"])[1]
+    assert "holds to -1.5 mm, not to -3 mm" in text, text
+
+
 def test_a_feeder_is_refused_only_when_a_three_percent_drift_is_clearly_below_the_goal():
     from throwmap.experiments.stats import wilson_interval
     from throwmap.feeder.sheet import margin_refusal

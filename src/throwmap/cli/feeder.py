@@ -125,7 +125,7 @@ def design_cmd(
             if res.success:
                 from ..feeder.sheet import write_sheet
 
-                left = total_s - res.time_s - 20.0  # the margins: what the search left (drawing, trials in flight 20 s)
+                left = total_s - res.time_s - 30.0  # the sheet: what the search left (trials in flight 30 s)
                 res = write_sheet(res, out, margin_trials=margin_trials, workers=workers, budget_s=left,
                                   progress=progress)
         if as_json:

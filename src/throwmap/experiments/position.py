@@ -21,8 +21,8 @@ and overshoot sensors, ``approach`` rungs) or ``"inverse"``
 (:class:`~throwmap.control.InverseJogController`, a position estimate and the ``rigid_body``
 inverse jog). Per-trial values: ``throws``, ``looks``, ``switches``, ``throws_to_side`` (first
 throw after which it rested on ``side``; 0 if dropped there, nan if never), final ``x``, ``side``,
-``error_m`` (|x − x_f| on ``side``, else nan), ``stopped``, the drop (``drop_x``, ``drop_side``,
-``drop_redraws``), ``mu`` and the extreme ω thrown. :func:`throws_summary` gives the median and
+``error_m`` (|x − x_f| on ``side``, else nan), ``stopped``, the drop (``release_x`` the CM abscissa at release;
+``drop_x``, ``drop_side`` where it settled; ``drop_redraws``), ``mu`` and the extreme ω thrown. :func:`throws_summary` gives the median and
 90th percentile of the throws of the successful trials.
 """
 
@@ -210,8 +210,8 @@ class Position:
 
     def trial(self, cfg: PositionConfig, index: int, rng) -> Trial:
         drop, arm, ep = self._run(cfg, rng)
-        values = {"mu": arm.mu if math.isfinite(arm.mu) else None, "drop_x": drop.x, "drop_side": drop.side,
-                  "drop_redraws": drop.redraws, "throws": 0, "looks": 0, "switches": 0, "throws_to_side": math.nan,
+        values = {"mu": arm.mu if math.isfinite(arm.mu) else None, "release_x": drop.start[0], "drop_x": drop.x,
+                  "drop_side": drop.side, "drop_redraws": drop.redraws, "throws": 0, "looks": 0, "switches": 0, "throws_to_side": math.nan,
                   "x": drop.x, "side": drop.side, "error_m": math.nan, "stopped": False,
                   "omega_min": math.nan, "omega_max": math.nan}
         if ep is None:

@@ -9,7 +9,8 @@ that side, and it changes which sides travel outward on the arm.
 
 :func:`weight_variants` proposes the weights for a target side: masses ``ratios`` × the part's own
 mass (capped at ``max_kg``), placed on the plate at fractions ``places`` along the side's edge,
-``margin`` inside the plate (moved toward the plate's centre where a corner leaves no room). The masses and
+``margin`` inside the plate (moved toward the plate's centre where a corner leaves no room), the masses to
+:data:`MASS_STEP_KG` and the places to :data:`PLACE_STEP_M` (a weight a workshop can make). The masses and
 places are stated, not tuned: the search ranks the variants by how they throw.
 """
 
@@ -30,6 +31,10 @@ RATIOS = (1.0, 1.7)
 """Weight masses proposed, as multiples of the part's own mass."""
 PLACES = (0.2, 0.5, 0.8)
 """Places proposed along the target side's inset edge (0: its first vertex, 1: its second)."""
+MASS_STEP_KG = 1e-4
+"""Weight masses are proposed in steps of this, kg (0.1 g), rounded down (the cap is never passed)."""
+PLACE_STEP_M = 1e-4
+"""Weight places are proposed on a grid of this, m (0.1 mm)."""
 MARGIN_M = 0.008
 """How far inside the plate's edges a weight's centre stays, m (a 1 cm lead disc glued flat)."""
 
@@ -107,20 +112,23 @@ def weight_variants(part: Part, side: int, *, max_kg: float, ratios=RATIOS, plac
     if float(np.dot(centre - a, normal)) < 0:  # point it into the part, whatever the vertex order
         normal = -normal
     own = float(part.mass)
-    masses = sorted({min(float(r) * own, float(max_kg)) for r in ratios})
+    # as a workshop cuts and places them: masses to 0.1 g (never above the cap), places to 0.1 mm
+    masses = sorted({math.floor(min(float(r) * own, float(max_kg)) / MASS_STEP_KG + 1e-9) * MASS_STEP_KG
+                     for r in ratios} - {0.0})
     out = []
     for m in masses:
         for t in places:
             p = a + float(t) * (b - a) + 1.0001 * margin * normal
             for s in np.linspace(0.0, 1.0, 101):  # near a corner: toward the centre until inside the inset
-                q = p + s * (centre - p)
+                q = np.round((p + s * (centre - p)) / PLACE_STEP_M) * PLACE_STEP_M
                 if inset.contains((float(q[0]), float(q[1]))):
                     p = q
                     break
             else:
                 continue
+            w = Weight(round(m, 7), (round(float(p[0]), 7), round(float(p[1]), 7)))  # no float noise in the files
             try:
-                v = Variant(with_weight(part, Weight(m, (float(p[0]), float(p[1])))), Weight(m, (float(p[0]), float(p[1]))), side)
+                v = Variant(with_weight(part, w), w, side)
             except ThrowmapError:
                 continue
             if side in v.part.stable_sides:

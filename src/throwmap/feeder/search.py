@@ -17,8 +17,9 @@ lead weight placed for a target side) over a grid of release rates ω and arm he
    that ranks. ``engine_screen=True`` puts the engine's first-arrival table (5–30 s a candidate,
    :func:`~throwmap.feeder.arrival.screen_table`) between the two, as a filter at ``min_predicted``;
 3. **verification** — ``n_verify`` trials, and where those reach ``goal`` an independent rerun of ``n_verify`` trials
-   with another seed that must reach ``goal`` too and not fall below the first run's Wilson 95 % interval (above it
-   only confirms the feed: 200/200 after 199/200, whose interval ends at 99.9 %); then
+   with another seed that must reach ``goal`` too and not fall below the range a new run lands in after the first
+   (:func:`~throwmap.experiments.stats.rerun_range`, 95 %; above it only confirms the feed: 200/200 after 199/200);
+   then
    ``omega_check`` trials at ω(1 ± :data:`OMEGA_DRIFT`): a feeder clearly below the goal there (Wilson upper end under
    it) is *fragile*, not fed, and the same feeder with ω moved :data:`OMEGA_SHIFT` away from the drift it failed is
    tried next. A candidate that passes its first trials but falls short is **refined**: its neighbours (end wall
@@ -48,6 +49,7 @@ import numpy as np
 
 from ..budget import check_count
 from ..errors import InvalidStateError, shown
+from ..experiments.stats import rerun_range, wilson_interval
 from ..io.files import atomic_write_text
 from ..system.arm import Arm
 from ..system.part import Part
@@ -92,7 +94,8 @@ class Tried:
 @dataclass(frozen=True, slots=True)
 class FeederSearch:
     """The search's result: ``success`` (a verified feeder), its ``side``, ``config`` (path of ``feeder.toml``; None
-    without one), ``feeder`` (the screened candidate fed, or None), ``verified`` and ``rerun`` (the two full runs),
+    without one), ``feeder`` (the screened candidate fed, or None), ``verified`` and ``rerun`` (the two full runs;
+    :attr:`evidence` pools them),
     ``predicted`` (the screen's share for the fed candidate), ``time_s``, ``reason`` (why none, when
     ``success`` is False), ``tried`` (every candidate run in the engine, in order), ``screened`` (the screen's
     candidates, best first), ``exact`` (the exact screen's count and best per side), every ``assumption``
@@ -115,10 +118,26 @@ class FeederSearch:
     sheet: dict = field(default_factory=dict)
     stages_s: dict = field(default_factory=dict)
 
+    @property
+    def evidence(self) -> dict | None:
+        """The verified feeder's engine trials, both runs pooled (None without a verified feeder): ``n``,
+        ``successes``, ``ci95`` (Wilson, of the feed rate), ``runs`` (each run's seed, n and successes) and
+        ``rerun95`` — where a new run of as many trials as one verification, with another seed, lands with 95 %
+        probability (``{"n", "successes": [low, high], "rate": [low, high]}``, :func:`rerun_range`). Compare an
+        independent check with ``rerun95``: ``ci95`` bounds the rate, not a new sample of it."""
+        runs = [r for r in (self.verified, self.rerun) if r]
+        if not runs:
+            return None
+        n, k = sum(r["n"] for r in runs), sum(r["successes"] for r in runs)
+        m = int(self.verified["n"])
+        lo, hi = rerun_range(k, n, m)
+        return {"n": n, "successes": k, "ci95": list(wilson_interval(k, n)),
+                "runs": [{"seed": r["seed"], "n": r["n"], "successes": r["successes"]} for r in runs],
+                "rerun95": {"n": m, "successes": [lo, hi], "rate": [lo / m, hi / m]}}
+
     def to_dict(self) -> dict:
         f = self.feeder
-        out = {"success": self.success, "side": self.side, "config": self.config,
-               "verified": None if self.verified is None else {k: self.verified[k] for k in ("n", "successes", "ci95")},
+        out = {"success": self.success, "side": self.side, "config": self.config, "verified": self.evidence,
                "predicted": self.predicted, "time_s": self.time_s,
                "feeder": None if f is None else f.to_dict(), "verification": self.verified, "rerun": self.rerun,
                "sheet": self.sheet, "assumptions": self.assumptions, "exact_screen": self.exact,
@@ -143,11 +162,13 @@ class FeederSearch:
 
     def summary(self) -> str:
         if self.success:
-            v, f = self.verified, self.feeder
+            e, f = self.evidence, self.feeder
+            runs = " + ".join(f"{r['successes']}/{r['n']}" for r in e["runs"])
+            r95 = e["rerun95"]
             return (f"feeder found: side {self.side}, {f.variant.label()}, ω = {f.omega:.4g} rad/s, h = {100 * f.h:.3g} "
-                    f"cm, end wall at {100 * f.X:.3g} cm; {v['successes']}/{v['n']} fed (Wilson 95 % "
-                    f"[{100 * v['ci95'][0]:.1f}, {100 * v['ci95'][1]:.1f}] %), rerun {self.rerun['successes']}/"
-                    f"{self.rerun['n']}; config {self.config} ({self.time_s:.0f} s)")
+                    f"cm, end wall at {100 * f.X:.3g} cm; fed {e['successes']}/{e['n']} ({runs}, two seeds; Wilson "
+                    f"95 % [{100 * e['ci95'][0]:.1f}, {100 * e['ci95'][1]:.1f}] %); a new run of {r95['n']} lands in "
+                    f"{r95['successes'][0]}–{r95['successes'][1]} fed (95 %); config {self.config} ({self.time_s:.0f} s)")
         return f"no feeder: {self.reason} ({self.time_s:.0f} s)"
 
 
@@ -438,9 +459,9 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                     verdict = short.format("verification", full.n, plan.n_verify)
                 elif full.success_rate >= plan.goal:
                     again = run(plan.n_verify, plan.seed + 1, "rerun")
-                    # the rerun must not fall below the first run's interval; above it (200/200 after 199/200,
-                    # whose interval ends at 99.9 %) it only confirms the feed
-                    lo = full.ci95[0]
+                    # the rerun must reach the goal and not fall below the range a new run lands in after the
+                    # first (rerun_range); above it (200/200 after 199/200) it only confirms the feed
+                    lo = rerun_range(full.successes, full.n, plan.n_verify)[0] / plan.n_verify
                     verdict = "fed" if again.success_rate >= max(plan.goal, lo) else "rerun disagrees"
                     if again.n < plan.n_verify:
                         verdict = short.format("rerun", again.n, plan.n_verify)

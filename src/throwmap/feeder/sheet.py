@@ -7,11 +7,13 @@
   beside the part in its own frame with the weight's place and the fed side;
 * ``margins`` — how far the nominal ω, the arm's μ, the ω jitter and the weight's place may drift before the
   feeding experiment falls below the goal: for each direction, steps of growing drift, each an engine run of
-  ``margin_trials`` trials (a step passes when its rate reaches the goal), stopped at the first step that fails;
+  ``margin_trials`` trials (a step passes when its rate reaches the goal), stopped at the first step that fails
+  (for the weight's place, a first step that fails is followed by one of half its size);
 * ``fed_trial.html`` — the viewer page of one fed trial of the verification, replayed from its seed
   (:meth:`throwmap.experiments.feed.Feed.replay`): the throws from the settled drop to 3 throws after capture;
 * ``sheet.md`` / ``sheet.html`` — all of it: the feeder (part, weight, throw schedule, pocket and wall),
-  predicted and verified success with Wilson 95 % intervals, throws to capture (median, p90), the failure
+  predicted and verified success with Wilson 95 % intervals and the range a new run lands in, throws to
+  capture (median, p90), the failure
   modes seen, the margins and the assumptions.
 
 The sheet is built from the search's result and the feeder's own files; every number on it is in SI units
@@ -43,6 +45,9 @@ MARGIN_STEPS = {
 }
 """Drift steps per quantity and direction: ω relative change; μ factor on the nominal; jitter σ (absolute);
 the weight's place shifted in the part's x / y, m."""
+HALVED = ("weight_x", "weight_y")
+"""Quantities whose first step, when it fails, is followed by one of half the size (a weight that must sit within
+3 mm is told apart from one that must sit within 1.5 mm)."""
 
 
 def _drifted(cfg, what: str, step: float, folder: Path):
@@ -102,7 +107,9 @@ def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 10
                 rows.append({"passed": None, "failed": None, "runs": [], "not measured": "budget"})
                 continue
             run_list, passed, failed = [], None, None
-            for step in steps:
+            steps = list(steps)
+            while steps:
+                step = steps.pop(0)
                 if time.perf_counter() - t0 > budget_s:
                     break
                 here = folder / f"{what}_{step:+g}"
@@ -120,9 +127,13 @@ def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 10
                                  "ci95": [float(res.ci95[0]), float(res.ci95[1])]})
                 if ok:
                     passed = step
-                else:
-                    failed = step
-                    break
+                    continue
+                failed = step
+                if what in HALVED and passed is None and not run_list[:-1]:  # the first step failed: try half of it
+                    steps = [step / 2.0]
+                    continue
+                break
+            run_list.sort(key=lambda x: abs(x["step"]))
             if run_list:
                 rows.append({"passed": passed, "failed": failed, "runs": run_list})
         if rows:
@@ -133,8 +144,8 @@ def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 10
 def _margin_text(what: str, rows: list) -> str:
     unit = {"omega": ("ω", lambda v: f"{100 * v:+.0f} %"), "mu": ("μ", lambda v: f"× {v:g}"),
             "jitter": ("ω jitter σ", lambda v: f"{100 * v:g} %"),
-            "weight_x": ("weight x", lambda v: f"{1000 * v:+.0f} mm"),
-            "weight_y": ("weight y", lambda v: f"{1000 * v:+.0f} mm")}[what]
+            "weight_x": ("weight x", lambda v: f"{1000 * v:+.2g} mm"),
+            "weight_y": ("weight y", lambda v: f"{1000 * v:+.2g} mm")}[what]
     parts = []
     for r in rows:
         if r.get("not measured"):
@@ -262,7 +273,7 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
     """Write the design sheet of the verified feeder ``res`` (a successful :class:`~throwmap.feeder.search.FeederSearch`)
     into ``out`` (see the module docstring); returns ``res`` with ``sheet`` holding the files written, the margins,
     throws to capture and failure modes. ``margin_trials`` 0 leaves the margins out; no margin step is started after
-    ``budget_s`` seconds."""
+    ``budget_s`` seconds from the call (the drawing and the fed trial's replay count)."""
     from ..experiments.base import read_config
     from ..experiments.feed import Feed, build_design
 
@@ -272,7 +283,9 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
     out = Path(out)
     cfg = read_config(Feed(), out / "feeder.toml")
     design = build_design(cfg)
-    f, v, r = res.feeder, res.verified, res.rerun
+    from ..experiments.stats import rerun_range
+
+    f, v, r, e = res.feeder, res.verified, res.rerun, res.evidence
     workers = 0 if workers is None else workers
     files = {"config": str(out / "feeder.toml"), "part": str(out / "part.toml")}
     files.update({p.suffix[1:]: str(p) for p in _draw(res, design, out)})
@@ -288,7 +301,7 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
 
         tag = hashlib.sha1((out / "feeder.toml").read_bytes()).hexdigest()[:10]  # a rerun that found another feeder
         marg = margins(cfg, out / "margins" / tag, trials=margin_trials, goal=res.assumptions.get("goal", 0.95),
-                       workers=workers, budget_s=budget_s, progress=progress)
+                       workers=workers, budget_s=budget_s - (time.perf_counter() - t0), progress=progress)  # after the drawing
     both = [x for x in (v, r) if x]
     failures = {}
     for x in both:
@@ -315,10 +328,17 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
     ]
     rows_result = [
         (f"predicted (first arrival on the fed side, screened on the {f.model} model)", f"{100 * f.predicted:.1f} %"),
-        ("verified", f"{v['successes']}/{v['n']} = {100 * v['rate']:.1f} %, Wilson 95 % [{100 * v['ci95'][0]:.1f}, "
-                     f"{100 * v['ci95'][1]:.1f}] % (seed {v['seed']})"),
+        ("verification", f"{v['successes']}/{v['n']} = {100 * v['rate']:.1f} %, Wilson 95 % [{100 * v['ci95'][0]:.1f}, "
+                         f"{100 * v['ci95'][1]:.1f}] % (seed {v['seed']})"),
         ("independent rerun", f"{r['successes']}/{r['n']} = {100 * r['rate']:.1f} % (seed {r['seed']}), "
-                              + ("inside the interval above" if r["rate"] <= v["ci95"][1] else "above the interval")),
+                              + ("inside the range a new run lands in after the verification"
+                                 if r["successes"] <= rerun_range(v["successes"], v["n"], r["n"])[1]
+                                 else "above the range a new run lands in after the verification")),
+        ("verified (both runs)", f"{e['successes']}/{e['n']} = {100 * e['successes'] / e['n']:.1f} %, Wilson 95 % "
+                                 f"[{100 * e['ci95'][0]:.1f}, {100 * e['ci95'][1]:.1f}] %"),
+        (f"a new run of {e['rerun95']['n']} trials, another seed", f"lands in {e['rerun95']['successes'][0]}–"
+         f"{e['rerun95']['successes'][1]} fed ({100 * e['rerun95']['rate'][0]:.1f}–{100 * e['rerun95']['rate'][1]:.1f} "
+         f"%) with 95 % probability: compare an independent check with this, not with the Wilson interval"),
         ("throws to capture", "—" if not ttc else f"median {ttc['median']:g}, p90 {ttc['p90']:g}, max {ttc['max']:g}"
                               + _tail_note(ttc, cfg.max_throws)),
         ("failure modes (both runs)", ", ".join(f"{k} {n}" for k, n in sorted(failures.items())) or "none"),
