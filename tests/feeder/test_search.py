@@ -94,6 +94,8 @@ def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_pat
     d = betabinom(200, 386.5, 14.5)
     lo, hi = v["rerun95"]["successes"]
     assert d.cdf(lo - 1) < 0.025 <= d.cdf(lo) and d.cdf(hi - 1) < 0.975 <= d.cdf(hi) and v["rerun95"]["n"] == 200
+    assert (tmp_path / "feeder.toml").read_text().startswith(f"# Verified: 386/400 fed over seeds 5, 6; a run of 200 "
+                                                             f"trials with another seed lands in {lo}–{hi} fed")
     assert (tmp_path / "candidates.jsonl").read_text().count("\n") == 1
     # the files written run as the feeding experiment's config, with the candidate's part, side, ω, h and wall
     from throwmap.experiments.base import read_config

@@ -471,9 +471,15 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         tried.append(Tried(k, c, tuple(runs), verdict))
         atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))  # this search's candidates
         if verdict.startswith("fed"):
-            for name in ("feeder.toml", "part.toml"):
-                atomic_write_text(out / name, (here / name).read_text(encoding="utf-8"))
-            return result(True, fed=c, verified=verified, rerun=rerun)
+            found = result(True, fed=c, verified=verified, rerun=rerun)
+            e = found.evidence
+            head = (f"# Verified: {e['successes']}/{e['n']} fed over seeds "
+                    f"{', '.join(str(r['seed']) for r in e['runs'])}; a run of {e['rerun95']['n']} trials with another "
+                    f"seed lands in {e['rerun95']['successes'][0]}–{e['rerun95']['successes'][1]} fed with 95 % "
+                    f"probability.\n")
+            atomic_write_text(out / "feeder.toml", head + (here / "feeder.toml").read_text(encoding="utf-8"))
+            atomic_write_text(out / "part.toml", (here / "part.toml").read_text(encoding="utf-8"))
+            return found
         if verdict.startswith(("below the goal", "rerun disagrees")) and k not in refined_from:
             near = _neighbours(c, g=g, mu=mu, sigma=sigma, workers=workers, engine=plan.engine_screen,
                                budget_left=budget_s - (time.perf_counter() - t0))
