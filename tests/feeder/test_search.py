@@ -277,6 +277,29 @@ def test_candidates_are_verified_round_robin_over_variant_and_side():
     assert search._diverse([0, 1, 2, 3], [a, b, a, a1]) == [0, 3, 1, 2]
 
 
+def test_a_verification_under_way_may_finish_past_the_budget(tri, tmp_path, monkeypatch):
+    """``finish_s``: the verification and its rerun may run that much past the budget; first trials and the ω check
+    may not."""
+    import time as _time
+
+    import throwmap.experiments.runner as runner
+
+    _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=0.99)
+    fast, ends = runner.run_experiment, {}
+
+    def spy(name, cfg, *, n, seed, workers, out, progress=None, stop_by=None):
+        ends[out.name if out.name in ("rerun",) else ("first" if n <= 20 else out.name)] = stop_by
+        return fast(name, cfg, n=n, seed=seed, workers=workers, out=out, progress=progress, stop_by=stop_by)
+
+    monkeypatch.setattr(runner, "run_experiment", spy)
+    t0 = _time.perf_counter()
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, budget_s=100.0, finish_s=30.0,
+                                                               **GRID))
+    assert res.success
+    assert ends["first"] - t0 == pytest.approx(100.0, abs=2.0) and ends["omega_-0.03"] == ends["first"]
+    assert ends["verify"] - ends["first"] == pytest.approx(30.0) and ends["rerun"] == ends["verify"]
+
+
 def test_no_candidate_is_started_in_the_last_quarter_of_the_budget(tri, tmp_path, monkeypatch):
     """Each candidate's runs take 0.4 s here: of a 6 s budget, candidates start only in its first 4.5 s (and the
     search, with candidates left, runs until then)."""

@@ -36,6 +36,10 @@ def _started_s() -> float:
 SHEET_S = 60.0
 """Seconds of ``--budget`` kept for the design sheet (its margins and drawing) when margins are measured."""
 
+DRAW_S = 25.0
+"""Seconds of the sheet's share kept for its drawing and the fed trial's replay; the rest may finish a verification
+or rerun under way (the margins then get what is left, possibly nothing)."""
+
 __all__ = ["register", "feeder_app"]
 
 feeder_app = typer.Typer(name="feeder", cls=ThrowmapGroup, no_args_is_help=True, add_completion=False,
@@ -118,7 +122,8 @@ def design_cmd(
         sheet_s = min(SHEET_S if margin_trials else 10.0, 30.0 * budget)  # kept for the sheet (≤ half the budget)
         total_s = max(60.0 * budget - _started_s() - END_S, 0.0)  # the budget counts from the command's start
         plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=max(total_s - sheet_s, 0.0),
-                          engine_candidates=candidates, omega_check=omega_check, **grid)
+                          engine_candidates=candidates, omega_check=omega_check,
+                          finish_s=max(sheet_s - DRAW_S, 0.0), **grid)  # a run under way may use the margins' share
         with stage_bars(lines=True) as progress:  # on stderr: stdout keeps the table or the JSON alone
             res = design_feeder(p, out, side=side, weight=weight_kg, arm_length=arm_length, mu=mu, plan=plan,
                                 progress=progress)

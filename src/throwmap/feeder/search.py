@@ -25,7 +25,8 @@ lead weight placed for a target side) over a grid of release rates ω and arm he
    tried next. A candidate that passes its first trials but falls short is **refined**: its neighbours (end wall
    ± 1 cm, ω ± 0.25 rad/s, h ± 5 mm) are run next.
 
-The budget is a hard limit: no candidate is started after :data:`START_BY` of it and no trial after its end (a
+The budget is a hard limit: no candidate is started after :data:`START_BY` of it and no trial after its end, or
+after ``VerifyPlan.finish_s`` more seconds for a verification or rerun under way (a
 candidate whose trials it cuts short gets the verdict "the budget ran out in the …", never "fed"). The first candidate
 that passes is the feeder; none passing within the budget is ``success`` False with the evidence (each side's best
 share on the screens, the best verified rate and by whom).
@@ -198,7 +199,8 @@ class VerifyPlan:
     ``screen_share`` the share of the budget the engine screen may use; ``engine_candidates`` the most candidates
     run (or engine-screened); ``omegas`` (rad/s) and ``hs`` (m) the grid searched; ``workers`` engine processes
     (0: all cores); ``budget_s`` the wall time (s) of the search: no candidate is started after :data:`START_BY` of
-    it, no trial after it."""
+    it, no trial after it — but for ``finish_s`` more seconds in which a verification or rerun under way may go on
+    (the CLI lends them from the design sheet's share: a feeder cut 47 trials short of its rerun is no feeder)."""
 
     n_pre: int = 20
     n_verify: int = 200
@@ -214,12 +216,14 @@ class VerifyPlan:
     budget_s: float = 600.0
     engine_screen: bool = False
     omega_check: int = 30
+    finish_s: float = 0.0
 
     def __post_init__(self):
         for name, minimum in (("n_pre", 1), ("n_verify", 1), ("seed", 0), ("workers", 0), ("engine_candidates", 1),
                               ("omega_check", 0)):
             check_count(name, getattr(self, name), minimum=minimum)
         _share(self.budget_s, "budget_s", math.inf)
+        _share(self.finish_s, "finish_s", math.inf)
         if not isinstance(self.engine_screen, bool):
             raise InvalidStateError("engine_screen", f"must be true or false, got {shown(self.engine_screen)}")
         for name in ("goal", "pre_share", "min_predicted", "screen_share"):
@@ -422,11 +426,12 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         cfg = read_config(Feed(), path)
         runs = []
 
-        def run(n, s, name):
+        def run(n, s, name, finish=False):
             cb = None if progress is None else (lambda d, t: progress(f"candidate {k}: {name}", d, t))
             t = time.perf_counter()
+            end = t0 + budget_s + (plan.finish_s if finish else 0.0)  # a verification or rerun may finish
             res = run_experiment("feed", cfg, n=n, seed=s, workers=workers, out=here / name, progress=cb,
-                                 stop_by=t0 + budget_s)  # no trial is started past the budget
+                                 stop_by=end)  # no trial is started past the budget
             runs.append({**_run_doc(res), "time_s": time.perf_counter() - t})
             return res
 
@@ -453,12 +458,12 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                     screened.append(dataclasses.replace(c, omega=round(c.omega * (1.0 + shift), 6)))
                     queue.insert(0, len(screened) - 1)
             if verdict == "fed":
-                full = run(plan.n_verify, plan.seed, "verify")
+                full = run(plan.n_verify, plan.seed, "verify", finish=True)
                 verdict = "below the goal"
                 if full.n < plan.n_verify:  # an unfinished verification is no verdict either way
                     verdict = short.format("verification", full.n, plan.n_verify)
                 elif full.success_rate >= plan.goal:
-                    again = run(plan.n_verify, plan.seed + 1, "rerun")
+                    again = run(plan.n_verify, plan.seed + 1, "rerun", finish=True)
                     # the rerun must reach the goal and not fall below the range a new run lands in after the
                     # first (rerun_range); above it (200/200 after 199/200) it only confirms the feed
                     lo = rerun_range(full.successes, full.n, plan.n_verify)[0] / plan.n_verify
