@@ -186,8 +186,9 @@ def _draw(res, design, out: Path) -> list:
         d = np.asarray(f.variant.weight.at) - np.asarray(part.com)
         wx, wy = pose[0] + c * d[0] - s_ * d[1], pose[1] + s_ * d[0] + c * d[1]
         ax.add_patch(Circle((100 * wx, 100 * wy), 0.5, facecolor="#555", edgecolor="k", zorder=5))
-        ax.annotate(f"lead {1000 * f.variant.weight.mass:.0f} g", (100 * wx, 100 * wy), xytext=(8, 6),
-                    textcoords="offset points", fontsize=8)
+        ax.annotate(f"lead {1000 * f.variant.weight.mass:.0f} g", (100 * wx, 100 * wy), xytext=(-8, 0),
+                    textcoords="offset points", fontsize=8, ha="right", va="center", zorder=6,
+                    bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85})
     V = np.asarray(part.vertices)
     colors = side_colors(len(V))
     bx.add_patch(Polygon(100 * V, closed=True, facecolor="#dde6f0", edgecolor="k", lw=1))
@@ -199,17 +200,23 @@ def _draw(res, design, out: Path) -> list:
                     bbox={"boxstyle": "round", "fc": "white", "ec": colors[k]})
     c = 100 * np.asarray(part.com)
     bx.plot(*c, "k+", ms=10)
-    bx.annotate(f"CM ({c[0]:.2f}, {c[1]:.2f})", c, xytext=(6, -12), textcoords="offset points", fontsize=8)
+    label = {"fontsize": 8, "textcoords": "offset points", "ha": "center", "va": "center", "zorder": 6,
+             "bbox": {"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85}}
+    where = f"CM ({c[0]:.2f}, {c[1]:.2f}) cm"
     if f.variant.weight is not None:
         w = f.variant.weight
         p = 100 * np.asarray(w.at)
         bx.add_patch(Circle(p, 0.5, facecolor="#555", edgecolor="k"))
-        bx.annotate(f"lead {1000 * w.mass:.0f} g at ({p[0]:.2f}, {p[1]:.2f}) cm", p, xytext=(8, 8),
-                    textcoords="offset points", fontsize=8)
+        away = (p - c) / max(float(np.hypot(*(p - c))), 1e-9)  # the two labels on opposite sides of the pair
+        bx.annotate("lead", p, xytext=tuple(22 * away), **label)
+        bx.annotate("CM", c, xytext=tuple(-16 * away), **label)
         bx.plot([p[0], p[0]], [0, p[1]], ":", color="#555", lw=0.8)
         bx.plot([0, p[0]], [p[1], p[1]], ":", color="#555", lw=0.8)
+        where = f"lead {1000 * w.mass:.1f} g at ({p[0]:.2f}, {p[1]:.2f}) cm; " + where
+    else:
+        bx.annotate("CM", c, xytext=(0, -14), **label)
     bx.set_aspect("equal")
-    bx.set_xlabel("x (cm, part frame)")
+    bx.set_xlabel(f"x (cm, part frame)\n{where}")
     bx.set_ylabel("y (cm)")
     bx.set_title("the part" + (" and its lead weight" if f.variant.weight is not None else " (no weight)"))
     pad = 0.1 * float(np.ptp(100 * V))
