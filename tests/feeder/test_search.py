@@ -337,3 +337,26 @@ def test_a_feeder_fragile_in_omega_is_not_fed_and_its_omega_moves_away_from_the_
     # with no ω check asked for, the first candidate is the feeder
     again = design_feeder(tri, tmp_path / "b", side=0, plan=VerifyPlan(n_pre=20, n_verify=200, omega_check=0, **GRID))
     assert again.success and again.tried[0].verdict == "fed"
+
+
+@pytest.mark.slow
+def test_a_search_run_again_reads_its_trials_back(tmp_path, monkeypatch):
+    """Ctrl-C loses nothing: the same search on the same folder reads every engine trial back (none is run again)
+    and comes to the same feeder and counts — here on the real engine, one small candidate."""
+    import throwmap.experiments.runner as runner
+    from throwmap.io.config import resolve_part
+
+    part = resolve_part("examples/triangle_plate.toml").part
+    plan = VerifyPlan(n_pre=5, n_verify=5, omega_check=0, engine_candidates=1, omegas=(4.5,), hs=(-0.02,), workers=1)
+    first = design_feeder(part, tmp_path, side=0, weight=0.05, plan=plan)
+    assert first.tried and first.tried[0].runs
+
+    def no_trial(*a, **k):
+        raise AssertionError("a trial ran again")
+
+    monkeypatch.setattr(runner, "_checked", no_trial)
+    again = design_feeder(part, tmp_path, side=0, weight=0.05, plan=plan)
+    assert [t.verdict for t in again.tried] == [t.verdict for t in first.tried]
+    assert [[(r["n"], r["successes"]) for r in t.runs] for t in again.tried] == \
+        [[(r["n"], r["successes"]) for r in t.runs] for t in first.tried]
+    assert again.success == first.success and again.evidence == first.evidence

@@ -58,7 +58,8 @@ def design_cmd(
     mu: Annotated[float, typer.Option("--mu", help="Arm friction μ (± 10 % per trial).")] = 1.0,
     budget: Annotated[float, typer.Option("--budget", help="Minutes for the whole design: no candidate is started "
                                                            "after 3/4 of them, no trial after them (the design "
-                                                           "sheet's margins get the last minute).")]
+                                                           "sheet gets the last minute, which a verification under "
+                                                           "way may use to finish).")]
     = 10.0,
     n: Annotated[int, typer.Option("--n", help="Engine trials of a full verification (and of its rerun).")] = 200,
     n_pre: Annotated[int, typer.Option("--n-pre", help="Engine trials a candidate must pass first (90 %).")] = 20,
