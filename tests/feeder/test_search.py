@@ -88,14 +88,16 @@ def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_pat
     doc = res.to_dict()
     assert "reason" not in doc and doc["predicted"] == 0.99
     # the JSON's evidence pools both runs; rerun95 is where a new 200-trial run lands (beta-binomial, Jeffreys prior)
-    v = doc["verified"]
-    assert (v["n"], v["successes"]) == (400, 386) and [r["seed"] for r in v["runs"]] == [5, 6]
-    assert v["ci95"] == pytest.approx(list(wilson_interval(386, 400)))
-    d = betabinom(200, 386.5, 14.5)
+    v = doc["verified"]  # the verification's first 20 trials chose the candidate: left out (180 + 200 counted)
+    assert (v["n"], v["successes"]) == (380, 366) and [(r["seed"], r["n"]) for r in v["runs"]] == [(5, 180), (6, 200)]
+    assert v["left_out"]["n"] == 20 and v["left_out"]["successes"] == 20
+    assert v["ci95"] == pytest.approx(list(wilson_interval(366, 380)))
+    d = betabinom(200, 366.5, 14.5)
     lo, hi = v["rerun95"]["successes"]
     assert d.cdf(lo - 1) < 0.025 <= d.cdf(lo) and d.cdf(hi - 1) < 0.975 <= d.cdf(hi) and v["rerun95"]["n"] == 200
-    assert (tmp_path / "feeder.toml").read_text().startswith(f"# Verified: 386/400 fed over seeds 5, 6; a run of 200 "
-                                                             f"trials with another seed lands in {lo}–{hi} fed")
+    assert (tmp_path / "feeder.toml").read_text().startswith(
+        f"# Verified: 366/380 fed over seeds 5, 6 (the 20 trials that chose it left out); a run of 200 trials with "
+        f"another seed lands in {lo}–{hi} fed")
     assert (tmp_path / "candidates.jsonl").read_text().count("\n") == 1
     # the files written run as the feeding experiment's config, with the candidate's part, side, ω, h and wall
     from throwmap.experiments.base import read_config
@@ -143,7 +145,7 @@ def test_a_rerun_below_the_wilson_interval_but_inside_the_rerun_range_confirms_t
     assert res.verified["successes"] == 197 and res.rerun["successes"] == 191
     assert res.rerun["rate"] < res.verified["ci95"][0] and rerun_range(197, 200, 200)[0] <= 191
     assert res.success and [t.verdict for t in res.tried] == ["fed"]
-    assert res.evidence["successes"] == 388 and "fed 388/400 (197/200 + 191/200" in res.summary()
+    assert res.evidence["successes"] == 368 and "fed 368/380 (177/180 + 191/200" in res.summary()
 
 
 def test_rerun_range_covers_new_runs():

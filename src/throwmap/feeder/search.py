@@ -58,7 +58,7 @@ from .arrival import DROP_X, WALL_X_MAX, Arrival, arrival, arrivals, lip_offset,
 from .family import Variant, weight_variants
 from .files import LINING_MU, POCKET_DEPTH_M, feeder_files
 
-__all__ = ["Tried", "FeederSearch", "VerifyPlan", "design_feeder", "GOAL", "PRE_SHARE", "OMEGAS", "HS"]
+__all__ = ["Tried", "FeederSearch", "VerifyPlan", "design_feeder", "evidence", "GOAL", "PRE_SHARE", "OMEGAS", "HS"]
 
 GOAL = 0.95
 """The success rate a feeder must reach in the engine (the draft's hardware fed 19 of 20 = 95 %)."""
@@ -121,20 +121,14 @@ class FeederSearch:
 
     @property
     def evidence(self) -> dict | None:
-        """The verified feeder's engine trials, both runs pooled (None without a verified feeder): ``n``,
-        ``successes``, ``ci95`` (Wilson, of the feed rate), ``runs`` (each run's seed, n and successes) and
-        ``rerun95`` — where a new run of as many trials as one verification, with another seed, lands with 95 %
-        probability (``{"n", "successes": [low, high], "rate": [low, high]}``, :func:`rerun_range`). Compare an
-        independent check with ``rerun95``: ``ci95`` bounds the rate, not a new sample of it."""
-        runs = [r for r in (self.verified, self.rerun) if r]
-        if not runs:
-            return None
-        n, k = sum(r["n"] for r in runs), sum(r["successes"] for r in runs)
-        m = int(self.verified["n"])
-        lo, hi = rerun_range(k, n, m)
-        return {"n": n, "successes": k, "ci95": list(wilson_interval(k, n)),
-                "runs": [{"seed": r["seed"], "n": r["n"], "successes": r["successes"]} for r in runs],
-                "rerun95": {"n": m, "successes": [lo, hi], "rate": [lo / m, hi / m]}}
+        """The verified feeder's engine trials that did not choose it, pooled (None without a verified feeder): the
+        verification less its first trials (``verified["chose"]``: they passed the candidate, so they lean its way)
+        and the rerun — ``n``, ``successes``, ``ci95`` (Wilson, of the feed rate), ``runs`` (each run's seed, n and
+        successes counted), ``left_out`` (the choosing trials) and ``rerun95``: where a new run of as many trials as
+        one verification, with another seed, lands with 95 % probability (``{"n", "successes": [low, high], "rate":
+        [low, high]}``, :func:`rerun_range`). Compare an independent check with ``rerun95``: ``ci95`` bounds the
+        rate, not a new sample of it."""
+        return evidence(self.verified, self.rerun)
 
     def to_dict(self) -> dict:
         f = self.feeder
@@ -167,10 +161,32 @@ class FeederSearch:
             runs = " + ".join(f"{r['successes']}/{r['n']}" for r in e["runs"])
             r95 = e["rerun95"]
             return (f"feeder found: side {self.side}, {f.variant.label()}, ω = {f.omega:.4g} rad/s, h = {100 * f.h:.3g} "
-                    f"cm, end wall at {100 * f.X:.3g} cm; fed {e['successes']}/{e['n']} ({runs}, two seeds; Wilson "
-                    f"95 % [{100 * e['ci95'][0]:.1f}, {100 * e['ci95'][1]:.1f}] %); a new run of {r95['n']} lands in "
-                    f"{r95['successes'][0]}–{r95['successes'][1]} fed (95 %); config {self.config} ({self.time_s:.0f} s)")
+                    f"cm, end wall at {100 * f.X:.3g} cm; fed {e['successes']}/{e['n']} ({runs}, two seeds, less the "
+                    f"{e['left_out']['n']} trials that chose it; Wilson 95 % [{100 * e['ci95'][0]:.1f}, "
+                    f"{100 * e['ci95'][1]:.1f}] %); a new run of {r95['n']} lands in {r95['successes'][0]}–"
+                    f"{r95['successes'][1]} fed (95 %); config {self.config} ({self.time_s:.0f} s)")
         return f"no feeder: {self.reason} ({self.time_s:.0f} s)"
+
+
+def evidence(verified: dict | None, rerun: dict | None) -> dict | None:
+    """The engine trials of a verification (``verified``, with ``"chose"``: its first trials, which passed the
+    candidate) and its ``rerun`` (run docs: ``n``, ``successes``, ``seed``), pooled less the choosing trials; see
+    :attr:`FeederSearch.evidence`. None without a verification."""
+    if not verified:
+        return None
+    v, r = verified, rerun
+    chose = v.get("chose") or {"n": 0, "successes": 0}
+    runs = [{"seed": v["seed"], "n": v["n"] - chose["n"], "successes": v["successes"] - chose["successes"]}]
+    if r:
+        runs.append({"seed": r["seed"], "n": r["n"], "successes": r["successes"]})
+    runs = [x for x in runs if x["n"] > 0]  # a verification no longer than the first trials adds none
+    n, k = sum(x["n"] for x in runs), sum(x["successes"] for x in runs)
+    m = int(v["n"])
+    lo, hi = rerun_range(k, n, m)
+    return {"n": n, "successes": k, "ci95": list(wilson_interval(k, n)), "runs": runs,
+            "left_out": {"n": chose["n"], "successes": chose["successes"],
+                         "why": "the verification's first trials, which chose the candidate"},
+            "rerun95": {"n": m, "successes": [lo, hi], "rate": [lo / m, hi / m]}}
 
 
 def _run_doc(res) -> dict:
@@ -470,7 +486,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                     verdict = "fed" if again.success_rate >= max(plan.goal, lo) else "rerun disagrees"
                     if again.n < plan.n_verify:
                         verdict = short.format("rerun", again.n, plan.n_verify)
-                    verified, rerun = runs[-2], runs[-1]
+                    verified, rerun = {**runs[-2], "chose": {"n": pre.n, "successes": pre.successes}}, runs[-1]
         if k in refined_from:
             verdict += f" (refined from candidate {refined_from[k]})"
         tried.append(Tried(k, c, tuple(runs), verdict))
@@ -478,8 +494,9 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         if verdict.startswith("fed"):
             found = result(True, fed=c, verified=verified, rerun=rerun)
             e = found.evidence
-            head = (f"# Verified: {e['successes']}/{e['n']} fed over seeds "
-                    f"{', '.join(str(r['seed']) for r in e['runs'])}; a run of {e['rerun95']['n']} trials with another "
+            head = (f"# Verified: {e['successes']}/{e['n']} fed over seeds {', '.join(str(r['seed']) for r in e['runs'])} "
+                    f"(the {e['left_out']['n']} trials that chose it left out); a run of {e['rerun95']['n']} trials "
+                    f"with another "
                     f"seed lands in {e['rerun95']['successes'][0]}–{e['rerun95']['successes'][1]} fed with 95 % "
                     f"probability.\n")
             atomic_write_text(out / "feeder.toml", head + (here / "feeder.toml").read_text(encoding="utf-8"))

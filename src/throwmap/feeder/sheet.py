@@ -341,8 +341,10 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
                               + ("inside the range a new run lands in after the verification"
                                  if r["successes"] <= rerun_range(v["successes"], v["n"], r["n"])[1]
                                  else "above the range a new run lands in after the verification")),
-        ("verified (both runs)", f"{e['successes']}/{e['n']} = {100 * e['successes'] / e['n']:.1f} %, Wilson 95 % "
-                                 f"[{100 * e['ci95'][0]:.1f}, {100 * e['ci95'][1]:.1f}] %"),
+        ("verified (both runs, less the trials that chose it)",
+         f"{e['successes']}/{e['n']} = {100 * e['successes'] / max(e['n'], 1):.1f} %, Wilson 95 % "
+         f"[{100 * e['ci95'][0]:.1f}, {100 * e['ci95'][1]:.1f}] % (the verification's first {e['left_out']['n']} "
+         f"trials, {e['left_out']['successes']} fed, chose the candidate and are left out)"),
         (f"a new run of {e['rerun95']['n']} trials, another seed", f"lands in {e['rerun95']['successes'][0]}–"
          f"{e['rerun95']['successes'][1]} fed ({100 * e['rerun95']['rate'][0]:.1f}–{100 * e['rerun95']['rate'][1]:.1f} "
          f"%) with 95 % probability: compare an independent check with this, not with the Wilson interval"),
