@@ -70,7 +70,8 @@ def design_cmd(
     = None,
     hs: Annotated[list[float] | None, typer.Option("--h", help="Arm surface height to search, m (repeat for several; "
                                                                "default -0.03, -0.02, -0.01, 0).")] = None,
-    candidates: Annotated[int, typer.Option("--candidates", help="Most candidates run in the engine.")] = 48,
+    candidates: Annotated[int, typer.Option("--candidates", help="Most candidates run in the engine (the budget "
+                                                                 "usually ends the search first).")] = 120,
     margin_trials: Annotated[int, typer.Option("--margin-trials", help="Engine trials per margin step of the design "
                                                                        "sheet (0: no margins).")] = 30,
     omega_check: Annotated[int, typer.Option("--omega-check", help="Engine trials at each of ω(1 ± 3 %) before a "

@@ -224,7 +224,7 @@ class VerifyPlan:
     pre_share: float = PRE_SHARE
     min_predicted: float = 0.9
     screen_share: float = 0.35
-    engine_candidates: int = 48
+    engine_candidates: int = 120
     omegas: tuple = OMEGAS
     hs: tuple = HS
     seed: int = 0
