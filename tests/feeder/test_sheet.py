@@ -66,7 +66,9 @@ def test_a_weight_step_that_fails_is_followed_by_half_of_it(tmp_path, monkeypatc
         at = part.point_masses[-1][1]
         what = "weight_x" if abs(at[0] - base[0]) > 1e-12 else "weight_y"
         drift = abs(at[0] - base[0]) + abs(at[1] - base[1])
-        if drift < 1e-12:  # ω, μ or jitter: every step fails
+        if abs(c.arm.mu - cfg.arm.mu) > 1e-12:  # μ: every step holds
+            what, drift = "mu", 0.0
+        elif drift < 1e-12:  # ω or jitter: every step fails
             what, drift = "other", 1.0
         ran.append((what, round(drift, 6)))
         k = n if drift <= holds.get(what, 0.0) + 1e-12 else n // 2
@@ -74,11 +76,13 @@ def test_a_weight_step_that_fails_is_followed_by_half_of_it(tmp_path, monkeypatc
 
     monkeypatch.setattr(runner, "run_experiment", fake)
     out = sheet.margins(cfg, tmp_path, trials=30)
-    assert [r for r in ran if r[0] == "other"] == [("other", 1.0)] * 5  # ω ± and μ ±: one failing step each; jitter
+    assert [r for r in ran if r[0] == "other"] == [("other", 1.0)] * 3  # ω ±: one failing step each; jitter
     assert [r for r in ran if r[0] == "weight_x"] == [("weight_x", 0.003), ("weight_x", 0.0015)] * 2
     assert [(r["passed"], r["failed"]) for r in out["weight_x"]] == [(-0.0015, -0.003), (0.0015, 0.003)]
     assert [(r["passed"], r["failed"]) for r in out["weight_y"]] == [(None, -0.0015), (None, 0.0015)]
     assert [x["step"] for x in out["weight_x"][1]["runs"]] == [0.0015, 0.003]  # sorted by size
+    assert [x["step"] for x in out["mu"][0]["runs"]] == [0.8, 0.6]  # μ's steps keep their order (× 0.8 first)
+    assert [x["step"] for x in out["mu"][1]["runs"]] == [1.25, 1.5]
     text = sheet._margin_text("weight_x", out["weight_x"])[1]
     assert "holds to -1.5 mm, not to -3 mm" in text, text
 

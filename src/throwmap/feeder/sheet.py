@@ -133,7 +133,8 @@ def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 10
                     steps = [step / 2.0]
                     continue
                 break
-            run_list.sort(key=lambda x: abs(x["step"]))
+            if what in HALVED:  # the half step ran after the first: in order of size (μ and ω keep the order run)
+                run_list.sort(key=lambda x: abs(x["step"]))
             if run_list:
                 rows.append({"passed": passed, "failed": failed, "runs": run_list})
         if rows:
