@@ -46,11 +46,14 @@ def _fake(monkeypatch, rates, predicted=None):
         return dataclasses.replace(a, model="engine")
 
     def run_experiment(name, cfg, *, n, seed, workers, out, progress=None, stop_by=None):
-        k = int(out.parent.name.split("-")[0])
+        weight = out.parent.name.startswith("weight_")  # the weight-place check: <k>-<tag>/weight_x_-0.0015/run
+        k = int((out.parent.parent if weight else out.parent).name.split("-")[0])
         stage = out.name if out.name == "rerun" else ("first" if n <= 20 else "verify")
         if out.name.startswith("omega_"):  # the ω ± 3 % check: feeds all unless stated
             stage = "omega" + out.name[6]
-        r = rates.get((k, stage), rates.get(stage, 1.0 if stage.startswith("omega") else 0.0))
+        if weight:  # "weightx-", "weighty+", …: feeds all unless stated
+            stage = "weight" + out.parent.name[7] + out.parent.name[9]
+        r = rates.get((k, stage), rates.get(stage, 1.0 if stage.startswith(("omega", "weight")) else 0.0))
         assert stop_by is not None  # every run is bounded by the search's budget
         calls.append((k, stage, n, seed))
         n = rates.get(("cut", stage), n)  # the trials run before the budget ran out
@@ -81,8 +84,12 @@ def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_pat
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, seed=5, **GRID))
     assert res.success and res.config == str(tmp_path / "feeder.toml") and (tmp_path / "part.toml").is_file()
     # the first trials 5 at a time, then the verification extends them (same seed), then the rerun (seed + 1)
+    # (the ω ± 3 % check and, the candidate having a lead weight, the weight moved 1.5 mm each way in x and y)
+    assert res.feeder.variant.weight is not None
     assert [c[1:] for c in calls] == [("first", 5, 5), ("first", 10, 5), ("first", 15, 5), ("first", 20, 5),
-                                      ("omega-", 30, 100), ("omega+", 30, 100), ("verify", 200, 5), ("rerun", 200, 6)]
+                                      ("omega-", 30, 100), ("omega+", 30, 100), ("weightx-", 30, 100),
+                                      ("weightx+", 30, 100), ("weighty-", 30, 100), ("weighty+", 30, 100),
+                                      ("verify", 200, 5), ("rerun", 200, 6)]
     assert res.verified["successes"] == 194 and res.rerun["successes"] == 192
     assert res.side == res.tried[0].candidate.side and res.tried[0].verdict == "fed"
     doc = res.to_dict()
@@ -277,6 +284,23 @@ def test_candidates_are_verified_round_robin_over_variant_and_side():
     assert search._diverse([0, 1, 2, 3, 4], screened) == [0, 2, 3, 1, 4]
     # every side's best before a second of any side, even of another variant
     assert search._diverse([0, 1, 2, 3], [a, b, a, a1]) == [0, 3, 1, 2]
+
+
+def test_a_feeder_fragile_in_the_weights_place_is_not_fed(tri, tmp_path, monkeypatch):
+    """4/30 fed with the weight 1.5 mm off in −x (Wilson upper end 30 % < 95 %): fragile, never verified; the check
+    stops there. The next candidate, which holds, is the feeder; with weight_check=0 no such check runs."""
+    calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0, (0, "weightx-"): 4 / 30}, predicted=0.99)
+    monkeypatch.setattr(search, "_diverse", lambda order, screened: order)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
+    first = res.tried[0]
+    assert first.verdict.startswith("fragile in the weight's place: x -1.5 mm 4/30 fed (below 95 % with 95 % "
+                                    "confidence at x -1.5 mm)"), first.verdict
+    assert [c[1] for c in calls if c[0] == 0] == ["first"] * 4 + ["omega-", "omega+", "weightx-"]
+    assert res.success and res.tried[-1].k != 0 and res.tried[-1].verdict.startswith("fed")
+    calls.clear()
+    plain = design_feeder(tri, tmp_path / "no-check", side=0, plan=VerifyPlan(n_pre=20, n_verify=200, weight_check=0,
+                                                                             **GRID))
+    assert plain.success and plain.tried[0].k == 0 and not any(c[1].startswith("weight") for c in calls)
 
 
 def test_a_verification_under_way_may_finish_past_the_budget(tri, tmp_path, monkeypatch):

@@ -76,6 +76,9 @@ def design_cmd(
                                                                        "sheet (0: no margins).")] = 30,
     omega_check: Annotated[int, typer.Option("--omega-check", help="Engine trials at each of ω(1 ± 3 %) before a "
                                                                    "candidate's verification (0: no check).")] = 30,
+    weight_check: Annotated[int, typer.Option("--weight-check", help="Engine trials with the lead weight moved 1.5 "
+                                                                     "mm each way in x and y before a candidate's "
+                                                                     "verification (0: no check).")] = 30,
     as_json: JsonOpt = False,
 ) -> None:
     """Search a feeder that feeds one side of PART into a pocket at the arm's end, verified in the engine."""
@@ -91,8 +94,9 @@ def design_cmd(
         for name, value in (("n", n), ("n-pre", n_pre), ("candidates", candidates)):
             if value < 1:
                 raise InvalidStateError(name, f"must be ≥ 1, got {value}")
-        if omega_check < 0:
-            raise InvalidStateError("omega-check", f"must be ≥ 0 (0: no check), got {omega_check}")
+        for name, value in (("omega-check", omega_check), ("weight-check", weight_check)):
+            if value < 0:
+                raise InvalidStateError(name, f"must be ≥ 0 (0: no check), got {value}")
         if margin_trials < 0:
             raise InvalidStateError("margin-trials", f"must be ≥ 0 (0: no margins), got {margin_trials}")
         for name, values in (("omega", omegas), ("h", hs)):
@@ -124,7 +128,7 @@ def design_cmd(
         sheet_s = min(SHEET_S if margin_trials else 10.0, 30.0 * budget)  # kept for the sheet (≤ half the budget)
         total_s = max(60.0 * budget - _started_s() - END_S, 0.0)  # the budget counts from the command's start
         plan = VerifyPlan(n_pre=n_pre, n_verify=n, seed=seed, workers=workers, budget_s=max(total_s - sheet_s, 0.0),
-                          engine_candidates=candidates, omega_check=omega_check,
+                          engine_candidates=candidates, omega_check=omega_check, weight_check=weight_check,
                           finish_s=max(sheet_s - DRAW_S, 0.0), **grid)  # a run under way may use the margins' share
         with stage_bars(lines=True) as progress:  # on stderr: stdout keeps the table or the JSON alone
             res = design_feeder(p, out, side=side, weight=weight_kg, arm_length=arm_length, mu=mu, plan=plan,
