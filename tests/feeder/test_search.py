@@ -241,7 +241,7 @@ def test_bad_grids_name_their_field(kw, field):
 
 
 def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_path):
-    res = CliRunner().invoke(app, ["feeder", "design", "triangle", "--out", str(tmp_path / "f"), "--budget", "0",
+    res = CliRunner().invoke(app, ["feeder", "design", "triangle", "--out", str(tmp_path / "f"), "--budget", "0.01",
                                    "--omega", "4.5", "--h", "-0.02", "--weight", "none", "--side", "0", "--candidates", "1",
                                    "--json"])
     assert res.exit_code == 1, res.output
@@ -254,6 +254,7 @@ def test_the_command_prints_one_json_object_and_exits_1_without_a_feeder(tmp_pat
 
 
 @pytest.mark.parametrize("args, field", [(["--side", "7"], "side"), (["--budget", "-1"], "budget"),
+                                         (["--budget", "0"], "budget"),
                                          (["--budget", "nan"], "budget"), (["--n", "0"], "n:"),
                                          (["--n-pre", "0"], "n-pre"), (["--seed", "-1"], "seed"),
                                          (["--weight", "lots"], "weight"), (["--weight", "-1"], "weight"),

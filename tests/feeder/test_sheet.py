@@ -54,6 +54,7 @@ def test_a_weight_step_that_fails_is_followed_by_half_of_it(tmp_path, monkeypatc
     from types import SimpleNamespace
 
     import throwmap.experiments.runner as runner
+    from throwmap.experiments.stats import wilson_interval
     from throwmap.feeder import sheet
 
     cfg = read_config(Feed(), "examples/feed_recoil.toml")
@@ -72,7 +73,7 @@ def test_a_weight_step_that_fails_is_followed_by_half_of_it(tmp_path, monkeypatc
             what, drift = "other", 1.0
         ran.append((what, round(drift, 6)))
         k = n if drift <= holds.get(what, 0.0) + 1e-12 else n // 2
-        return SimpleNamespace(n=n, successes=k, success_rate=k / n, ci95=(0.0, 1.0))
+        return SimpleNamespace(n=n, successes=k, success_rate=k / n, ci95=wilson_interval(k, n))
 
     monkeypatch.setattr(runner, "run_experiment", fake)
     out = sheet.margins(cfg, tmp_path, trials=30)
@@ -85,6 +86,28 @@ def test_a_weight_step_that_fails_is_followed_by_half_of_it(tmp_path, monkeypatc
     assert [x["step"] for x in out["mu"][1]["runs"]] == [1.25, 1.5]
     text = sheet._margin_text("weight_x", out["weight_x"])[1]
     assert "holds to -1.5 mm, not to -3 mm" in text, text
+
+
+def test_a_margin_step_fails_only_when_clearly_below_the_goal(tmp_path, monkeypatch):
+    """27/30 (Wilson [74, 96.5] %) cannot tell the feeder from its goal: the step holds; 20/30 (upper end 80 %) fails.
+    The same test as the search's ω and weight checks, so the sheet and the search agree on the same trials."""
+    from types import SimpleNamespace
+
+    import throwmap.experiments.runner as runner
+    from throwmap.experiments.stats import wilson_interval
+    from throwmap.feeder import sheet
+
+    cfg = read_config(Feed(), "examples/feed_recoil.toml")
+
+    def fake(name, c, *, n, **kw):
+        k = 27 if c.omega < cfg.omega else 20  # ω down: 27/30; anything else: 20/30
+        return SimpleNamespace(n=n, successes=k, success_rate=k / n, ci95=wilson_interval(k, n))
+
+    monkeypatch.setattr(runner, "run_experiment", fake)
+    monkeypatch.setattr(sheet, "MARGIN_STEPS", {"omega": ((-0.03, -0.06), (0.03,))})
+    out = sheet.margins(cfg, tmp_path, trials=30)
+    assert [(r["passed"], r["failed"]) for r in out["omega"]] == [(-0.06, None), (None, 0.03)]
+    assert "falls clearly below the goal at +3 %" in sheet._margin_text("omega", out["omega"])[1]
 
 
 def test_a_feeder_is_refused_only_when_a_three_percent_drift_is_clearly_below_the_goal():

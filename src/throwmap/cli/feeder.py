@@ -89,8 +89,8 @@ def design_cmd(
     with guard():
         import math
 
-        if not (math.isfinite(budget) and budget >= 0):
-            raise InvalidStateError("budget", f"must be a number of minutes ≥ 0, got {budget}")
+        if not (math.isfinite(budget) and budget > 0):
+            raise InvalidStateError("budget", f"must be a number of minutes > 0, got {budget}")
         for name, value in (("n", n), ("n-pre", n_pre), ("candidates", candidates)):
             if value < 1:
                 raise InvalidStateError(name, f"must be ≥ 1, got {value}")

@@ -323,7 +323,8 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         "omega_jitter_rel": sigma, "pocket": {"depth_m": POCKET_DEPTH_M, "lining_mu": LINING_MU,
                                               "clearance_m": 0.005, "lip_deg": 60.0},
         "drops": f"2–10 cm above the arm, any pose, CM x in {list(DROP_X)} m", "goal": plan.goal,
-        "weight": {"max_kg": cap, "places": "0.2, 0.5, 0.8 along the target side, 8 mm inside",
+        "weight": {"max_kg": cap, "places": "0.2, 0.5, 0.8 along each target side, 8 mm inside (toward the centre near a corner); "
+                                                 "a weight placed for one side may feed another",
                    "masses": "1 and 1.7 × the part's mass, capped"},
         "grid": {"omegas_rad_s": list(omegas), "hs_m": list(hs)},
         "engine": "pymunk; a half-step rerun must agree to 5 mm, a lost contact retried 4 times"}
@@ -646,11 +647,11 @@ def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budge
         best = max(tried, key=lambda t: (final(t)["rate"], final(t)["n"]))
         last = final(best)
         c = best.candidate
-        parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} % with an agreeing rerun and ω ± {100 * OMEGA_DRIFT:g} % held: the best, side "
+        parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} % with an agreeing rerun, ω ± {100 * OMEGA_DRIFT:g} % and the weight's place ± {1000 * WEIGHT_DRIFT_M:g} mm held: the best, side "
                      f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
                      f"{last['successes']}/{last['n']} = {100 * last['rate']:.1f} % ({best.verdict})")
     elif screened and max(a.predicted for a in screened) >= plan.min_predicted:
-        parts.append(f"the budget ({budget_s:g} s) ran out before a candidate was run")
+        parts.insert(0, f"the budget ({budget_s:g} s) ran out before a candidate was run")  # the cause, first
     else:
         need = plan.min_predicted if plan.engine_screen else TRY_SHARE
         parts.append(f"no candidate reached the {100 * need:g} % share needed to be run in the engine")
