@@ -297,6 +297,11 @@ def test_a_feeder_fragile_in_the_weights_place_is_not_fed(tri, tmp_path, monkeyp
     assert first.verdict.startswith("fragile in the weight's place: x -1.5 mm 4/30 fed (below 95 % with 95 % "
                                     "confidence at x -1.5 mm)"), first.verdict
     assert [c[1] for c in calls if c[0] == 0] == ["first"] * 4 + ["omega-", "omega+", "weightx-"]
+    # candidates.jsonl keeps every check's counts, passed or not
+    assert [(x["check"], x["step"], x["successes"]) for x in first.checks] == [
+        ("omega", -0.03, 30), ("omega", 0.03, 30), ("weight_x", -0.0015, 4)]
+    logged = [json.loads(line) for line in (tmp_path / "candidates.jsonl").read_text().splitlines()]
+    assert logged[0]["checks"][-1]["check"] == "weight_x" and logged[-1]["checks"][-1]["check"] == "weight_y"
     assert res.success and res.tried[-1].k != 0 and res.tried[-1].verdict.startswith("fed")
     calls.clear()
     plain = design_feeder(tri, tmp_path / "no-check", side=0, plan=VerifyPlan(n_pre=20, n_verify=200, weight_check=0,

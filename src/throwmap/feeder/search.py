@@ -83,15 +83,19 @@ class Tried:
     """One candidate run in the engine: its index ``k`` in the screen's ranking (``FeederSearch.screened``), the
     screened ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
     "throws_to_capture"}``) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
-    ``"below the goal"``, ``"rerun disagrees"``, ``"the budget ran out in the …"``)."""
+    ``"below the goal"``, ``"rerun disagrees"``, ``"the budget ran out in the …"``) and the drift ``checks`` run
+    (each ``{"check": "omega" | "weight_x" | "weight_y", "step", "n", "successes", "ci95"}``; ω steps relative, weight
+    steps in m)."""
 
     k: int
     candidate: Arrival
     runs: tuple
     verdict: str
+    checks: tuple = ()
 
     def to_dict(self) -> dict:
-        return {"k": self.k, "candidate": self.candidate.to_dict(), "runs": list(self.runs), "verdict": self.verdict}
+        return {"k": self.k, "candidate": self.candidate.to_dict(), "runs": list(self.runs), "verdict": self.verdict,
+                "checks": list(self.checks)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -445,7 +449,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         here = out / "candidates" / f"{k}-{_tag(c)}"  # the tag: a folder never holds two candidates' trials
         path = feeder_files(c, here, mu=mu, g=g, sigma=sigma, mu_rel=mu_rel)
         cfg = read_config(Feed(), path)
-        runs = []
+        runs, checks = [], []  # the engine runs of the candidate; its drift checks
 
         def run(n, s, name, finish=False):
             cb = None if progress is None else (lambda d, t: progress(f"candidate {k}: {name}", d, t))
@@ -472,7 +476,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             verdict, shift = "fed", 0.0
             if plan.omega_check:  # cheaper than the verification, and it stops the fragile ones before it
                 verdict, shift = _omega_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s,
-                                              progress=progress, label=f"candidate {k}")
+                                              progress=progress, label=f"candidate {k}", record=checks)
                 if shift and shifted.get(k, 0) < 2:  # centre ω in its window: away from the drift it cannot take
                     refined_from[len(screened)] = k
                     shifted[len(screened)] = shifted.get(k, 0) + 1
@@ -480,7 +484,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                     queue.insert(0, len(screened) - 1)
             if verdict == "fed" and plan.weight_check and c.variant.weight is not None:
                 verdict = _weight_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s, progress=progress,
-                                        label=f"candidate {k}")
+                                        label=f"candidate {k}", record=checks)
             if verdict == "fed":
                 full = run(plan.n_verify, plan.seed, "verify", finish=True)
                 verdict = "below the goal"
@@ -497,7 +501,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                     verified, rerun = {**runs[-2], "chose": {"n": pre.n, "successes": pre.successes}}, runs[-1]
         if k in refined_from:
             verdict += f" (refined from candidate {refined_from[k]})"
-        tried.append(Tried(k, c, tuple(runs), verdict))
+        tried.append(Tried(k, c, tuple(runs), verdict, tuple(checks)))
         atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))  # this search's candidates
         if verdict.startswith("fed"):
             found = result(True, fed=c, verified=verified, rerun=rerun)
@@ -528,10 +532,17 @@ OMEGA_SHIFT = 0.05
 """How far a fragile feeder's ω is moved away from the drift it cannot take (relative), for the next candidate."""
 
 
-def _omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: float, progress, label: str):
+def _check_doc(what: str, step: float, res) -> dict:
+    return {"check": what, "step": step, "n": res.n, "successes": res.successes,
+            "ci95": [float(res.ci95[0]), float(res.ci95[1])]}
+
+
+def _omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: float, progress, label: str,
+                 record: list | None = None):
     """``plan.omega_check`` engine trials (seed 100) at ω(1 − :data:`OMEGA_DRIFT`) and ω(1 + :data:`OMEGA_DRIFT`):
     ``("fed", 0.0)`` when neither is clearly below the goal (its Wilson 95 % upper end under it), else the verdict
-    ``"fragile in ω: …"`` and the relative shift of ω to try next (away from the failing drift; 0 when both fail)."""
+    ``"fragile in ω: …"`` and the relative shift of ω to try next (away from the failing drift; 0 when both fail).
+    Each run is appended to ``record`` (:func:`_check_doc`)."""
     from ..experiments.runner import run_experiment
 
     failed, seen = [], []
@@ -540,6 +551,8 @@ def _omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: fl
         cb = None if progress is None else (lambda d, t, s=step: progress(f"{label}: ω {s:+.0%}", d, t))
         res = run_experiment("feed", c, n=plan.omega_check, seed=100, workers=workers, out=here / f"omega_{step:+g}",
                              progress=cb, stop_by=stop_by)
+        if record is not None:
+            record.append(_check_doc("omega", step, res))
         if res.n < plan.omega_check:
             return f"the budget ran out in the ω check ({res.n}/{plan.omega_check} trials run)", 0.0
         seen.append(f"ω(1 {step:+.0%}) {res.successes}/{res.n}")
@@ -558,10 +571,12 @@ feed there is *fragile*: a weight glued by hand lands within a millimetre or two
 its weight 1.5 mm off)."""
 
 
-def _weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: float, progress, label: str) -> str:
+def _weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: float, progress, label: str,
+                  record: list | None = None) -> str:
     """``plan.weight_check`` engine trials (seed 100) with the lead weight moved :data:`WEIGHT_DRIFT_M` each way in
     the part's x and y (a move off the plate is skipped): ``"fed"`` when none is clearly below the goal (its Wilson
-    95 % upper end under it), else ``"fragile in the weight's place: …"``; it stops at the first that is."""
+    95 % upper end under it), else ``"fragile in the weight's place: …"``; it stops at the first that is. Each run is
+    appended to ``record``."""
     from ..experiments.runner import run_experiment
     from .sheet import _drifted
 
@@ -575,6 +590,8 @@ def _weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: f
             cb = None if progress is None else (lambda d, t, lab=name: progress(f"{label}: {lab}", d, t))
             res = run_experiment("feed", c, n=plan.weight_check, seed=100, workers=workers, out=here / name / "run",
                                  progress=cb, stop_by=stop_by)
+            if record is not None:
+                record.append(_check_doc(what, step, res))
             if res.n < plan.weight_check:
                 return f"the budget ran out in the weight check ({res.n}/{plan.weight_check} trials run)"
             seen.append(f"{what[-1]} {1000 * step:+.1f} mm {res.successes}/{res.n}")
