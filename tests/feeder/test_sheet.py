@@ -10,32 +10,33 @@ import throwmap as tm
 from throwmap.experiments.base import read_config
 from throwmap.experiments.feed import Feed
 from throwmap.feeder import Weight, with_weight
-from throwmap.feeder.sheet import _drifted, _without_last_weight
+from throwmap.feeder.family import without_last_weight
+from throwmap.feeder.sheet import drifted
 from throwmap.io.config import resolve_part
 
 
 def test_removing_the_last_weight_undoes_adding_it():
     tri = tm.triangle_30_60_90(0.17)
     for m, at in ((0.05, (0.03, 0.04)), (0.2, (0.01, 0.07)), (0.001, (0.1, 0.01))):
-        back = _without_last_weight(with_weight(tri, Weight(m, at)))
+        back = without_last_weight(with_weight(tri, Weight(m, at)))
         assert back.mass == pytest.approx(tri.mass, rel=1e-12) and back.com == pytest.approx(tri.com, abs=1e-12)
         assert back.radius_of_gyration == pytest.approx(tri.radius_of_gyration, rel=1e-9)
 
 
 def test_each_drift_changes_only_its_quantity(tmp_path):
     cfg = read_config(Feed(), "examples/feed_recoil.toml")
-    w = _drifted(cfg, "omega", -0.06, tmp_path / "w")
+    w = drifted(cfg, "omega", -0.06, tmp_path / "w")
     assert w.omega == pytest.approx(cfg.omega * 0.94) and w.model_copy(update={"omega": cfg.omega}) == cfg
-    m = _drifted(cfg, "mu", 1.5, tmp_path / "m")
+    m = drifted(cfg, "mu", 1.5, tmp_path / "m")
     assert m.arm.mu == pytest.approx(1.5 * cfg.arm.mu) and m.arm.h == cfg.arm.h and m.noise == cfg.noise
-    j = _drifted(cfg, "jitter", 0.08, tmp_path / "j")
+    j = drifted(cfg, "jitter", 0.08, tmp_path / "j")
     assert j.noise.omega_rel == 0.08 and j.noise.mu_rel == cfg.noise.mu_rel
-    x = _drifted(cfg, "weight_y", 0.003, tmp_path / "y")
+    x = drifted(cfg, "weight_y", 0.003, tmp_path / "y")
     before, after = resolve_part(cfg.part).part, resolve_part(x.part).part
     (m0, p0), (m1, p1) = before.point_masses[-1], after.point_masses[-1]
     assert m1 == pytest.approx(m0) and np.subtract(p1, p0) == pytest.approx((0.0, 0.003), abs=1e-12)
     assert after.vertices == before.vertices and after.mass == pytest.approx(before.mass)
-    assert _drifted(cfg, "weight_x", 1.0, tmp_path / "far") is None  # off the plate: not a drift
+    assert drifted(cfg, "weight_x", 1.0, tmp_path / "far") is None  # off the plate: not a drift
 
 
 def test_no_margin_step_starts_after_the_budget(tmp_path, monkeypatch):

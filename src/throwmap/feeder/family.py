@@ -25,7 +25,7 @@ import numpy as np
 from ..errors import InvalidStateError
 from ..system.part import Part
 
-__all__ = ["Weight", "Variant", "side_endpoints", "with_weight", "weight_variants", "RATIOS", "PLACES", "MARGIN_M"]
+__all__ = ["Weight", "Variant", "side_endpoints", "with_weight", "without_last_weight", "weight_variants", "RATIOS", "PLACES", "MARGIN_M"]
 
 RATIOS = (1.0, 1.7)
 """Weight masses proposed, as multiples of the part's own mass."""
@@ -89,6 +89,19 @@ def with_weight(part: Part, weight: Weight) -> Part:
                                radius_of_gyration=math.sqrt(inertia / (M + m)),
                                point_masses=tuple(part.point_masses) + ((m, (float(p[0]), float(p[1]))),),
                                name=f"{part.name} + lead {1000 * m:.4g} g")
+
+
+def without_last_weight(part: Part) -> Part:
+    """``part`` without its last point mass (mass, CM and radius of gyration recomputed): the inverse of
+    :func:`with_weight`."""
+    m, at = part.point_masses[-1]
+    M = float(part.mass) - m
+    c = (float(part.mass) * np.asarray(part.com) - m * np.asarray(at)) / M
+    C = np.asarray(part.com, dtype=float)
+    inertia = (float(part.mass) * part.radius_of_gyration**2 - m * float(np.sum((np.asarray(at) - C) ** 2))
+               - M * float(np.sum((c - C) ** 2)))  # parallel-axis theorem, backwards
+    return dataclasses.replace(part, mass=M, com=(float(c[0]), float(c[1])), radius_of_gyration=math.sqrt(inertia / M),
+                               point_masses=part.point_masses[:-1])
 
 
 def weight_variants(part: Part, side: int, *, max_kg: float, ratios=RATIOS, places=PLACES,

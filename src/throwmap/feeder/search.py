@@ -180,7 +180,7 @@ def evidence(verified: dict | None, rerun: dict | None) -> dict | None:
     :attr:`FeederSearch.evidence`. None without a verification."""
     if not verified:
         return None
-    v, r = verified, rerun
+    v, r = verified, rerun  # the verification and its rerun
     chose = v.get("chose") or {"n": 0, "successes": 0}
     runs = [{"seed": v["seed"], "n": v["n"] - chose["n"], "successes": v["successes"] - chose["successes"]}]
     if r:
@@ -506,11 +506,10 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         if verdict.startswith("fed"):
             found = result(True, fed=c, verified=verified, rerun=rerun)
             e = found.evidence
-            head = (f"# Verified: {e['successes']}/{e['n']} fed over seeds {', '.join(str(r['seed']) for r in e['runs'])} "
-                    f"(the {e['left_out']['n']} trials that chose it left out); a run of {e['rerun95']['n']} trials "
-                    f"with another "
-                    f"seed lands in {e['rerun95']['successes'][0]}–{e['rerun95']['successes'][1]} fed with 95 % "
-                    f"probability.\n")
+            seeds, (lo, hi) = ", ".join(str(r["seed"]) for r in e["runs"]), e["rerun95"]["successes"]
+            head = (f"# Verified: {e['successes']}/{e['n']} fed over seeds {seeds} (the {e['left_out']['n']} trials "
+                    f"that chose it left out); a run of {e['rerun95']['n']} trials with another seed lands in "
+                    f"{lo}–{hi} fed with 95 % probability.\n")
             atomic_write_text(out / "feeder.toml", head + (here / "feeder.toml").read_text(encoding="utf-8"))
             atomic_write_text(out / "part.toml", (here / "part.toml").read_text(encoding="utf-8"))
             return found
@@ -578,13 +577,13 @@ def _weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: f
     95 % upper end under it), else ``"fragile in the weight's place: …"``; it stops at the first that is. Each run is
     appended to ``record``."""
     from ..experiments.runner import run_experiment
-    from .sheet import _drifted
+    from .sheet import drifted
 
     seen = []
     for what in ("weight_x", "weight_y"):
         for step in (-WEIGHT_DRIFT_M, WEIGHT_DRIFT_M):
             name = f"{what}_{step:+g}"
-            c = _drifted(cfg, what, step, here / name)
+            c = drifted(cfg, what, step, here / name)
             if c is None:
                 continue
             cb = None if progress is None else (lambda d, t, lab=name: progress(f"{label}: {lab}", d, t))

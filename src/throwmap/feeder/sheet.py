@@ -35,7 +35,7 @@ import numpy as np
 from ..errors import InvalidStateError
 from ..io.files import atomic_write_text
 
-__all__ = ["write_sheet", "margins", "MARGIN_STEPS"]
+__all__ = ["write_sheet", "margins", "drifted", "MARGIN_STEPS"]
 
 MARGIN_STEPS = {
     "omega": ((-0.03, -0.06, -0.10), (0.03, 0.06, 0.10)),
@@ -51,10 +51,10 @@ HALVED = ("weight_x", "weight_y")
 3 mm is told apart from one that must sit within 1.5 mm)."""
 
 
-def _drifted(cfg, what: str, step: float, folder: Path):
+def drifted(cfg, what: str, step: float, folder: Path):
     """The feed config ``cfg`` with one quantity drifted by ``step`` (None when the drift is not possible)."""
     from ..io.config import resolve_part, save_part_toml
-    from .family import Weight, with_weight
+    from .family import Weight, with_weight, without_last_weight
 
     if what == "omega":
         return cfg.model_copy(update={"omega": cfg.omega * (1.0 + step)})
@@ -71,22 +71,10 @@ def _drifted(cfg, what: str, step: float, folder: Path):
 
     if not point_in_convex_polygon(np.asarray(part.vertices), np.asarray(at)):  # the moved weight leaves the plate
         return None
-    moved = with_weight(_without_last_weight(part), Weight(m, at))
+    moved = with_weight(without_last_weight(part), Weight(m, at))
     folder.mkdir(parents=True, exist_ok=True)
     path = save_part_toml(moved, None, folder / "part.toml")
     return cfg.model_copy(update={"part": str(path.resolve())})
-
-
-def _without_last_weight(part):
-    """``part`` without its last point mass (mass, CM and radius of gyration recomputed)."""
-    m, at = part.point_masses[-1]
-    M = float(part.mass) - m
-    c = (float(part.mass) * np.asarray(part.com) - m * np.asarray(at)) / M
-    C = np.asarray(part.com, dtype=float)
-    inertia = (float(part.mass) * part.radius_of_gyration**2 - m * float(np.sum((np.asarray(at) - C) ** 2))
-               - M * float(np.sum((c - C) ** 2)))  # parallel-axis theorem, backwards
-    return dataclasses.replace(part, mass=M, com=(float(c[0]), float(c[1])), radius_of_gyration=math.sqrt(inertia / M),
-                               point_masses=part.point_masses[:-1])
 
 
 def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 100, workers: int = 0,
@@ -114,7 +102,7 @@ def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 10
                 if time.perf_counter() - t0 > budget_s:
                     break
                 here = folder / f"{what}_{step:+g}"
-                c = _drifted(cfg, what, step, here)
+                c = drifted(cfg, what, step, here)
                 if c is None:
                     break
                 here.mkdir(parents=True, exist_ok=True)
