@@ -380,14 +380,17 @@ def test_a_search_run_again_reads_its_trials_back(tmp_path, monkeypatch):
 
     part = resolve_part("examples/triangle_plate.toml").part
     plan = VerifyPlan(n_pre=5, n_verify=5, omega_check=0, engine_candidates=1, omegas=(4.5,), hs=(-0.02,), workers=1)
-    first = design_feeder(part, tmp_path, side=0, weight=0.05, plan=plan)
+    monkeypatch.chdir(tmp_path)
+    first = design_feeder(part, "run", side=0, weight=0.05, plan=plan)  # a relative folder …
     assert first.tried and first.tried[0].runs
 
     def no_trial(*a, **k):
         raise AssertionError("a trial ran again")
 
     monkeypatch.setattr(runner, "_checked", no_trial)
-    again = design_feeder(part, tmp_path, side=0, weight=0.05, plan=plan)
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")  # … named again from another working directory
+    again = design_feeder(part, "../run", side=0, weight=0.05, plan=plan)
     assert [t.verdict for t in again.tried] == [t.verdict for t in first.tried]
     assert [[(r["n"], r["successes"]) for r in t.runs] for t in again.tried] == \
         [[(r["n"], r["successes"]) for r in t.runs] for t in first.tried]

@@ -448,7 +448,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             break
         here = out / "candidates" / f"{k}-{_tag(c)}"  # the tag: a folder never holds two candidates' trials
         path = feeder_files(c, here, mu=mu, g=g, sigma=sigma, mu_rel=mu_rel)
-        cfg = read_config(Feed(), path)
+        cfg = read_config(Feed(), path.resolve())  # the runs store the part's absolute path: resumable from any cwd
         runs, checks = [], []  # the engine runs of the candidate; its drift checks
 
         def run(n, s, name, finish=False):

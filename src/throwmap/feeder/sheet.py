@@ -136,6 +136,8 @@ def _margin_text(what: str, rows: list) -> str:
             "jitter": ("ω jitter σ", lambda v: f"{100 * v:g} %"),
             "weight_x": ("weight x", lambda v: f"{1000 * v:+.2g} mm"),
             "weight_y": ("weight y", lambda v: f"{1000 * v:+.2g} mm")}[what]
+    if rows and all(r.get("not measured") for r in rows):
+        return unit[0], "not measured (the search's time budget was spent)"
     parts = []
     for r in rows:
         if r.get("not measured"):
@@ -182,40 +184,67 @@ def _draw(res, design, out: Path) -> list:
     V = np.asarray(part.vertices)
     colors = side_colors(len(V))
     bx.add_patch(Polygon(100 * V, closed=True, facecolor="#dde6f0", edgecolor="k", lw=1))
+    mids = []
     for k in range(len(V)):
         a, b = side_endpoints(part, k)
         bx.plot(100 * np.array([a[0], b[0]]), 100 * np.array([a[1], b[1]]), color=colors[k], lw=4 if k == f.side else 2)
-        mid = 50 * (a + b)
-        bx.annotate(f"{k}" + (" (fed)" if k == f.side else ""), mid, fontsize=9, ha="center", va="center",
+        mids.append(50 * (a + b))
+        bx.annotate(f"{k}" + (" (fed)" if k == f.side else ""), mids[-1], fontsize=9, ha="center", va="center",
                     bbox={"boxstyle": "round", "fc": "white", "ec": colors[k]})
     c = 100 * np.asarray(part.com)
     bx.plot(*c, "k+", ms=10)
-    label = {"fontsize": 8, "textcoords": "offset points", "ha": "center", "va": "center", "zorder": 6,
-             "bbox": {"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85}}
-    where = f"CM ({c[0]:.2f}, {c[1]:.2f}) cm"
-    if f.variant.weight is not None:
-        w = f.variant.weight
-        p = 100 * np.asarray(w.at)
-        bx.add_patch(Circle(p, 0.5, facecolor="#555", edgecolor="k"))
-        away = (p - c) / max(float(np.hypot(*(p - c))), 1e-9)  # the two labels on opposite sides of the pair
-        bx.annotate("lead", p, xytext=tuple(22 * away), **label)
-        bx.annotate("CM", c, xytext=tuple(-16 * away), **label)
-        bx.plot([p[0], p[0]], [0, p[1]], ":", color="#555", lw=0.8)
-        bx.plot([0, p[0]], [p[1], p[1]], ":", color="#555", lw=0.8)
-        where = f"lead {1000 * w.mass:.1f} g at ({p[0]:.2f}, {p[1]:.2f}) cm; " + where
-    else:
-        bx.annotate("CM", c, xytext=(0, -14), **label)
     bx.set_aspect("equal")
-    bx.set_xlabel(f"x (cm, part frame)\n{where}")
+    bx.set_xlabel("x (cm, part frame)\n" + _where(f.variant.weight, c))
     bx.set_ylabel("y (cm)")
     bx.set_title("the part" + (" and its lead weight" if f.variant.weight is not None else " (no weight)"))
     pad = 0.1 * float(np.ptp(100 * V))
     bx.set_xlim(100 * V[:, 0].min() - pad, 100 * V[:, 0].max() + pad)
     bx.set_ylim(100 * V[:, 1].min() - pad, 100 * V[:, 1].max() + pad)
+    spans = [float(np.ptp(x.get_xlim())) / float(np.ptp(x.get_ylim())) for x in (ax, bx)]
+    ax.get_gridspec().set_width_ratios(spans)  # each panel as wide as its drawing: no blank beside the arm
+    fig.set_size_inches(min(max(3.6 * sum(spans) + 2.5, 8.0), 16.0), 5.0)
     fig.tight_layout()
+    fig.canvas.draw()  # the final layout: labels are placed in points, clear of the side numbers
+    busy = [bx.transData.transform(m) for m in mids]
+    if f.variant.weight is not None:
+        p = 100 * np.asarray(f.variant.weight.at)
+        bx.add_patch(Circle(p, 0.5, facecolor="#555", edgecolor="k"))
+        bx.plot([p[0], p[0]], [bx.get_ylim()[0], p[1]], ":", color="#555", lw=0.8)
+        bx.plot([bx.get_xlim()[0], p[0]], [p[1], p[1]], ":", color="#555", lw=0.8)
+        busy.append(bx.transData.transform(c))
+        busy.append(_free_label(bx, "lead", p, 22.0, busy))
+        _free_label(bx, "CM", c, 16.0, busy[:-2] + busy[-1:] + [bx.transData.transform(p)])
+    else:
+        _free_label(bx, "CM", c, 16.0, busy)
     paths = [save_figure(fig, out / f"drawing.{ext}") for ext in ("svg", "png")]
     plt.close(fig)
     return paths
+
+
+def _where(weight, c) -> str:
+    """The axis note of the part panel: the weight's mass and place and the CM, cm (part frame)."""
+    where = f"CM ({c[0]:.2f}, {c[1]:.2f}) cm"
+    if weight is None:
+        return where
+    p = 100 * np.asarray(weight.at)
+    return f"lead {1000 * weight.mass:.1f} g at ({p[0]:.2f}, {p[1]:.2f}) cm; " + where
+
+
+def _free_label(bx, text: str, at, r_pt: float, busy: list):
+    """Annotate ``text`` ``r_pt`` points from ``at`` (data) in the one of 8 directions farthest from the ``busy``
+    display points (side numbers, the CM, other labels); returns the label's display point."""
+    dpp = bx.figure.dpi / 72.0  # display pixels per point
+    base = bx.transData.transform(at)
+    best, best_d = None, -1.0
+    for k in range(8):
+        u = np.array([math.cos(k * math.pi / 4 + math.pi / 2), math.sin(k * math.pi / 4 + math.pi / 2)])
+        q = base + r_pt * dpp * u
+        d = min((float(np.hypot(*(q - b))) for b in busy), default=math.inf)
+        if d > best_d + 1e-9:
+            best, best_d = u, d
+    bx.annotate(text, at, xytext=tuple(r_pt * best), textcoords="offset points", fontsize=8, ha="center",
+                va="center", zorder=6, bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85})
+    return base + r_pt * dpp * best
 
 
 def _viewer(cfg, seed: int, index: int, out: Path, title: str):
@@ -322,7 +351,7 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
                            f"{cfg.hold_throws} hold throws"),
         ("arm", f"surface h = {100 * f.h:.3g} cm from the joint axis, μ = {cfg.arm.mu:g} ± {100 * cfg.noise.mu_rel:g} %"),
         *_edge_rows(f, res.assumptions.get("grid", {})),
-        ("end wall", f"at L = {100 * f.X:.1f} cm from the joint, {100 * wall_h:.1f} cm high, lined μ = {cfg.cavity.wall_mu:g}"),
+        ("end wall", f"at L = {100 * f.X:.1f} cm from the joint, {100 * wall_h:.1f} cm above the arm's surface, lined μ = {cfg.cavity.wall_mu:g}"),
         ("pocket", f"{100 * cfg.cavity.depth:.1f} cm deep, floor lined (μ {cfg.cavity.wall_mu:g}), lip "
                    f"{math.degrees(cfg.cavity.ramp_angle):.0f}°, floor side + {100 * cfg.cavity.clearance:.1f} cm"),
         ("drops", f"CM x in {list(cfg.x_range)} m, 2–10 cm above the arm, any pose"),

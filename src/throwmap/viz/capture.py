@@ -70,7 +70,7 @@ def plot_capture(design, ax=None, path=None, pose=None, title: str | None = None
     ax.plot([d.lip_x * cm] * 2, [h * cm, y_ann], ":", color="0.5", lw=0.8)
     ax.text(0.5 * (d.lip_x + L) * cm, y_ann + 0.3, f"cavity {100 * d.cavity.span:.1f} cm: floor {100 * n['floor_m']:.1f} cm, "
             f"depth {100 * d.cavity.depth:.1f} cm", ha="center", va="bottom", fontsize=8, color="0.25")
-    ax.text(L * cm + 1.3, (h + w.height) * cm, f"end wall\n{100 * w.height:.1f} cm\nμ = {w.mu:g}", fontsize=8,
+    ax.text(L * cm + 1.3, (h + w.height) * cm, f"end wall\n{100 * w.height:.1f} cm\nabove arm\nμ = {w.mu:g}", fontsize=8,
             va="top", color="0.25")
     lo = max(0.0, d.lip_x - 0.08)
     ax.set_xlim(lo * cm, (L + 0.09) * cm)
