@@ -395,3 +395,33 @@ def test_a_search_run_again_reads_its_trials_back(tmp_path, monkeypatch):
     assert [[(r["n"], r["successes"]) for r in t.runs] for t in again.tried] == \
         [[(r["n"], r["successes"]) for r in t.runs] for t in first.tried]
     assert again.success == first.success and again.evidence == first.evidence
+
+
+@pytest.fixture(scope="module")
+def leaner():
+    """A plate (random_plate, seed 5, the first) whose side 3 the bare part cannot rest on but a lead weight can."""
+    from throwmap.feeder import random_plate
+    from throwmap.feeder.family import weight_variants
+
+    part = random_plate(np.random.default_rng(5))
+    assert not part.stable[3] and weight_variants(part, 3, max_kg=1.7 * part.mass)
+    return part
+
+
+def test_a_side_only_a_weight_makes_stable_is_searched_with_that_weight(leaner, tmp_path):
+    from throwmap.feeder.family import weight_variants
+
+    res = design_feeder(leaner, tmp_path, side=3, plan=VerifyPlan(**GRID, budget_s=1.0))
+    weighted = weight_variants(leaner, 3, max_kg=1.7 * leaner.mass)  # the bare part is left out: it cannot rest
+    assert res.exact["variants"] == len(weighted) and res.exact["candidates"] == 2 * len(weighted)
+    assert all(a.side == 3 and a.variant.weight is not None for a in res.screened)
+    assert "unstable" not in res.reason  # searched, and judged on what the screen found
+
+
+def test_a_side_no_allowed_weight_makes_stable_is_refused_with_the_reason(leaner, tmp_path):
+    with pytest.raises(InvalidStateError) as err:  # no weight allowed: the side is bad input
+        design_feeder(leaner, tmp_path, side=3, weight="none", plan=VerifyPlan(**GRID))
+    assert err.value.field == "side" and "unstable" in err.value.reason
+    res = design_feeder(leaner, tmp_path, side=3, weight=0.001, plan=VerifyPlan(**GRID))  # 1 g moves the CM too little
+    assert not res.success and res.tried == () and "side 3 is unstable on the bare part" in res.reason
+    assert "at most 1.0 g" in res.reason and res.feeder is None and res.config is None

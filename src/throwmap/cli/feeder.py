@@ -50,7 +50,7 @@ feeder_app = typer.Typer(name="feeder", cls=ThrowmapGroup, no_args_is_help=True,
 def design_cmd(
     part: Annotated[str, typer.Argument(help="Built-in part name or a .toml/.json part file.")],
     out: Annotated[Path, typer.Option("--out", help="Folder for the feeder's files and every candidate tried.")],
-    side: Annotated[int | None, typer.Option("--side", help="Side to feed (default: the search chooses).")] = None,
+    side: Annotated[int | None, typer.Option("--side", help="Side to feed (default: the search chooses); one the bare part cannot rest on is searched with the lead weights that make it stable.")] = None,
     weight: Annotated[str, typer.Option("--weight", help="Lead weight: 'auto' (none or up to 1.7 × the part's mass), "
                                                           "'none', or the heaviest allowed in kg.")] = "auto",
     arm_length: Annotated[float | None, typer.Option("--arm-length", help="Longest arm allowed, m (the end wall is at "
@@ -122,8 +122,8 @@ def design_cmd(
         if arm_length is not None and not (math.isfinite(arm_length) and arm_length > 0):
             raise InvalidStateError("arm-length", f"must be a length > 0 m, got {arm_length}")
         p = resolve_part(part).part
-        if side is not None:
-            p.check_side(side)
+        if side is not None:  # unstable on the bare part: refused here only when no weight may make it stable
+            p.check_side(side, require_stable=weight == "none" or weight_kg == 0)
         grid = {k: tuple(v) for k, v in (("omegas", omegas), ("hs", hs)) if v}
         sheet_s = min(SHEET_S if margin_trials else 10.0, 30.0 * budget)  # kept for the sheet (≤ half the budget)
         total_s = max(60.0 * budget - _started_s() - END_S, 0.0)  # the budget counts from the command's start

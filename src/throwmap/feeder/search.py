@@ -308,8 +308,9 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     plan = VerifyPlan() if plan is None else plan
     if not isinstance(plan, VerifyPlan):
         raise InvalidStateError("plan", f"must be a VerifyPlan, got {type(plan).__name__}")
-    sides = tuple(part.stable_sides) if side is None else (part.check_side(side),)
     cap = _weight_cap(part, weight)
+    # a side the bare part cannot rest on may be made stable by a lead weight: refused only when none is allowed
+    sides = tuple(part.stable_sides) if side is None else (part.check_side(side, require_stable=cap == 0),)
     if arm_length is not None and not (isinstance(arm_length, (int, float)) and math.isfinite(arm_length)
                                        and arm_length > 0):
         raise InvalidStateError("arm_length", f"must be a length > 0 m, got {shown(arm_length)}")
@@ -340,6 +341,13 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     variants = [Variant(part, None, None)]
     for k in sides:
         variants += weight_variants(part, k, max_kg=cap)
+    variants = [v for v in variants if any(k in v.part.stable_sides for k in sides)]
+    if not variants:  # only with a side given that the bare part cannot rest on
+        return FeederSearch(False, None, None, None, None, None, None, time.perf_counter() - t0,
+                            f"side {sides[0]} is unstable on the bare part (it cannot rest on it) and none of the lead "
+                            f"weights tried (1 and 1.7 × the part's mass, at most {1000 * cap:.1f} g, at 0.2, 0.5 and 0.8 "
+                            f"along it) makes it stable; stable sides: {list(part.stable_sides)}",
+                            (), (), {}, assumptions, stages_s={})
     out.mkdir(parents=True, exist_ok=True)
     store = out / "screen.jsonl"
     seen = {}
@@ -356,7 +364,6 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
 
     # 1. the exact screen: every variant × ω × h
     exact = []
-    variants = [v for v in variants if any(k in v.part.stable_sides for k in sides)]
     total = len(variants) * len(omegas) * len(hs)
     for v in variants:
         for w in omegas:
