@@ -295,7 +295,7 @@ def test_a_feeder_fragile_in_the_weights_place_is_not_fed(tri, tmp_path, monkeyp
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
     first = res.tried[0]
     assert first.verdict.startswith("fragile in the weight's place: x -1.5 mm 4/30 fed (below 95 % with 95 % "
-                                    "confidence at x -1.5 mm)"), first.verdict
+                                    "confidence at x -1.5 mm); undrifted, its first trials fed 20/20"), first.verdict
     assert [c[1] for c in calls if c[0] == 0] == ["first"] * 4 + ["omega-", "omega+", "weightx-"]
     # candidates.jsonl keeps every check's counts, passed or not
     assert [(x["check"], x["step"], x["successes"]) for x in first.checks] == [
@@ -361,6 +361,7 @@ def test_a_feeder_fragile_in_omega_is_not_fed_and_its_omega_moves_away_from_the_
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
     first, second = res.tried[:2]
     assert first.verdict.startswith("fragile in ω: ω(1 -3%) 21/30, ω(1 +3%) 30/30 fed")
+    assert first.verdict.endswith("; undrifted, its first trials fed 20/20")
     assert second.verdict == "fed (refined from candidate 0)" and res.success and res.feeder is second.candidate
     assert second.candidate.omega == pytest.approx(first.candidate.omega * 1.05)
     assert (second.candidate.X, second.candidate.h, second.candidate.side) == (first.candidate.X, first.candidate.h,

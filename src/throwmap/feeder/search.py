@@ -492,6 +492,8 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             if verdict == "fed" and plan.weight_check and c.variant.weight is not None:
                 verdict = _weight_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s, progress=progress,
                                         label=f"candidate {k}", record=checks)
+            if verdict.startswith("fragile"):  # beside it, the undrifted trials: a drift clearly below the goal may
+                verdict += f"; undrifted, its first trials fed {pre.successes}/{pre.n}"  # be a feeder below it anyway
             if verdict == "fed":
                 full = run(plan.n_verify, plan.seed, "verify", finish=True)
                 verdict = "below the goal"
