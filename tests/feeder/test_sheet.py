@@ -12,7 +12,7 @@ from throwmap.experiments.feed import Feed
 from throwmap.feeder import Weight, with_weight
 from throwmap.feeder.family import without_last_weight
 from throwmap.feeder.sheet import drifted
-from throwmap.io.config import resolve_part
+from throwmap.io.config import resolve_part, save_part_toml
 
 
 def test_removing_the_last_weight_undoes_adding_it():
@@ -79,7 +79,7 @@ def test_a_weight_step_that_fails_is_followed_by_half_of_it(tmp_path, monkeypatc
     monkeypatch.setattr(runner, "run_experiment", fake)
     out = sheet.margins(cfg, tmp_path, trials=30)
     assert [r for r in ran if r[0] == "other"] == [("other", 1.0)] * 3  # ω ±: one failing step each; jitter
-    assert [r for r in ran if r[0] == "weight_x"] == [("weight_x", 0.003), ("weight_x", 0.0015)] * 2
+    assert sorted(r for r in ran if r[0] == "weight_x") == [("weight_x", 0.0015)] * 2 + [("weight_x", 0.003)] * 2
     assert [(r["passed"], r["failed"]) for r in out["weight_x"]] == [(-0.0015, -0.003), (0.0015, 0.003)]
     assert [(r["passed"], r["failed"]) for r in out["weight_y"]] == [(None, -0.0015), (None, 0.0015)]
     assert [x["step"] for x in out["weight_x"][1]["runs"]] == [0.0015, 0.003]  # sorted by size
@@ -137,3 +137,45 @@ def test_the_sheet_says_when_a_design_sits_at_an_edge():
     assert list(rows) == ["h at the grid's edge"] and "-3 to 0 cm" in rows["h at the grid's edge"]
     assert _edge_rows(SimpleNamespace(omega=4.0, h=-0.02), grid) == []
     assert "85 of the 100" in _tail_note({"max": 85}, 100) and _tail_note({"max": 80}, 100) == ""
+
+
+def test_margin_steps_go_breadth_first(tmp_path, monkeypatch):
+    """Every quantity's first step in each direction runs before any second step (a short budget then measures the
+    smallest drift of each, not ω's largest): here every step holds, and the runs come in rounds."""
+    from types import SimpleNamespace
+
+    import throwmap.experiments.runner as runner
+    from throwmap.experiments.stats import wilson_interval
+    from throwmap.feeder import sheet
+
+    cfg = read_config(Feed(), "examples/feed_recoil.toml")
+    ran = []
+
+    def fake(name, c, *, n, out, **kw):
+        ran.append(out.parent.name)  # "<what>_<step>"
+        return SimpleNamespace(n=n, successes=n, success_rate=1.0, ci95=wilson_interval(n, n))
+
+    monkeypatch.setattr(runner, "run_experiment", fake)
+    out = sheet.margins(cfg, tmp_path, trials=30)
+    firsts = [f"{what}_{d[0]:+g}" for what, dirs in sheet.MARGIN_STEPS.items() for d in dirs]
+    assert ran[:len(firsts)] == firsts
+    assert ran[len(firsts)] == f"omega_{sheet.MARGIN_STEPS['omega'][0][1]:+g}"  # then the second round
+    assert sorted(ran) == sorted(f"{w}_{x:+g}" for w, dirs in sheet.MARGIN_STEPS.items() for d in dirs for x in d)
+    assert all(r["failed"] is None and r["passed"] == d[-1] for w, dirs in sheet.MARGIN_STEPS.items()
+               for r, d in zip(out[w], dirs))
+
+
+def test_a_part_without_a_weight_has_no_weight_margins(tmp_path, monkeypatch):
+    from types import SimpleNamespace
+
+    import throwmap.experiments.runner as runner
+    from throwmap.experiments.stats import wilson_interval
+    from throwmap.feeder import sheet
+
+    cfg = read_config(Feed(), "examples/feed_recoil.toml")
+    bare = save_part_toml(tm.triangle_30_60_90(0.17), None, tmp_path / "bare.toml")  # no lead weight on it
+    cfg = cfg.model_copy(update={"part": str(bare)})
+    monkeypatch.setattr(runner, "run_experiment", lambda name, c, *, n, **kw: SimpleNamespace(
+        n=n, successes=n, success_rate=1.0, ci95=wilson_interval(n, n)))
+    out = sheet.margins(cfg, tmp_path / "m", trials=30)
+    assert set(out) == {"omega", "mu", "jitter"}

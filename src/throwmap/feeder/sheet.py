@@ -9,7 +9,8 @@
   feeding experiment falls below the goal: for each direction, steps of growing drift, each an engine run of
   ``margin_trials`` trials (a step fails when its rate is clearly below the goal — its Wilson 95 % upper end under
   it, the test the search's own drift checks use — and holds otherwise), stopped at the first step that fails
-  (for the weight's place, a first step that fails is followed by one of half its size);
+  (for the weight's place, a first step that fails is followed by one of half its size); the steps go breadth
+  first (every quantity's smallest drift before any larger one), so a short budget still measures each quantity;
 * ``fed_trial.html`` — the viewer page of one fed trial of the verification, replayed from its seed
   (:meth:`throwmap.experiments.feed.Feed.replay`): the throws from the settled drop to 3 throws after capture;
 * ``sheet.md`` / ``sheet.html`` — all of it: the feeder (part, weight, throw schedule, pocket and wall),
@@ -80,54 +81,55 @@ def drifted(cfg, what: str, step: float, folder: Path):
 def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 100, workers: int = 0,
             budget_s: float = math.inf, progress=None) -> dict:
     """The drift each quantity of :data:`MARGIN_STEPS` tolerates (see the module docstring): per quantity and
-    direction ``{"passed": last step passing or None, "failed": first step failing or None, "runs": [...]}``; no
-    step is started after ``budget_s`` seconds (the directions left get ``"not measured": "budget"``)."""
+    direction ``{"passed": last step passing or None, "failed": first step failing or None, "runs": [...]}``.
+
+    The steps go breadth first: the first step of every quantity and direction, then every second step, …, so that
+    a short budget measures each quantity's smallest drift before any larger one. No step is started after
+    ``budget_s`` seconds; a direction with no step run gets ``"not measured": "budget"``."""
     import time
 
     from ..experiments.runner import run_experiment
 
     t0 = time.perf_counter()
     folder = Path(folder)
-    out = {}
-    for what, directions in MARGIN_STEPS.items():
-        rows = []
-        for steps in directions:
-            if time.perf_counter() - t0 > budget_s:
-                rows.append({"passed": None, "failed": None, "runs": [], "not measured": "budget"})
+    lanes = [{"what": what, "steps": list(steps), "runs": [], "passed": None, "failed": None, "open": True}
+             for what, directions in MARGIN_STEPS.items() for steps in directions]
+    while any(lane["open"] for lane in lanes) and time.perf_counter() - t0 <= budget_s:
+        for lane in lanes:
+            if not lane["open"] or time.perf_counter() - t0 > budget_s:
                 continue
-            run_list, passed, failed = [], None, None
-            steps = list(steps)
-            while steps:
-                step = steps.pop(0)
-                if time.perf_counter() - t0 > budget_s:
-                    break
-                here = folder / f"{what}_{step:+g}"
-                c = drifted(cfg, what, step, here)
-                if c is None:
-                    break
-                here.mkdir(parents=True, exist_ok=True)
-                cb = None if progress is None else (lambda d, t, lab=f"margin {what} {step:+g}": progress(lab, d, t))
-                res = run_experiment("feed", c, n=trials, seed=seed, workers=workers, out=here / "run", progress=cb,
-                                     stop_by=t0 + budget_s)
-                if res.n < trials:  # cut short by the budget: no verdict on this step
-                    break
-                ok = res.ci95[1] >= goal  # fails only when clearly below: 30 trials cannot tell 95 % from 90 %
-                run_list.append({"step": step, "n": res.n, "successes": res.successes,
+            what, step = lane["what"], lane["steps"].pop(0)
+            here = folder / f"{what}_{step:+g}"
+            c = drifted(cfg, what, step, here)
+            lane["open"] = bool(lane["steps"])
+            if c is None:  # off the plate (or no weight to move): this direction ends here
+                lane["open"], lane["off"] = False, not lane["runs"]
+                continue
+            here.mkdir(parents=True, exist_ok=True)
+            cb = None if progress is None else (lambda d, t, lab=f"margin {what} {step:+g}": progress(lab, d, t))
+            res = run_experiment("feed", c, n=trials, seed=seed, workers=workers, out=here / "run", progress=cb,
+                                 stop_by=t0 + budget_s)
+            if res.n < trials:  # cut short by the budget: no verdict on this step
+                lane["open"] = False
+                continue
+            lane["runs"].append({"step": step, "n": res.n, "successes": res.successes,
                                  "ci95": [float(res.ci95[0]), float(res.ci95[1])]})
-                if ok:
-                    passed = step
-                    continue
-                failed = step
-                if what in HALVED and passed is None and not run_list[:-1]:  # the first step failed: try half of it
-                    steps = [step / 2.0]
-                    continue
-                break
-            if what in HALVED:  # the half step ran after the first: in order of size (μ and ω keep the order run)
-                run_list.sort(key=lambda x: abs(x["step"]))
-            if run_list:
-                rows.append({"passed": passed, "failed": failed, "runs": run_list})
-        if rows:
-            out[what] = rows
+            if res.ci95[1] >= goal:  # fails only when clearly below: 30 trials cannot tell 95 % from 90 %
+                lane["passed"] = step
+                continue
+            lane["failed"], lane["open"] = step, False
+            if what in HALVED and lane["passed"] is None and len(lane["runs"]) == 1:  # the first failed: half of it
+                lane["steps"], lane["open"] = [step / 2.0], True
+    out = {}
+    for lane in lanes:
+        runs = lane["runs"]
+        if lane.get("off"):  # nothing to drift that way (a part without a weight; a weight at the plate's edge)
+            continue
+        if lane["what"] in HALVED:  # the half step ran after the first: in order of size (μ and ω keep the order run)
+            runs.sort(key=lambda x: abs(x["step"]))
+        row = ({"passed": lane["passed"], "failed": lane["failed"], "runs": runs} if runs else
+               {"passed": None, "failed": None, "runs": [], "not measured": "budget"})
+        out.setdefault(lane["what"], []).append(row)
     return out
 
 
