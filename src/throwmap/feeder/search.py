@@ -530,7 +530,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                 refined_from[len(screened)] = k
                 screened.append(a)
             queue[:0] = list(range(len(screened) - len(fresh), len(screened)))  # the neighbours first
-    return result(False, _reason(sides, exact_best, screened, engined, tried, plan, budget_s))
+    return result(False, _reason(sides, exact_best, screened, engined, tried, plan, budget_s, unrun=len(queue)))
 
 
 OMEGA_DRIFT = 0.03
@@ -654,7 +654,7 @@ def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, 
     return out
 
 
-def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budget_s: float) -> str:
+def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budget_s: float, unrun: int = 0) -> str:
     """Why no feeder: each side's best first-arrival share on the exact screen and on the engine's (``engined``: the
     candidates it screened), and what the engine runs reached."""
     eng = {k: max((a.best[k][1] for a in engined if k in a.best), default=None) for k in sides}
@@ -669,7 +669,7 @@ def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budge
         def final(t):  # a candidate's verdict rests on its largest run (its first trials are the start of it)
             return max(t.runs, key=lambda r: r["n"]) if t.runs else {"n": 0, "successes": 0, "rate": 0.0}
 
-        best = max(tried, key=lambda t: (final(t)["rate"], final(t)["n"]))
+        best = max(tried, key=lambda t: (final(t)["n"], final(t)["rate"]))  # the one that went furthest
         last = final(best)
         c = best.candidate
         parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} % with an agreeing rerun, ω ± {100 * OMEGA_DRIFT:g} % and the weight's place ± {1000 * WEIGHT_DRIFT_M:g} mm held: the best, side "
@@ -680,4 +680,6 @@ def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budge
     else:
         need = plan.min_predicted if plan.engine_screen else TRY_SHARE
         parts.append(f"no candidate reached the {100 * need:g} % share needed to be run in the engine")
+    if unrun and tried:  # the cause, first: the search did not run out of candidates
+        parts.insert(0, f"the budget ({budget_s:g} s) ran out with {unrun} candidate(s) queued for the engine not run")
     return "; ".join(parts)
