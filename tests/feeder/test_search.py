@@ -59,7 +59,7 @@ def _fake(monkeypatch, rates, predicted=None):
         n = rates.get(("cut", stage), n)  # the trials run before the budget ran out
         s = int(round(r * n))
         return SimpleNamespace(n=n, successes=s, success_rate=s / n, ci95=wilson_interval(s, n), seed=seed,
-                               failures={} if s == n else {"not_captured": n - s}, trials=())
+                               failures={} if s == n else {"not_captured": n - s}, trials=(), resumed=0)
 
     real_many = search.arrivals
 
@@ -270,6 +270,17 @@ def test_bad_command_input_is_one_line_exit_2(tmp_path, args, field):
     assert res.stdout == ""  # nothing but the error line
 
 
+def test_an_out_folder_in_a_missing_folder_is_refused_before_any_work(tri, tmp_path):
+    """Only ``--out DIR`` itself is made (the command-line how-to's rule): a missing folder above it is refused, by the
+    command (exit 2, one line) and by the library, and nothing is created."""
+    res = CliRunner().invoke(app, ["feeder", "design", "triangle", "--out", str(tmp_path / "a" / "b")])
+    assert res.exit_code == 2, res.output
+    assert res.output.strip().splitlines() == [f"error: out: folder {str(tmp_path / 'a')!r} does not exist"]
+    with pytest.raises(InvalidStateError) as err:
+        design_feeder(tri, tmp_path / "a" / "b", side=0, plan=VerifyPlan(**GRID))
+    assert err.value.field == "out" and not (tmp_path / "a").exists()
+
+
 def test_the_first_trials_stop_as_soon_as_the_candidate_cannot_pass(tri, tmp_path, monkeypatch):
     calls = _fake(monkeypatch, {"first": 0.4}, predicted=0.99)
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, engine_candidates=2, **GRID))
@@ -391,11 +402,18 @@ def test_a_search_run_again_reads_its_trials_back(tmp_path, monkeypatch):
     monkeypatch.setattr(runner, "_checked", no_trial)
     (tmp_path / "elsewhere").mkdir()
     monkeypatch.chdir(tmp_path / "elsewhere")  # … named again from another working directory
-    again = design_feeder(part, "../run", side=0, weight=0.05, plan=plan)
+    stages = []
+    again = design_feeder(part, "../run", side=0, weight=0.05, plan=plan,
+                          progress=lambda stage, d, t: stages.append(stage))
     assert [t.verdict for t in again.tried] == [t.verdict for t in first.tried]
     assert [[(r["n"], r["successes"]) for r in t.runs] for t in again.tried] == \
         [[(r["n"], r["successes"]) for r in t.runs] for t in first.tried]
     assert again.success == first.success and again.evidence == first.evidence
+    # read back, not run: the candidates say so, keep the first run's timings, and the progress says so too
+    assert not any(t.read_back for t in first.tried) and all(t.read_back for t in again.tried)
+    assert [[r["time_s"] for r in t.runs] for t in again.tried] == [[r["time_s"] for r in t.runs] for t in first.tried]
+    assert all(s.endswith("(read back)") for s in stages if s.startswith("candidate"))
+    assert "read back from an earlier run" in again.summary()
 
 
 @pytest.fixture(scope="module")

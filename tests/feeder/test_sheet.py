@@ -179,3 +179,50 @@ def test_a_part_without_a_weight_has_no_weight_margins(tmp_path, monkeypatch):
         n=n, successes=n, success_rate=1.0, ci95=wilson_interval(n, n)))
     out = sheet.margins(cfg, tmp_path / "m", trials=30)
     assert set(out) == {"omega", "mu", "jitter"}
+
+
+@pytest.mark.parametrize("seed", [3, 11, 27, 40])
+def test_the_drawings_labels_keep_clear_of_each_other_and_the_marks(seed):
+    """On random plates with the heaviest lead weight allowed near the fed side (the case where the weight, the CM
+    and the side's number crowd together): in both panels the "lead" and "CM" labels overlap neither each other, nor
+    any side number or text, nor the weight's mark; the part panel's axis labels stay clear of the arm panel; both
+    panels give the weight's mass alike (one decimal)."""
+    import matplotlib.pyplot as plt
+    from types import SimpleNamespace
+
+    from throwmap.design.cavity import Pocket, design_cavity
+    from throwmap.feeder import random_plate
+    from throwmap.feeder.family import weight_variants
+    from throwmap.feeder.sheet import _gap, _texts, drawing
+
+    part = random_plate(np.random.default_rng(seed))
+    side = part.stable_sides[0]
+    variants = [v for v in weight_variants(part, side, max_kg=1.7 * part.mass) if side in v.part.stable_sides]
+    v = max(variants, key=lambda v: v.weight.mass)
+    L = 0.45
+    design = design_cavity(v.part, tm.Arm(h=-0.02, mu=1.0), 4.0, side, verify=False,
+                           pocket=Pocket(depth=0.01, wall_mu=0.2, lined=True, length=L, window=False))
+    res = SimpleNamespace(feeder=SimpleNamespace(variant=v, side=side, X=L))
+    fig = drawing(res, design)
+    try:
+        ax, bx = fig.axes[:2]
+        for panel in (ax, bx):
+            texts = panel.texts
+            ours = [t for t in texts if t.get_text() == "CM" or t.get_text().startswith("lead")]
+            assert len(ours) == 2, [t.get_text() for t in texts]
+            boxes = _texts(panel)
+            for t in ours:
+                mine = tuple(t.get_window_extent().extents)
+                others = [b for u, b in zip(texts, boxes) if u is not t]
+                assert all(_gap(mine, b) >= 0 for b in others), (t.get_text(), mine, others)
+            mark = [ln for ln in panel.lines if ln.get_marker() == "o" and ln.get_markersize() > 5]
+            assert len(mark) == 1
+            x, y = panel.transData.transform(np.column_stack(mark[0].get_data())[0])
+            r = mark[0].get_markersize() / 2 * fig.dpi / 72
+            assert all(_gap(tuple(t.get_window_extent().extents), (x - r, y - r, x + r, y + r)) >= 0 for t in ours)
+        r = fig.canvas.get_renderer()
+        assert bx.yaxis.get_tightbbox(r).x0 > ax.get_window_extent().x1  # no tick label over the arm panel
+        grams = f"{1000 * v.weight.mass:.1f} g"
+        assert any(t.get_text() == f"lead {grams}" for t in ax.texts) and grams in bx.get_xlabel()
+    finally:
+        plt.close(fig)

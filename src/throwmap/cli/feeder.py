@@ -14,7 +14,7 @@ from typing import Annotated
 
 import typer
 
-from .options import JsonOpt, guard, stage_bars, to_json
+from .options import JsonOpt, check_out_dir, guard, stage_bars, to_json
 from .usage import ThrowmapGroup
 
 END_S = 5.0
@@ -121,6 +121,7 @@ def design_cmd(
             weight_kg = weight
         if arm_length is not None and not (math.isfinite(arm_length) and arm_length > 0):
             raise InvalidStateError("arm-length", f"must be a length > 0 m, got {arm_length}")
+        check_out_dir(out)  # before any work: only DIR itself is made, never a missing folder above it
         p = resolve_part(part).part
         if side is not None:  # unstable on the bare part: refused here only when no weight may make it stable
             p.check_side(side, require_stable=weight == "none" or weight_kg == 0)

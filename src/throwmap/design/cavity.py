@@ -283,7 +283,9 @@ class Pocket:
     it in a ramp at ``end_angle``), ``wall_mu`` (the end wall's μ), ``lined`` (the floor faced with the wall's
     material: its μ is ``wall_mu``, :attr:`Cavity.lined <throwmap.system.fixtures.Cavity.lined>`), ``wall_margin``
     (wall top above the energy bound), ``place`` (where in the widest window the arm's end L goes, 0: its low end)
-    or ``length`` (L itself, m; None: designed)."""
+    or ``length`` (L itself, m; None: designed); ``window`` (False: with ``length`` given, the throw map on the
+    cavity's floor that places L and checks it is not computed — 3–12 s of engine throws a design on the recoil arm
+    spends on a report — and the window, hold and release checks are left out)."""
 
     depth: float = 0.02
     clearance: float = 0.005
@@ -295,6 +297,7 @@ class Pocket:
     wall_margin: float = 0.01
     place: float = 0.5
     length: float | None = None
+    window: bool = True
 
     def __post_init__(self):
         depth = _num(self.depth, "depth", positive=True)
@@ -304,7 +307,10 @@ class Pocket:
                    "end_gap": _num(self.end_gap, "end_gap", lo=0.0, hi=depth / math.tan(end_angle) + 1e-12),
                    "wall_mu": _num(self.wall_mu, "wall_mu", lo=0.0), "wall_margin": _num(self.wall_margin, "wall_margin", lo=0.0),
                    "place": _num(self.place, "place", lo=0.0, hi=1.0), "lined": bool(self.lined),
-                   "length": None if self.length is None else _num(self.length, "length", positive=True)}
+                   "length": None if self.length is None else _num(self.length, "length", positive=True),
+                   "window": bool(self.window)}
+        if not checked["window"] and checked["length"] is None:
+            raise InvalidStateError("window", "may be false only with the length given: the window places L")
         for name, value in checked.items():
             object.__setattr__(self, name, value)
 
@@ -342,9 +348,10 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, pocket: Pock
     w_hi = omega * (1.0 + _num(z_hold, "z_hold", lo=0.0) * sigma)
     w_lo = omega * max(0.05, 1.0 - _num(z_release, "z_release", lo=0.0) * sigma)
     floor_arm = Arm(h=arm.h - depth, g=arm.g, mu=wall_mu if lined else arm.mu, back=arm.back)
-    jm = jog_map(part, floor_arm, (w_lo, omega, w_hi), realisation=realisation, recoil=recoil, zeta=zeta)
+    jm = (jog_map(part, floor_arm, (w_lo, omega, w_hi), realisation=realisation, recoil=recoil, zeta=zeta)
+          if pocket.window else None)
     uR = {j: float(part.uR[j]) for j in part.stable_sides}
-    runs = _windows(jm, part, side, end_gap)
+    runs = _windows(jm, part, side, end_gap) if jm is not None else []
     L_lo, L_hi = max(runs, key=lambda r: r[1] - r[0]) if runs else (math.nan, math.nan)
     if length is not None:
         L = length
@@ -369,12 +376,15 @@ def design_cavity(part: Part, arm: Arm, omega: float, side: int, *, pocket: Pock
                "floor_m": floor, "ramp_m": ramp, "depth_m": depth, "end_gap_m": end_gap, "end_angle_rad": end_angle,
                "lip_x_m": L - cavity.span, "x_hold_m": x_c, "y_hold_m": y_c, "rise_bound_m": rise, "wall_height_m": H,
                "drift_speed_m_s": -y_c * omega, "sweep_m": sweep}
-    if length is not None and runs:
+    if jm is None:
+        placed = f"L = {100 * L:.2f} cm as given (the window on the floor's throw map not computed)"
+    elif length is not None and runs:
         placed = (f"L = {100 * L:.2f} cm as given, {'inside' if L_lo <= L <= L_hi else 'OUTSIDE'} the widest window "
                   f"[{100 * L_lo:.2f}, {100 * L_hi:.2f}] cm")
     else:
         placed = "L in the middle of the widest window" if place == 0.5 else f"L at {place:g} of the widest window"
-    where = ((f"{placed} where only side {side} stays at the end wall: there the throw is a jog "
+    where = (placed if jm is None else
+             (f"{placed} where only side {side} stays at the end wall: there the throw is a jog "
               f"for every ω in [{w_lo:.3g}, {w_hi:.3g}] rad/s (−{z_release:g}σ … +{z_hold:g}σ) and a flip for every other side "
               f"(the throw map on the cavity's floor, {realisation}, 5 mm grid, one step of margin)")
              if runs else
@@ -404,7 +414,8 @@ def evaluate_cavity(design: CavityDesign, *, verify: bool = True, settings=None,
     """``design`` with its checks (re)computed for its own cavity and wall (any geometry: a design
     whose cavity or wall was replaced — too shallow, too narrow — is judged the same way).
 
-    The window checks use ``design.jogs`` (the throw map on the cavity's floor); the engine
+    The window checks use ``design.jogs`` (the throw map on the cavity's floor; None: not computed, and the window,
+    hold and release checks are left out); the engine
     checks (``verify``) throw the part: ``engine_capture`` from side k short of the lip at ω, up
     to ``n_capture`` throws; ``engine_hold`` ``n_hold`` throws at ω_hi from the wall;
     ``engine_release_<j>`` one throw at ω_lo from the wall on side j.
@@ -420,7 +431,7 @@ def evaluate_cavity(design: CavityDesign, *, verify: bool = True, settings=None,
     jm = d.jogs
     width = n["L_hi_m"] - n["L_lo_m"]
     checks = [Check("window", math.isfinite(width) and width > 0, width if math.isfinite(width) else 0.0,
-                    "width of the widest window for L: > 0")]
+                    "width of the widest window for L: > 0")] if jm is not None else []  # None: not computed
     if jm is not None:
         step = float(jm.x[1] - jm.x[0])
         m = jm.margin(k, x_c, True)

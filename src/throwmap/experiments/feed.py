@@ -48,7 +48,7 @@ import functools
 import math
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from ..errors import InvalidStateError, ThrowmapError
 from .base import Trial, seed_of
@@ -82,6 +82,14 @@ class CavityConfig(BaseModel):
     z_release: Finite = Field(1.0, ge=0, description="σ of ω jitter down to which the other sides leave")
     place: Finite = Field(0.5, ge=0, le=1, description="where in the window for the arm's end L (0: low end)")
     length: Finite | None = Field(None, gt=0, description="override the designed arm end L, m (None: designed)")
+    window: bool = Field(True, strict=True, description="compute the window on the floor's throw map (false: only "
+                                                        "with length given; its exact checks are then left out)")
+
+    @model_validator(mode="after")
+    def _window_needs_length(self):
+        if not self.window and self.length is None:
+            raise ValueError("window may be false only with the length given: the window places the arm's end")
+        return self
 
 
 class WallConfig(BaseModel):

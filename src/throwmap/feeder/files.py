@@ -61,6 +61,7 @@ def feeder_config_text(found: Arrival, *, part_file: str = "part.toml", mu: floa
         f"{found.side}'s length: the part's overhang past its ends + 5 mm, m",
         f"wall_mu = {LINING_MU!r}",
         "lined = true  # the floor faced like the end wall",
+        "window = false  # the search placed the end wall: no throw map of the floor is computed to place it",
         "",
         "[noise]",
         f"omega_rel = {float(sigma)!r}",

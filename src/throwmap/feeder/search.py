@@ -53,7 +53,7 @@ import numpy as np
 from ..budget import check_count
 from ..errors import InvalidStateError, shown
 from ..experiments.stats import rerun_range, wilson_interval
-from ..io.files import atomic_write_text
+from ..io.files import atomic_write_text, make_directory
 from ..system.arm import Arm
 from ..system.part import Part
 from .arrival import DROP_X, WALL_X_MAX, Arrival, arrival, arrivals, lip_offset, screen_table
@@ -85,17 +85,24 @@ class Tried:
     "throws_to_capture"}``) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
     ``"below the goal"``, ``"rerun disagrees"``, ``"the budget ran out in the …"``) and the drift ``checks`` run
     (each ``{"check": "omega" | "weight_x" | "weight_y", "step", "n", "successes", "ci95"}``; ω steps relative, weight
-    steps in m)."""
+    steps in m); ``read_back``: every trial was read back from an earlier run of the search (its runs then keep that
+    run's ``time_s``)."""
 
     k: int
     candidate: Arrival
     runs: tuple
     verdict: str
     checks: tuple = ()
+    read_back: bool = False
+
+    @property
+    def folder(self) -> str:
+        """The candidate's folder under ``out/candidates``."""
+        return f"{self.k}-{_tag(self.candidate)}"
 
     def to_dict(self) -> dict:
-        return {"k": self.k, "candidate": self.candidate.to_dict(), "runs": list(self.runs), "verdict": self.verdict,
-                "checks": list(self.checks)}
+        return {"k": self.k, "folder": self.folder, "candidate": self.candidate.to_dict(), "runs": list(self.runs),
+                "verdict": self.verdict, "checks": list(self.checks), "read_back": self.read_back}
 
 
 @dataclass(frozen=True, slots=True)
@@ -156,7 +163,8 @@ class FeederSearch:
             if k >= n and k not in runs:
                 continue
             t = runs.get(k)
-            v = (", ".join(f"{r['successes']}/{r['n']}" for r in t.runs) + f": {t.verdict}") if t else "-"
+            v = ((", ".join(f"{r['successes']}/{r['n']}" for r in t.runs) + f": {t.verdict}"
+                  + (" (read back)" if t.read_back else "")) if t else "-")
             rows.append(f"{a.side:>4}  {a.variant.label():>28}  {a.omega:>7.3g}  {100 * a.h:>5.3g}  {100 * a.X:>7.3g}  "
                         f"{100 * a.predicted:>8.1f}%  {v}")
         return "\n".join(rows)
@@ -170,8 +178,12 @@ class FeederSearch:
                     f"cm, end wall at {100 * f.X:.3g} cm; fed {e['successes']}/{e['n']} ({runs}, two seeds, less the "
                     f"{e['left_out']['n']} trials that chose it; Wilson 95 % [{100 * e['ci95'][0]:.1f}, "
                     f"{100 * e['ci95'][1]:.1f}] %); a new run of {r95['n']} lands in {r95['successes'][0]}–"
-                    f"{r95['successes'][1]} fed (95 %); config {self.config} ({self.time_s:.0f} s)")
-        return f"no feeder: {self.reason} ({self.time_s:.0f} s)"
+                    f"{r95['successes'][1]} fed (95 %); config {self.config} ({self.time_s:.0f} s{self._read_back()})")
+        return f"no feeder: {self.reason} ({self.time_s:.0f} s{self._read_back()})"
+
+    def _read_back(self) -> str:
+        n = sum(t.read_back for t in self.tried)
+        return f"; {n} of the {len(self.tried)} candidates read back from an earlier run" if n else ""
 
 
 def evidence(verified: dict | None, rerun: dict | None) -> dict | None:
@@ -321,6 +333,8 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise InvalidStateError("out", f"{str(out)!r} is a file, not a folder")
+    if not out.exists() and not (out.parent if str(out.parent) else Path(".")).is_dir():
+        raise InvalidStateError("out", f"folder {str(out.parent)!r} does not exist")  # only DIR itself is made
     budget_s, workers = plan.budget_s, plan.workers
     assumptions = {
         "arm": {"mu": mu, "mu_rel": mu_rel, "g_m_s2": g, "motion": "recoil arm (Flatland 3°, ζ = 0.2)",
@@ -348,7 +362,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                             f"weights tried (1 and 1.7 × the part's mass, at most {1000 * cap:.1f} g, at 0.2, 0.5 and 0.8 "
                             f"along it) makes it stable; stable sides: {list(part.stable_sides)}",
                             (), (), {}, assumptions, stages_s={})
-    out.mkdir(parents=True, exist_ok=True)
+    make_directory(out, "out")
     store = out / "screen.jsonl"
     seen = {}
     if store.exists():
@@ -431,6 +445,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
 
     # 3. verification in the feeding experiment; a candidate that passes its first trials but falls short is refined
     log = out / "candidates.jsonl"
+    before = _stored_candidates(log)  # an earlier run's candidates: read back, they keep its timings
     if plan.engine_screen:
         queue = _diverse([k for k, c in enumerate(screened) if c.predicted >= plan.min_predicted and fits(c)], screened)
     else:  # the first trials screen: the exact screen's candidates, those ≥ min_predicted first, then any ≥ 1/2
@@ -459,12 +474,13 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         runs, checks = [], []  # the engine runs of the candidate; its drift checks
 
         def run(n, s, name, finish=False):
-            cb = None if progress is None else (lambda d, t: progress(f"candidate {k}: {name}", d, t))
+            label = _label(f"candidate {k}: {name}", here / name, n)
+            cb = None if progress is None else (lambda d, t: progress(label, d, t))
             t = time.perf_counter()
             end = t0 + budget_s + (plan.finish_s if finish else 0.0)  # a verification or rerun may finish
             res = run_experiment("feed", cfg, n=n, seed=s, workers=workers, out=here / name, progress=cb,
                                  stop_by=end)  # no trial is started past the budget
-            runs.append({**_run_doc(res), "time_s": time.perf_counter() - t})
+            runs.append({**_run_doc(res), "time_s": time.perf_counter() - t, "resumed": res.resumed})
             return res
 
         allowed = plan.n_pre - math.ceil(plan.pre_share * plan.n_pre - 1e-9)  # failures the first trials may have
@@ -510,7 +526,14 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                     verified, rerun = {**runs[-2], "chose": {"n": pre.n, "successes": pre.successes}}, runs[-1]
         if k in refined_from:
             verdict += f" (refined from candidate {refined_from[k]})"
-        tried.append(Tried(k, c, tuple(runs), verdict, tuple(checks)))
+        old = before.get(here.name)
+        read_back = bool(runs) and all(r["resumed"] == r["n"] for r in runs) and old is not None and [
+            (r["n"], r["successes"]) for r in old["runs"]] == [(r["n"], r["successes"]) for r in runs]
+        if read_back:  # nothing run now: the earlier run's timings stand
+            runs[:] = [{**r, "resumed": r["n"]} for r in old["runs"]]
+            if verified:
+                verified, rerun = {**runs[-2], "chose": verified["chose"]}, runs[-1]
+        tried.append(Tried(k, c, tuple(runs), verdict, tuple(checks), read_back))
         atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))  # this search's candidates
         if verdict.startswith("fed"):
             found = result(True, fed=c, verified=verified, rerun=rerun)
@@ -556,7 +579,8 @@ def _omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: fl
     failed, seen = [], []
     for step in (-OMEGA_DRIFT, OMEGA_DRIFT):
         c = cfg.model_copy(update={"omega": cfg.omega * (1.0 + step)})
-        cb = None if progress is None else (lambda d, t, s=step: progress(f"{label}: ω {s:+.0%}", d, t))
+        lab = _label(f"{label}: ω {step:+.0%}", here / f"omega_{step:+g}", plan.omega_check)
+        cb = None if progress is None else (lambda d, t, lab=lab: progress(lab, d, t))
         res = run_experiment("feed", c, n=plan.omega_check, seed=100, workers=workers, out=here / f"omega_{step:+g}",
                              progress=cb, stop_by=stop_by)
         if record is not None:
@@ -595,7 +619,8 @@ def _weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: f
             c = drifted(cfg, what, step, here / name)
             if c is None:
                 continue
-            cb = None if progress is None else (lambda d, t, lab=name: progress(f"{label}: {lab}", d, t))
+            lab = _label(f"{label}: {name}", here / name / "run", plan.weight_check)
+            cb = None if progress is None else (lambda d, t, lab=lab: progress(lab, d, t))
             res = run_experiment("feed", c, n=plan.weight_check, seed=100, workers=workers, out=here / name / "run",
                                  progress=cb, stop_by=stop_by)
             if record is not None:
@@ -607,6 +632,29 @@ def _weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: f
                 return (f"fragile in the weight's place: " + ", ".join(seen) + f" fed (below {100 * plan.goal:g} % "
                         f"with 95 % confidence at {what[-1]} {1000 * step:+.1f} mm)")
     return "fed"
+
+
+def _stored_candidates(log: Path) -> dict:
+    """The candidates an earlier run of the search stored in ``log`` (``candidates.jsonl``), by folder name."""
+    out = {}
+    if log.exists():
+        for line in log.read_text(encoding="utf-8").splitlines():
+            try:
+                doc = json.loads(line)
+                out[doc["folder"]] = doc
+            except (ValueError, KeyError, TypeError):
+                continue  # a line of an older format or cut short: its candidate is run again
+    return out
+
+
+def _label(stage: str, folder: Path, n: int) -> str:
+    """``stage``, with "(read back)" when ``folder`` already holds ``n`` trials of an earlier run."""
+    try:
+        with open(folder / "trials.jsonl", "rb") as fh:
+            stored = sum(1 for line in fh if line.endswith(b"\n"))
+    except OSError:
+        return stage
+    return f"{stage} (read back)" if stored >= n and (folder / "run.json").exists() else stage
 
 
 def _diverse(order: list, screened: list) -> list:

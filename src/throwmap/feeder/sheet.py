@@ -36,7 +36,7 @@ import numpy as np
 from ..errors import InvalidStateError
 from ..io.files import atomic_write_text
 
-__all__ = ["write_sheet", "margins", "drifted", "MARGIN_STEPS"]
+__all__ = ["write_sheet", "drawing", "margins", "drifted", "MARGIN_STEPS"]
 
 MARGIN_STEPS = {
     "omega": ((-0.03, -0.06, -0.10), (0.03, 0.06, 0.10)),
@@ -157,70 +157,107 @@ def _margin_text(what: str, rows: list) -> str:
 
 
 def _draw(res, design, out: Path) -> list:
+    """The drawing (:func:`drawing`) as ``out/drawing.svg`` and ``out/drawing.png``; returns their paths."""
+    import matplotlib.pyplot as plt
+
+    from ..viz.style import save_figure
+
+    fig = drawing(res, design)
+    paths = [save_figure(fig, out / f"drawing.{ext}", tight=True) for ext in ("svg", "png")]
+    plt.close(fig)
+    return paths
+
+
+def drawing(res, design):
+    """The design sheet's drawing of a found feeder (``res.feeder``) and its pocket (``design``, the
+    :class:`~throwmap.design.cavity.CavityDesign` its config builds): the fed pose against the end wall with the
+    CM and the lead weight in the arm's frame (cm), beside the part in its own frame with its side numbers, the
+    weight's place and the CM. Returns the Figure."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
-    from matplotlib.patches import Circle, Polygon
+    from matplotlib.patches import Polygon
 
+    from ..system.pose import pose_against_wall
     from ..viz.capture import plot_capture
-    from ..viz.style import save_figure, side_colors
+    from ..viz.style import side_colors
     from .family import side_endpoints
 
     f = res.feeder
     part = f.variant.part
+    weight = f.variant.weight
+    grams = "" if weight is None else _grams(weight.mass)
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5), gridspec_kw={"width_ratios": [2.2, 1]})
     plot_capture(design, ax=ax, title=f"fed pose: side {f.side} against the end wall at L = {100 * f.X:.1f} cm")
-    if f.variant.weight is not None:  # the weight in the fed pose (the pose plot_capture draws)
-        from ..system.pose import pose_against_wall
-
-        gap = design.numbers.get("end_gap_m", 0.0)
-        pose = design.captured_pose or pose_against_wall(part, design.floor_y, design.length - gap, f.side)
+    gap = design.numbers.get("end_gap_m", 0.0)
+    pose = design.captured_pose or pose_against_wall(part, design.floor_y, design.length - gap, f.side)
+    fed_cm = 100 * np.asarray(pose[:2])  # plot_capture marks the CM there with a dot
+    fed_lead = None
+    if weight is not None:  # the weight in the fed pose (the pose plot_capture draws)
         c, s_ = math.cos(pose[2]), math.sin(pose[2])
-        d = np.asarray(f.variant.weight.at) - np.asarray(part.com)
-        wx, wy = pose[0] + c * d[0] - s_ * d[1], pose[1] + s_ * d[0] + c * d[1]
-        ax.add_patch(Circle((100 * wx, 100 * wy), 0.5, facecolor="#555", edgecolor="k", zorder=5))
-        ax.annotate(f"lead {1000 * f.variant.weight.mass:.0f} g", (100 * wx, 100 * wy), xytext=(-8, 0),
-                    textcoords="offset points", fontsize=8, ha="right", va="center", zorder=6,
-                    bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85})
+        d = np.asarray(weight.at) - np.asarray(part.com)
+        fed_lead = fed_cm + 100 * np.array([c * d[0] - s_ * d[1], s_ * d[0] + c * d[1]])
+        ax.plot(*fed_lead, "o", ms=LEAD_PT, mfc="#555", mec="k", zorder=5)
     V = np.asarray(part.vertices)
     colors = side_colors(len(V))
     bx.add_patch(Polygon(100 * V, closed=True, facecolor="#dde6f0", edgecolor="k", lw=1))
-    mids = []
+    centre = V.mean(axis=0)
     for k in range(len(V)):
         a, b = side_endpoints(part, k)
         bx.plot(100 * np.array([a[0], b[0]]), 100 * np.array([a[1], b[1]]), color=colors[k], lw=4 if k == f.side else 2)
-        mids.append(50 * (a + b))
-        bx.annotate(f"{k}" + (" (fed)" if k == f.side else ""), mids[-1], fontsize=9, ha="center", va="center",
+        mid = 0.5 * (a + b)
+        normal = np.array([b[1] - a[1], a[0] - b[0]]) / max(float(np.hypot(*(b - a))), 1e-12)
+        normal *= 1.0 if np.dot(normal, mid - centre) >= 0 else -1.0  # outward: the number sits outside the plate
+        offset = SIDE_LABEL_PT * normal
+        bx.annotate(f"{k}" + (" (fed)" if k == f.side else ""), 100 * mid, xytext=tuple(offset),
+                    textcoords="offset points", fontsize=9, ha="center", va="center",
                     bbox={"boxstyle": "round", "fc": "white", "ec": colors[k]})
     c = 100 * np.asarray(part.com)
-    bx.plot(*c, "k+", ms=10)
+    bx.plot(*c, "k+", ms=10, zorder=6)
     bx.set_aspect("equal")
-    bx.set_xlabel("x (cm, part frame)\n" + _where(f.variant.weight, c))
+    bx.set_xlabel("x (cm, part frame)\n" + _where(weight, c))
     bx.set_ylabel("y (cm)")
-    bx.set_title("the part" + (" and its lead weight" if f.variant.weight is not None else " (no weight)"))
-    pad = 0.1 * float(np.ptp(100 * V))
+    bx.set_title("the part" + (" and its lead weight" if weight is not None else " (no weight)"))
+    pad = 0.18 * float(np.ptp(100 * V))  # room for the side numbers outside the plate
     bx.set_xlim(100 * V[:, 0].min() - pad, 100 * V[:, 0].max() + pad)
     bx.set_ylim(100 * V[:, 1].min() - pad, 100 * V[:, 1].max() + pad)
     spans = [float(np.ptp(x.get_xlim())) / float(np.ptp(x.get_ylim())) for x in (ax, bx)]
     ax.get_gridspec().set_width_ratios(spans)  # each panel as wide as its drawing: no blank beside the arm
     fig.set_size_inches(min(max(3.6 * sum(spans) + 2.5, 8.0), 16.0), 5.0)
-    fig.tight_layout()
-    fig.canvas.draw()  # the final layout: labels are placed in points, clear of the side numbers
-    busy = [bx.transData.transform(m) for m in mids]
-    if f.variant.weight is not None:
-        p = 100 * np.asarray(f.variant.weight.at)
-        bx.add_patch(Circle(p, 0.5, facecolor="#555", edgecolor="k"))
+    fig.tight_layout(w_pad=2.0)
+    # tight_layout measures the panels before their equal aspect shrinks them and can overlap them (a negative
+    # space was measured): keep the part panel's axis labels clear of the arm panel
+    fig.subplots_adjust(wspace=max(fig.subplotpars.wspace, 0.22))
+    fig.canvas.draw()  # the final layout: labels are placed in points, clear of the side numbers and each other
+    # the arm panel: its side numbers (plot_capture's texts), the fed CM's dot and the weight's mark
+    busy = _texts(ax) + [_mark(ax, fed_cm, 2.5)]
+    if fed_lead is not None:
+        busy.append(_mark(ax, fed_lead, LEAD_PT / 2))
+        busy.append(_free_label(ax, f"lead {grams}", fed_lead, 4.0, busy))
+    _free_label(ax, "CM", fed_cm, 3.0, busy)
+    # the part panel: its side numbers, the CM, the weight
+    busy = _texts(bx) + [_mark(bx, c, 5.0)]
+    if weight is not None:
+        p = 100 * np.asarray(weight.at)
+        bx.plot(*p, "o", ms=LEAD_PT, mfc="#555", mec="k", zorder=5)
         bx.plot([p[0], p[0]], [bx.get_ylim()[0], p[1]], ":", color="#555", lw=0.8)
         bx.plot([bx.get_xlim()[0], p[0]], [p[1], p[1]], ":", color="#555", lw=0.8)
-        busy.append(bx.transData.transform(c))
-        busy.append(_free_label(bx, "lead", p, 22.0, busy))
-        _free_label(bx, "CM", c, 16.0, busy[:-2] + busy[-1:] + [bx.transData.transform(p)])
-    else:
-        _free_label(bx, "CM", c, 16.0, busy)
-    paths = [save_figure(fig, out / f"drawing.{ext}") for ext in ("svg", "png")]
-    plt.close(fig)
-    return paths
+        busy.append(_mark(bx, p, LEAD_PT / 2))
+        busy.append(_free_label(bx, "lead", p, 4.0, busy))
+    _free_label(bx, "CM", c, 5.0, busy)
+    return fig
+
+
+LEAD_PT = 8.0
+"""The lead weight's mark, points across (a mark, not to scale: the weight is a point mass on the plate)."""
+SIDE_LABEL_PT = 11.0
+"""How far outside its side a side's number sits, points."""
+
+
+def _grams(kg: float) -> str:
+    """A mass as the sheet writes it everywhere: grams, one decimal."""
+    return f"{1000 * kg:.1f} g"
 
 
 def _where(weight, c) -> str:
@@ -229,24 +266,54 @@ def _where(weight, c) -> str:
     if weight is None:
         return where
     p = 100 * np.asarray(weight.at)
-    return f"lead {1000 * weight.mass:.1f} g at ({p[0]:.2f}, {p[1]:.2f}) cm; " + where
+    return f"lead {_grams(weight.mass)} at ({p[0]:.2f}, {p[1]:.2f}) cm; " + where
 
 
 def _free_label(bx, text: str, at, r_pt: float, busy: list):
-    """Annotate ``text`` ``r_pt`` points from ``at`` (data) in the one of 8 directions farthest from the ``busy``
-    display points (side numbers, the CM, other labels); returns the label's display point."""
+    """Annotate ``text`` ``r_pt`` points beyond the edge of its box from ``at`` (data), in the one of 8 directions
+    whose box keeps farthest from the ``busy`` boxes (display ``(x0, y0, x1, y1)``: texts, marks, other labels)
+    inside the panel; returns the label's box."""
     dpp = bx.figure.dpi / 72.0  # display pixels per point
     base = bx.transData.transform(at)
-    best, best_d = None, -1.0
+    label = bx.annotate(text, at, xytext=(0.0, 0.0), textcoords="offset points", fontsize=8, ha="center",
+                        va="center", zorder=6, bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none",
+                                                     "alpha": 0.85})
+    ext = label.get_window_extent(renderer=bx.figure.canvas.get_renderer())
+    half = np.array([ext.width, ext.height]) / 2.0  # display pixels
+    panel = bx.get_window_extent()
+    best, best_score, best_box = None, -math.inf, None
     for k in range(8):
         u = np.array([math.cos(k * math.pi / 4 + math.pi / 2), math.sin(k * math.pi / 4 + math.pi / 2)])
-        q = base + r_pt * dpp * u
-        d = min((float(np.hypot(*(q - b))) for b in busy), default=math.inf)
-        if d > best_d + 1e-9:
-            best, best_d = u, d
-    bx.annotate(text, at, xytext=tuple(r_pt * best), textcoords="offset points", fontsize=8, ha="center",
-                va="center", zorder=6, bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85})
-    return base + r_pt * dpp * best
+        centre = base + dpp * r_pt * u + half * u  # a long label moves sideways by its half width
+        box = (centre[0] - half[0], centre[1] - half[1], centre[0] + half[0], centre[1] + half[1])
+        score = min((_gap(box, b) for b in busy), default=math.inf)
+        if box[0] < panel.x0 or box[1] < panel.y0 or box[2] > panel.x1 or box[3] > panel.y1:
+            score -= 1e6  # off the panel: only when nothing else is left
+        if score > best_score + 1e-9:
+            best, best_score, best_box = (centre - base) / dpp, score, box
+    label.xyann = tuple(best)
+    return best_box
+
+
+def _gap(a, b) -> float:
+    """The distance between two boxes ``(x0, y0, x1, y1)``, or minus the area they share when they overlap."""
+    dx, dy = max(a[0] - b[2], b[0] - a[2]), max(a[1] - b[3], b[1] - a[3])
+    if dx < 0 and dy < 0:
+        return dx * dy * -1.0
+    return float(np.hypot(max(dx, 0.0), max(dy, 0.0)))
+
+
+def _mark(bx, at, r_pt: float) -> tuple:
+    """The display box of a mark ``r_pt`` points in radius at ``at`` (data)."""
+    x, y = bx.transData.transform(at)
+    r = r_pt * bx.figure.dpi / 72.0
+    return (x - r, y - r, x + r, y + r)
+
+
+def _texts(bx) -> list:
+    """The display boxes of the texts and annotations drawn in a panel."""
+    r = bx.figure.canvas.get_renderer()
+    return [tuple(t.get_window_extent(renderer=r).extents) for t in bx.texts]
 
 
 def _viewer(cfg, seed: int, index: int, out: Path, title: str):

@@ -141,10 +141,11 @@ def fmt_share(d: dict) -> str:
     return ", ".join(f"{k} {100 * v:.1f} %" for k, v in d.items())
 
 
-def save_figure(fig, path, dpi: int = 130):
+def save_figure(fig, path, dpi: int = 130, tight: bool = False):
     """Save ``fig`` atomically (render to memory, then write-and-rename); returns the path.
 
-    The format follows the suffix of ``path`` (PNG when it has none); ``dpi`` in dots per inch.
+    The format follows the suffix of ``path`` (PNG when it has none); ``dpi`` in dots per inch; ``tight``: the
+    image is cropped or grown to what is drawn (nothing drawn outside the figure is cut off).
     """
     import io as _io
     from pathlib import Path
@@ -153,6 +154,7 @@ def save_figure(fig, path, dpi: int = 130):
 
     path = Path(path)
     buf = _io.BytesIO()
-    fig.savefig(buf, format=path.suffix.lstrip(".") or "png", dpi=dpi)
+    fig.savefig(buf, format=path.suffix.lstrip(".") or "png", dpi=dpi,
+                **({"bbox_inches": "tight", "pad_inches": 0.1} if tight else {}))
     atomic_write_bytes(path, buf.getvalue())
     return path
