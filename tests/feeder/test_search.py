@@ -102,9 +102,12 @@ def test_the_first_candidate_that_verifies_and_reruns_is_the_feeder(tri, tmp_pat
     d = betabinom(200, 366.5, 14.5)
     lo, hi = v["rerun95"]["successes"]
     assert d.cdf(lo - 1) < 0.025 <= d.cdf(lo) and d.cdf(hi - 1) < 0.975 <= d.cdf(hi) and v["rerun95"]["n"] == 200
-    assert (tmp_path / "feeder.toml").read_text().startswith(
-        f"# Verified: 366/380 fed over seeds 5, 6 (the 20 trials that chose it left out); a run of 200 trials with "
-        f"another seed lands in {lo}–{hi} fed")
+    ci = [100 * x for x in wilson_interval(366, 380)]
+    text = (tmp_path / "feeder.toml").read_text()
+    assert text.startswith(
+        f"# Verified: 366/380 fed over seeds 5, 6 (the 20 trials that chose it left out; Wilson 95 % [{ci[0]:.1f}, "
+        f"{ci[1]:.1f}] %); a run of 200 trials with another seed lands in {lo}–{hi} fed")
+    assert "Few trials" not in text  # [93.9, 97.8] %: known to within 4 points
     assert (tmp_path / "candidates.jsonl").read_text().count("\n") == 1
     # the files written run as the feeding experiment's config, with the candidate's part, side, ω, h and wall
     from throwmap.experiments.base import read_config
@@ -268,6 +271,18 @@ def test_bad_command_input_is_one_line_exit_2(tmp_path, args, field):
     lines = [ln for ln in res.output.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith(f"error: {field}"), lines
     assert res.stdout == ""  # nothing but the error line
+
+
+def test_a_feeder_verified_on_few_trials_says_so(tri, tmp_path, monkeypatch):
+    """A quick search (5 trials) that feeds 5/5 writes a feeder, and its ``feeder.toml`` and summary say how little
+    that shows (Wilson [56.6, 100] %) and how to check it."""
+    _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 1.0}, predicted=0.99)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=5, n_verify=5, omega_check=0, **GRID))
+    assert res.success and (res.evidence["n"], res.evidence["successes"]) == (5, 5)
+    head = (tmp_path / "feeder.toml").read_text().splitlines()[:2]
+    assert "Wilson 95 % [56.6, 100.0] %" in head[0]
+    assert head[1].startswith("# Few trials: the feed rate is known only to within [56.6, 100.0] %")
+    assert "few trials: check it with throwmap experiment feed" in res.summary()
 
 
 def test_an_out_folder_in_a_missing_folder_is_refused_before_any_work(tri, tmp_path):
@@ -444,3 +459,27 @@ def test_a_side_no_allowed_weight_makes_stable_is_refused_with_the_reason(leaner
     res = design_feeder(leaner, tmp_path, side=3, weight=0.001, plan=VerifyPlan(**GRID))  # 1 g moves the CM too little
     assert not res.success and res.tried == () and "side 3 is unstable on the bare part" in res.reason
     assert "at most 1.0 g" in res.reason and res.feeder is None and res.config is None
+
+
+def test_the_reason_names_the_candidate_that_went_furthest_and_a_budget_that_cut_the_queue():
+    """Without a feeder the reason quotes the candidate with the largest run (a 182/200 verification beats a 19/20
+    start, though 19/20 is the higher rate), and when the budget ended the search with candidates still queued it
+    says that first — the search did not run out of candidates. Shares print without rounding to 100 %."""
+    from throwmap.feeder.search import _reason
+
+    def cand(side, omega):
+        return SimpleNamespace(side=side, omega=omega, h=-0.02, X=0.5,
+                               variant=SimpleNamespace(label=lambda: "no weight"), best={side: (0.5, 0.9975)})
+
+    def run(n, k):
+        return {"n": n, "successes": k, "rate": k / n}
+
+    tried = [SimpleNamespace(candidate=cand(0, 4.0), runs=(run(20, 19),), verdict="fragile in ω: …"),
+             SimpleNamespace(candidate=cand(1, 5.5), runs=(run(20, 20), run(200, 182)), verdict="below the goal")]
+    plan = VerifyPlan(**GRID)
+    exact = {"0": 0.9975, "1": 1.0}
+    text = _reason((0, 1), exact, [], [], tried, plan, 600.0, unrun=7)
+    assert text.startswith("the budget (600 s) ran out with 7 candidate(s) queued for the engine not run; ")
+    assert "side 0: exact 99.8 %, side 1: exact 100 %" in text
+    assert "the best, side 1 (no weight, ω = 5.5 rad/s" in text and "reached 182/200 = 91.0 % (below the goal)" in text
+    assert not _reason((0, 1), exact, [], [], tried, plan, 600.0, unrun=0).startswith("the budget")

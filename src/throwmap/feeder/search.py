@@ -56,6 +56,7 @@ from ..experiments.stats import rerun_range, wilson_interval
 from ..io.files import atomic_write_text, make_directory
 from ..system.arm import Arm
 from ..system.part import Part
+from .checks import OMEGA_DRIFT, WEIGHT_DRIFT_M, omega_check, stage_label, weight_check
 from .arrival import DROP_X, WALL_X_MAX, Arrival, arrival, arrivals, lip_offset, screen_table
 from .family import Variant, weight_variants
 from .files import LINING_MU, POCKET_DEPTH_M, feeder_files
@@ -73,6 +74,9 @@ HS = (-0.03, -0.02, -0.01, 0.0)
 TRY_SHARE = 0.5
 """Without the engine screen, exact-screen candidates below ``min_predicted`` but at least this share are run too
 (after every one above it): the pocket, not the plain arm's first arrival, decides which side is held."""
+FEW_TRIALS_WIDTH = 0.10
+"""A verified feeder whose pooled Wilson 95 % interval is wider than this (a quick search's few trials: 5/5 spans
+[56.6, 100] %, 366/380 [93.9, 97.8] %) says so in its ``feeder.toml`` and summary."""
 START_BY = 0.75
 """No candidate is started after this share of the budget (a verification and its rerun, 2 × 200 trials, take 1–5
 minutes on 2 cores). No trial is started after the budget itself: a verification it cuts short is no verdict."""
@@ -178,7 +182,9 @@ class FeederSearch:
                     f"cm, end wall at {100 * f.X:.3g} cm; fed {e['successes']}/{e['n']} ({runs}, two seeds, less the "
                     f"{e['left_out']['n']} trials that chose it; Wilson 95 % [{100 * e['ci95'][0]:.1f}, "
                     f"{100 * e['ci95'][1]:.1f}] %); a new run of {r95['n']} lands in {r95['successes'][0]}–"
-                    f"{r95['successes'][1]} fed (95 %); config {self.config} ({self.time_s:.0f} s{self._read_back()})")
+                    f"{r95['successes'][1]} fed (95 %); config {self.config} ({self.time_s:.0f} s{self._read_back()})"
+                    + ("; few trials: check it with throwmap experiment feed CONFIG --n 200"
+                       if e["ci95"][1] - e["ci95"][0] > FEW_TRIALS_WIDTH else ""))
         return f"no feeder: {self.reason} ({self.time_s:.0f} s{self._read_back()})"
 
     def _read_back(self) -> str:
@@ -338,7 +344,9 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     budget_s, workers = plan.budget_s, plan.workers
     assumptions = {
         "arm": {"mu": mu, "mu_rel": mu_rel, "g_m_s2": g, "motion": "recoil arm (Flatland 3°, ζ = 0.2)",
-                "max_length_m": arm_length},
+                "max_length_m": WALL_X_MAX if arm_length is None else arm_length,
+                "max_length_note": "the end wall is screened at most this far from the joint" + (
+                    " (the screen's reach: no --arm-length given)" if arm_length is None else "")},
         "omega_jitter_rel": sigma, "pocket": {"depth_m": POCKET_DEPTH_M, "lining_mu": LINING_MU,
                                               "clearance_m": 0.005, "lip_deg": 60.0},
         "drops": f"2–10 cm above the arm, any pose, CM x in {list(DROP_X)} m", "goal": plan.goal,
@@ -389,7 +397,13 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                 tick("exact screen", len(exact), total)
     stages = {"exact_screen": time.perf_counter() - t0}
     exact_best = {str(k): max((a.best[k][1] for a in exact if k in a.best), default=0.0) for k in sides}
-    exact_doc = {"candidates": len(exact), "variants": len(variants), "best_share_per_side": exact_best}
+    weighted = sum(v.weight is not None for v in variants)
+    exact_doc = {"candidates": len(exact), "variants": len(variants), "weights_tried": weighted,
+                 "bare_part": len(variants) > weighted, "best_share_per_side": exact_best,
+                 "what": "variants: the part bare (unless a side only a weight makes stable is asked for) and with each "
+                         "lead weight tried (mass × place); candidates: variant × ω × h × end stop (the end wall, the "
+                         "pocket's lip); 'screened' lists those that reach a stop first on a target side in some "
+                         "chains (share > 0) within the arm's length, best first"}
     ranked = sorted((a for a in exact if fits(a)), key=lambda a: (-a.predicted, a.wrong, a.variant.weight is not None))
     ranked = [ranked[i] for i in _diverse(list(range(len(ranked))), ranked)]  # every variant and side gets a turn
 
@@ -474,7 +488,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         runs, checks = [], []  # the engine runs of the candidate; its drift checks
 
         def run(n, s, name, finish=False):
-            label = _label(f"candidate {k}: {name}", here / name, n)
+            label = stage_label(f"candidate {k}: {name}", here / name, n)
             cb = None if progress is None else (lambda d, t: progress(label, d, t))
             t = time.perf_counter()
             end = t0 + budget_s + (plan.finish_s if finish else 0.0)  # a verification or rerun may finish
@@ -498,7 +512,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         elif pre.n == plan.n_pre and pre.successes >= plan.pre_share * plan.n_pre:
             verdict, shift = "fed", 0.0
             if plan.omega_check:  # cheaper than the verification, and it stops the fragile ones before it
-                verdict, shift = _omega_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s,
+                verdict, shift = omega_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s,
                                               progress=progress, label=f"candidate {k}", record=checks)
                 if shift and shifted.get(k, 0) < 2:  # centre ω in its window: away from the drift it cannot take
                     refined_from[len(screened)] = k
@@ -506,7 +520,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                     screened.append(dataclasses.replace(c, omega=round(c.omega * (1.0 + shift), 6)))
                     queue.insert(0, len(screened) - 1)
             if verdict == "fed" and plan.weight_check and c.variant.weight is not None:
-                verdict = _weight_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s, progress=progress,
+                verdict = weight_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s, progress=progress,
                                         label=f"candidate {k}", record=checks)
             if verdict.startswith("fragile"):  # beside it, the undrifted trials: a drift clearly below the goal may
                 verdict += f"; undrifted, its first trials fed {pre.successes}/{pre.n}"  # be a feeder below it anyway
@@ -539,9 +553,13 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             found = result(True, fed=c, verified=verified, rerun=rerun)
             e = found.evidence
             seeds, (lo, hi) = ", ".join(str(r["seed"]) for r in e["runs"]), e["rerun95"]["successes"]
+            ci = e["ci95"]
             head = (f"# Verified: {e['successes']}/{e['n']} fed over seeds {seeds} (the {e['left_out']['n']} trials "
-                    f"that chose it left out); a run of {e['rerun95']['n']} trials with another seed lands in "
-                    f"{lo}–{hi} fed with 95 % probability.\n")
+                    f"that chose it left out; Wilson 95 % [{100 * ci[0]:.1f}, {100 * ci[1]:.1f}] %); a run of "
+                    f"{e['rerun95']['n']} trials with another seed lands in {lo}–{hi} fed with 95 % probability.\n")
+            if ci[1] - ci[0] > FEW_TRIALS_WIDTH:  # a quick search's handful of trials: its rate is barely known
+                head += (f"# Few trials: the feed rate is known only to within [{100 * ci[0]:.1f}, {100 * ci[1]:.1f}] %. "
+                         f"Check it with: throwmap experiment feed feeder.toml --n 200 --seed 7\n")
             atomic_write_text(out / "feeder.toml", head + (here / "feeder.toml").read_text(encoding="utf-8"))
             atomic_write_text(out / "part.toml", (here / "part.toml").read_text(encoding="utf-8"))
             return found
@@ -556,84 +574,6 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     return result(False, _reason(sides, exact_best, screened, engined, tried, plan, budget_s, unrun=len(queue)))
 
 
-OMEGA_DRIFT = 0.03
-"""The systematic ω drift a feeder must tolerate (one jitter σ): a feeder verified at ω but clearly below the goal at
-ω(1 ± this) is *fragile*, not fed."""
-OMEGA_SHIFT = 0.05
-"""How far a fragile feeder's ω is moved away from the drift it cannot take (relative), for the next candidate."""
-
-
-def _check_doc(what: str, step: float, res) -> dict:
-    return {"check": what, "step": step, "n": res.n, "successes": res.successes,
-            "ci95": [float(res.ci95[0]), float(res.ci95[1])]}
-
-
-def _omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: float, progress, label: str,
-                 record: list | None = None):
-    """``plan.omega_check`` engine trials (seed 100) at ω(1 − :data:`OMEGA_DRIFT`) and ω(1 + :data:`OMEGA_DRIFT`):
-    ``("fed", 0.0)`` when neither is clearly below the goal (its Wilson 95 % upper end under it), else the verdict
-    ``"fragile in ω: …"`` and the relative shift of ω to try next (away from the failing drift; 0 when both fail).
-    Each run is appended to ``record`` (:func:`_check_doc`)."""
-    from ..experiments.runner import run_experiment
-
-    failed, seen = [], []
-    for step in (-OMEGA_DRIFT, OMEGA_DRIFT):
-        c = cfg.model_copy(update={"omega": cfg.omega * (1.0 + step)})
-        lab = _label(f"{label}: ω {step:+.0%}", here / f"omega_{step:+g}", plan.omega_check)
-        cb = None if progress is None else (lambda d, t, lab=lab: progress(lab, d, t))
-        res = run_experiment("feed", c, n=plan.omega_check, seed=100, workers=workers, out=here / f"omega_{step:+g}",
-                             progress=cb, stop_by=stop_by)
-        if record is not None:
-            record.append(_check_doc("omega", step, res))
-        if res.n < plan.omega_check:
-            return f"the budget ran out in the ω check ({res.n}/{plan.omega_check} trials run)", 0.0
-        seen.append(f"ω(1 {step:+.0%}) {res.successes}/{res.n}")
-        if res.ci95[1] < plan.goal:
-            failed.append(step)
-    if not failed:
-        return "fed", 0.0
-    verdict = ("fragile in ω: " + ", ".join(seen) + f" fed (below {100 * plan.goal:g} % with 95 % confidence at "
-               + " and ".join(f"{s:+.0%}" for s in failed) + ")")
-    return verdict, (0.0 if len(failed) == 2 else -OMEGA_SHIFT * math.copysign(1, failed[0]))
-
-
-WEIGHT_DRIFT_M = 0.0015
-"""How far the lead weight may sit from its place (m, each way in the part's x and y) before a feeder that loses its
-feed there is *fragile*: a weight glued by hand lands within a millimetre or two (a verified feeder fed 4 of 30 with
-its weight 1.5 mm off)."""
-
-
-def _weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: float, progress, label: str,
-                  record: list | None = None) -> str:
-    """``plan.weight_check`` engine trials (seed 100) with the lead weight moved :data:`WEIGHT_DRIFT_M` each way in
-    the part's x and y (a move off the plate is skipped): ``"fed"`` when none is clearly below the goal (its Wilson
-    95 % upper end under it), else ``"fragile in the weight's place: …"``; it stops at the first that is. Each run is
-    appended to ``record``."""
-    from ..experiments.runner import run_experiment
-    from .sheet import drifted
-
-    seen = []
-    for what in ("weight_x", "weight_y"):
-        for step in (-WEIGHT_DRIFT_M, WEIGHT_DRIFT_M):
-            name = f"{what}_{step:+g}"
-            c = drifted(cfg, what, step, here / name)
-            if c is None:
-                continue
-            lab = _label(f"{label}: {name}", here / name / "run", plan.weight_check)
-            cb = None if progress is None else (lambda d, t, lab=lab: progress(lab, d, t))
-            res = run_experiment("feed", c, n=plan.weight_check, seed=100, workers=workers, out=here / name / "run",
-                                 progress=cb, stop_by=stop_by)
-            if record is not None:
-                record.append(_check_doc(what, step, res))
-            if res.n < plan.weight_check:
-                return f"the budget ran out in the weight check ({res.n}/{plan.weight_check} trials run)"
-            seen.append(f"{what[-1]} {1000 * step:+.1f} mm {res.successes}/{res.n}")
-            if res.ci95[1] < plan.goal:
-                return (f"fragile in the weight's place: " + ", ".join(seen) + f" fed (below {100 * plan.goal:g} % "
-                        f"with 95 % confidence at {what[-1]} {1000 * step:+.1f} mm)")
-    return "fed"
-
-
 def _stored_candidates(log: Path) -> dict:
     """The candidates an earlier run of the search stored in ``log`` (``candidates.jsonl``), by folder name."""
     out = {}
@@ -645,16 +585,6 @@ def _stored_candidates(log: Path) -> dict:
             except (ValueError, KeyError, TypeError):
                 continue  # a line of an older format or cut short: its candidate is run again
     return out
-
-
-def _label(stage: str, folder: Path, n: int) -> str:
-    """``stage``, with "(read back)" when ``folder`` already holds ``n`` trials of an earlier run."""
-    try:
-        with open(folder / "trials.jsonl", "rb") as fh:
-            stored = sum(1 for line in fh if line.endswith(b"\n"))
-    except OSError:
-        return stage
-    return f"{stage} (read back)" if stored >= n and (folder / "run.json").exists() else stage
 
 
 def _diverse(order: list, screened: list) -> list:
@@ -702,6 +632,13 @@ def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, 
     return out
 
 
+def _pct(share: float) -> str:
+    """A share as a percentage that never rounds to 0 or 100 unless it is: 0.9975 → "99.8 %", 1 → "100 %"."""
+    if share in (0.0, 1.0):
+        return f"{100 * share:.0f} %"
+    return f"{min(max(100 * share, 0.1), 99.9):.1f} %"
+
+
 def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budget_s: float, unrun: int = 0) -> str:
     """Why no feeder: each side's best first-arrival share on the exact screen and on the engine's (``engined``: the
     candidates it screened), and what the engine runs reached."""
@@ -710,8 +647,8 @@ def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budge
     parts = []
     if never:
         parts.append(f"side(s) {never} never arrive first at a stop they hold on the exact screen")
-    shares = ", ".join(f"side {k}: exact {100 * exact_best[str(k)]:.0f} %"
-                       + (f", engine {100 * eng[k]:.0f} %" if eng[k] is not None else "") for k in sides)
+    shares = ", ".join(f"side {k}: exact {_pct(exact_best[str(k)])}"
+                       + (f", engine {_pct(eng[k])}" if eng[k] is not None else "") for k in sides)
     parts.append(f"best first-arrival shares ({shares})")
     if tried:
         def final(t):  # a candidate's verdict rests on its largest run (its first trials are the start of it)
