@@ -96,6 +96,18 @@ def test_interrupted_run_resumes_without_redoing(tmp_path, reference):
     assert third.resumed == 12 and third.trials[:12] == reference.trials
 
 
+def test_a_run_read_back_whole_leaves_its_files_as_written(tmp_path, reference):
+    """Reading a finished run back runs nothing and rewrites nothing: ``result.json`` keeps the timing of the call that
+    ran the trials (a read-back call's own is near 0 s), while an extended run writes its new result."""
+    run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
+    before = {p: (tmp_path / p).read_bytes() for p in ("result.json", "trials.parquet")}
+    again = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
+    assert again.resumed == 12 and again.trials == reference.trials
+    assert {p: (tmp_path / p).read_bytes() for p in before} == before
+    fewer = run_experiment("settle", CFG, n=5, seed=7, workers=1, out=tmp_path)  # a shorter look: its own result
+    assert json.loads((tmp_path / "result.json").read_text())["n"] == fewer.n == 5
+
+
 @pytest.mark.parametrize("workers", [1, 2])
 def test_no_trial_is_started_past_stop_by(tmp_path, reference, workers):
     """A deadline already past starts no trial (the stored ones still count); a deadline in the middle of a run

@@ -386,7 +386,8 @@ def test_a_feeder_fragile_in_omega_is_not_fed_and_its_omega_moves_away_from_the_
     calls = _fake(monkeypatch, {"first": 1.0, "verify": 1.0, "rerun": 0.99, (0, "omega-"): 0.7}, predicted=0.99)
     res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
     first, second = res.tried[:2]
-    assert first.verdict.startswith("fragile in ω: ω(1 -3%) 21/30, ω(1 +3%) 30/30 fed")
+    assert first.verdict.startswith("fragile in ω: ω −3 % 21/30, ω +3 % 30/30 fed (below 95 % with 95 % confidence "
+                                    "at ω −3 %)")
     assert first.verdict.endswith("; undrifted, its first trials fed 20/20")
     assert second.verdict == "fed (refined from candidate 0)" and res.success and res.feeder is second.candidate
     assert second.candidate.omega == pytest.approx(first.candidate.omega * 1.05)
@@ -483,3 +484,29 @@ def test_the_reason_names_the_candidate_that_went_furthest_and_a_budget_that_cut
     assert "side 0: exact 99.8 %, side 1: exact 100 %" in text
     assert "the best, side 1 (no weight, ω = 5.5 rad/s" in text and "reached 182/200 = 91.0 % (below the goal)" in text
     assert not _reason((0, 1), exact, [], [], tried, plan, 600.0, unrun=0).startswith("the budget")
+
+
+def test_a_moved_omega_is_not_moved_back_toward_where_it_came_from(tri, tmp_path, monkeypatch):
+    """Fragile at ω + 3 %, the candidate is tried at ω − 5 %; fragile there at ω − 3 %, its window is narrower than the
+    move, and it is not moved back up 5 % (to within 0.25 % of the first: a minute spent on the same feeder)."""
+
+    class Rates(dict):
+        def get(self, key, default=None):
+            if isinstance(key, tuple):
+                k, stage = key
+                if k == "cut":
+                    return default
+                if (k == 0 and stage == "omega+") or (k >= 2 and stage == "omega-"):
+                    return 0.5
+                if k == 1 and stage == "first":
+                    return 0.0
+                return default
+            return {"first": 1.0, "verify": 1.0, "rerun": 1.0}.get(key, default)
+
+    _fake(monkeypatch, Rates(), predicted=0.99)
+    monkeypatch.setattr(search, "_diverse", lambda order, screened: order)
+    res = design_feeder(tri, tmp_path, side=0, weight="none", plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
+    assert not res.success and len(res.screened) == 3  # the wall's and the lip's candidates, and the move down
+    assert [(t.k, t.candidate.omega) for t in res.tried] == [(0, 4.5), (2, pytest.approx(4.5 * 0.95)), (1, 4.5)]
+    moved = res.tried[1].verdict
+    assert moved.startswith("fragile in ω: ω −3 % 15/30") and moved.endswith("(refined from candidate 0)")

@@ -121,7 +121,7 @@ def test_a_feeder_is_refused_only_when_a_three_percent_drift_is_clearly_below_th
 
     assert margin_refusal({"omega": [row(-0.03, 27), row(0.03, 30)]}, 0.95) == ""  # 90 %: not clearly below 95 %
     why = margin_refusal({"omega": [row(-0.03, 30), row(0.03, 20)]}, 0.95)
-    assert why.startswith("verified, but within 3 % of ω of losing its feed: at ω(1 +3%) 20/30 fed")
+    assert why.startswith("verified, but within 3 % of ω of losing its feed: at ω +3 % 20/30 fed")
     assert margin_refusal({"omega": [row(-0.06, 0)]}, 0.95) == "" and margin_refusal({}, 0.95) == ""
 
 
@@ -226,3 +226,16 @@ def test_the_drawings_labels_keep_clear_of_each_other_and_the_marks(seed):
         assert any(t.get_text() == f"lead {grams}" for t in ax.texts) and grams in bx.get_xlabel()
     finally:
         plt.close(fig)
+
+
+def test_a_margin_step_cut_short_by_the_budget_shows_how_far_it_got():
+    from throwmap.feeder.sheet import _margin_text
+
+    cut = {"step": 0.003, "n": 26, "successes": 26, "planned": 30}
+    name, text = _margin_text("weight_y", [{"passed": None, "failed": None, "runs": [], "not measured": "budget",
+                                            "cut_short": cut}])
+    assert name == "weight y" and text == ("not measured (the search's time budget was spent; +3 mm cut short by the "
+                                           "budget at 26/26 of 30 trials, no verdict)")
+    row = {"passed": 0.0015, "failed": None, "runs": [{"step": 0.0015, "n": 30, "successes": 30}], "cut_short": cut}
+    assert _margin_text("weight_y", [row])[1].endswith("(+1.5 mm: 30/30; +3 mm cut short by the budget at 26/26 of "
+                                                       "30 trials, no verdict)")

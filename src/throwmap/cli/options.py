@@ -501,7 +501,8 @@ def save_figure(fig, path: Path, fmt: str, field: str) -> None:
 @contextmanager
 def stage_bars(console=None, lines: bool = False):
     """Yields ``update(stage, done, total)``: one Rich bar per stage on ``console`` (default: stderr). Off a terminal
-    a no-op, or with ``lines`` one line on stderr as each stage starts (a log of a long run)."""
+    a no-op, or with ``lines`` one line on stderr as each stage starts (a log of a long run). A stage that starts
+    with "→" is an outcome, not a stage: printed once as it is (above the bars; off a terminal with ``lines``)."""
     from rich.console import Console
 
     console = Console(stderr=True) if console is None else console
@@ -511,7 +512,7 @@ def stage_bars(console=None, lines: bool = False):
         def line(stage, done, total):
             if lines and stage not in started:
                 started.add(stage)
-                stderr_line(f"{stage}…")
+                stderr_line(str(stage) if str(stage).startswith("→") else f"{stage}…")
 
         yield line
         return
@@ -522,6 +523,9 @@ def stage_bars(console=None, lines: bool = False):
         tasks: dict = {}
 
         def update(stage, done, total):
+            if str(stage).startswith("→"):
+                bar.console.print(str(stage), markup=False, highlight=False)
+                return
             if stage not in tasks:
                 tasks[stage] = bar.add_task(str(stage), total=total)
             bar.update(tasks[stage], completed=done, total=total)

@@ -35,9 +35,10 @@ design for factors 1.55–1.6; the design's wall is raised to that throw's energ
 
 Per-trial values: ``throws_to_capture`` (closed; nan if never), ``hold_breaks`` (hold throws
 after which the part was not captured on the target side: 0 = held at every throw),
-``throws``, final ``x``/``y``/``phi`` (arm frame, m, rad), ``side`` and ``tilt`` (rad), ``where``,
+``throws``, final ``x``/``y``/``phi`` (arm frame, m, rad), ``side`` (the side nearest the arm in that last pose:
+for a part that left the arm, ``off_arm``, the pose it was last seen in) and ``tilt`` (rad), ``where``,
 the drop (``release_x``: the CM abscissa it was released at, in ``x_range``; ``drop_x``, ``drop_side``: where it
-settled, which a bounce can put a few cm further; ``drop_redraws``), the trial's ``mu``, the extreme ω used
+settled, which a bounce or a roll can put up to about 10 cm further; ``drop_redraws``), the trial's ``mu``, the extreme ω used
 (``omega_min``, ``omega_max``, clearing throws included), and in the open variant ``side_before``/``side_exit``.
 """
 

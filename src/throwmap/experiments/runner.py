@@ -464,9 +464,21 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     result = ExperimentResult.from_trials(exp.name, done.values(), seed=seed, parameters=parameters, planned=n,
                                           elapsed_s=elapsed, workers=n_workers, config=json.loads(config_json),
                                           resumed=len(stored))
-    if directory is not None:
+    if directory is not None and not _unchanged(directory, result, len(stored)):
         _write_outputs(directory, result)
     return result
+
+
+def _unchanged(directory: Path, result: ExperimentResult, stored: int) -> bool:
+    """Whether the run stored in ``directory`` already wrote this result: every trial was read back and its
+    ``result.json`` covers as many (kept as written, with the timing of the call that ran them)."""
+    path = directory / "result.json"
+    if stored < result.n or not path.exists():
+        return False
+    try:
+        return int(json.loads(path.read_text())["n"]) == result.n and (directory / "trials.parquet").exists()
+    except (ValueError, KeyError, TypeError, OSError):
+        return False
 
 
 def _write_outputs(directory: Path, result: ExperimentResult) -> None:

@@ -77,7 +77,8 @@ def lip_offset(part, side: int, depth: float) -> float:
 class Arrival:
     """One screened feeder: the ``variant`` (part and weight) thrown at ``omega`` (rad/s) from an arm at ``h`` (m);
     per stable side its best end stop: ``best[k] = (X m, share first on k, share first on another side, holds)``;
-    ``side`` the target side and ``X`` its end stop (m), ``predicted`` its share (0 when no X holds), ``time_s``."""
+    ``side`` the target side and ``X`` its end stop (m), ``predicted`` its share (0 when no X holds), ``time_s`` the
+    screen's seconds (``screen_time_s`` in :meth:`to_dict`)."""
 
     variant: Variant
     omega: float
@@ -97,7 +98,7 @@ class Arrival:
                 "end_stop_m": self.X, "predicted": self.predicted, "wrong_first": self.wrong,
                 "per_side": {str(k): {"end_stop_m": v[0], "first": v[1], "wrong_first": v[2], "holds": v[3]}
                              for k, v in self.best.items()},
-                "chains": self.chains, "model": self.model, "time_s": self.time_s,
+                "chains": self.chains, "model": self.model, "screen_time_s": self.time_s,
                 "arrival_at": "pocket lip" if self.lip else "end wall"}
 
 

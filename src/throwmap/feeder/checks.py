@@ -3,7 +3,8 @@ millimetre or two off.
 
 A feeder verified at its nominal ω and weight place may lose its feed when the arm's rate drifts by one jitter σ or
 the weight is glued a little off its mark; the search (:mod:`throwmap.feeder.search`) runs these checks between a
-candidate's first trials and its verification, so a fragile feeder is named as such and never called fed.
+candidate's first trials and its verification, so a fragile feeder is named as such and never called fed. The
+design sheet's margins (:mod:`throwmap.feeder.sheet`) drift the same config further with :func:`drifted`.
 """
 
 from __future__ import annotations
@@ -12,10 +13,13 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 if TYPE_CHECKING:
     from .search import VerifyPlan
 
-__all__ = ["OMEGA_DRIFT", "OMEGA_SHIFT", "WEIGHT_DRIFT_M", "omega_check", "weight_check", "stage_label"]
+__all__ = ["OMEGA_DRIFT", "OMEGA_SHIFT", "WEIGHT_DRIFT_M", "omega_check", "weight_check", "drifted", "drift_text",
+           "stage_label"]
 
 OMEGA_DRIFT = 0.03
 """The systematic ω drift a feeder must tolerate (one jitter σ): a feeder verified at ω but clearly below the goal at
@@ -48,13 +52,13 @@ def omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: flo
             record.append(_check_doc("omega", step, res))
         if res.n < plan.omega_check:
             return f"the budget ran out in the ω check ({res.n}/{plan.omega_check} trials run)", 0.0
-        seen.append(f"ω(1 {step:+.0%}) {res.successes}/{res.n}")
+        seen.append(f"{drift_text(step)} {res.successes}/{res.n}")
         if res.ci95[1] < plan.goal:
             failed.append(step)
     if not failed:
         return "fed", 0.0
     verdict = ("fragile in ω: " + ", ".join(seen) + f" fed (below {100 * plan.goal:g} % with 95 % confidence at "
-               + " and ".join(f"{s:+.0%}" for s in failed) + ")")
+               + " and ".join(drift_text(s) for s in failed) + ")")
     return verdict, (0.0 if len(failed) == 2 else -OMEGA_SHIFT * math.copysign(1, failed[0]))
 
 
@@ -71,7 +75,6 @@ def weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: fl
     95 % upper end under it), else ``"fragile in the weight's place: …"``; it stops at the first that is. Each run is
     appended to ``record``."""
     from ..experiments.runner import run_experiment
-    from .sheet import drifted
 
     seen = []
     for what in ("weight_x", "weight_y"):
@@ -103,3 +106,33 @@ def stage_label(stage: str, folder: Path, n: int) -> str:
     except OSError:
         return stage
     return f"{stage} (read back)" if stored >= n and (folder / "run.json").exists() else stage
+
+
+def drift_text(step: float) -> str:
+    """A relative drift of ω as the verdicts write it: −0.03 → "ω −3 %" (ω moved by −3 %, ω × 0.97)."""
+    return f"ω {'−' if step < 0 else '+'}{100 * abs(step):.3g} %"
+
+
+def drifted(cfg, what: str, step: float, folder: Path):
+    """The feed config ``cfg`` with one quantity drifted by ``step`` (None when the drift is not possible)."""
+    from ..io.config import resolve_part, save_part_toml
+    from ..system.geometry import point_in_convex_polygon
+    from .family import Weight, with_weight, without_last_weight
+
+    if what == "omega":
+        return cfg.model_copy(update={"omega": cfg.omega * (1.0 + step)})
+    if what == "mu":
+        return cfg.model_copy(update={"arm": cfg.arm.model_copy(update={"mu": cfg.arm.mu * step})})
+    if what == "jitter":
+        return cfg.model_copy(update={"noise": cfg.noise.model_copy(update={"omega_rel": step})})
+    part = resolve_part(cfg.part).part
+    if not part.point_masses:
+        return None
+    m, at = part.point_masses[-1]
+    at = (at[0] + step, at[1]) if what == "weight_x" else (at[0], at[1] + step)
+    if not point_in_convex_polygon(np.asarray(part.vertices), np.asarray(at)):  # the moved weight leaves the plate
+        return None
+    moved = with_weight(without_last_weight(part), Weight(m, at))
+    folder.mkdir(parents=True, exist_ok=True)
+    path = save_part_toml(moved, None, folder / "part.toml")
+    return cfg.model_copy(update={"part": str(path.resolve())})

@@ -63,7 +63,7 @@ class Variant:
         if self.weight is None:
             return "no weight"
         w = self.weight
-        return f"{1000 * w.mass:.4g} g at ({100 * w.at[0]:.3g}, {100 * w.at[1]:.3g}) cm"
+        return f"{1000 * w.mass:.1f} g at ({100 * w.at[0]:.2f}, {100 * w.at[1]:.2f}) cm"  # as the sheet gives it
 
     def to_dict(self) -> dict:
         return {"weight": None if self.weight is None else self.weight.to_dict(), "placed_for_side": self.side,

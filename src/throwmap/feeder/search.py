@@ -86,7 +86,8 @@ minutes on 2 cores). No trial is started after the budget itself: a verification
 class Tried:
     """One candidate run in the engine: its index ``k`` in the screen's ranking (``FeederSearch.screened``), the
     screened ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
-    "throws_to_capture"}``) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
+    "throws_to_capture", "time_s", "new_trials"}``: ``new_trials`` those this search ran, the rest read back — the
+    first trials a verification extends, or an earlier run's) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
     ``"below the goal"``, ``"rerun disagrees"``, ``"the budget ran out in the …"``) and the drift ``checks`` run
     (each ``{"check": "omega" | "weight_x" | "weight_y", "step", "n", "successes", "ci95"}``; ω steps relative, weight
     steps in m); ``read_back``: every trial was read back from an earlier run of the search (its runs then keep that
@@ -117,8 +118,8 @@ class FeederSearch:
     ``predicted`` (the screen's share for the fed candidate), ``time_s``, ``reason`` (why none, when
     ``success`` is False), ``tried`` (every candidate run in the engine, in order), ``screened`` (the screen's
     candidates, best first), ``exact`` (the exact screen's count and best per side), every ``assumption``
-    (arm, jitter, materials, drops, goal) and the seconds each stage took (``stages_s``: exact screen, engine screen,
-    verification)."""
+    (arm, jitter, materials, drops, goal) and the seconds each stage took (``stages_s``: ``exact_screen``,
+    ``engine_screen`` when asked for, ``engine_trials``: first trials, drift checks, verifications; ``sheet``)."""
 
     success: bool
     side: int | None
@@ -160,8 +161,10 @@ class FeederSearch:
         return out
 
     def table(self, n: int = 5) -> str:
-        """The screen's ``n`` best candidates and every one run in the engine, one line each (cm for lengths)."""
-        rows = [f"{'side':>4}  {'weight':>28}  {'ω rad/s':>7}  {'h cm':>5}  {'wall cm':>7}  {'predicted':>9}  verified"]
+        """The screen's ``n`` best candidates and every one run in the engine, one line each (``#`` the candidate's
+        number, as verdicts and folders name it; cm for lengths)."""
+        rows = [f"{'#':>4}  {'side':>4}  {'weight':>30}  {'ω rad/s':>7}  {'h cm':>5}  {'wall cm':>7}  {'predicted':>9}  "
+                "engine trials: verdict"]
         runs = {t.k: t for t in self.tried}
         for k, a in enumerate(self.screened):
             if k >= n and k not in runs:
@@ -169,7 +172,7 @@ class FeederSearch:
             t = runs.get(k)
             v = ((", ".join(f"{r['successes']}/{r['n']}" for r in t.runs) + f": {t.verdict}"
                   + (" (read back)" if t.read_back else "")) if t else "-")
-            rows.append(f"{a.side:>4}  {a.variant.label():>28}  {a.omega:>7.3g}  {100 * a.h:>5.3g}  {100 * a.X:>7.3g}  "
+            rows.append(f"{k:>4}  {a.side:>4}  {a.variant.label():>30}  {a.omega:>7.4g}  {100 * a.h:>5.3g}  {100 * a.X:>7.3g}  "
                         f"{100 * a.predicted:>8.1f}%  {v}")
         return "\n".join(rows)
 
@@ -403,7 +406,9 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                  "what": "variants: the part bare (unless a side only a weight makes stable is asked for) and with each "
                          "lead weight tried (mass × place); candidates: variant × ω × h × end stop (the end wall, the "
                          "pocket's lip); 'screened' lists those that reach a stop first on a target side in some "
-                         "chains (share > 0) within the arm's length, best first"}
+                         "chains (share > 0) within the arm's length, in the order the search takes them (by share, "
+                         "in turn over side and weight, then the refinements it added; a share ≥ 90 % is run first, "
+                         "then ≥ 50 %)"}
     ranked = sorted((a for a in exact if fits(a)), key=lambda a: (-a.predicted, a.wrong, a.variant.weight is not None))
     ranked = [ranked[i] for i in _diverse(list(range(len(ranked))), ranked)]  # every variant and side gets a turn
 
@@ -448,14 +453,15 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         tick("engine screen", len(screened), n_screen)
     pos = len(screened)  # exact candidates screened in the engine
     screened.sort(key=lambda a: (-a.predicted, a.wrong))
-    stages["engine_screen"] = time.perf_counter() - t0 - stages["exact_screen"]
+    if plan.engine_screen:  # off by default: the first trials screen instead
+        stages["engine_screen"] = time.perf_counter() - t0 - stages["exact_screen"]
     tried: list[Tried] = []
 
     def result(success, reason="", fed=None, verified=None, rerun=None):
         return FeederSearch(success, fed.side if fed else None, str(out / "feeder.toml") if fed else None, fed,
                             verified, rerun, fed.predicted if fed else None, time.perf_counter() - t0, reason,
                             tuple(tried), tuple(screened), exact_doc, assumptions,
-                            stages_s={**stages, "verification": time.perf_counter() - t0 - sum(stages.values())})
+                            stages_s={**stages, "engine_trials": time.perf_counter() - t0 - sum(stages.values())})
 
     # 3. verification in the feeding experiment; a candidate that passes its first trials but falls short is refined
     log = out / "candidates.jsonl"
@@ -468,7 +474,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         queue = (good + [k for k, c in enumerate(ranked) if TRY_SHARE <= c.predicted < plan.min_predicted])[:n_screen]
         pos = n_screen
     refined_from: dict[int, int] = {}
-    shifted: dict[int, int] = {}  # how many times a candidate's ω was moved away from a side it could not hold
+    shifted: dict[int, tuple] = {}  # a candidate's ω moves away from drifts it could not hold: (count, last direction)
     while True:
         while not queue and pos < n_screen and time.perf_counter() - t0 < 0.75 * budget_s:
             screened.append(engine(ranked[pos]))  # every candidate so far failed: screen the next
@@ -494,7 +500,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             end = t0 + budget_s + (plan.finish_s if finish else 0.0)  # a verification or rerun may finish
             res = run_experiment("feed", cfg, n=n, seed=s, workers=workers, out=here / name, progress=cb,
                                  stop_by=end)  # no trial is started past the budget
-            runs.append({**_run_doc(res), "time_s": time.perf_counter() - t, "resumed": res.resumed})
+            runs.append({**_run_doc(res), "time_s": time.perf_counter() - t, "new_trials": res.n - res.resumed})
             return res
 
         allowed = plan.n_pre - math.ceil(plan.pre_share * plan.n_pre - 1e-9)  # failures the first trials may have
@@ -503,7 +509,8 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             if pre.n - pre.successes > allowed or pre.n < n:
                 break
         if len(runs) > 1:  # the first trials are one run, stored in one folder
-            runs[:] = [{**runs[-1], "time_s": sum(r["time_s"] for r in runs)}]
+            runs[:] = [{**runs[-1], "time_s": sum(r["time_s"] for r in runs),
+                        "new_trials": sum(r["new_trials"] for r in runs)}]
         verdict = "dropped after the first trials"
         verified = rerun = None
         short = "the budget ran out in the {} ({}/{} trials run)"
@@ -514,9 +521,11 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             if plan.omega_check:  # cheaper than the verification, and it stops the fragile ones before it
                 verdict, shift = omega_check(cfg, here, plan, workers=workers, stop_by=t0 + budget_s,
                                               progress=progress, label=f"candidate {k}", record=checks)
-                if shift and shifted.get(k, 0) < 2:  # centre ω in its window: away from the drift it cannot take
-                    refined_from[len(screened)] = k
-                    shifted[len(screened)] = shifted.get(k, 0) + 1
+                count, last = shifted.get(k, (0, 0.0))
+                back = last and math.copysign(1.0, shift) != math.copysign(1.0, last)  # toward where it came from
+                if shift and count < 2 and not back:  # centre ω in its window: away from the drift it cannot take
+                    refined_from[len(screened)] = k  # (not back: its window is narrower than the move, ± 3 % + 5 %)
+                    shifted[len(screened)] = (count + 1, shift)
                     screened.append(dataclasses.replace(c, omega=round(c.omega * (1.0 + shift), 6)))
                     queue.insert(0, len(screened) - 1)
             if verdict == "fed" and plan.weight_check and c.variant.weight is not None:
@@ -541,13 +550,15 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
         if k in refined_from:
             verdict += f" (refined from candidate {refined_from[k]})"
         old = before.get(here.name)
-        read_back = bool(runs) and all(r["resumed"] == r["n"] for r in runs) and old is not None and [
+        read_back = bool(runs) and not any(r["new_trials"] for r in runs) and old is not None and [
             (r["n"], r["successes"]) for r in old["runs"]] == [(r["n"], r["successes"]) for r in runs]
         if read_back:  # nothing run now: the earlier run's timings stand
-            runs[:] = [{**r, "resumed": r["n"]} for r in old["runs"]]
+            runs[:] = [{**r, "new_trials": 0} for r in old["runs"]]
             if verified:
                 verified, rerun = {**runs[-2], "chose": verified["chose"]}, runs[-1]
         tried.append(Tried(k, c, tuple(runs), verdict, tuple(checks), read_back))
+        tick(f"→ candidate {k}: " + ", ".join(f"{r['successes']}/{r['n']}" for r in runs) + f" fed: {verdict}"
+             + (" (read back)" if read_back else ""), 1, 1)
         atomic_write_text(log, "".join(json.dumps(t.to_dict()) + "\n" for t in tried))  # this search's candidates
         if verdict.startswith("fed"):
             found = result(True, fed=c, verified=verified, rerun=rerun)

@@ -35,6 +35,7 @@ import numpy as np
 
 from ..errors import InvalidStateError
 from ..io.files import atomic_write_text
+from .checks import drift_text, drifted, stage_label
 
 __all__ = ["write_sheet", "drawing", "margins", "drifted", "MARGIN_STEPS"]
 
@@ -50,32 +51,6 @@ the weight's place shifted in the part's x / y, m."""
 HALVED = ("weight_x", "weight_y")
 """Quantities whose first step, when it fails, is followed by one of half the size (a weight that must sit within
 3 mm is told apart from one that must sit within 1.5 mm)."""
-
-
-def drifted(cfg, what: str, step: float, folder: Path):
-    """The feed config ``cfg`` with one quantity drifted by ``step`` (None when the drift is not possible)."""
-    from ..io.config import resolve_part, save_part_toml
-    from .family import Weight, with_weight, without_last_weight
-
-    if what == "omega":
-        return cfg.model_copy(update={"omega": cfg.omega * (1.0 + step)})
-    if what == "mu":
-        return cfg.model_copy(update={"arm": cfg.arm.model_copy(update={"mu": cfg.arm.mu * step})})
-    if what == "jitter":
-        return cfg.model_copy(update={"noise": cfg.noise.model_copy(update={"omega_rel": step})})
-    part = resolve_part(cfg.part).part
-    if not part.point_masses:
-        return None
-    m, at = part.point_masses[-1]
-    at = (at[0] + step, at[1]) if what == "weight_x" else (at[0], at[1] + step)
-    from ..system.geometry import point_in_convex_polygon
-
-    if not point_in_convex_polygon(np.asarray(part.vertices), np.asarray(at)):  # the moved weight leaves the plate
-        return None
-    moved = with_weight(without_last_weight(part), Weight(m, at))
-    folder.mkdir(parents=True, exist_ok=True)
-    path = save_part_toml(moved, None, folder / "part.toml")
-    return cfg.model_copy(update={"part": str(path.resolve())})
 
 
 def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 100, workers: int = 0,
@@ -106,11 +81,13 @@ def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 10
                 lane["open"], lane["off"] = False, not lane["runs"]
                 continue
             here.mkdir(parents=True, exist_ok=True)
-            cb = None if progress is None else (lambda d, t, lab=f"margin {what} {step:+g}": progress(lab, d, t))
+            lab = stage_label(f"margin {what} {step:+g}", here / "run", trials)
+            cb = None if progress is None else (lambda d, t, lab=lab: progress(lab, d, t))
             res = run_experiment("feed", c, n=trials, seed=seed, workers=workers, out=here / "run", progress=cb,
                                  stop_by=t0 + budget_s)
-            if res.n < trials:  # cut short by the budget: no verdict on this step
-                lane["open"] = False
+            if res.n < trials:  # cut short by the budget: no verdict on this step, but its count is shown
+                lane["open"], lane["cut"] = False, {"step": step, "n": res.n, "successes": res.successes,
+                                                   "planned": trials}
                 continue
             lane["runs"].append({"step": step, "n": res.n, "successes": res.successes,
                                  "ci95": [float(res.ci95[0]), float(res.ci95[1])]})
@@ -129,6 +106,8 @@ def margins(cfg, folder, *, trials: int = 30, goal: float = 0.95, seed: int = 10
             runs.sort(key=lambda x: abs(x["step"]))
         row = ({"passed": lane["passed"], "failed": lane["failed"], "runs": runs} if runs else
                {"passed": None, "failed": None, "runs": [], "not measured": "budget"})
+        if lane.get("cut"):  # the step the budget cut short: how far it got (no verdict)
+            row["cut_short"] = lane["cut"]
         out.setdefault(lane["what"], []).append(row)
     return out
 
@@ -138,12 +117,15 @@ def _margin_text(what: str, rows: list) -> str:
             "jitter": ("ω jitter σ", lambda v: f"{100 * v:g} %"),
             "weight_x": ("weight x", lambda v: f"{1000 * v:+.2g} mm"),
             "weight_y": ("weight y", lambda v: f"{1000 * v:+.2g} mm")}[what]
-    if rows and all(r.get("not measured") for r in rows):
+    if rows and all(r.get("not measured") and not (r.get("cut_short") or {}).get("n") for r in rows):
         return unit[0], "not measured (the search's time budget was spent)"
     parts = []
     for r in rows:
+        cut = r.get("cut_short")
+        cut = (f"{unit[1](cut['step'])} cut short by the budget at {cut['successes']}/{cut['n']} of {cut['planned']} "
+               "trials, no verdict") if cut and cut["n"] else ""
         if r.get("not measured"):
-            parts.append("not measured (the search's time budget was spent)")
+            parts.append("not measured (the search's time budget was spent" + (f"; {cut})" if cut else ")"))
             continue
         runs = ", ".join(f"{unit[1](x['step'])}: {x['successes']}/{x['n']}" for x in r["runs"])
         if r["failed"] is None:
@@ -152,7 +134,7 @@ def _margin_text(what: str, rows: list) -> str:
             verdict = f"falls clearly below the goal at {unit[1](r['failed'])}"
         else:
             verdict = f"holds to {unit[1](r['passed'])}, not to {unit[1](r['failed'])}"
-        parts.append(f"{verdict} ({runs})")
+        parts.append(f"{verdict} ({runs}" + (f"; {cut})" if cut else ")"))
     return unit[0], "; ".join(parts)
 
 
@@ -376,7 +358,7 @@ def write_sheet(res, out, *, margin_trials: int = 30, workers: int | None = None
         raise InvalidStateError("result", "has no verified feeder to draw (success is False)")
     t0 = time.perf_counter()
     out = Path(out)
-    cfg = read_config(Feed(), out / "feeder.toml")
+    cfg = read_config(Feed(), (out / "feeder.toml").resolve())  # the runs store the part's absolute path: resumable from any cwd
     design = build_design(cfg)
     from ..experiments.stats import rerun_range
     from .family import side_endpoints
@@ -498,7 +480,7 @@ def margin_refusal(marg: dict, goal: float) -> str:
     for row in marg.get("omega", []):
         for run in row.get("runs", []):
             if abs(abs(run["step"]) - REFUSE_WITHIN) < 1e-9 and run["ci95"][1] < goal:
-                return (f"verified, but within {100 * REFUSE_WITHIN:g} % of ω of losing its feed: at ω(1 "
-                        f"{run['step']:+.0%}) {run['successes']}/{run['n']} fed (Wilson 95 % up to "
+                return (f"verified, but within {100 * REFUSE_WITHIN:g} % of ω of losing its feed: at "
+                        f"{drift_text(run['step'])} {run['successes']}/{run['n']} fed (Wilson 95 % up to "
                         f"{100 * run['ci95'][1]:.1f} % < {100 * goal:g} %)")
     return ""

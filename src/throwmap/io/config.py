@@ -421,7 +421,12 @@ def part_to_toml(part: Part, arm: Arm | None = None) -> str:
         f"mass = {_toml_float(_plate_mass(part))}  # kg, plate only (total {part.mass:.6g} kg)",
     ]
     if "com" in given:
-        lines.append(f"com = {_toml_point(part.com)}  # m, given (not the plate-plus-lead CM)")
+        pms = [(m, tuple(at)) for m, at in part.point_masses]
+        computed = Part.from_vertices([tuple(v) for v in part.vertices], mass=_plate_mass(part), point_masses=pms).com
+        if math.dist(computed, part.com) < 1e-9:  # the same point but for rounding: kept so the part reads back equal
+            lines.append(f"com = {_toml_point(part.com)}  # m, the plate-plus-lead CM to its last digit")
+        else:
+            lines.append(f"com = {_toml_point(part.com)}  # m, given (not the plate-plus-lead CM)")
     if "radius_of_gyration" in given:
         lines.append(f"radius_of_gyration = {_toml_float(part.radius_of_gyration)}  # m, about the CM, given")
     for m, at in part.point_masses:
