@@ -98,14 +98,17 @@ def test_interrupted_run_resumes_without_redoing(tmp_path, reference):
 
 def test_a_run_read_back_whole_leaves_its_files_as_written(tmp_path, reference):
     """Reading a finished run back runs nothing and rewrites nothing: ``result.json`` keeps the timing of the call that
-    ran the trials (a read-back call's own is near 0 s), while an extended run writes its new result."""
+    ran the trials (a read-back call's own is near 0 s), also after a look at fewer of them (the feeder search reads
+    its first trials back 5 at a time); a run extended by new trials writes its new result."""
     run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
     before = {p: (tmp_path / p).read_bytes() for p in ("result.json", "trials.parquet")}
     again = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
     assert again.resumed == 12 and again.trials == reference.trials
     assert {p: (tmp_path / p).read_bytes() for p in before} == before
     fewer = run_experiment("settle", CFG, n=5, seed=7, workers=1, out=tmp_path)  # a shorter look: its own result
-    assert json.loads((tmp_path / "result.json").read_text())["n"] == fewer.n == 5
+    assert fewer.n == 5 and {p: (tmp_path / p).read_bytes() for p in before} == before
+    more = run_experiment("settle", CFG, n=14, seed=7, workers=1, out=tmp_path)
+    assert json.loads((tmp_path / "result.json").read_text())["n"] == more.n == 14
 
 
 @pytest.mark.parametrize("workers", [1, 2])

@@ -139,6 +139,14 @@ def test_a_rerun_outside_the_interval_is_not_a_feeder(tri, tmp_path, monkeypatch
     assert "rerun disagrees" in res.reason and res.config is None and not (tmp_path / "feeder.toml").exists()
 
 
+def test_a_rerun_below_the_goal_says_so(tri, tmp_path, monkeypatch):
+    """A rerun of 188/200 after 196/200 is inside the range a new run lands in, but below 95 %: "rerun below the
+    goal", not "disagrees"."""
+    _fake(monkeypatch, {"first": 1.0, "verify": 0.98, "rerun": 0.94}, predicted=0.99)
+    res = design_feeder(tri, tmp_path, side=0, plan=VerifyPlan(n_pre=20, n_verify=200, **GRID))
+    assert not res.success and res.tried and all(t.verdict.startswith("rerun below the goal") for t in res.tried)
+
+
 def test_a_rerun_above_the_interval_confirms_the_feeder(tri, tmp_path, monkeypatch):
     """199/200 has the Wilson interval [97.2, 99.9] %: a perfect rerun lies above it, which is no disagreement."""
     _fake(monkeypatch, {"first": 1.0, "verify": 0.995, "rerun": 1.0}, predicted=0.99)
@@ -480,10 +488,11 @@ def test_the_reason_names_the_candidate_that_went_furthest_and_a_budget_that_cut
     plan = VerifyPlan(**GRID)
     exact = {"0": 0.9975, "1": 1.0}
     text = _reason((0, 1), exact, [], [], tried, plan, 600.0, unrun=7)
-    assert text.startswith("the budget (600 s) ran out with 7 candidate(s) queued for the engine not run; ")
+    assert text.startswith("the search's time (600 s of the budget, the rest kept for the design sheet; no candidate "
+                           "starts after 75% of it, 450 s) ran out with 7 candidate(s) queued for the engine not run; ")
     assert "side 0: exact 99.8 %, side 1: exact 100 %" in text
     assert "the best, side 1 (no weight, ω = 5.5 rad/s" in text and "reached 182/200 = 91.0 % (below the goal)" in text
-    assert not _reason((0, 1), exact, [], [], tried, plan, 600.0, unrun=0).startswith("the budget")
+    assert not _reason((0, 1), exact, [], [], tried, plan, 600.0, unrun=0).startswith("the search's time")
 
 
 def test_a_moved_omega_is_not_moved_back_toward_where_it_came_from(tri, tmp_path, monkeypatch):

@@ -44,7 +44,7 @@ def omega_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: flo
     failed, seen = [], []
     for step in (-OMEGA_DRIFT, OMEGA_DRIFT):
         c = cfg.model_copy(update={"omega": cfg.omega * (1.0 + step)})
-        lab = stage_label(f"{label}: ω {step:+.0%}", here / f"omega_{step:+g}", plan.omega_check)
+        lab = stage_label(f"{label}: {drift_text(step)}", here / f"omega_{step:+g}", plan.omega_check)
         cb = None if progress is None else (lambda d, t, lab=lab: progress(lab, d, t))
         res = run_experiment("feed", c, n=plan.omega_check, seed=100, workers=workers, out=here / f"omega_{step:+g}",
                              progress=cb, stop_by=stop_by)
@@ -83,7 +83,7 @@ def weight_check(cfg, here: Path, plan: VerifyPlan, *, workers: int, stop_by: fl
             c = drifted(cfg, what, step, here / name)
             if c is None:
                 continue
-            lab = stage_label(f"{label}: {name}", here / name / "run", plan.weight_check)
+            lab = stage_label(f"{label}: weight {what[-1]} {1000 * step:+.1f} mm", here / name / "run", plan.weight_check)
             cb = None if progress is None else (lambda d, t, lab=lab: progress(lab, d, t))
             res = run_experiment("feed", c, n=plan.weight_check, seed=100, workers=workers, out=here / name / "run",
                                  progress=cb, stop_by=stop_by)

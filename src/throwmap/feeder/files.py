@@ -78,10 +78,11 @@ def _wall_note(found: Arrival) -> str:
     """Where the end wall's screened share comes from: this wall, or the screened stop it was moved from."""
     stop = float(found.best.get(found.side, (found.X,))[0]) if found.best else found.X
     share = f"{100 * found.predicted:.1f} % of screened chains"
+    there = "at the pocket's lip before it" if found.lip else "there"  # the share is counted where a side is caught
     if not math.isfinite(stop) or abs(stop - found.X) < 1e-9:
-        return f"side {found.side} arrives there first in {share}"
+        return f"side {found.side} arrives {there} first in {share}"
     return (f"moved {100 * (found.X - stop):+.1f} cm from the screened stop at {stop:g} m, where side {found.side} "
-            f"arrives first in {share}")
+            f"arrives {'at the lip ' if found.lip else ''}first in {share}")
 
 
 def feeder_files(found: Arrival, out, **kw) -> Path:

@@ -88,7 +88,8 @@ class Tried:
     screened ``candidate``, the ``runs`` made (each ``{"n", "successes", "ci95", "seed", "failures", "rate",
     "throws_to_capture", "time_s", "new_trials"}``: ``new_trials`` those this search ran, the rest read back — the
     first trials a verification extends, or an earlier run's) and the ``verdict`` (``"fed"``, ``"dropped after the first trials"``,
-    ``"below the goal"``, ``"rerun disagrees"``, ``"the budget ran out in the …"``) and the drift ``checks`` run
+    ``"below the goal"``, ``"rerun below the goal"``, ``"rerun disagrees"`` (at the goal but below the range a new run
+    lands in after the verification), ``"the budget ran out in the …"``) and the drift ``checks`` run
     (each ``{"check": "omega" | "weight_x" | "weight_y", "step", "n", "successes", "ci95"}``; ω steps relative, weight
     steps in m); ``read_back``: every trial was read back from an earlier run of the search (its runs then keep that
     run's ``time_s``)."""
@@ -164,7 +165,7 @@ class FeederSearch:
         """The screen's ``n`` best candidates and every one run in the engine, one line each (``#`` the candidate's
         number, as verdicts and folders name it; cm for lengths)."""
         rows = [f"{'#':>4}  {'side':>4}  {'weight':>30}  {'ω rad/s':>7}  {'h cm':>5}  {'wall cm':>7}  {'predicted':>9}  "
-                "engine trials: verdict"]
+                "engine trials: verdict ('-': not run; # past the screen's: refinements)"]
         runs = {t.k: t for t in self.tried}
         for k, a in enumerate(self.screened):
             if k >= n and k not in runs:
@@ -543,7 +544,9 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                     # the rerun must reach the goal and not fall below the range a new run lands in after the
                     # first (rerun_range); above it (200/200 after 199/200) it only confirms the feed
                     lo = rerun_range(full.successes, full.n, plan.n_verify)[0] / plan.n_verify
-                    verdict = "fed" if again.success_rate >= max(plan.goal, lo) else "rerun disagrees"
+                    verdict = ("fed" if again.success_rate >= max(plan.goal, lo) else "rerun below the goal"
+                               if again.success_rate < plan.goal else "rerun disagrees")  # below the range a new run
+                    # lands in after the verification, though at the goal
                     if again.n < plan.n_verify:
                         verdict = short.format("rerun", again.n, plan.n_verify)
                     verified, rerun = {**runs[-2], "chose": {"n": pre.n, "successes": pre.successes}}, runs[-1]
@@ -565,7 +568,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             e = found.evidence
             seeds, (lo, hi) = ", ".join(str(r["seed"]) for r in e["runs"]), e["rerun95"]["successes"]
             ci = e["ci95"]
-            head = (f"# Verified: {e['successes']}/{e['n']} fed over seeds {seeds} (the {e['left_out']['n']} trials "
+            head = (f"# Verified: {e['successes']}/{e['n']} fed over seed{'s' if len(e['runs']) > 1 else ''} {seeds} (the {e['left_out']['n']} trials "
                     f"that chose it left out; Wilson 95 % [{100 * ci[0]:.1f}, {100 * ci[1]:.1f}] %); a run of "
                     f"{e['rerun95']['n']} trials with another seed lands in {lo}–{hi} fed with 95 % probability.\n")
             if ci[1] - ci[0] > FEW_TRIALS_WIDTH:  # a quick search's handful of trials: its rate is barely known
@@ -574,7 +577,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
             atomic_write_text(out / "feeder.toml", head + (here / "feeder.toml").read_text(encoding="utf-8"))
             atomic_write_text(out / "part.toml", (here / "part.toml").read_text(encoding="utf-8"))
             return found
-        if verdict.startswith(("below the goal", "rerun disagrees")) and k not in refined_from:
+        if verdict.startswith(("below the goal", "rerun below the goal", "rerun disagrees")) and k not in refined_from:
             near = _neighbours(c, g=g, mu=mu, sigma=sigma, workers=workers, engine=plan.engine_screen,
                                budget_left=budget_s - (time.perf_counter() - t0))
             fresh = [a for a in near if a.predicted >= plan.min_predicted and fits(a)]
@@ -643,6 +646,12 @@ def _neighbours(c: Arrival, *, g: float, mu: float, sigma: float, workers: int, 
     return out
 
 
+def _time(budget_s: float) -> str:
+    """The search's time as the reason gives it: its share of ``--budget`` and when the last candidate may start."""
+    return (f"{budget_s:.0f} s of the budget, the rest kept for the design sheet; no candidate starts after "
+            f"{START_BY:.0%} of it, {START_BY * budget_s:.0f} s")
+
+
 def _pct(share: float) -> str:
     """A share as a percentage that never rounds to 0 or 100 unless it is: 0.9975 → "99.8 %", 1 → "100 %"."""
     if share in (0.0, 1.0):
@@ -668,14 +677,15 @@ def _reason(sides, exact_best, screened, engined, tried, plan: VerifyPlan, budge
         best = max(tried, key=lambda t: (final(t)["n"], final(t)["rate"]))  # the one that went furthest
         last = final(best)
         c = best.candidate
-        parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} % with an agreeing rerun, ω ± {100 * OMEGA_DRIFT:g} % and the weight's place ± {1000 * WEIGHT_DRIFT_M:g} mm held: the best, side "
+        parts.append(f"{len(tried)} candidate(s) run in the engine, none fed ≥ {100 * plan.goal:g} % in its verification and its rerun, ω ± {100 * OMEGA_DRIFT:g} % and the weight's place ± {1000 * WEIGHT_DRIFT_M:g} mm held: the best, side "
                      f"{c.side} ({c.variant.label()}, ω = {c.omega:g} rad/s, h = {c.h:g} m, wall at {c.X:g} m) reached "
                      f"{last['successes']}/{last['n']} = {100 * last['rate']:.1f} % ({best.verdict})")
     elif screened and max(a.predicted for a in screened) >= plan.min_predicted:
-        parts.insert(0, f"the budget ({budget_s:g} s) ran out before a candidate was run")  # the cause, first
+        parts.insert(0, f"the search's time ({_time(budget_s)}) ran out before a candidate was run")  # the cause
     else:
         need = plan.min_predicted if plan.engine_screen else TRY_SHARE
         parts.append(f"no candidate reached the {100 * need:g} % share needed to be run in the engine")
     if unrun and tried:  # the cause, first: the search did not run out of candidates
-        parts.insert(0, f"the budget ({budget_s:g} s) ran out with {unrun} candidate(s) queued for the engine not run")
+        parts.insert(0, f"the search's time ({_time(budget_s)}) ran out with {unrun} candidate(s) queued for the "
+                        "engine not run")
     return "; ".join(parts)
