@@ -96,15 +96,17 @@ def test_interrupted_run_resumes_without_redoing(tmp_path, reference):
     assert third.resumed == 12 and third.trials[:12] == reference.trials
 
 
-def test_a_run_read_back_whole_leaves_its_files_as_written(tmp_path, reference):
-    """Reading a finished run back runs nothing and rewrites nothing: ``result.json`` keeps the timing of the call that
-    ran the trials (a read-back call's own is near 0 s), also after a look at fewer of them (the feeder search reads
-    its first trials back 5 at a time); a run extended by new trials writes its new result."""
-    run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
-    before = {p: (tmp_path / p).read_bytes() for p in ("result.json", "trials.parquet")}
+def test_a_run_read_back_keeps_its_timing_and_a_shorter_look_writes_nothing(tmp_path, reference):
+    """Reading a finished run back runs nothing: its ``result.json`` then says so (``resumed``) and keeps the time the
+    trials took (the read-back call adds its own, near 0 s); a look at fewer of them (the feeder search reads its
+    first trials back 5 at a time) writes nothing over the longer run; a run extended by new trials writes its
+    new result."""
+    first = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
     again = run_experiment("settle", CFG, n=12, seed=7, workers=1, out=tmp_path)
     assert again.resumed == 12 and again.trials == reference.trials
-    assert {p: (tmp_path / p).read_bytes() for p in before} == before
+    doc = json.loads((tmp_path / "result.json").read_text())
+    assert doc["resumed"] == 12 and first.elapsed_s <= doc["elapsed_s"] < first.elapsed_s + 1.0
+    before = {p: (tmp_path / p).read_bytes() for p in ("result.json", "trials.parquet")}
     fewer = run_experiment("settle", CFG, n=5, seed=7, workers=1, out=tmp_path)  # a shorter look: its own result
     assert fewer.n == 5 and {p: (tmp_path / p).read_bytes() for p in before} == before
     more = run_experiment("settle", CFG, n=14, seed=7, workers=1, out=tmp_path)

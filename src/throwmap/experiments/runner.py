@@ -71,8 +71,8 @@ class ExperimentResult:
     95 % interval (:func:`~throwmap.experiments.stats.wilson_interval`), ``failures``
     the count of each failure kind, ``seed`` the run's seed, ``parameters`` every
     parameter of the experiment (SI), ``config`` the validated config as JSON,
-    ``trials`` sorted by index, ``elapsed_s`` the wall time of this call (s, stored
-    trials not re-run), ``workers`` the processes used, ``resumed`` how many trials were
+    ``trials`` sorted by index, ``elapsed_s`` the wall time spent running them (s: this call's, plus that
+    of the stored run it read back), ``workers`` the processes used, ``resumed`` how many trials were
     read back from ``out`` instead of run.
     """
 
@@ -460,7 +460,7 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     finally:
         if fh is not None:
             fh.close()
-    elapsed = time.perf_counter() - t0
+    elapsed = time.perf_counter() - t0 + (_prior_elapsed(directory, len(stored)) if directory is not None else 0.0)
     result = ExperimentResult.from_trials(exp.name, done.values(), seed=seed, parameters=parameters, planned=n,
                                           elapsed_s=elapsed, workers=n_workers, config=json.loads(config_json),
                                           resumed=len(stored))
@@ -469,11 +469,32 @@ def run_experiment(experiment, config=None, *, n: int, seed: int, workers: int =
     return result
 
 
+def _stored_result(directory: Path) -> dict | None:
+    try:
+        return json.loads((directory / "result.json").read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def _prior_elapsed(directory: Path, stored: int) -> float:
+    """The wall time (s) the stored run in ``directory`` spent on trials this call read back (its ``result.json``'s
+    ``elapsed_s`` when it covers no more than them; 0 otherwise)."""
+    doc = _stored_result(directory) if stored else None
+    try:
+        return float(doc["elapsed_s"]) if doc and 0 < int(doc["n"]) <= stored else 0.0
+    except (KeyError, TypeError, ValueError):
+        return 0.0
+
+
 def _unchanged(directory: Path, result: ExperimentResult, stored: int) -> bool:
-    """Whether this call leaves the run stored in ``directory`` as it is: it ran no trial (every one was read back)
-    and the run's result files are there — kept as written, with the timing of the call that ran the trials (a look
-    at fewer trials than stored returns its own result without writing it)."""
-    return stored >= result.n and (directory / "result.json").exists() and (directory / "trials.parquet").exists()
+    """Whether this call leaves the run stored in ``directory`` as it is: a look at fewer trials than its
+    ``result.json`` covers, all read back (the feeder search reads a verification's first trials back 5 at a time),
+    returns its own result without writing it over the longer run's."""
+    doc = _stored_result(directory) if stored >= result.n else None
+    try:
+        return doc is not None and int(doc["n"]) > result.n and (directory / "trials.parquet").exists()
+    except (KeyError, TypeError, ValueError):
+        return False
 
 
 def _write_outputs(directory: Path, result: ExperimentResult) -> None:
