@@ -376,14 +376,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
                             (), (), {}, assumptions, stages_s={})
     make_directory(out, "out")
     store = out / "screen.jsonl"
-    seen = {}
-    if store.exists():
-        for line in store.read_text(encoding="utf-8").splitlines():
-            try:
-                doc = json.loads(line)
-                seen[doc["key"]] = doc
-            except (ValueError, KeyError):
-                continue  # a line cut by an interrupted write: screened again
+    seen = _stored_lines(store, "key")  # a line cut by an interrupted write is screened again
 
     def fits(a: Arrival) -> bool:
         return a.predicted > 0 and (arm_length is None or a.X <= arm_length + 1e-9)
@@ -466,7 +459,7 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
 
     # 3. verification in the feeding experiment; a candidate that passes its first trials but falls short is refined
     log = out / "candidates.jsonl"
-    before = _stored_candidates(log)  # an earlier run's candidates: read back, they keep its timings
+    before = _stored_lines(log, "folder")  # an earlier run's candidates: read back, they keep its timings
     if plan.engine_screen:
         queue = _diverse([k for k, c in enumerate(screened) if c.predicted >= plan.min_predicted and fits(c)], screened)
     else:  # the first trials screen: the exact screen's candidates, those ≥ min_predicted first, then any ≥ 1/2
@@ -588,16 +581,17 @@ def design_feeder(part: Part, out, *, side: int | None = None, weight="auto", ar
     return result(False, _reason(sides, exact_best, screened, engined, tried, plan, budget_s, unrun=len(queue)))
 
 
-def _stored_candidates(log: Path) -> dict:
-    """The candidates an earlier run of the search stored in ``log`` (``candidates.jsonl``), by folder name."""
+def _stored_lines(path: Path, key: str) -> dict:
+    """The JSON lines an earlier run of the search stored in ``path`` (``screen.jsonl``, ``candidates.jsonl``), by
+    their ``key``; a line cut short or of an older format is skipped (its work is done again)."""
     out = {}
-    if log.exists():
-        for line in log.read_text(encoding="utf-8").splitlines():
+    if path.exists():
+        for line in path.read_text(encoding="utf-8").splitlines():
             try:
                 doc = json.loads(line)
-                out[doc["folder"]] = doc
+                out[doc[key]] = doc
             except (ValueError, KeyError, TypeError):
-                continue  # a line of an older format or cut short: its candidate is run again
+                continue
     return out
 
 
